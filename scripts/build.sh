@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Configures and builds chasles into ${BUILD_DIR:-build}. Extra arguments go to cmake.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${BUILD_DIR:-build}
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=${BUILD_TYPE:-Release} "$@" >/dev/null
+cmake --build "$build" -j "${JOBS:-2}"

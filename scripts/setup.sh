@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs every Debian package chasles needs to build, test and run. Idempotent: it asks apt
+# only for what is missing, and refreshes the package lists only when something is.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  libeigen3-dev        # linear algebra
+  libyaml-cpp-dev      # scene files, with line/column marks
+  libcli11-dev         # command line
+  libfmt-dev           # formatting
+  libboost-dev         # Boost.Math: quadrature, special functions (header-only)
+  nlohmann-json3-dev   # JSON reports
+  libassimp-dev        # mesh import (OBJ, PLY, ASCII/binary STL)
+  libgtest-dev libgmock-dev  # tests
+  libbenchmark-dev     # benchmarks in bench/
+  clang-format         # formatting check
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "setup: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

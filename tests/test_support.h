@@ -1,0 +1,39 @@
+#pragma once
+/// @file
+/// Helpers shared by the tests: named, scaled tolerances and matrix comparisons.
+
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "chasles/math/types.h"
+
+namespace chasles::test {
+
+/// Machine epsilon for double.
+inline constexpr double kEps = std::numeric_limits<double>::epsilon();
+/// Tolerance for results that are exact up to a handful of floating-point operations.
+inline constexpr double kExact = 64 * kEps;
+
+/// |a - b| <= rel * max(|b|, scale): a relative test whose floor is `scale` (the problem's
+/// magnitude), so that expected zeros compare against the problem, not against zero.
+inline ::testing::AssertionResult Near(double a, double b, double rel, double scale = 0.0) {
+  const double tol = rel * std::max(std::abs(b), scale);
+  if (std::abs(a - b) <= tol && std::isfinite(a)) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << a << " vs expected " << b << " (difference " << a - b << ", tolerance " << tol << ")";
+}
+
+template <typename A, typename B>
+::testing::AssertionResult MatNear(const A& a, const B& b, double rel, double scale = 0.0) {
+  const double s = std::max(b.cwiseAbs().maxCoeff(), scale);
+  const double diff = (a - b).cwiseAbs().maxCoeff();
+  if (diff <= rel * s && a.allFinite()) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << "\n"
+         << a << "\nvs expected\n"
+         << b << "\n(max difference " << diff << ", tolerance " << rel * s << ")";
+}
+
+}  // namespace chasles::test
