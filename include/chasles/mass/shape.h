@@ -1,0 +1,138 @@
+#pragma once
+/// @file
+/// Primitive shapes of the chapter's Appendix A: their measure (length, area or volume),
+/// centroid and inertia per unit mass, and for solids a smooth map of the unit cube onto the
+/// volume (used to integrate a varying density, see density_field.h).
+///
+/// Every shape lives in its own frame S. Shapes with an axis of symmetry have it along z.
+/// Thin shapes (rods, hoops, disks, plates, shells) are the limits of zero thickness; their
+/// measure is a length or an area and they cannot carry a volumetric density.
+///
+/// Frames (all centred at the centroid unless stated):
+/// - rod: length L along z.                       - ring (hoop): radius R in the xy plane.
+/// - disk: radius R in the xy plane.              - plate: a along x by b along y, in xy.
+/// - cylinder: radius R, length h along z.        - cylindrical_shell: wall of radius R,
+///                                                  length h along z, no end caps.
+/// - tube: inner radius Ri, outer Ro, length h along z.
+/// - sphere: radius R.  spherical_shell (thin): radius R.  thick_spherical_shell: Ri, Ro.
+/// - hemisphere: radius R; origin at the centre of the flat face, dome towards +z
+///   (centroid at z = 3R/8).
+/// - cone (solid, right circular): base radius R, height h; origin at the centre of the
+///   base, apex at z = h (centroid at z = h/4).
+/// - box: a x b x c along x, y, z.                - ellipsoid: semi-axes a, b, c along x, y, z.
+/// - torus: axis z, major radius R (to the centre of the tube), minor (tube) radius r.
+/// - triangular_prism: the triangle with vertices v0, v1, v2 (given in the xy plane of S)
+///   extruded along z over length h, centred in z. The origin of S is where the vertices
+///   are measured from, not the centroid (the centroid is the mean of the vertices).
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "chasles/mass/mass_properties.h"
+#include "chasles/mass/rotational_inertia.h"
+#include "chasles/math/types.h"
+
+namespace chasles {
+
+/// One named dimension of a shape, as a scene file would state it (e.g. {"radius", 0.1}).
+struct ShapeDimension {
+  /// Key name, e.g. "inner_radius".
+  std::string name;
+  /// Value [m].
+  double value;
+};
+
+/// A primitive shape of uniform density (Appendix A). Immutable once made.
+class Shape {
+ public:
+  /// What the shape's mass is spread over.
+  enum class Measure {
+    kLength,  ///< slender rod, thin ring: mass per unit length
+    kArea,    ///< thin disk, plate, cylindrical and spherical shells: mass per unit area
+    kVolume,  ///< solids
+  };
+
+  virtual ~Shape() = default;
+
+  /// The shape's type name as a scene file writes it, e.g. "cylinder".
+  virtual std::string_view kind() const = 0;
+  /// Whether the shape is a curve, a surface or a solid.
+  virtual Measure measure() const = 0;
+  /// The dimensions the shape was made with, in the order of its factory's arguments [m].
+  virtual std::vector<ShapeDimension> dimensions() const = 0;
+  /// "cylinder (radius 0.1 m, length 0.5 m)": for messages and reports.
+  std::string Describe() const;
+
+  /// Length [m], area [m²] or volume [m³], according to measure().
+  virtual double CalcMeasure() const = 0;
+  /// Centroid from S's origin, expressed in S [m].
+  virtual Vec3 CalcCentroid() const = 0;
+  /// Inertia of unit mass about the centroid, expressed in S [m²] (= I_SScm_S / mass).
+  virtual RotationalInertia CalcUnitInertia() const = 0;
+  /// Mass properties in S for a uniform distribution of `mass` [kg] (> 0, finite; throws
+  /// InputError otherwise).
+  MassProperties CalcMassProperties(double mass) const;
+
+  /// True for solids (measure() == kVolume): only they can carry a density field.
+  bool is_solid() const { return measure() == Measure::kVolume; }
+
+  /// A smooth map p(u) of the unit cube [0,1]³ onto the solid, so that
+  ///   ∫_V f dV = ∫_[0,1]³ f(p(u)) J(u) du,   J = |det ∂p/∂u| [m³].
+  /// Cylindrical, spherical and toroidal coordinates keep polynomial densities smooth in u.
+  /// `p_S` receives the point in S [m], `jacobian` receives J [m³].
+  /// Throws InputError for thin shapes (they have no volume).
+  virtual void MapUnitCube(const Vec3& u, Vec3* p_S, double* jacobian) const;
+
+ protected:
+  Shape() = default;
+};
+
+// Factories. Each validates its dimensions (finite, > 0, and the shape's own rules) and
+// throws InputError naming the shape, the dimension and the rule, e.g.
+// "tube: inner radius 0.05 m must be smaller than outer radius 0.04 m".
+
+/// Slender rod of length `length` [m] along z ("rod").
+std::unique_ptr<Shape> MakeSlenderRod(double length);
+/// Thin ring (hoop) of radius `radius` [m] in the xy plane ("ring").
+std::unique_ptr<Shape> MakeThinRing(double radius);
+/// Thin disk of radius `radius` [m] in the xy plane ("disk").
+std::unique_ptr<Shape> MakeThinDisk(double radius);
+/// Thin rectangular plate `size_x` by `size_y` [m] in the xy plane ("plate").
+std::unique_ptr<Shape> MakeThinPlate(double size_x, double size_y);
+/// Solid cylinder of radius `radius` and length `length` along z [m] ("cylinder").
+std::unique_ptr<Shape> MakeSolidCylinder(double radius, double length);
+/// Thin cylindrical shell (open tube wall) of radius `radius`, length `length` [m]
+/// ("cylindrical_shell").
+std::unique_ptr<Shape> MakeThinCylindricalShell(double radius, double length);
+/// Thick tube: `inner_radius` < `outer_radius`, length `length` along z [m] ("tube").
+std::unique_ptr<Shape> MakeTube(double inner_radius, double outer_radius, double length);
+/// Solid sphere of radius `radius` [m] ("sphere").
+std::unique_ptr<Shape> MakeSolidSphere(double radius);
+/// Thin spherical shell of radius `radius` [m] ("spherical_shell").
+std::unique_ptr<Shape> MakeThinSphericalShell(double radius);
+/// Thick spherical shell, `inner_radius` < `outer_radius` [m] ("thick_spherical_shell").
+std::unique_ptr<Shape> MakeThickSphericalShell(double inner_radius, double outer_radius);
+/// Solid hemisphere of radius `radius` [m], flat face at z = 0, dome towards +z
+/// ("hemisphere").
+std::unique_ptr<Shape> MakeSolidHemisphere(double radius);
+/// Solid right circular cone, base radius `radius` at z = 0, apex at z = `height` [m]
+/// ("cone").
+std::unique_ptr<Shape> MakeSolidCone(double radius, double height);
+/// Rectangular box `size_x` x `size_y` x `size_z` [m] ("box").
+std::unique_ptr<Shape> MakeBox(double size_x, double size_y, double size_z);
+/// Solid ellipsoid with semi-axes `semi_axis_x`, `semi_axis_y`, `semi_axis_z` [m]
+/// ("ellipsoid").
+std::unique_ptr<Shape> MakeEllipsoid(double semi_axis_x, double semi_axis_y, double semi_axis_z);
+/// Solid torus about z: `major_radius` to the tube's centre, `minor_radius` of the tube [m];
+/// minor < major ("torus").
+std::unique_ptr<Shape> MakeTorus(double major_radius, double minor_radius);
+/// Triangular prism: the triangle (v0, v1, v2) in the xy plane of S [m], extruded along z
+/// over `length` [m] and centred in z; the triangle must not be degenerate
+/// ("triangular_prism").
+std::unique_ptr<Shape> MakeTriangularPrism(const Eigen::Vector2d& v0, const Eigen::Vector2d& v1,
+                                           const Eigen::Vector2d& v2, double length);
+
+}  // namespace chasles
