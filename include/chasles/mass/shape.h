@@ -25,6 +25,7 @@
 ///   extruded along z over length h, centred in z. The origin of S is where the vertices
 ///   are measured from, not the centroid (the centroid is the mean of the vertices).
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -41,8 +42,8 @@ namespace chasles {
 struct ShapeDimension {
   /// Key name, e.g. "inner_radius".
   std::string name;
-  /// Value [m].
-  double value;
+  /// Value [m]; NaN until set.
+  double value = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// A primitive shape of uniform density (Appendix A). Immutable once made.
