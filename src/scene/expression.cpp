@@ -121,7 +121,8 @@ class ExpressionCompiler {
   Quantity CompileUnit() {
     Advance();
     if (tok_.kind == Tok::kEnd) Fail("empty unit", 0);
-    if (tok_.kind != Tok::kName && !IsOp('(')) {
+    if (tok_.kind != Tok::kName && !IsOp('(') &&
+        !(tok_.kind == Tok::kNumber && tok_.number == 1.0)) {
       Fail("expected a unit name, got " + TokenText(tok_), tok_.pos);
     }
     const Quantity q = ParseUnit(/*allow_groups=*/true);
@@ -710,6 +711,10 @@ class ExpressionCompiler {
     while (IsOp('*') || IsOp('/')) {
       const Token next = Peek();
       if (next.kind != Tok::kName && !(allow_groups && IsOp(next, '('))) break;
+      // A parameter that is not a unit ends the suffix: "100 kg/m^4 * x" is
+      // (100 kg/m^4) * x. Since '*' and '/' associate left, the value is the same as if x
+      // were part of the unit; names that are units stay units ("kg/m^3" with a parameter m).
+      if (next.kind == Tok::kName && !LookupUnit(next.text) && Resolve(next.text)) break;
       const bool mul = IsOp('*');
       Advance();
       const size_t pos = tok_.pos;
@@ -732,6 +737,9 @@ class ExpressionCompiler {
       Advance();
     } else if (tok_.kind == Tok::kName) {
       q = UnitByName(tok_.text, pos);
+      Advance();
+    } else if (allow_groups && tok_.kind == Tok::kNumber && tok_.number == 1.0) {
+      q = Quantity{1.0, kDimensionless};  // "1/s"
       Advance();
     } else {
       Fail("expected a unit name after " + TokenText(prev_) + ", got " + TokenText(tok_), tok_.pos);

@@ -226,9 +226,10 @@ std::vector<std::string> ClosestNames(std::string_view name,
   }
   std::stable_sort(scored.begin(), scored.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
+  // Only the best distance: "KG" should suggest "kg", not also "g" and "mg".
   std::vector<std::string> out;
   for (const auto& [d, c] : scored) {
-    if (static_cast<int>(out.size()) >= max_results) break;
+    if (static_cast<int>(out.size()) >= max_results || d > scored.front().first) break;
     if (std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
   }
   return out;

@@ -21,9 +21,13 @@
 ///  - Units by juxtaposition: a product followed directly (no operator) by a name starts a
 ///    unit suffix that multiplies that product: "9/8 in" is (9/8)*in, "7850 kg/m^3" is
 ///    7850*(kg/m^3), "-9.81 m/s^2" is (-9.81)*(m/s^2), "2 m + 3 cm" is 2*m + 3*cm. Inside a
-///    unit suffix every name is a unit (never a parameter), and '*' or '/' continue the unit
-///    only when a name follows: "2 m / 4 s" is (2 m)/(4 s). To divide by a parameter after a
-///    unit, use parentheses: "(2 m)/L".
+///    unit suffix every name that is a unit is read as the unit, even when a parameter has
+///    the same name ("7850 kg/m^3" with a parameter m still means metres). '*' or '/'
+///    continue the unit only when a name follows ("2 m / 4 s" is (2 m)/(4 s)), and a
+///    parameter that is not a unit ends it ("100 kg/m^4 * x" is (100 kg/m^4)*x, the same
+///    value by left associativity). Beware: "2 m * L" with a parameter L multiplies by the
+///    litre; write "(2 m)*L" or "L*2 m". A name directly after a value that is not a unit
+///    is an error ("2 x": write 2*x).
 ///  - Elsewhere a name is resolved, in order, as: a function if '(' follows (sqrt cbrt abs
 ///    sin cos tan asin acos atan atan2 exp log log10 min max hypot pow); a symbol of the
 ///    caller's resolver (named parameters, variables x, y, z); the constant pi; a unit.
@@ -140,7 +144,7 @@ Quantity EvaluateQuantity(std::string_view text, const SymbolResolver& resolver,
                           const std::vector<std::string>& symbol_names = {});
 
 /// Parses a pure unit expression: unit names joined by '*' or '/', each with an optional
-/// integer power, parentheses allowed ("m", "kg/m^3", "N*m", "kg/(m*s^2)"). For a trailing
+/// integer power, parentheses allowed ("m", "kg/m^3", "N*m", "kg/(m*s^2)", "1/s"). For a trailing
 /// unit after a sequence, e.g. "[0, 0, 2] m". Returns the SI value of one such unit.
 /// Throws ExpressionError.
 Quantity ParseUnitSuffix(std::string_view text);

@@ -70,8 +70,9 @@ std::optional<Quantity> LookupUnit(std::string_view name);
 const std::vector<std::string>& UnitNames();
 
 /// The candidates closest to `name` by edit distance (optimal string alignment, comparing
-/// case-insensitively so "KG" finds "kg"), best first, at most `max_results`; empty when
-/// nothing is close enough to be a plausible typo. For "did you mean" hints.
+/// case-insensitively so "KG" finds "kg"): those at the smallest distance, at most
+/// `max_results`; empty when nothing is close enough to be a plausible typo. For "did you
+/// mean" hints.
 std::vector<std::string> ClosestNames(std::string_view name,
                                       const std::vector<std::string>& candidates,
                                       int max_results = 3);
