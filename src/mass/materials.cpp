@@ -1,5 +1,7 @@
 #include "chasles/mass/materials.h"
 
+#include "chasles/suggest.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -77,24 +79,6 @@ const Material* Find(const std::string& normalized) {
   return nullptr;
 }
 
-// Optimal-string-alignment distance: Levenshtein plus transposition of neighbours ("stele").
-int EditDistance(std::string_view a, std::string_view b) {
-  const size_t n = a.size(), m = b.size();
-  std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1, 0));
-  for (size_t i = 0; i <= n; ++i) d[i][0] = static_cast<int>(i);
-  for (size_t j = 0; j <= m; ++j) d[0][j] = static_cast<int>(j);
-  for (size_t i = 1; i <= n; ++i) {
-    for (size_t j = 1; j <= m; ++j) {
-      const int cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    }
-  }
-  return d[n][m];
-}
-
 }  // namespace
 
 std::span<const Material> Materials() {
@@ -154,23 +138,14 @@ std::vector<std::string> MaterialNames() {
 std::string SuggestMaterialName(std::string_view unknown) {
   const std::string key = NormalizeMaterialName(unknown);
   if (key.empty()) return {};
-  // A typo changes about one letter in four; short names allow one edit only, so that "ab"
-  // does not suggest "al".
-  const int allowed = key.size() <= 4 ? 1 : (key.size() <= 8 ? 2 : 3);
-  std::string best;
-  int best_distance = allowed + 1;
   // Canonical names first, so that a tie prefers the material's own name over an alias.
+  std::vector<std::string> names;
+  for (const Material& m : kTable) names.emplace_back(m.name);
   for (const Material& m : kTable) {
-    const int d = EditDistance(key, m.name);
-    if (d < best_distance) best_distance = d, best = m.name;
+    for (std::string_view a : m.aliases) names.emplace_back(a);
   }
-  for (const Material& m : kTable) {
-    for (std::string_view a : m.aliases) {
-      const int d = EditDistance(key, a);
-      if (d < best_distance) best_distance = d, best = a;
-    }
-  }
-  return best;
+  const std::vector<std::string> best = SuggestNames(key, names, 1);
+  return best.empty() ? std::string() : best.front();
 }
 
 }  // namespace chasles

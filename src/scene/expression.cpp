@@ -1,5 +1,7 @@
 #include "chasles/scene/expression.h"
 
+#include "chasles/suggest.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -597,7 +599,8 @@ class ExpressionCompiler {
       }
       std::vector<std::string> functions;
       for (const Function& fn : kFunctions) functions.emplace_back(fn.name);
-      Fail("unknown function '" + std::string(name) + "'" + Hint(ClosestNames(name, functions)),
+      Fail("unknown function '" + std::string(name) + "'" +
+               DidYouMeanHint(SuggestNames(name, functions)),
            pos);
     }
     Advance();
@@ -627,11 +630,9 @@ class ExpressionCompiler {
     }
     for (const Function& fn : kFunctions) candidates.emplace_back(fn.name);
     candidates.emplace_back("pi");
-    Fail("unknown name '" + std::string(name) + "'" + Hint(ClosestNames(name, candidates)), pos);
-  }
-
-  static std::string Hint(const std::vector<std::string>& near) {
-    return near.empty() ? "" : " (did you mean " + JoinAlternatives(near) + "?)";
+    Fail(
+        "unknown name '" + std::string(name) + "'" + DidYouMeanHint(SuggestNames(name, candidates)),
+        pos);
   }
 
   int ParseCall(const Function& f, size_t pos) {
@@ -784,7 +785,7 @@ class ExpressionCompiler {
                "' there, write the operator and parentheses, e.g. (2 m)*" + s,
            pos);
     }
-    Fail("unknown unit '" + s + "'" + Hint(SuggestUnitNames(name)), pos);
+    Fail("unknown unit '" + s + "'" + DidYouMeanHint(SuggestUnitNames(name)), pos);
   }
 
   // ---- emission -------------------------------------------------------------------------

@@ -1,5 +1,7 @@
 #include "chasles/scene/units.h"
 
+#include "chasles/suggest.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -124,29 +126,7 @@ std::string ComposeFormula(const std::vector<std::pair<std::string, int>>& facto
   return out;
 }
 
-std::string Lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 // Optimal string alignment distance: Levenshtein plus adjacent transpositions ("lenght").
-int EditDistance(const std::string& a, const std::string& b) {
-  const size_t n = a.size(), m = b.size();
-  std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1));
-  for (size_t i = 0; i <= n; ++i) d[i][0] = static_cast<int>(i);
-  for (size_t j = 0; j <= m; ++j) d[0][j] = static_cast<int>(j);
-  for (size_t i = 1; i <= n; ++i) {
-    for (size_t j = 1; j <= m; ++j) {
-      const int cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    }
-  }
-  return d[n][m];
-}
 
 }  // namespace
 
@@ -210,42 +190,8 @@ const std::vector<std::string>& UnitNames() {
   return names;
 }
 
-std::vector<std::string> ClosestNames(std::string_view name,
-                                      const std::vector<std::string>& candidates, int max_results) {
-  // A typo is plausible within one edit for short names, a third of the length for longer
-  // ones; beyond that a suggestion is noise.
-  const std::string key = Lower(name);
-  const int limit = std::max(1, static_cast<int>(key.size()) / 3);
-  std::vector<std::pair<int, std::string>> scored;
-  for (const std::string& c : candidates) {
-    if (c == name) continue;
-    const int d = EditDistance(key, Lower(c));
-    if (d <= limit && d < static_cast<int>(std::max(key.size(), c.size()))) {
-      scored.emplace_back(d, c);
-    }
-  }
-  std::stable_sort(scored.begin(), scored.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  // Only the best distance: "KG" should suggest "kg", not also "g" and "mg".
-  std::vector<std::string> out;
-  for (const auto& [d, c] : scored) {
-    if (static_cast<int>(out.size()) >= max_results || d > scored.front().first) break;
-    if (std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
-  }
-  return out;
-}
-
 std::vector<std::string> SuggestUnitNames(std::string_view name) {
-  return ClosestNames(name, UnitNames());
-}
-
-std::string JoinAlternatives(const std::vector<std::string>& names) {
-  std::string out;
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
-    out += "'" + names[i] + "'";
-  }
-  return out;
+  return SuggestNames(name, UnitNames());
 }
 
 // ---------------------------------------------------------------------------------------
@@ -317,8 +263,7 @@ UnitSystem UnitSystem::Parse(std::string_view spec) {
     const Unit unit{token, q ? q->value : 0.0};
     if (!q) {
       const auto near = SuggestUnitNames(token);
-      fail("unknown unit '" + token + "'" +
-           (near.empty() ? "" : " (did you mean " + JoinAlternatives(near) + "?)"));
+      fail("unknown unit '" + token + "'" + DidYouMeanHint(near));
     } else if (q->dim == kLength) {
       claim(set_length, "length", token);
       sys.length_ = unit;

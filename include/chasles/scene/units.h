@@ -69,19 +69,8 @@ std::optional<Quantity> LookupUnit(std::string_view name);
 /// Every unit name LookupUnit knows, in table order.
 const std::vector<std::string>& UnitNames();
 
-/// The candidates closest to `name` by edit distance (optimal string alignment, comparing
-/// case-insensitively so "KG" finds "kg"): those at the smallest distance, at most
-/// `max_results`; empty when nothing is close enough to be a plausible typo. For "did you
-/// mean" hints.
-std::vector<std::string> ClosestNames(std::string_view name,
-                                      const std::vector<std::string>& candidates,
-                                      int max_results = 3);
-
-/// The unit names closest to an unknown identifier (ClosestNames over UnitNames()).
+/// The unit names closest to an unknown identifier (SuggestNames over UnitNames()).
 std::vector<std::string> SuggestUnitNames(std::string_view name);
-
-/// "'a'", "'a' or 'b'", "'a', 'b' or 'c'": the phrase used in "did you mean ...?" hints.
-std::string JoinAlternatives(const std::vector<std::string>& names);
 
 /// Whether a dimensionless or 1/time^n quantity carries an angle (angle, angular velocity,
 /// angular acceleration): only then is it shown in rad, deg or rpm. A frequency or a ratio

@@ -137,8 +137,6 @@ TEST(Units, NamesAreCaseSensitiveAndSuggested) {
   EXPECT_THAT(SuggestUnitNames("KG"), ElementsAre("kg"));
   EXPECT_THAT(SuggestUnitNames("slg"), ElementsAre("slug"));
   EXPECT_TRUE(SuggestUnitNames("furlong").empty());
-  EXPECT_THAT(ClosestNames("lenght", {"width", "length", "height"}), ElementsAre("length"));
-  EXPECT_EQ(JoinAlternatives({"a", "b", "c"}), "'a', 'b' or 'c'");
 }
 
 TEST(UnitSystem, SIDefaultsNameForceAndTorque) {

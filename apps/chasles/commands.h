@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// The subcommands of the chasles program, one file each. Each Add...Command registers its
+/// options on the app and returns the subcommand; Run... does the work once parsed.
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace chasles::cli {
+
+/// Options shared by commands that read a scene.
+struct SceneArgs {
+  std::string scene;             // path, or "" for the built-in demonstration
+  std::vector<std::string> set;  // NAME=EXPRESSION parameter overrides
+};
+
+struct MassArgs {
+  SceneArgs scene;
+  std::string units;               // "" = the scene's own units
+  std::string format = "text";     // text | json
+  std::vector<std::string> about;  // extra points for the inertia
+  std::string frame;               // orientation of a report frame in the body
+  std::string output;              // file, or "" for standard output
+  bool hide_parts = false;
+};
+
+CLI::App* AddMassCommand(CLI::App& app, MassArgs& args);
+int RunMass(const MassArgs& args);
+
+struct CheckArgs {
+  SceneArgs scene;
+};
+CLI::App* AddCheckCommand(CLI::App& app, CheckArgs& args);
+int RunCheck(const CheckArgs& args);
+
+CLI::App* AddMaterialsCommand(CLI::App& app);
+int RunMaterials();
+
+/// The built-in demonstration scene (the chapter's disk-and-axle assembly, Section 8.3).
+extern const char* const kDemoScene;
+
+}  // namespace chasles::cli

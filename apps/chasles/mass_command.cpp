@@ -1,0 +1,284 @@
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "chasles/scene/scene.h"
+#include "chasles/scene/units.h"
+#include "commands.h"
+#include "scene_args.h"
+
+namespace chasles::cli {
+
+namespace {
+
+constexpr Dimension kDensityDim{-3, 1, 0};
+constexpr Dimension kInertiaDim{2, 1, 0};
+
+const char* const kConvention =
+    "Inertia matrices are the tensor [I]: moments on the diagonal, products as tensor entries "
+    "Ixy = -∫xy dm, so that H = [I] ω.";
+
+/// What the report shows, in the units asked for.
+struct Presenter {
+  UnitSystem units;
+  std::string L, M, I, rho;
+
+  explicit Presenter(const UnitSystem& u)
+      : units(u),
+        L(u.FormatUnit(kLength)),
+        M(u.FormatUnit(kMass)),
+        I(u.FormatUnit(kInertiaDim)),
+        rho(u.FormatUnit(kDensityDim)) {}
+
+  double Length(double v) const { return units.FromSI(v, kLength); }
+  double Mass(double v) const { return units.FromSI(v, kMass); }
+  double Inertia(double v) const { return units.FromSI(v, kInertiaDim); }
+  Vec3 Lengths(const Vec3& v) const { return Vec3(Length(v.x()), Length(v.y()), Length(v.z())); }
+  Mat3 InertiaMatrix(const Mat3& m) const {
+    return m.unaryExpr([this](double v) { return Inertia(v); });
+  }
+};
+
+// Round-off in a result whose scale is `scale` shows as an exact 0 in the text report.
+double Clean(double v, double scale) {
+  return std::abs(v) <= 1e-13 * scale ? 0.0 : v;
+}
+
+std::string Num(double v, double scale) {
+  return fmt::format("{:.7g}", Clean(v, scale));
+}
+
+std::string VecText(const Vec3& v, double scale) {
+  return fmt::format("[{}, {}, {}]", Num(v.x(), scale), Num(v.y(), scale), Num(v.z(), scale));
+}
+
+void MatrixText(std::string& out, const Mat3& m, const std::string& indent) {
+  const double scale = m.cwiseAbs().maxCoeff();
+  std::string cells[3][3];
+  size_t width = 0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      cells[i][j] = Num(m(i, j), scale);
+      width = std::max(width, cells[i][j].size());
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    out += fmt::format("{}[ {:>{}}  {:>{}}  {:>{}} ]\n", indent, cells[i][0], width, cells[i][1],
+                       width, cells[i][2], width);
+  }
+}
+
+nlohmann::json VecJson(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+nlohmann::json MatJson(const Mat3& m) {
+  return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
+}
+
+struct ReportPoint {
+  std::string name;
+  Vec3 p_BoP_B;
+};
+
+struct Frame {
+  bool given = false;
+  std::string text;
+  Mat3 R_BF = Mat3::Identity();
+};
+
+std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& args,
+                       const std::vector<ReportPoint>& extra, const Frame& frame) {
+  std::string out;
+  out += fmt::format("chasles mass: {}\n", scene.title.empty() ? scene.file : scene.title);
+  if (!scene.title.empty()) out += fmt::format("Scene: {}\n", scene.file);
+  out += fmt::format("Units: length {}, mass {}, inertia {}.\n{}\n", P.L, P.M, P.I, kConvention);
+  for (const SceneBody& body : scene.bodies) {
+    const MassProperties& mp = body.mass_properties;
+    const double Lscale =
+        std::max(mp.p_BoBcm_B().norm(), std::sqrt(mp.I_BBcm_B().Trace() / mp.mass()));
+    out += fmt::format("\nBody '{}' ({} part{})\n", body.name, body.parts.size(),
+                       body.parts.size() == 1 ? "" : "s");
+    if (!args.hide_parts) {
+      size_t w = 4;
+      for (const auto& p : body.parts) w = std::max(w, p.name.size());
+      out += fmt::format("  {:<{}}  {:<22}  {:>13}  {}\n", "part", w, "shape", "mass [" + P.M + "]",
+                         "centre of mass [" + P.L + "]");
+      for (const ScenePart& p : body.parts) {
+        const MassProperties& q = p.mass_properties;
+        std::string shape = p.shape + (p.subtractive ? " (cut)" : "");
+        out += fmt::format("  {:<{}}  {:<22}  {:>13}  {}\n", p.name, w, shape,
+                           Num(P.Mass(q.mass()), 0),
+                           VecText(P.Lengths(q.p_BoBcm_B()), P.Length(Lscale)));
+        std::string detail;
+        if (std::isfinite(p.density)) {
+          detail =
+              fmt::format("density {} {}", Num(P.units.FromSI(p.density, kDensityDim), 0), P.rho);
+          if (p.mass_source != "density") detail += fmt::format(" ({})", p.mass_source);
+        } else if (p.mass_source != "mass") {
+          detail = p.mass_source;
+        }
+        for (const auto& n : p.notes) detail += (detail.empty() ? "" : "; ") + n;
+        if (!detail.empty()) out += fmt::format("  {:<{}}  {}\n", "", w, detail);
+      }
+    }
+    const RotationalInertia& Icm = mp.I_BBcm_B();
+    out += fmt::format("  Mass                {} {}\n", Num(P.Mass(mp.mass()), 0), P.M);
+    out += fmt::format("  Centre of mass      {} {}  (from the body origin, body axes)\n",
+                       VecText(P.Lengths(mp.p_BoBcm_B()), P.Length(Lscale)), P.L);
+    out += fmt::format("  Inertia about the centre of mass, body axes [{}]\n", P.I);
+    MatrixText(out, P.InertiaMatrix(Icm.matrix()), "    ");
+    const PrincipalAxes pa = Icm.CalcPrincipalAxes();
+    const double Iscale = P.Inertia(Icm.Trace());
+    out += fmt::format("  Principal moments   {}, {}, {} {}\n",
+                       Num(P.Inertia(pa.moments[0]), Iscale), Num(P.Inertia(pa.moments[1]), Iscale),
+                       Num(P.Inertia(pa.moments[2]), Iscale), P.I);
+    out += fmt::format("  Principal axes      e1 = {}, e2 = {}, e3 = {}  (body axes)\n",
+                       VecText(pa.axes.col(0), 1), VecText(pa.axes.col(1), 1),
+                       VecText(pa.axes.col(2), 1));
+    const Vec3 k_body = Icm.CalcRadiiOfGyration(mp.mass());
+    const Vec3 k_principal = RotationalInertia(pa.moments[0], pa.moments[1], pa.moments[2])
+                                 .CalcRadiiOfGyration(mp.mass());
+    out += fmt::format("  Radii of gyration   about body axes through the centre of mass: {} {}\n",
+                       VecText(P.Lengths(k_body), P.Length(Lscale)), P.L);
+    out += fmt::format("                      about the principal axes: {} {}\n",
+                       VecText(P.Lengths(k_principal), P.Length(Lscale)), P.L);
+    std::vector<ReportPoint> points;
+    for (const auto& p : body.points) points.push_back({p.name, p.p_BoP_B});
+    points.insert(points.end(), extra.begin(), extra.end());
+    for (const ReportPoint& p : points) {
+      out += fmt::format("  Inertia about point {} = {} {}, body axes [{}]\n", p.name,
+                         VecText(P.Lengths(p.p_BoP_B), P.Length(Lscale)), P.L, P.I);
+      MatrixText(out, P.InertiaMatrix(mp.CalcInertiaAbout(p.p_BoP_B).matrix()), "    ");
+    }
+    if (frame.given) {
+      out += fmt::format("  Inertia about the centre of mass in frame {} [{}]\n", frame.text, P.I);
+      MatrixText(out, P.InertiaMatrix(Icm.ReExpressedIn(frame.R_BF.transpose()).matrix()), "    ");
+    }
+  }
+  for (const auto& w : scene.warnings) out += fmt::format("\nwarning: {}\n", w);
+  return out;
+}
+
+std::string JsonReport(const Scene& scene, const Presenter& P,
+                       const std::vector<ReportPoint>& extra, const Frame& frame) {
+  nlohmann::json j;
+  j["scene"] = scene.file;
+  j["title"] = scene.title;
+  j["units"] = {{"length", P.L}, {"mass", P.M}, {"inertia", P.I}, {"density", P.rho}};
+  j["inertia_convention"] = kConvention;
+  j["parameters"] = nlohmann::json::object();
+  for (const auto& [name, q] : scene.parameters) {
+    j["parameters"][name] = {{"value_si", q.value}, {"dimension", q.dim.Formula()}};
+  }
+  j["bodies"] = nlohmann::json::array();
+  for (const SceneBody& body : scene.bodies) {
+    const MassProperties& mp = body.mass_properties;
+    const RotationalInertia& Icm = mp.I_BBcm_B();
+    const PrincipalAxes pa = Icm.CalcPrincipalAxes();
+    nlohmann::json b;
+    b["name"] = body.name;
+    b["mass"] = P.Mass(mp.mass());
+    b["center_of_mass"] = VecJson(P.Lengths(mp.p_BoBcm_B()));
+    b["inertia_about_center_of_mass"] = MatJson(P.InertiaMatrix(Icm.matrix()));
+    b["principal_moments"] =
+        VecJson(Vec3(P.Inertia(pa.moments[0]), P.Inertia(pa.moments[1]), P.Inertia(pa.moments[2])));
+    b["principal_axes"] = {VecJson(pa.axes.col(0)), VecJson(pa.axes.col(1)),
+                           VecJson(pa.axes.col(2))};
+    b["radii_of_gyration"] = {
+        {"body_axes", VecJson(P.Lengths(Icm.CalcRadiiOfGyration(mp.mass())))},
+        {"principal_axes",
+         VecJson(P.Lengths(RotationalInertia(pa.moments[0], pa.moments[1], pa.moments[2])
+                               .CalcRadiiOfGyration(mp.mass())))}};
+    b["points"] = nlohmann::json::array();
+    std::vector<ReportPoint> points;
+    for (const auto& p : body.points) points.push_back({p.name, p.p_BoP_B});
+    points.insert(points.end(), extra.begin(), extra.end());
+    for (const ReportPoint& p : points) {
+      b["points"].push_back(
+          {{"name", p.name},
+           {"position", VecJson(P.Lengths(p.p_BoP_B))},
+           {"inertia", MatJson(P.InertiaMatrix(mp.CalcInertiaAbout(p.p_BoP_B).matrix()))}});
+    }
+    if (frame.given) {
+      b["frame"] = {{"rotation_body_from_frame", MatJson(frame.R_BF)},
+                    {"inertia_about_center_of_mass",
+                     MatJson(P.InertiaMatrix(Icm.ReExpressedIn(frame.R_BF.transpose()).matrix()))}};
+    }
+    b["parts"] = nlohmann::json::array();
+    for (const ScenePart& p : body.parts) {
+      const MassProperties& q = p.mass_properties;
+      nlohmann::json pj = {
+          {"name", p.name},
+          {"shape", p.shape},
+          {"subtractive", p.subtractive},
+          {"mass_source", p.mass_source},
+          {"mass", P.Mass(q.mass())},
+          {"center_of_mass", VecJson(P.Lengths(q.p_BoBcm_B()))},
+          {"inertia_about_center_of_mass", MatJson(P.InertiaMatrix(q.I_BBcm_B().matrix()))},
+          {"notes", p.notes}};
+      if (std::isfinite(p.density)) pj["density"] = P.units.FromSI(p.density, kDensityDim);
+      b["parts"].push_back(pj);
+    }
+    j["bodies"].push_back(b);
+  }
+  j["warnings"] = scene.warnings;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace
+
+CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "mass",
+      "Mass properties of every body and part: mass, centre of mass, inertia tensor, "
+      "principal moments and axes, radii of gyration");
+  AddSceneArgs(*cmd, args.scene);
+  cmd->add_option("--units", args.units,
+                  "Units of the report: SI, US (in, lb), or a list such as 'mm,g' or 'ft,slug' "
+                  "(default: the scene's own units)");
+  cmd->add_option("--format", args.format, "text (for people) or json (for programs)")
+      ->check(CLI::IsMember({"text", "json"}));
+  cmd->add_option(
+         "--about", args.about,
+         "Also give the inertia about this point of each body, e.g. --about '[0, 0, 0.5 m]' "
+         "(bare numbers in the scene's units; repeatable)")
+      ->allow_extra_args(false)
+      ->delimiter('\0');  // keep "[x, y, z]" whole: CLI11 would split it into a list
+  cmd->add_option("--frame", args.frame,
+                  "Also give the central inertia in a frame rotated in the body, e.g. "
+                  "--frame '{rotation: {axis: [0, 0, 1], angle: 30 deg}}'");
+  cmd->add_option("-o,--output", args.output,
+                  "Write the report to this file instead of the terminal");
+  cmd->add_flag("--no-parts", args.hide_parts, "Leave out the table of parts");
+  cmd->footer(
+      "Examples:\n"
+      "  chasles mass examples/example-8.1-cylinder.yaml\n"
+      "  chasles mass examples/example-8.1-cylinder.yaml --set 'h1=0.25*h' --units mm,g\n"
+      "  chasles mass examples/example-8.2-two-rods.yaml --format json -o rods.json\n"
+      "Exit codes: 0 success, 2 bad input (the message names file, line, column and key), "
+      "1 internal error.");
+  return cmd;
+}
+
+int RunMass(const MassArgs& args) {
+  const Scene scene = LoadScene(args.scene);
+  const Presenter P(UnitSystem::Parse(args.units.empty() ? scene.units : args.units));
+  std::vector<ReportPoint> extra;
+  for (const std::string& a : args.about) {
+    extra.push_back({"'" + a + "'", ReadPointOption(scene, a, "--about")});
+  }
+  Frame frame;
+  if (!args.frame.empty()) {
+    frame.given = true;
+    frame.text = "F";
+    frame.R_BF = ReadRotationOption(scene, args.frame, "--frame");
+  }
+  const std::string report = args.format == "json" ? JsonReport(scene, P, extra, frame)
+                                                   : TextReport(scene, P, args, extra, frame);
+  Emit(args.output, report);
+  return 0;
+}
+
+}  // namespace chasles::cli

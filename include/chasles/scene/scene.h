@@ -1,0 +1,93 @@
+#pragma once
+/// @file
+/// A scene as read from a scene file: bodies made of parts, each part's mass properties placed
+/// in its body's frame. Everything here is SI; units exist only in the file and in reports.
+/// The format is documented key by key in docs/scene-format.md.
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "chasles/mass/mass_properties.h"
+#include "chasles/math/types.h"
+#include "chasles/scene/units.h"
+
+namespace chasles {
+
+/// One part of a body, as the scene file states it.
+struct ScenePart {
+  /// Name from the file, or "part N" (1-based) when none was given.
+  std::string name;
+  /// Shape keyword ("cylinder", "mesh", "custom", ...).
+  std::string shape;
+  /// True for a hole or cut-out: its mass is removed from the body.
+  bool subtractive = false;
+  /// Where the density came from, for the report: a material name, "density", "field", "mass".
+  std::string mass_source;
+  /// Uniform density [kg/m³] when the part has one; NaN otherwise.
+  double density = std::numeric_limits<double>::quiet_NaN();
+  /// Mass properties in the body frame B; a subtractive part carries negative mass.
+  MassProperties mass_properties;
+  /// Remarks for the report (integration error estimates, mesh repairs).
+  std::vector<std::string> notes;
+  /// Line of the part in the scene file (1-based).
+  int line = 0;
+};
+
+/// A named point of a body at which the report also gives the inertia.
+struct ScenePoint {
+  std::string name;
+  /// Position from the body origin, expressed in B [m].
+  Vec3 p_BoP_B;
+};
+
+/// A rigid body: the sum of its parts.
+struct SceneBody {
+  std::string name;
+  std::vector<ScenePart> parts;
+  std::vector<ScenePoint> points;
+  /// Sum of the parts, validated (positive mass, physically valid inertia).
+  MassProperties mass_properties;
+  int line = 0;
+};
+
+struct Scene {
+  /// File name as given (or "<built-in>" for the demonstration scene).
+  std::string file;
+  std::string title;
+  std::string description;
+  /// The scene's unit choice (key `units`), e.g. "SI" or "in, lb": bare numbers in the file are
+  /// read in these units and reports use them unless the user asks for others.
+  std::string units = "SI";
+  std::vector<SceneBody> bodies;
+  /// The scene's parameters with their values (SI), in the order of the file.
+  std::vector<std::pair<std::string, Quantity>> parameters;
+  /// Things the user should know that are not errors.
+  std::vector<std::string> warnings;
+};
+
+struct SceneOptions {
+  /// Parameter overrides NAME=EXPRESSION (command line --set), applied before evaluation; each
+  /// NAME must be a parameter of the scene.
+  std::vector<std::pair<std::string, std::string>> parameter_overrides;
+};
+
+/// Reads and validates a scene file. Throws SceneError (an InputError) with file, line, column
+/// and key for anything wrong in it.
+Scene LoadSceneFile(const std::string& path, const SceneOptions& options = {});
+
+/// A point written as in a scene file ("[0, 0, 0.5 m]", "[0, L/2, 0]"), read with the scene's
+/// units and parameters; for command-line options such as --about. `option` names the source
+/// in errors.
+Vec3 ReadPointOption(const Scene& scene, std::string_view text, std::string_view option);
+
+/// An orientation written as in a scene file ("{axis: [0, 0, 1], angle: 30 deg}",
+/// "{euler: {sequence: ZYX, angles: [...]}}"): the rotation R_BF of a frame F in the body.
+Mat3 ReadRotationOption(const Scene& scene, std::string_view text, std::string_view option);
+
+/// The same for text in memory; `name` stands for the file in messages.
+Scene LoadSceneText(std::string_view text, const std::string& name,
+                    const SceneOptions& options = {});
+
+}  // namespace chasles

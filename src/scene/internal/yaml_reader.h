@@ -1,0 +1,54 @@
+#pragma once
+/// @file
+/// Reading YAML nodes with file positions: every failure becomes a SceneError naming the file,
+/// line, column and key path. Private to the scene layer.
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "chasles/scene/scene_error.h"
+
+namespace chasles::scene_internal {
+
+/// A node with the dotted key path that led to it ("bodies[0].parts[2].radius").
+struct At {
+  YAML::Node node;
+  std::string path;
+
+  At Child(std::string_view key) const;
+  At Item(size_t index) const;
+  bool Has(std::string_view key) const;
+};
+
+/// Where errors point: the file name, and for text that did not come from the file (command-
+/// line overrides) a label instead.
+class Reporter {
+ public:
+  explicit Reporter(std::string file) : file_(std::move(file)) {}
+  const std::string& file() const { return file_; }
+
+  /// Throws a SceneError at `at`; `offset` is a byte offset inside a scalar (an expression).
+  [[noreturn]] void Fail(const At& at, const std::string& message, size_t offset = 0) const;
+
+  /// Requires a mapping whose keys are all in `allowed` (and none repeated). Unknown keys get a
+  /// "did you mean" from `allowed`.
+  void CheckMap(const At& at, const std::vector<std::string>& allowed, std::string_view what) const;
+  /// Requires a key to be present.
+  At Require(const At& at, std::string_view key, std::string_view what) const;
+  /// Requires a non-empty scalar and returns its text.
+  std::string Text(const At& at, std::string_view what) const;
+  /// Requires a sequence (of any length; the caller checks the length).
+  void CheckSequence(const At& at, std::string_view what) const;
+
+ private:
+  std::string file_;
+};
+
+/// "a list", "a mapping", "a value", "nothing" for messages about the wrong kind of node.
+std::string KindOf(const YAML::Node& node);
+
+}  // namespace chasles::scene_internal

@@ -1,0 +1,90 @@
+#include "internal/yaml_reader.h"
+
+#include <set>
+
+#include <fmt/format.h>
+
+#include "chasles/suggest.h"
+
+namespace chasles::scene_internal {
+
+At At::Child(std::string_view key) const {
+  return At{node[std::string(key)],
+            path.empty() ? std::string(key) : path + "." + std::string(key)};
+}
+
+At At::Item(size_t index) const {
+  return At{node[index], fmt::format("{}[{}]", path, index)};
+}
+
+bool At::Has(std::string_view key) const {
+  return node.IsMap() && static_cast<bool>(node[std::string(key)]);
+}
+
+std::string KindOf(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a mapping";
+    case YAML::NodeType::Scalar:
+      return fmt::format("the value '{}'", node.Scalar());
+    default:
+      return "nothing";
+  }
+}
+
+void Reporter::Fail(const At& at, const std::string& message, size_t offset) const {
+  int line = 0;
+  int column = 0;
+  if (at.node.IsDefined()) {
+    const YAML::Mark mark = at.node.Mark();
+    if (mark.line >= 0) {
+      line = mark.line + 1;
+      column = mark.column + 1;
+      // Quoted scalars start one column before their text (yaml-cpp tags them "!").
+      if (offset > 0 && at.node.IsScalar() && at.node.Tag() == "!") ++column;
+      column += static_cast<int>(offset);
+    }
+  }
+  throw SceneError(file_, line, column, at.path, message);
+}
+
+void Reporter::CheckMap(const At& at, const std::vector<std::string>& allowed,
+                        std::string_view what) const {
+  if (!at.node.IsMap()) {
+    Fail(at,
+         fmt::format("expected {} (a mapping of keys to values), got {}", what, KindOf(at.node)));
+  }
+  std::set<std::string> seen;
+  for (const auto& kv : at.node) {
+    const At key_at{kv.first, at.path};
+    if (!kv.first.IsScalar()) Fail(key_at, "keys must be plain names");
+    const std::string key = kv.first.Scalar();
+    const At named{kv.first, at.path.empty() ? key : at.path + "." + key};
+    if (!seen.insert(key).second) Fail(named, fmt::format("key '{}' appears twice", key));
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      std::string known;
+      for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + a;
+      Fail(named, fmt::format("unknown key '{}'{} in {}; known keys: {}", key,
+                              DidYouMean(key, allowed), what, known));
+    }
+  }
+}
+
+At Reporter::Require(const At& at, std::string_view key, std::string_view what) const {
+  if (!at.Has(key)) Fail(at, fmt::format("{} needs the key '{}'", what, key));
+  return at.Child(key);
+}
+
+std::string Reporter::Text(const At& at, std::string_view what) const {
+  if (!at.node.IsScalar()) Fail(at, fmt::format("expected {}, got {}", what, KindOf(at.node)));
+  if (at.node.Scalar().empty()) Fail(at, fmt::format("expected {}, got an empty value", what));
+  return at.node.Scalar();
+}
+
+void Reporter::CheckSequence(const At& at, std::string_view what) const {
+  if (!at.node.IsSequence()) Fail(at, fmt::format("expected {}, got {}", what, KindOf(at.node)));
+}
+
+}  // namespace chasles::scene_internal

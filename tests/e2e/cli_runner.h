@@ -1,0 +1,61 @@
+#pragma once
+/// @file
+/// Runs the chasles program as a user would and captures what it prints.
+
+#include <sys/wait.h>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace chasles::test {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+inline std::string SourcePath(const std::string& relative) {
+  return std::string(CHASLES_SOURCE_DIR) + "/" + relative;
+}
+
+/// Runs `chasles ARGS` (ARGS already shell-quoted by the caller).
+inline CliResult RunCli(const std::string& args) {
+  const std::filesystem::path err_file = std::filesystem::temp_directory_path() /
+                                         ("chasles_e2e_err_" + std::to_string(::getpid()) + ".txt");
+  const std::string command =
+      std::string("'") + CHASLES_CLI + "' " + args + " 2>'" + err_file.string() + "'";
+  CliResult r;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    r.out.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err_file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.err = ss.str();
+  std::filesystem::remove(err_file);
+  return r;
+}
+
+/// Runs `chasles mass FILE EXTRA --format json --units SI` and parses the report.
+inline nlohmann::json MassJson(const std::string& example, const std::string& extra = "") {
+  const CliResult r =
+      RunCli("mass '" + SourcePath(example) + "' --format json --units SI " + extra);
+  if (r.exit_code != 0) {
+    throw std::runtime_error("chasles mass " + example + " failed (" + std::to_string(r.exit_code) +
+                             "): " + r.err);
+  }
+  return nlohmann::json::parse(r.out);
+}
+
+}  // namespace chasles::test
