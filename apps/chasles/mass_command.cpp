@@ -102,13 +102,17 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
                        body.parts.size() == 1 ? "" : "s");
     if (!args.hide_parts) {
       size_t w = 4;
-      for (const auto& p : body.parts) w = std::max(w, p.name.size());
-      out += fmt::format("  {:<{}}  {:<22}  {:>13}  {}\n", "part", w, "shape", "mass [" + P.M + "]",
-                         "centre of mass [" + P.L + "]");
+      size_t ws = 5;
+      for (const auto& p : body.parts) {
+        w = std::max(w, p.name.size());
+        ws = std::max(ws, p.shape.size() + (p.subtractive ? 6 : 0));
+      }
+      out += fmt::format("  {:<{}}  {:<{}}  {:>13}  {}\n", "part", w, "shape", ws,
+                         "mass [" + P.M + "]", "centre of mass [" + P.L + "]");
       for (const ScenePart& p : body.parts) {
         const MassProperties& q = p.mass_properties;
         std::string shape = p.shape + (p.subtractive ? " (cut)" : "");
-        out += fmt::format("  {:<{}}  {:<22}  {:>13}  {}\n", p.name, w, shape,
+        out += fmt::format("  {:<{}}  {:<{}}  {:>13}  {}\n", p.name, w, shape, ws,
                            Num(P.Mass(q.mass()), 0),
                            VecText(P.Lengths(q.p_BoBcm_B()), P.Length(Lscale)));
         std::string detail;
@@ -116,7 +120,7 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
           detail =
               fmt::format("density {} {}", Num(P.units.FromSI(p.density, kDensityDim), 0), P.rho);
           if (p.mass_source != "density") detail += fmt::format(" ({})", p.mass_source);
-        } else if (p.mass_source != "mass") {
+        } else if (p.mass_source != "mass" && p.notes.empty()) {
           detail = p.mass_source;
         }
         for (const auto& n : p.notes) detail += (detail.empty() ? "" : "; ") + n;
