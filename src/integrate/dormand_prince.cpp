@@ -55,8 +55,9 @@ DormandPrince5Integrator::DormandPrince5Integrator(const Model& model,
         options.rtol));
   }
   if (!(options.initial_step >= 0.0) || !(options.max_step > 0.0) || !(options.min_step >= 0.0)) {
-    throw InputError("integrator step limits must be: initial_step >= 0, max_step > 0, "
-                     "min_step >= 0 [s]");
+    throw InputError(
+        "integrator step limits must be: initial_step >= 0, max_step > 0, "
+        "min_step >= 0 [s]");
   }
 }
 
@@ -78,8 +79,7 @@ void DormandPrince5Integrator::Initialize(const State& state) {
     h_next_ = options_.initial_step;
   } else {
     // Starting step from the size of y and y' (Hairer, Nørsett & Wanner, Solving ODE I, II.4).
-    const internal::Vector sc =
-        (options_.atol + options_.rtol * w.y0.array().abs()).matrix();
+    const internal::Vector sc = (options_.atol + options_.rtol * w.y0.array().abs()).matrix();
     const double n = static_cast<double>(std::max(1, ode_->size()));
     const double d0 = std::sqrt((w.y0.array() / sc.array()).square().sum() / n);
     const double d1n = std::sqrt((w.k1.array() / sc.array()).square().sum() / n);
@@ -115,7 +115,8 @@ void DormandPrince5Integrator::Attempt(double h) {
   w.err = h * (e1 * w.k1 + e3 * w.k3 + e4 * w.k4 + e5 * w.k5 + e6 * w.k6 + e7 * w.k7);
   double sum = 0.0;
   for (int i = 0; i < f.size(); ++i) {
-    const double sc = options_.atol + options_.rtol * std::max(std::abs(w.y0[i]), std::abs(w.y1[i]));
+    const double sc =
+        options_.atol + options_.rtol * std::max(std::abs(w.y0[i]), std::abs(w.y1[i]));
     const double r = w.err[i] / sc;
     sum += r * r;
   }
@@ -126,9 +127,10 @@ void DormandPrince5Integrator::Step(double t_limit) {
   Work& w = *work_;
   const double t = state_.t;
   if (!(t_limit > t)) {
-    throw InputError(fmt::format("integration end time {:.17g} s is not after the current time "
-                                 "{:.17g} s",
-                                 t_limit, t));
+    throw InputError(
+        fmt::format("integration end time {:.17g} s is not after the current time "
+                    "{:.17g} s",
+                    t_limit, t));
   }
   double h = std::min(h_next_, t_limit - t);
   // Land exactly on t_limit rather than leave a sliver of a step.

@@ -16,14 +16,16 @@ namespace {
 void Validate(const Model& model, const State& initial, const SimulationOptions& o) {
   ValidateState(model, initial);
   if (!std::isfinite(o.t_end) || !(o.t_end > initial.t)) {
-    throw InputError(fmt::format("simulation end time {:.9g} s must be after the start time "
-                                 "{:.9g} s",
-                                 o.t_end, initial.t));
+    throw InputError(
+        fmt::format("simulation end time {:.9g} s must be after the start time "
+                    "{:.9g} s",
+                    o.t_end, initial.t));
   }
   if (!(o.output_interval >= 0.0) || !std::isfinite(o.output_interval)) {
-    throw InputError(fmt::format("output interval {:.6g} s must be >= 0 (0: first and last "
-                                 "state only)",
-                                 o.output_interval));
+    throw InputError(
+        fmt::format("output interval {:.6g} s must be >= 0 (0: first and last "
+                    "state only)",
+                    o.output_interval));
   }
   if (o.integrator != IntegratorKind::kDormandPrince5) {
     if (!(o.fixed_step > 0.0) || !std::isfinite(o.fixed_step)) {
@@ -45,8 +47,7 @@ void Validate(const Model& model, const State& initial, const SimulationOptions&
 
 class Sampler {
  public:
-  Sampler(const SimulationOptions& o, SimulationResult& r, double t0)
-      : o_(o), r_(r), t0_(t0) {}
+  Sampler(const SimulationOptions& o, SimulationResult& r, double t0) : o_(o), r_(r), t0_(t0) {}
   void Emit(const State& s) {
     if (o_.on_sample) o_.on_sample(s);
     if (o_.store_samples) r_.samples.push_back(s);
@@ -75,8 +76,8 @@ bool Crosses(EventDirection d, double g0, double g1) {
 
 // Illinois variant of regula falsi (Dowell & Jarratt, BIT 11, 1971) on the dense output:
 // superlinear, and it keeps a bracket, so it stops when the bracket is narrower than `tol`.
-double LocateRoot(const std::function<double(double)>& g, double a, double ga, double b,
-                  double gb, double tol) {
+double LocateRoot(const std::function<double(double)>& g, double a, double ga, double b, double gb,
+                  double tol) {
   int side = 0;
   for (int iter = 0; iter < 200 && b - a > tol; ++iter) {
     double c = (a * gb - b * ga) / (gb - ga);
@@ -97,8 +98,7 @@ double LocateRoot(const std::function<double(double)>& g, double a, double ga, d
   return b;  // the first time at or after the crossing (within tol)
 }
 
-SimulationResult RunAdaptive(const Model& model, const State& initial,
-                             const SimulationOptions& o) {
+SimulationResult RunAdaptive(const Model& model, const State& initial, const SimulationOptions& o) {
   SimulationResult r;
   Sampler sampler(o, r, initial.t);
   DormandPrince5Integrator dp(model, o.adaptive);

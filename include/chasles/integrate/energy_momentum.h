@@ -28,6 +28,7 @@
 /// events, RK4 for a fixed grid.
 
 #include <memory>
+#include <vector>
 
 #include "chasles/integrate/stats.h"
 #include "chasles/model/data.h"
@@ -48,14 +49,15 @@ class EnergyMomentumIntegrator {
  private:
   const Model& model_;
   Data data_;
-  State cached_;        // the state whose forces are in data_
+  State cached_;           // the state whose forces are in data_
+  std::vector<Vec3> M_B_;  // body-frame angular momenta of cached_ [kg·m²/s]; kept across
+                           // steps so that w = I⁻¹M and back does not round off every step
   bool cached_valid_ = false;
   IntegratorStats stats_;
 };
 
 /// One free-rotation step of the energy–momentum scheme above for a single body: advances the
 /// body-frame angular momentum `M_B` [kg·m²/s] and orientation `q_WB` over `h` [s].
-void StepFreeRotation(const Mat3& I_BBcm_B, const Mat3& I_inverse, double h, Vec3& M_B,
-                      Quat& q_WB);
+void StepFreeRotation(const Mat3& I_BBcm_B, const Mat3& I_inverse, double h, Vec3& M_B, Quat& q_WB);
 
 }  // namespace chasles
