@@ -2,6 +2,7 @@
 // for 10,000 independent bodies under gravity.
 
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include "chasles/integrate/dormand_prince.h"
 #include "chasles/integrate/energy_momentum.h"
@@ -15,7 +16,7 @@ namespace {
 Model MakeBodies(int n) {
   Model m;
   for (int i = 0; i < n; ++i) {
-    m.AddBody("b" + std::to_string(i),
+    m.AddBody(fmt::format("b{}", i),
               MassProperties(1.0, Vec3::Zero(), RotationalInertia(1.0, 2.0, 3.0)));
   }
   m.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -9.81)));
