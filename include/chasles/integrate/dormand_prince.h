@@ -1,0 +1,85 @@
+#pragma once
+/// @file
+/// Adaptive explicit Runge–Kutta 5(4) of Dormand & Prince (J. Comput. Appl. Math. 6, 1980)
+/// with local extrapolation, FSAL, and Shampine's free continuous extension of order 4
+/// (Math. Comp. 46, 1986; the coefficients of Hairer's DOPRI5) for dense output: values
+/// between steps cost no extra evaluations and events are located on it.
+/// Error control: err = RMS_i(e_i / (atol + rtol max(|y0_i|, |y1_i|))) over all components
+/// (positions, quaternions, velocities, angular velocities and the force integrals the ledger
+/// reads), accept when err <= 1, next step h·min(5, max(0.2, 0.9 err^(-1/5))).
+/// Quaternions are renormalised after each accepted step; the FSAL derivative is rescaled with
+/// them (q̇ is linear in q), so the projection costs no evaluation.
+/// This is the default integrator: use it for accuracy and whenever events are located.
+
+#include <limits>
+#include <memory>
+
+#include "chasles/integrate/stats.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+
+namespace chasles {
+
+namespace internal {
+class OdeSystem;
+}
+
+struct AdaptiveOptions {
+  /// Relative tolerance per component (> 0).
+  double rtol = 1e-9;
+  /// Absolute tolerance per component, in the component's SI unit (> 0).
+  double atol = 1e-12;
+  /// First step [s]; 0 chooses it from the derivatives (Hairer, Nørsett & Wanner II.4).
+  double initial_step = 0.0;
+  /// Largest step [s].
+  double max_step = std::numeric_limits<double>::infinity();
+  /// Throws when control asks for a step smaller than this [s] (a stiff or singular problem).
+  double min_step = 1e-14;
+};
+
+class DormandPrince5Integrator {
+ public:
+  /// `model` must outlive the integrator. Throws InputError for bad tolerances.
+  DormandPrince5Integrator(const Model& model, const AdaptiveOptions& options);
+  ~DormandPrince5Integrator();
+  DormandPrince5Integrator(const DormandPrince5Integrator&) = delete;
+  DormandPrince5Integrator& operator=(const DormandPrince5Integrator&) = delete;
+
+  /// Starts (or restarts, e.g. after an impulse changed the state) from `state`.
+  void Initialize(const State& state);
+  /// Takes one accepted step, not past `t_limit`; rejected attempts are retried inside.
+  /// Afterwards the dense output covers [t_previous(), t()].
+  void Step(double t_limit);
+  /// Takes one step of exactly `h` [s] without error control (for convergence studies).
+  void StepFixed(double h);
+
+  /// The state at the end of the last step.
+  const State& state() const { return state_; }
+  /// Time at the start of the last step [s].
+  double t_previous() const { return t_prev_; }
+  /// Time at the end of the last step [s].
+  double t() const { return state_.t; }
+  /// Dense output: the state at `t` in [t_previous(), t()] (quaternions normalised), written
+  /// into `out` (resized to the model).
+  void Interpolate(double t, State& out);
+  /// Step size the controller proposes next [s].
+  double next_step() const { return h_next_; }
+  const IntegratorStats& stats() const { return stats_; }
+
+ private:
+  struct Work;
+  void Attempt(double h);
+  void PrepareDense();
+
+  std::unique_ptr<internal::OdeSystem> ode_;
+  std::unique_ptr<Work> work_;
+  AdaptiveOptions options_;
+  State state_;
+  double t_prev_ = 0.0;
+  double h_next_ = 0.0;
+  double h_last_ = 0.0;
+  bool dense_ready_ = false;
+  IntegratorStats stats_;
+};
+
+}  // namespace chasles

@@ -1,0 +1,84 @@
+#pragma once
+/// @file
+/// Force elements: everything that pushes on bodies (gravity, applied forces and moments,
+/// springs, dampers, drag). Each has a name, adds its forces to the bodies it acts on, reports
+/// its power for the ledger, and says whether it has a potential energy (conservative part).
+/// Joints, constraints and contacts are not force elements: they come with their own solve.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "chasles/math/types.h"
+#include "chasles/model/body.h"
+
+namespace chasles {
+
+class Model;
+struct State;
+struct Data;
+struct ForceElementOutput;
+
+/// A vector-valued function of time and state, e.g. a force [N] or a moment [N·m]. The scene
+/// layer compiles its expressions into these.
+using VectorFunction = std::function<Vec3(double t, const State& state)>;
+
+/// In which frame a callback's vector is expressed: fixed in the world, or turning with the
+/// body it acts on (a thruster).
+enum class VectorFrame { kWorld, kBody };
+
+/// Collects one element's forces into the per-body resultants of a Data, and at the same time
+/// the element's own totals (sum of forces, moment about the world origin, power).
+class WrenchAccumulator {
+ public:
+  /// Accumulates into `data` (F_Bcm_W, M_Bcm_W); reads velocities from `state` and the
+  /// kinematics stage of `data`.
+  WrenchAccumulator(const State& state, Data& data);
+
+  /// Starts collecting for the element with this output record (zeroed here).
+  void Begin(ForceElementOutput* output);
+  /// A force F_W [N] at body b's centre of mass.
+  void AddForceAtCenterOfMass(BodyIndex b, const Vec3& F_W);
+  /// A force F_W [N] at a point P of body b, given by its offset p_BcmP_W from Bcm in W [m].
+  void AddForceAtPoint(BodyIndex b, const Vec3& p_BcmP_W, const Vec3& F_W);
+  /// A pure moment M_W [N·m] on body b.
+  void AddMoment(BodyIndex b, const Vec3& M_W);
+  /// Power of everything this element has added so far [W].
+  double power() const;
+
+ private:
+  const State& state_;
+  Data& data_;
+  ForceElementOutput* out_ = nullptr;
+};
+
+class ForceElement {
+ public:
+  explicit ForceElement(std::string name) : name_(std::move(name)) {}
+  virtual ~ForceElement() = default;
+  ForceElement(const ForceElement&) = delete;
+  ForceElement& operator=(const ForceElement&) = delete;
+
+  /// Name used in reports and messages.
+  const std::string& name() const { return name_; }
+
+  /// Adds this element's forces at `state` (the kinematics stage of `data` is filled) and
+  /// returns the power of its non-conservative part [W].
+  virtual double AddForces(const Model& model, const State& state, const Data& data,
+                           WrenchAccumulator& out) const = 0;
+  /// True when part or all of it derives from a potential energy.
+  virtual bool has_potential() const { return false; }
+  /// Its potential energy at `state` [J] (0 when it has none).
+  virtual double CalcPotentialEnergy(const Model& /*model*/, const State& /*state*/) const {
+    return 0.0;
+  }
+  /// True when its non-conservative work can only remove energy (dampers, drag).
+  virtual bool is_dissipative() const { return false; }
+  /// Bodies it acts on (kWorld excluded), checked by Model::AddForceElement.
+  virtual std::vector<BodyIndex> bodies() const = 0;
+
+ private:
+  std::string name_;
+};
+
+}  // namespace chasles

@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// Model: the bodies and force elements of a system, built once and then only read (it is
+/// passed as `const Model&` to every algorithm). Maximal coordinates: each body moves freely
+/// unless something constrains it; joints, constraints and contacts will join the model here.
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "chasles/model/body.h"
+#include "chasles/model/force_element.h"
+
+namespace chasles {
+
+class Model {
+ public:
+  /// Adds a free body; returns its index. Throws InputError for a duplicate or empty name or
+  /// invalid mass properties (see Body).
+  BodyIndex AddBody(std::string name, const MassProperties& mass_properties);
+  /// Adds a force element; returns its index. Throws InputError for a duplicate name or a body
+  /// index that does not exist.
+  int AddForceElement(std::shared_ptr<const ForceElement> element);
+
+  /// Number of bodies.
+  int num_bodies() const { return static_cast<int>(bodies_.size()); }
+  /// Body `b` (0 <= b < num_bodies()).
+  const Body& body(BodyIndex b) const { return bodies_[static_cast<size_t>(b)]; }
+  /// Number of force elements.
+  int num_force_elements() const { return static_cast<int>(forces_.size()); }
+  /// Force element `i`.
+  const ForceElement& force_element(int i) const { return *forces_[static_cast<size_t>(i)]; }
+  /// Index of the body called `name`; InputError listing the known names otherwise.
+  BodyIndex FindBody(std::string_view name) const;
+  /// Index of the force element called `name`; InputError otherwise.
+  int FindForceElement(std::string_view name) const;
+
+ private:
+  std::vector<Body> bodies_;
+  std::vector<std::shared_ptr<const ForceElement>> forces_;
+};
+
+}  // namespace chasles

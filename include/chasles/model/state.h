@@ -1,0 +1,71 @@
+#pragma once
+/// @file
+/// State: the plain, copyable data an integrator advances. Snapshots, checkpoints and sweeps
+/// are copies of it. Quaternions are (w, x, y, z) wherever read or printed.
+
+#include <limits>
+#include <vector>
+
+#include "chasles/math/types.h"
+
+namespace chasles {
+
+class Model;
+
+/// Motion of one free body. Default-constructed values are NaN so a forgotten one shows.
+struct BodyState {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  /// Position of the centre of mass Bcm in the world W [m].
+  Vec3 p_WBcm = Vec3::Constant(kNaN);
+  /// Orientation of B in W, unit quaternion; rotates B-expressed vectors into W.
+  Quat q_WB = Quat(kNaN, kNaN, kNaN, kNaN);
+  /// Velocity of Bcm in W, expressed in W [m/s].
+  Vec3 v_WBcm_W = Vec3::Constant(kNaN);
+  /// Angular velocity of B in W, expressed in B [rad/s].
+  Vec3 w_WB_B = Vec3::Constant(kNaN);
+};
+
+/// Running integrals of one force element along the solution. Integrators carry them as extra
+/// ODE states so they are as accurate as the motion itself (the ledger reads them).
+struct ForceIntegrals {
+  /// Work done by the element, ∫ P dt [J].
+  double work = 0.0;
+  /// Work done by its non-conservative part (all of it unless it has a potential) [J].
+  double work_nonconservative = 0.0;
+  /// Linear impulse ∫ ΣF dt of the element's forces on all bodies, in W [N·s].
+  Vec3 linear_impulse_W = Vec3::Zero();
+  /// Angular impulse ∫ Σ(p × F + M) dt about the world origin Wo, in W [N·m·s].
+  Vec3 angular_impulse_Wo_W = Vec3::Zero();
+};
+
+struct State {
+  /// Time [s].
+  double t = 0.0;
+  /// One entry per body, in the Model's body order.
+  std::vector<BodyState> bodies;
+  /// One entry per force element, in the Model's force order.
+  std::vector<ForceIntegrals> force_integrals;
+};
+
+/// A state for `model` at t = 0 with every body at rest at the world origin, identity
+/// orientation, and zero force integrals.
+State MakeRestState(const Model& model);
+
+/// Places body `b`'s own frame origin Bo at p_WBo [m] with orientation q_WB (normalised here):
+/// sets p_WBcm = p_WBo + R_WB p_BoBcm_B. Throws InputError for a zero or non-finite quaternion.
+void SetBodyPose(const Model& model, int b, const Vec3& p_WBo, const Quat& q_WB, State& state);
+
+/// Sets body `b`'s motion from the velocity of its frame origin Bo and its angular velocity,
+/// both expressed in W: v_WBcm = v_WBo + w × (R_WB p_BoBcm_B); w_WB_B = R_WBᵀ w_WB_W.
+/// Call after SetBodyPose.
+void SetBodyVelocity(const Model& model, int b, const Vec3& v_WBo_W, const Vec3& w_WB_W,
+                     State& state);
+
+/// Position of body `b`'s frame origin Bo in W [m].
+Vec3 CalcBodyOriginPosition(const Model& model, const State& state, int b);
+
+/// Throws InputError naming the body and value when `state` does not fit `model` or holds a
+/// non-finite number or a quaternion far (1e-6) from unit length.
+void ValidateState(const Model& model, const State& state);
+
+}  // namespace chasles

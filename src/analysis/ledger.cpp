@@ -1,0 +1,57 @@
+#include "chasles/analysis/ledger.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "chasles/analysis/momentum.h"
+
+namespace chasles {
+
+LedgerSample CalcLedgerSample(const Model& model, const State& s, const State& s0) {
+  LedgerSample L;
+  L.t = s.t;
+  L.kinetic_translational = CalcTranslationalKineticEnergy(model, s);
+  L.kinetic_rotational = CalcRotationalKineticEnergy(model, s);
+  const double T0 = CalcTranslationalKineticEnergy(model, s0) + CalcRotationalKineticEnergy(model, s0);
+  double V0 = 0.0, abs_work = 0.0;
+  Vec3 imp = Vec3::Zero(), ang_imp = Vec3::Zero();
+  L.forces.resize(static_cast<size_t>(model.num_force_elements()));
+  for (int e = 0; e < model.num_force_elements(); ++e) {
+    const auto i = static_cast<size_t>(e);
+    const ForceElement& fe = model.force_element(e);
+    ForceLedger& f = L.forces[i];
+    f.name = fe.name();
+    f.has_potential = fe.has_potential();
+    f.dissipative = fe.is_dissipative();
+    if (f.has_potential) {
+      f.potential_energy = fe.CalcPotentialEnergy(model, s);
+      V0 += fe.CalcPotentialEnergy(model, s0);
+    }
+    const ForceIntegrals &a = s.force_integrals[i], &a0 = s0.force_integrals[i];
+    f.work = a.work - a0.work;
+    f.work_nonconservative = a.work_nonconservative - a0.work_nonconservative;
+    f.linear_impulse_W = a.linear_impulse_W - a0.linear_impulse_W;
+    f.angular_impulse_Wo_W = a.angular_impulse_Wo_W - a0.angular_impulse_Wo_W;
+    L.potential += f.potential_energy;
+    L.work_nonconservative += f.work_nonconservative;
+    if (f.dissipative) L.dissipated -= f.work_nonconservative;
+    abs_work += std::abs(f.work_nonconservative);
+    imp += f.linear_impulse_W;
+    ang_imp += f.angular_impulse_Wo_W;
+  }
+  L.mechanical_energy = L.kinetic_translational + L.kinetic_rotational + L.potential;
+  L.energy_residual = (L.mechanical_energy - (T0 + V0)) - L.work_nonconservative;
+  L.energy_scale = std::max({std::abs(T0) + std::abs(V0),
+                             L.kinetic_translational + L.kinetic_rotational + std::abs(L.potential),
+                             abs_work});
+  L.linear_momentum_W = CalcLinearMomentum(model, s);
+  L.p_WScm = CalcSystemCenterOfMass(model, s);
+  L.angular_momentum_Scm_W = CalcAngularMomentum(model, s, L.p_WScm);
+  L.angular_momentum_Wo_W = CalcAngularMomentum(model, s, Vec3::Zero());
+  L.momentum_residual_W = L.linear_momentum_W - CalcLinearMomentum(model, s0) - imp;
+  L.angular_momentum_residual_W =
+      L.angular_momentum_Wo_W - CalcAngularMomentum(model, s0, Vec3::Zero()) - ang_imp;
+  return L;
+}
+
+}  // namespace chasles

@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// The equations of motion as a first-order ODE y' = f(t, y) over a flat vector, for the
+/// Runge–Kutta integrators. Layout per body: p_WBcm (3), q_WB (w, x, y, z) (4), v_WBcm_W (3),
+/// w_WB_B (3); then per force element the integrals of its power, non-conservative power,
+/// force (3) and moment about Wo (3).
+
+#include <Eigen/Core>
+
+#include "chasles/model/data.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+
+namespace chasles::internal {
+
+inline constexpr int kBodySize = 13;
+inline constexpr int kForceSize = 8;
+
+using Vector = Eigen::VectorXd;
+
+class OdeSystem {
+ public:
+  explicit OdeSystem(const Model& model);
+
+  int size() const { return size_; }
+  const Model& model() const { return model_; }
+
+  void Pack(const State& state, Vector& y) const;
+  /// Copies y into `state` (already sized); quaternions as they stand.
+  void Unpack(double t, const Vector& y, State& state) const;
+  /// ydot = f(t, y). Uses an internal State and Data (no allocation).
+  void Derivative(double t, const Vector& y, Vector& ydot);
+  /// Scales each body's quaternion in y to unit length and the matching entries of `ydot` by
+  /// the same factor (q̇ = ½ q ⊗ w is linear in q, so ydot stays f(t, y) exactly).
+  void NormalizeQuaternions(Vector& y, Vector* ydot) const;
+  /// Number of derivative evaluations so far.
+  long long evaluations() const { return evaluations_; }
+
+ private:
+  const Model& model_;
+  int size_;
+  int body_offset_end_;
+  State state_;
+  Data data_;
+  long long evaluations_ = 0;
+};
+
+}  // namespace chasles::internal

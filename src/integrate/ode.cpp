@@ -1,0 +1,93 @@
+#include "integrate/internal/ode.h"
+
+#include <cmath>
+
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/math/quaternion.h"
+
+namespace chasles::internal {
+
+OdeSystem::OdeSystem(const Model& model)
+    : model_(model),
+      size_(kBodySize * model.num_bodies() + kForceSize * model.num_force_elements()),
+      body_offset_end_(kBodySize * model.num_bodies()),
+      state_(MakeRestState(model)),
+      data_(MakeData(model)) {}
+
+void OdeSystem::Pack(const State& s, Vector& y) const {
+  y.resize(size_);
+  for (int b = 0; b < model_.num_bodies(); ++b) {
+    const BodyState& bs = s.bodies[static_cast<size_t>(b)];
+    double* o = y.data() + kBodySize * b;
+    o[0] = bs.p_WBcm.x(), o[1] = bs.p_WBcm.y(), o[2] = bs.p_WBcm.z();
+    o[3] = bs.q_WB.w(), o[4] = bs.q_WB.x(), o[5] = bs.q_WB.y(), o[6] = bs.q_WB.z();
+    o[7] = bs.v_WBcm_W.x(), o[8] = bs.v_WBcm_W.y(), o[9] = bs.v_WBcm_W.z();
+    o[10] = bs.w_WB_B.x(), o[11] = bs.w_WB_B.y(), o[12] = bs.w_WB_B.z();
+  }
+  for (int e = 0; e < model_.num_force_elements(); ++e) {
+    const ForceIntegrals& fi = s.force_integrals[static_cast<size_t>(e)];
+    double* o = y.data() + body_offset_end_ + kForceSize * e;
+    o[0] = fi.work, o[1] = fi.work_nonconservative;
+    o[2] = fi.linear_impulse_W.x(), o[3] = fi.linear_impulse_W.y(), o[4] = fi.linear_impulse_W.z();
+    o[5] = fi.angular_impulse_Wo_W.x(), o[6] = fi.angular_impulse_Wo_W.y();
+    o[7] = fi.angular_impulse_Wo_W.z();
+  }
+}
+
+void OdeSystem::Unpack(double t, const Vector& y, State& s) const {
+  s.t = t;
+  for (int b = 0; b < model_.num_bodies(); ++b) {
+    BodyState& bs = s.bodies[static_cast<size_t>(b)];
+    const double* o = y.data() + kBodySize * b;
+    bs.p_WBcm = Vec3(o[0], o[1], o[2]);
+    bs.q_WB = Quat(o[3], o[4], o[5], o[6]);
+    bs.v_WBcm_W = Vec3(o[7], o[8], o[9]);
+    bs.w_WB_B = Vec3(o[10], o[11], o[12]);
+  }
+  for (int e = 0; e < model_.num_force_elements(); ++e) {
+    ForceIntegrals& fi = s.force_integrals[static_cast<size_t>(e)];
+    const double* o = y.data() + body_offset_end_ + kForceSize * e;
+    fi.work = o[0];
+    fi.work_nonconservative = o[1];
+    fi.linear_impulse_W = Vec3(o[2], o[3], o[4]);
+    fi.angular_impulse_Wo_W = Vec3(o[5], o[6], o[7]);
+  }
+}
+
+void OdeSystem::Derivative(double t, const Vector& y, Vector& ydot) {
+  ++evaluations_;
+  Unpack(t, y, state_);
+  CalcAccelerations(model_, state_, data_);
+  ydot.resize(size_);
+  for (int b = 0; b < model_.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    const double* o = y.data() + kBodySize * b;
+    double* d = ydot.data() + kBodySize * b;
+    d[0] = o[7], d[1] = o[8], d[2] = o[9];
+    const Eigen::Vector4d qd =
+        QuatDerivativeWxyz(Eigen::Vector4d(o[3], o[4], o[5], o[6]), state_.bodies[i].w_WB_B);
+    d[3] = qd[0], d[4] = qd[1], d[5] = qd[2], d[6] = qd[3];
+    const Vec3& a = data_.a_WBcm_W[i];
+    const Vec3& wd = data_.wdot_WB_B[i];
+    d[7] = a.x(), d[8] = a.y(), d[9] = a.z();
+    d[10] = wd.x(), d[11] = wd.y(), d[12] = wd.z();
+  }
+  for (int e = 0; e < model_.num_force_elements(); ++e) {
+    const ForceElementOutput& out = data_.elements[static_cast<size_t>(e)];
+    double* d = ydot.data() + body_offset_end_ + kForceSize * e;
+    d[0] = out.power, d[1] = out.power_nonconservative;
+    d[2] = out.force_W.x(), d[3] = out.force_W.y(), d[4] = out.force_W.z();
+    d[5] = out.moment_Wo_W.x(), d[6] = out.moment_Wo_W.y(), d[7] = out.moment_Wo_W.z();
+  }
+}
+
+void OdeSystem::NormalizeQuaternions(Vector& y, Vector* ydot) const {
+  for (int b = 0; b < model_.num_bodies(); ++b) {
+    auto q = y.segment<4>(kBodySize * b + 3);
+    const double s = 1.0 / q.norm();
+    q *= s;
+    if (ydot) ydot->segment<4>(kBodySize * b + 3) *= s;
+  }
+}
+
+}  // namespace chasles::internal

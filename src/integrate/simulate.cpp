@@ -1,0 +1,213 @@
+#include "chasles/integrate/simulate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "chasles/error.h"
+#include "chasles/integrate/energy_momentum.h"
+#include "chasles/integrate/rk4.h"
+
+namespace chasles {
+namespace {
+
+void Validate(const Model& model, const State& initial, const SimulationOptions& o) {
+  ValidateState(model, initial);
+  if (!std::isfinite(o.t_end) || !(o.t_end > initial.t)) {
+    throw InputError(
+        fmt::format("simulation end time {:.9g} s must be after the start time "
+                    "{:.9g} s",
+                    o.t_end, initial.t));
+  }
+  if (!(o.output_interval >= 0.0) || !std::isfinite(o.output_interval)) {
+    throw InputError(
+        fmt::format("output interval {:.6g} s must be >= 0 (0: first and last "
+                    "state only)",
+                    o.output_interval));
+  }
+  if (o.integrator != IntegratorKind::kDormandPrince5) {
+    if (!(o.fixed_step > 0.0) || !std::isfinite(o.fixed_step)) {
+      throw InputError(fmt::format("fixed step {:.6g} s must be positive", o.fixed_step));
+    }
+    if (!o.events.empty()) {
+      throw InputError(
+          "events are located on the adaptive integrator's dense output; choose the "
+          "Dormand-Prince integrator for a run with events");
+    }
+  }
+  for (const EventSpec& e : o.events) {
+    if (!e.g) throw InputError(fmt::format("event '{}' has no event function", e.name));
+  }
+  if (!(o.event_time_tolerance > 0.0)) {
+    throw InputError("event time tolerance must be positive (e.g. 1e-10 s)");
+  }
+}
+
+class Sampler {
+ public:
+  Sampler(const SimulationOptions& o, SimulationResult& r, double t0) : o_(o), r_(r), t0_(t0) {}
+  void Emit(const State& s) {
+    if (o_.on_sample) o_.on_sample(s);
+    if (o_.store_samples) r_.samples.push_back(s);
+  }
+  /// Next output time after sample k (k counts from t0).
+  double OutputTime(long long k) const { return t0_ + static_cast<double>(k) * o_.output_interval; }
+
+ private:
+  const SimulationOptions& o_;
+  SimulationResult& r_;
+  double t0_;
+};
+
+bool Crosses(EventDirection d, double g0, double g1) {
+  const bool rising = g0 < 0.0 && g1 >= 0.0;
+  const bool falling = g0 > 0.0 && g1 <= 0.0;
+  switch (d) {
+    case EventDirection::kRising:
+      return rising;
+    case EventDirection::kFalling:
+      return falling;
+    default:
+      return rising || falling;
+  }
+}
+
+// Illinois variant of regula falsi (Dowell & Jarratt, BIT 11, 1971) on the dense output:
+// superlinear, and it keeps a bracket, so it stops when the bracket is narrower than `tol`.
+double LocateRoot(const std::function<double(double)>& g, double a, double ga, double b, double gb,
+                  double tol) {
+  int side = 0;
+  for (int iter = 0; iter < 200 && b - a > tol; ++iter) {
+    double c = (a * gb - b * ga) / (gb - ga);
+    // Keep c strictly inside and at least tol/2 from the ends so the bracket always shrinks.
+    c = std::clamp(c, a + 0.5 * tol, b - 0.5 * tol);
+    const double gc = g(c);
+    if (gc == 0.0) return c;
+    if ((gc > 0.0) == (gb > 0.0)) {
+      b = c, gb = gc;
+      if (side == -1) ga *= 0.5;
+      side = -1;
+    } else {
+      a = c, ga = gc;
+      if (side == 1) gb *= 0.5;
+      side = 1;
+    }
+  }
+  return b;  // the first time at or after the crossing (within tol)
+}
+
+SimulationResult RunAdaptive(const Model& model, const State& initial, const SimulationOptions& o) {
+  SimulationResult r;
+  Sampler sampler(o, r, initial.t);
+  DormandPrince5Integrator dp(model, o.adaptive);
+  dp.Initialize(initial);
+  sampler.Emit(dp.state());
+  const size_t ne = o.events.size();
+  std::vector<double> g_prev(ne);
+  for (size_t e = 0; e < ne; ++e) g_prev[e] = o.events[e].g(dp.state().t, dp.state());
+  long long k = 1;
+  State scratch = dp.state();
+  while (dp.t() < o.t_end) {
+    dp.Step(o.t_end);
+    const double t0 = dp.t_previous(), t1 = dp.t();
+    // Events in this step, earliest first.
+    struct Hit {
+      double t;
+      size_t e;
+    };
+    std::vector<Hit> hits;
+    std::vector<double> g_new(ne);
+    for (size_t e = 0; e < ne; ++e) {
+      g_new[e] = o.events[e].g(t1, dp.state());
+      if (!Crosses(o.events[e].direction, g_prev[e], g_new[e])) continue;
+      auto g = [&](double t) {
+        dp.Interpolate(t, scratch);
+        return o.events[e].g(t, scratch);
+      };
+      hits.push_back({LocateRoot(g, t0, g_prev[e], t1, g_new[e], o.event_time_tolerance), e});
+    }
+    std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.t < b.t; });
+    double t_stop = std::numeric_limits<double>::infinity();
+    for (const Hit& h : hits) {
+      EventRecord rec;
+      rec.event = static_cast<int>(h.e);
+      rec.name = o.events[h.e].name;
+      rec.t = h.t;
+      dp.Interpolate(h.t, rec.state);
+      r.events.push_back(std::move(rec));
+      if (o.events[h.e].action == EventAction::kStop) {
+        t_stop = h.t;
+        break;
+      }
+    }
+    // Output samples up to the end of the step (or the stop).
+    const double t_out_end = std::min(t1, t_stop);
+    if (o.output_interval > 0.0) {
+      while (sampler.OutputTime(k) <= t_out_end && sampler.OutputTime(k) < o.t_end) {
+        dp.Interpolate(sampler.OutputTime(k), scratch);
+        sampler.Emit(scratch);
+        ++k;
+      }
+    }
+    if (std::isfinite(t_stop)) {
+      r.final_state = r.events.back().state;
+      r.stopped_by_event = true;
+      sampler.Emit(r.final_state);
+      r.stats = dp.stats();
+      return r;
+    }
+    g_prev = g_new;
+  }
+  r.final_state = dp.state();
+  sampler.Emit(r.final_state);
+  r.stats = dp.stats();
+  return r;
+}
+
+template <typename Integrator>
+SimulationResult RunFixed(const Model& model, const State& initial, const SimulationOptions& o) {
+  SimulationResult r;
+  Sampler sampler(o, r, initial.t);
+  Integrator integ(model);
+  State s = initial;
+  sampler.Emit(s);
+  const double t0 = initial.t;
+  const double span = o.output_interval > 0.0 ? o.output_interval : o.t_end - t0;
+  const auto n_per = static_cast<long long>(std::ceil(span / o.fixed_step - 1e-9));
+  const double h = span / static_cast<double>(std::max(1LL, n_per));
+  long long k = 1;
+  while (true) {
+    const double t_seg_end = std::min(t0 + static_cast<double>(k) * span, o.t_end);
+    const double seg = t_seg_end - s.t;
+    const auto n = std::max(1LL, static_cast<long long>(std::ceil(seg / h - 1e-9)));
+    const double hs = seg / static_cast<double>(n);
+    for (long long i = 0; i < n; ++i) integ.Step(s, hs);
+    s.t = t_seg_end;  // no drift of the time grid by round-off
+    if (t_seg_end >= o.t_end) break;
+    sampler.Emit(s);
+    ++k;
+  }
+  r.final_state = s;
+  sampler.Emit(s);
+  r.stats = integ.stats();
+  return r;
+}
+
+}  // namespace
+
+SimulationResult Simulate(const Model& model, const State& initial,
+                          const SimulationOptions& options) {
+  Validate(model, initial, options);
+  switch (options.integrator) {
+    case IntegratorKind::kRk4:
+      return RunFixed<Rk4Integrator>(model, initial, options);
+    case IntegratorKind::kEnergyMomentum:
+      return RunFixed<EnergyMomentumIntegrator>(model, initial, options);
+    default:
+      return RunAdaptive(model, initial, options);
+  }
+}
+
+}  // namespace chasles

@@ -1,0 +1,238 @@
+#include "chasles/model/forces.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "chasles/error.h"
+#include "chasles/model/data.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+
+namespace chasles {
+namespace {
+
+void RequireFinite(const std::string& name, const char* what, const Vec3& v) {
+  if (!v.allFinite()) {
+    throw InputError(fmt::format("force element '{}': {} is not a finite vector", name, what));
+  }
+}
+
+void RequireNonNegative(const std::string& name, const char* what, double x, const char* unit) {
+  if (!std::isfinite(x) || x < 0.0) {
+    throw InputError(
+        fmt::format("force element '{}': {} is {:.6g} {}; it must be a finite number >= 0", name,
+                    what, x, unit));
+  }
+}
+
+void RequireFunction(const std::string& name, const VectorFunction& f) {
+  if (!f) throw InputError(fmt::format("force element '{}': no function given", name));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+UniformGravity::UniformGravity(std::string name, const Vec3& g_W)
+    : ForceElement(std::move(name)), g_W_(g_W) {
+  RequireFinite(this->name(), "gravitational acceleration", g_W);
+}
+
+double UniformGravity::AddForces(const Model& model, const State&, const Data&,
+                                 WrenchAccumulator& out) const {
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    out.AddForceAtCenterOfMass(b, model.body(b).mass() * g_W_);
+  }
+  return 0.0;
+}
+
+double UniformGravity::CalcPotentialEnergy(const Model& model, const State& state) const {
+  double V = 0.0;
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    V -= model.body(b).mass() * g_W_.dot(state.bodies[static_cast<size_t>(b)].p_WBcm);
+  }
+  return V;
+}
+
+// ---------------------------------------------------------------------------------------
+CentralGravity::CentralGravity(std::string name, double mu, const Vec3& centre_W)
+    : ForceElement(std::move(name)), mu_(mu), centre_W_(centre_W) {
+  if (!std::isfinite(mu) || !(mu > 0.0)) {
+    throw InputError(fmt::format(
+        "force element '{}': gravitational parameter mu is {:.6g} m³/s²; it must be positive "
+        "(mu = G M, 3.986e14 for the Earth)",
+        this->name(), mu));
+  }
+  RequireFinite(this->name(), "centre", centre_W);
+}
+
+double CentralGravity::AddForces(const Model& model, const State& state, const Data&,
+                                 WrenchAccumulator& out) const {
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const Vec3 r = state.bodies[static_cast<size_t>(b)].p_WBcm - centre_W_;
+    const double r2 = r.squaredNorm();
+    // F = -mu m r / |r|³ (Newton's law of gravitation).
+    out.AddForceAtCenterOfMass(b, (-mu_ * model.body(b).mass() / (r2 * std::sqrt(r2))) * r);
+  }
+  return 0.0;
+}
+
+double CentralGravity::CalcPotentialEnergy(const Model& model, const State& state) const {
+  double V = 0.0;
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    V -= mu_ * model.body(b).mass() /
+         (state.bodies[static_cast<size_t>(b)].p_WBcm - centre_W_).norm();
+  }
+  return V;
+}
+
+// ---------------------------------------------------------------------------------------
+AppliedForce::AppliedForce(std::string name, BodyIndex body, const Vec3& p_BoP_B,
+                           VectorFunction force, VectorFrame frame)
+    : ForceElement(std::move(name)),
+      body_(body),
+      p_BoP_B_(p_BoP_B),
+      force_(std::move(force)),
+      frame_(frame) {
+  RequireFinite(this->name(), "point of application", p_BoP_B);
+  RequireFunction(this->name(), force_);
+}
+
+std::shared_ptr<AppliedForce> AppliedForce::Constant(std::string name, BodyIndex body,
+                                                     const Vec3& p_BoP_B, const Vec3& force,
+                                                     VectorFrame frame) {
+  RequireFinite(name, "force", force);
+  return std::make_shared<AppliedForce>(
+      std::move(name), body, p_BoP_B, [force](double, const State&) { return force; }, frame);
+}
+
+double AppliedForce::AddForces(const Model& model, const State& state, const Data& data,
+                               WrenchAccumulator& out) const {
+  const auto i = static_cast<size_t>(body_);
+  const Mat3& R = data.R_WB[i];
+  const Vec3 f = force_(state.t, state);
+  const Vec3 F_W = frame_ == VectorFrame::kWorld ? f : Vec3(R * f);
+  out.AddForceAtPoint(body_, R * model.body(body_).PointFromCenterOfMass(p_BoP_B_), F_W);
+  return out.power();
+}
+
+AppliedMoment::AppliedMoment(std::string name, BodyIndex body, VectorFunction moment,
+                             VectorFrame frame)
+    : ForceElement(std::move(name)), body_(body), moment_(std::move(moment)), frame_(frame) {
+  RequireFunction(this->name(), moment_);
+}
+
+std::shared_ptr<AppliedMoment> AppliedMoment::Constant(std::string name, BodyIndex body,
+                                                       const Vec3& moment, VectorFrame frame) {
+  RequireFinite(name, "moment", moment);
+  return std::make_shared<AppliedMoment>(
+      std::move(name), body, [moment](double, const State&) { return moment; }, frame);
+}
+
+double AppliedMoment::AddForces(const Model&, const State& state, const Data& data,
+                                WrenchAccumulator& out) const {
+  const Vec3 m = moment_(state.t, state);
+  out.AddMoment(
+      body_, frame_ == VectorFrame::kWorld ? m : Vec3(data.R_WB[static_cast<size_t>(body_)] * m));
+  return out.power();
+}
+
+// ---------------------------------------------------------------------------------------
+SpringDamper::SpringDamper(std::string name, BodyIndex body_a, const Vec3& p_AoP_A,
+                           BodyIndex body_b, const Vec3& p_BoQ_B, double rest_length,
+                           double stiffness, double damping)
+    : ForceElement(std::move(name)),
+      a_(body_a),
+      b_(body_b),
+      p_AoP_A_(p_AoP_A),
+      p_BoQ_B_(p_BoQ_B),
+      rest_length_(rest_length),
+      stiffness_(stiffness),
+      damping_(damping) {
+  RequireFinite(this->name(), "first attachment point", p_AoP_A);
+  RequireFinite(this->name(), "second attachment point", p_BoQ_B);
+  RequireNonNegative(this->name(), "rest length", rest_length, "m");
+  RequireNonNegative(this->name(), "stiffness", stiffness, "N/m");
+  RequireNonNegative(this->name(), "damping", damping, "N·s/m");
+  if (body_a == kWorld) {
+    throw InputError(
+        fmt::format("force element '{}': the first end must be on a body; put the world end second",
+                    this->name()));
+  }
+  if (body_a == body_b) {
+    throw InputError(fmt::format(
+        "force element '{}': both ends are on body {}; a spring inside one rigid body does "
+        "nothing",
+        this->name(), body_a));
+  }
+}
+
+std::vector<BodyIndex> SpringDamper::bodies() const {
+  if (b_ == kWorld) return {a_};
+  return {a_, b_};
+}
+
+namespace {
+struct EndPoint {
+  Vec3 p_BcmP_W;  // offset from the body's centre of mass, in W
+  Vec3 p_WP;      // world position
+  Vec3 v_WP;      // world velocity
+};
+
+EndPoint CalcEndPoint(const Model& model, const State& state, const Data* data, BodyIndex b,
+                      const Vec3& p_BoP_B) {
+  if (b == kWorld) return {Vec3::Zero(), p_BoP_B, Vec3::Zero()};
+  const auto i = static_cast<size_t>(b);
+  const BodyState& bs = state.bodies[i];
+  const Vec3 p_BcmP_B = model.body(b).PointFromCenterOfMass(p_BoP_B);
+  if (data == nullptr) {
+    const Vec3 r = bs.q_WB.normalized() * p_BcmP_B;
+    return {r, bs.p_WBcm + r, Vec3::Zero()};
+  }
+  const Vec3 r = data->R_WB[i] * p_BcmP_B;
+  return {r, bs.p_WBcm + r, bs.v_WBcm_W + data->w_WB_W[i].cross(r)};
+}
+}  // namespace
+
+double SpringDamper::AddForces(const Model& model, const State& state, const Data& data,
+                               WrenchAccumulator& out) const {
+  const EndPoint P = CalcEndPoint(model, state, &data, a_, p_AoP_A_);
+  const EndPoint Q = CalcEndPoint(model, state, &data, b_, p_BoQ_B_);
+  const Vec3 d = Q.p_WP - P.p_WP;
+  const double L = d.norm();
+  // At zero length the line of action is undefined; with L0 = 0 the force k d vanishes there
+  // anyway, and a finite rest length with coincident ends is a singular configuration.
+  if (L == 0.0) return 0.0;
+  const Vec3 u = d / L;
+  const double L_dot = u.dot(Q.v_WP - P.v_WP);
+  const double tension = stiffness_ * (L - rest_length_) + damping_ * L_dot;
+  const Vec3 F_on_P = tension * u;
+  out.AddForceAtPoint(a_, P.p_BcmP_W, F_on_P);
+  if (b_ != kWorld) out.AddForceAtPoint(b_, Q.p_BcmP_W, -F_on_P);
+  // Power of the pair: -tension · dL/dt; the damper's share is -c (dL/dt)².
+  return -damping_ * L_dot * L_dot;
+}
+
+double SpringDamper::CalcPotentialEnergy(const Model& model, const State& state) const {
+  const Vec3 d = CalcEndPoint(model, state, nullptr, b_, p_BoQ_B_).p_WP -
+                 CalcEndPoint(model, state, nullptr, a_, p_AoP_A_).p_WP;
+  const double stretch = d.norm() - rest_length_;
+  return 0.5 * stiffness_ * stretch * stretch;
+}
+
+// ---------------------------------------------------------------------------------------
+LinearDrag::LinearDrag(std::string name, BodyIndex body, double linear, double angular)
+    : ForceElement(std::move(name)), body_(body), linear_(linear), angular_(angular) {
+  RequireNonNegative(this->name(), "linear drag coefficient", linear, "N·s/m");
+  RequireNonNegative(this->name(), "angular drag coefficient", angular, "N·m·s");
+}
+
+double LinearDrag::AddForces(const Model&, const State& state, const Data& data,
+                             WrenchAccumulator& out) const {
+  const auto i = static_cast<size_t>(body_);
+  out.AddForceAtCenterOfMass(body_, -linear_ * state.bodies[i].v_WBcm_W);
+  out.AddMoment(body_, -angular_ * data.w_WB_W[i]);
+  return out.power();
+}
+
+}  // namespace chasles

@@ -1,0 +1,61 @@
+#include "chasles/model/model.h"
+
+#include <fmt/format.h>
+
+#include "chasles/error.h"
+
+namespace chasles {
+
+BodyIndex Model::AddBody(std::string name, const MassProperties& mass_properties) {
+  if (name.empty()) throw InputError("a body needs a non-empty name");
+  for (const Body& b : bodies_) {
+    if (b.name() == name) {
+      throw InputError(
+          fmt::format("body '{}' is defined twice; give each body its own name", name));
+    }
+  }
+  bodies_.emplace_back(std::move(name), mass_properties);
+  return num_bodies() - 1;
+}
+
+int Model::AddForceElement(std::shared_ptr<const ForceElement> element) {
+  if (!element) throw InputError("force element is null");
+  for (const auto& f : forces_) {
+    if (f->name() == element->name()) {
+      throw InputError(
+          fmt::format("force element '{}' is defined twice; give each force element its own name",
+                      element->name()));
+    }
+  }
+  for (BodyIndex b : element->bodies()) {
+    if (b < 0 || b >= num_bodies()) {
+      throw InputError(fmt::format(
+          "force element '{}' acts on body index {}, but the model has {} bodies (0 to {})",
+          element->name(), b, num_bodies(), num_bodies() - 1));
+    }
+  }
+  forces_.push_back(std::move(element));
+  return num_force_elements() - 1;
+}
+
+BodyIndex Model::FindBody(std::string_view name) const {
+  std::string known;
+  for (int i = 0; i < num_bodies(); ++i) {
+    if (body(i).name() == name) return i;
+    known += (i ? ", " : "") + body(i).name();
+  }
+  throw InputError(fmt::format("no body named '{}'; the bodies are: {}", name,
+                               known.empty() ? "(none)" : known));
+}
+
+int Model::FindForceElement(std::string_view name) const {
+  std::string known;
+  for (int i = 0; i < num_force_elements(); ++i) {
+    if (force_element(i).name() == name) return i;
+    known += (i ? ", " : "") + force_element(i).name();
+  }
+  throw InputError(fmt::format("no force element named '{}'; the force elements are: {}", name,
+                               known.empty() ? "(none)" : known));
+}
+
+}  // namespace chasles

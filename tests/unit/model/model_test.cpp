@@ -1,0 +1,77 @@
+#include "chasles/model/model.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/error.h"
+#include "chasles/model/forces.h"
+#include "test_support.h"
+
+namespace chasles {
+namespace {
+
+using testing::HasSubstr;
+using testing::ThrowsMessage;
+
+MassProperties Unit() {
+  return MassProperties(1.0, Vec3::Zero(), RotationalInertia(1, 1, 1));
+}
+
+TEST(Model, RejectsDuplicateBodyAndUnknownIndex) {
+  Model m;
+  m.AddBody("a", Unit());
+  EXPECT_THAT([&] { m.AddBody("a", Unit()); },
+              ThrowsMessage<InputError>(HasSubstr("body 'a' is defined twice")));
+  EXPECT_THAT([&] { m.AddForceElement(std::make_shared<LinearDrag>("d", 3, 1.0, 0.0)); },
+              ThrowsMessage<InputError>(HasSubstr("acts on body index 3")));
+  EXPECT_THAT([&] { m.FindBody("b"); }, ThrowsMessage<InputError>(HasSubstr("the bodies are: a")));
+}
+
+TEST(Model, RejectsSlenderRodAndNegativeStiffness) {
+  Model m;
+  EXPECT_THAT(
+      [&] { m.AddBody("rod", MassProperties(1.0, Vec3::Zero(), RotationalInertia(0, 1, 1))); },
+      ThrowsMessage<InputError>(HasSubstr("give the rod or plate a thickness")));
+  EXPECT_THAT(
+      [&] { SpringDamper("s", 0, Vec3::Zero(), kWorld, Vec3::Zero(), 1.0, -5.0, 0.0); },
+      ThrowsMessage<InputError>(HasSubstr("stiffness is -5 N/m; it must be a finite number >= 0")));
+}
+
+// Euler's equations with a full tensor: for a non-principal frame the gyroscopic term
+// w × (I w) must use the products of inertia. With M = 0, ẇ = -I⁻¹ (w × I w).
+TEST(NewtonEuler, FullTensorGyroscopicTerm) {
+  const RotationalInertia I(2.0, 3.0, 4.0, 0.1, -0.2, 0.3);
+  Model m;
+  m.AddBody("b", MassProperties(2.0, Vec3::Zero(), I));
+  State s = MakeRestState(m);
+  s.bodies[0].w_WB_B = Vec3(1.0, -2.0, 0.5);
+  Data d = MakeData(m);
+  CalcAccelerations(m, s, d);
+  const Vec3 w = s.bodies[0].w_WB_B;
+  const Vec3 expected = -I.matrix().inverse() * w.cross(I.matrix() * w);
+  EXPECT_TRUE(test::MatNear(d.wdot_WB_B[0], expected, test::kExact));
+}
+
+TEST(Forces, SpringPowerSplitsIntoConservativeAndDamperParts) {
+  Model m;
+  const BodyIndex b = m.AddBody("b", Unit());
+  const double k = 10, c = 2, L0 = 1;
+  m.AddForceElement(
+      std::make_shared<SpringDamper>("s", b, Vec3::Zero(), kWorld, Vec3::Zero(), L0, k, c));
+  State s = MakeRestState(m);
+  s.bodies[0].p_WBcm = Vec3(1.5, 0, 0);
+  s.bodies[0].v_WBcm_W = Vec3(0.3, 0, 0);
+  Data d = MakeData(m);
+  CalcAccelerations(m, s, d);
+  // L = 1.5, L̇ = 0.3: tension k(L - L0) + c L̇ pulls the body back; P = -tension L̇.
+  const double tension = k * 0.5 + c * 0.3;
+  EXPECT_TRUE(test::MatNear(d.F_Bcm_W[0], Vec3(-tension, 0, 0), test::kExact));
+  EXPECT_TRUE(test::Near(d.elements[0].power, -tension * 0.3, test::kExact));
+  EXPECT_TRUE(test::Near(d.elements[0].power_nonconservative, -c * 0.3 * 0.3, test::kExact));
+  EXPECT_TRUE(
+      test::Near(m.force_element(0).CalcPotentialEnergy(m, s), 0.5 * k * 0.25, test::kExact));
+}
+
+}  // namespace
+}  // namespace chasles
