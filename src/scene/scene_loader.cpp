@@ -18,6 +18,7 @@
 #include "chasles/scene/scene.h"
 #include "chasles/scene/units.h"
 #include "chasles/suggest.h"
+#include "internal/scene_reader.h"
 #include "internal/shape_table.h"
 #include "internal/yaml_reader.h"
 
@@ -26,6 +27,7 @@ namespace chasles {
 using scene_internal::At;
 using scene_internal::KindOf;
 using scene_internal::Reporter;
+using scene_internal::SceneReader;
 using scene_internal::ShapeEntry;
 
 namespace {
@@ -72,72 +74,9 @@ bool IsPureNumber(const std::string& text) {
   return true;
 }
 
-class SceneReader {
- public:
-  SceneReader(std::string file, const SceneOptions& options)
-      : report_(std::move(file)), options_(options) {}
+}  // namespace
 
-  Scene Read(const YAML::Node& document);
-
-  /// A reader that evaluates command-line text against a loaded scene's units and parameters.
-  SceneReader(const Scene& scene, std::string source, const SceneOptions& options)
-      : report_(std::move(source)), options_(options) {
-    units_text_ = scene.units;
-    units_ = std::make_unique<UnitSystem>(UnitSystem::Parse(scene.units));
-    for (const auto& [name, q] : scene.parameters) {
-      Parameter p{At{}, "", ""};
-      p.state = Parameter::State::kDone;
-      p.value = q;
-      parameters_.emplace(name, p);
-    }
-  }
-  Vec3 PointOption(const YAML::Node& node) { return Vector(At{node, ""}, kLength, "a point"); }
-  Mat3 RotationOption(const YAML::Node& node) {
-    const At holder{node, ""};
-    report_.CheckMap(holder, {"axis", "rotation", "euler", "quaternion"}, "an orientation");
-    return ReadOrientation(holder);
-  }
-
- private:
-  struct Parameter {
-    At at;               // where it is defined (for messages)
-    std::string text;    // its expression
-    std::string origin;  // "" for the file, "--set NAME" for an override
-    enum class State { kPending, kResolving, kDone } state = State::kPending;
-    Quantity value{};
-  };
-
-  // Expressions --------------------------------------------------------------------------
-  std::optional<Symbol> ResolveParameter(std::string_view name);
-  Quantity EvaluateParameter(const std::string& name);
-  Expression Compile(const At& at, const std::string& text, const SymbolResolver& resolver);
-  /// A scalar of the given dimension; bare numbers are in the scene's default units.
-  double Value(const At& at, const Dimension& expected, std::string_view what);
-  double PositiveValue(const At& at, const Dimension& expected, std::string_view what);
-  Vec3 Vector(const At& at, const Dimension& expected, std::string_view what);
-  double DefaultUnitFactor(const Dimension& d) const;
-
-  // Structure ----------------------------------------------------------------------------
-  void ReadUnits(const At& root);
-  void ReadParameters(const At& root);
-  void ReadMaterials(const At& root);
-  SceneBody ReadBody(const At& at, size_t index);
-  ScenePart ReadPart(const At& at, size_t index, const At& body_at);
-  std::vector<double> ReadDimension(const At& at, const scene_internal::DimensionKey& d);
-  MassProperties ReadShapeMass(const At& at, const At& body_at, const Shape& geometry,
-                               const std::string& what, ScenePart& part);
-  Mat3 ReadOrientation(const At& part);
-  double MaterialDensity(const At& at);
-
-  Reporter report_;
-  SceneOptions options_;
-  std::unique_ptr<UnitSystem> units_;
-  std::string units_text_ = "SI";
-  std::map<std::string, Parameter, std::less<>> parameters_;
-  std::vector<std::string> resolving_;  // parameters being evaluated, for cycle messages
-  std::map<std::string, double, std::less<>> materials_;  // the scene's own, by name
-  std::vector<std::string> warnings_;
-};
+namespace scene_internal {
 
 // --- expressions ---------------------------------------------------------------------------
 
@@ -744,7 +683,7 @@ MassProperties SceneReader::ReadShapeMass(const At& at, const At& body_at, const
   return local;
 }
 
-}  // namespace
+}  // namespace scene_internal
 
 Scene LoadSceneText(std::string_view text, const std::string& name, const SceneOptions& options) {
   YAML::Node document;
