@@ -125,6 +125,14 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
         }
         for (const auto& n : p.notes) detail += (detail.empty() ? "" : "; ") + n;
         if (!detail.empty()) out += fmt::format("  {:<{}}  {}\n", "", w, detail);
+        // The part's own central inertia, in body axes: the six tensor entries on one line.
+        const Mat3 Ip = P.InertiaMatrix(q.I_BBcm_B().matrix());
+        const double s = Ip.cwiseAbs().maxCoeff();
+        out += fmt::format(
+            "  {:<{}}  inertia about its centre of mass [{}]: Ixx {}, Iyy {}, Izz {}, "
+            "Ixy {}, Ixz {}, Iyz {}\n",
+            "", w, P.I, Num(Ip(0, 0), s), Num(Ip(1, 1), s), Num(Ip(2, 2), s), Num(Ip(0, 1), s),
+            Num(Ip(0, 2), s), Num(Ip(1, 2), s));
       }
     }
     const RotationalInertia& Icm = mp.I_BBcm_B();
