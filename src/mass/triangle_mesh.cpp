@@ -1,0 +1,455 @@
+#include "chasles/mass/triangle_mesh.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "chasles/error.h"
+
+namespace chasles {
+namespace {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+// Finaliser of splitmix64: cheap and mixes every input bit into the low bits that index the
+// power-of-two tables below.
+inline std::uint64_t Mix(std::uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebULL;
+  x ^= x >> 31;
+  return x;
+}
+
+std::size_t TableSizeFor(std::size_t n) {
+  return std::bit_ceil(std::max<std::size_t>(2 * n, 16));
+}
+
+template <typename T>
+using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+
+// Bit pattern of a coordinate with -0 folded into +0, so that equal positions hash equally.
+template <typename T>
+inline Bits<T> CoordBits(T x) {
+  return std::bit_cast<Bits<T>>(static_cast<T>(x + T(0)));
+}
+
+std::string FormatPoint(const Vec3& p) {
+  return fmt::format("({:.9g}, {:.9g}, {:.9g})", p.x(), p.y(), p.z());
+}
+
+// Stage 1: merge vertices with bit-identical coordinates (an STL shares no vertex, so every
+// position appears once per incident triangle). Open addressing on the index of the first
+// occurrence; returns the map from input vertex to unique vertex and the unique positions,
+// scaled to double.
+template <typename T>
+std::vector<std::uint32_t> WeldExact(std::span<const T> xyz, double scale,
+                                     std::vector<Vec3>* unique) {
+  const std::size_t n = xyz.size() / 3;
+  std::vector<std::uint32_t> remap(n);
+  std::vector<std::uint32_t> table(TableSizeFor(n), kNone);
+  const std::size_t mask = table.size() - 1;
+  std::vector<T> raw;  // unique raw coordinates, compared on probing
+  raw.reserve(xyz.size() / 4);
+  for (std::size_t i = 0; i < n; ++i) {
+    const T x = xyz[3 * i], y = xyz[3 * i + 1], z = xyz[3 * i + 2];
+    const std::uint64_t h =
+        Mix(std::uint64_t{CoordBits(x)} * 0x9E3779B97F4A7C15ULL ^
+            Mix(std::uint64_t{CoordBits(y)} + 0x632BE59BD9B4E019ULL) ^ std::uint64_t{CoordBits(z)});
+    std::size_t slot = h & mask;
+    for (;;) {
+      const std::uint32_t u = table[slot];
+      if (u == kNone) {
+        const auto id = static_cast<std::uint32_t>(raw.size() / 3);
+        table[slot] = id;
+        raw.insert(raw.end(), {x, y, z});
+        remap[i] = id;
+        break;
+      }
+      if (raw[3 * u] == x && raw[3 * u + 1] == y && raw[3 * u + 2] == z) {
+        remap[i] = u;
+        break;
+      }
+      slot = (slot + 1) & mask;
+    }
+  }
+  unique->resize(raw.size() / 3);
+  for (std::size_t u = 0; u < unique->size(); ++u) {
+    (*unique)[u] = Vec3(raw[3 * u], raw[3 * u + 1], raw[3 * u + 2]) * scale;
+  }
+  return remap;
+}
+
+// Stage 2: merge vertices closer than `tol`. Vertices go into grid cells of size h >= 2 tol,
+// so the tol-ball of a point reaches at most one neighbouring cell along each axis (the one on
+// the side where the point is within tol of the cell wall): at most 8 cells to search, and
+// usually 1 because h is chosen much larger than tol when the mesh allows. Each vertex maps to
+// the earliest kept vertex within tol; kept vertices are never merged later, so the result
+// does not depend on chains of near points drifting. Returns the map from unique vertex to
+// kept vertex (compacted) and compacts `vertices`.
+std::vector<std::uint32_t> WeldNear(std::vector<Vec3>* vertices, double tol, const Vec3& lo,
+                                    double diagonal) {
+  const std::size_t n = vertices->size();
+  std::vector<std::uint32_t> map(n);
+  const double h = std::max(2.0 * tol, 1e-6 * diagonal);
+  const double inv_h = 1.0 / h;
+  const double tol2 = tol * tol;
+  struct Cell {
+    std::int64_t ix, iy, iz;
+    std::uint32_t head = kNone;
+  };
+  std::vector<Cell> table(TableSizeFor(n));
+  const std::size_t mask = table.size() - 1;
+  std::vector<std::uint32_t> next;  // chain of kept vertices within a cell
+  std::vector<std::uint32_t> kept;  // kept vertex -> original unique id
+  next.reserve(n);
+  kept.reserve(n);
+  auto find = [&](std::int64_t ix, std::int64_t iy, std::int64_t iz, bool insert) -> Cell* {
+    std::size_t slot = Mix(static_cast<std::uint64_t>(ix) * 0x9E3779B97F4A7C15ULL ^
+                           Mix(static_cast<std::uint64_t>(iy) + 0x632BE59BD9B4E019ULL) ^
+                           static_cast<std::uint64_t>(iz)) &
+                       mask;
+    for (;;) {
+      Cell& c = table[slot];
+      if (c.head == kNone) {
+        if (!insert) return nullptr;
+        c.ix = ix;
+        c.iy = iy;
+        c.iz = iz;
+        return &c;
+      }
+      if (c.ix == ix && c.iy == iy && c.iz == iz) return &c;
+      slot = (slot + 1) & mask;
+    }
+  };
+  const std::vector<Vec3>& v = *vertices;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 q = (v[i] - lo) * inv_h;
+    const std::int64_t base[3] = {static_cast<std::int64_t>(std::floor(q.x())),
+                                  static_cast<std::int64_t>(std::floor(q.y())),
+                                  static_cast<std::int64_t>(std::floor(q.z()))};
+    int side[3];
+    for (int a = 0; a < 3; ++a) {
+      const double f = (q[a] - static_cast<double>(base[a])) * h;  // distance to lower wall
+      side[a] = f <= tol ? -1 : (h - f <= tol ? 1 : 0);
+    }
+    std::uint32_t best = kNone;
+    for (int m = 0; m < 8; ++m) {
+      if (((m & 1) && !side[0]) || ((m & 2) && !side[1]) || ((m & 4) && !side[2])) continue;
+      const Cell* c = find(base[0] + ((m & 1) ? side[0] : 0), base[1] + ((m & 2) ? side[1] : 0),
+                           base[2] + ((m & 4) ? side[2] : 0), false);
+      if (c == nullptr) continue;
+      for (std::uint32_t k = c->head; k != kNone; k = next[k]) {
+        if ((v[kept[k]] - v[i]).squaredNorm() <= tol2 && k < best) best = k;
+      }
+    }
+    if (best != kNone) {
+      map[i] = best;
+      continue;
+    }
+    const auto k = static_cast<std::uint32_t>(kept.size());
+    Cell* c = find(base[0], base[1], base[2], true);
+    next.push_back(c->head);
+    c->head = k;
+    kept.push_back(static_cast<std::uint32_t>(i));
+    map[i] = k;
+  }
+  std::vector<Vec3> out(kept.size());
+  for (std::size_t k = 0; k < kept.size(); ++k) out[k] = v[kept[k]];
+  *vertices = std::move(out);
+  return map;
+}
+
+template <typename T>
+TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> indices, double scale,
+                       double tolerance, MeshRepairReport* report) {
+  if (!(std::isfinite(scale) && scale > 0.0)) {
+    throw InputError(
+        fmt::format("mesh scale is {}; it must be a positive, finite number of "
+                    "metres per file unit",
+                    scale));
+  }
+  if (xyz.size() % 3 != 0 || indices.size() % 3 != 0) {
+    throw InputError("mesh arrays: coordinates and indices must come in threes");
+  }
+  const std::size_t nv = xyz.size() / 3;
+  if (nv >= kNone) throw InputError("mesh: more than 2^32 - 1 vertices are not supported");
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    if (indices[i] >= nv) {
+      throw InputError(
+          fmt::format("mesh: triangle {} refers to vertex {}, but there are only {} "
+                      "vertices",
+                      i / 3, indices[i], nv));
+    }
+  }
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    if (!std::isfinite(xyz[i])) {
+      throw InputError(
+          fmt::format("mesh: vertex {} has a non-finite coordinate ({}); the file is "
+                      "garbled",
+                      i / 3, static_cast<double>(xyz[i])));
+    }
+  }
+  MeshRepairReport local;
+  MeshRepairReport& rep = report ? *report : local;
+  rep.vertices_in = nv;
+  rep.triangles_in = indices.size() / 3;
+
+  TriangleMesh mesh;
+  std::vector<std::uint32_t> remap = WeldExact(xyz, scale, &mesh.vertices);
+
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (const Vec3& p : mesh.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double diagonal = mesh.vertices.empty() ? 0.0 : (hi - lo).norm();
+  const double tol = std::isnan(tolerance) ? kDefaultWeldRelativeTolerance * diagonal : tolerance;
+  if (!(tol >= 0.0) || !std::isfinite(tol)) {
+    throw InputError(fmt::format("mesh weld tolerance is {} m; it must be zero or positive", tol));
+  }
+  rep.weld_tolerance = tol;
+  if (tol > 0.0 && diagonal > 0.0) {
+    const std::vector<std::uint32_t> near = WeldNear(&mesh.vertices, tol, lo, diagonal);
+    for (std::uint32_t& r : remap) r = near[r];
+  }
+  rep.vertices_out = mesh.vertices.size();
+
+  mesh.triangles.reserve(indices.size() / 3);
+  const Vec3* v = mesh.vertices.data();
+  for (std::size_t t = 0; t < indices.size(); t += 3) {
+    const TriangleIndices tri = {remap[indices[t]], remap[indices[t + 1]], remap[indices[t + 2]]};
+    const bool repeated = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
+    if (repeated || (v[tri[1]] - v[tri[0]]).cross(v[tri[2]] - v[tri[0]]).isZero(0.0)) {
+      ++rep.degenerate_dropped;
+      continue;
+    }
+    mesh.triangles.push_back(tri);
+  }
+  if (rep.degenerate_dropped > 0) {
+    rep.warnings.push_back(fmt::format(
+        "{} degenerate triangle(s) (zero area or a repeated vertex after welding) dropped",
+        rep.degenerate_dropped));
+  }
+  if (mesh.triangles.empty()) {
+    throw InputError(
+        fmt::format("mesh: empty mesh ({} triangles read, all degenerate)", rep.triangles_in));
+  }
+  return mesh;
+}
+
+// Start vertex of half-edge he = 3 t + k (the edge from corner k to corner k + 1).
+inline std::uint32_t From(const std::vector<TriangleIndices>& tris, std::uint32_t he) {
+  return tris[he / 3][he % 3];
+}
+inline std::uint32_t To(const std::vector<TriangleIndices>& tris, std::uint32_t he) {
+  return tris[he / 3][(he % 3 + 1) % 3];
+}
+
+}  // namespace
+
+TriangleMesh BuildTriangleMesh(std::span<const float> xyz, std::span<const std::uint32_t> indices,
+                               double scale, double tolerance, MeshRepairReport* report) {
+  return BuildImpl(xyz, indices, scale, tolerance, report);
+}
+
+TriangleMesh BuildTriangleMesh(std::span<const double> xyz, std::span<const std::uint32_t> indices,
+                               double scale, double tolerance, MeshRepairReport* report) {
+  return BuildImpl(xyz, indices, scale, tolerance, report);
+}
+
+void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
+  MeshRepairReport local;
+  MeshRepairReport& rep = report ? *report : local;
+  std::vector<TriangleIndices>& tris = mesh.triangles;
+  const std::size_t nt = tris.size();
+  const std::size_t nv = mesh.vertices.size();
+  if (3 * nt >= kNone) throw InputError("mesh: more than 2^32 / 3 triangles are not supported");
+
+  // Edges bucketed by their lower vertex (compressed rows): each half-edge he is stored at its
+  // lower endpoint as (upper endpoint << 32 | he). Sorting a bucket groups the uses of each
+  // undirected edge; buckets hold about six entries, so this is linear in practice and needs
+  // 8 bytes per half-edge, less than a hash table of edges.
+  std::vector<std::uint32_t> offset(nv + 1, 0);
+  for (const TriangleIndices& t : tris) {
+    for (int k = 0; k < 3; ++k) ++offset[std::min(t[k], t[(k + 1) % 3]) + 1];
+  }
+  for (std::size_t i = 0; i < nv; ++i) offset[i + 1] += offset[i];
+  std::vector<std::uint64_t> entries(3 * nt);
+  {
+    std::vector<std::uint32_t> fill(offset.begin(), offset.end() - 1);
+    for (std::uint32_t he = 0; he < 3 * nt; ++he) {
+      const std::uint32_t a = From(tris, he), b = To(tris, he);
+      entries[fill[std::min(a, b)]++] = (std::uint64_t{std::max(a, b)} << 32) | he;
+    }
+  }
+  std::vector<std::uint32_t> twin(3 * nt, kNone);
+  std::size_t boundary = 0, nonmanifold = 0, inconsistent = 0;
+  std::uint32_t first_bad = kNone;  // a half-edge of the first offending edge
+  const char* first_kind = "";
+  for (std::size_t v = 0; v < nv; ++v) {
+    std::uint64_t* b = entries.data() + offset[v];
+    std::uint64_t* e = entries.data() + offset[v + 1];
+    if (e - b <= 16) {
+      for (std::uint64_t* i = b + 1; i < e; ++i) {  // insertion sort: buckets are tiny
+        const std::uint64_t x = *i;
+        std::uint64_t* j = i;
+        for (; j > b && *(j - 1) > x; --j) *j = *(j - 1);
+        *j = x;
+      }
+    } else {
+      std::sort(b, e);
+    }
+    for (std::uint64_t* g = b; g < e;) {
+      std::uint64_t* h = g + 1;
+      while (h < e && (*h >> 32) == (*g >> 32)) ++h;
+      const auto he0 = static_cast<std::uint32_t>(*g);
+      if (h - g == 2) {
+        const auto he1 = static_cast<std::uint32_t>(*(g + 1));
+        twin[he0] = he1;
+        twin[he1] = he0;
+        if (From(tris, he0) == From(tris, he1)) ++inconsistent;
+      } else {
+        if (h - g == 1) {
+          ++boundary;
+        } else {
+          ++nonmanifold;
+        }
+        if (first_bad == kNone) {
+          first_bad = he0;
+          first_kind = h - g == 1 ? "boundary" : "non-manifold";
+        }
+      }
+      g = h;
+    }
+  }
+  if (boundary > 0 || nonmanifold > 0) {
+    const Vec3& a = mesh.vertices[From(tris, first_bad)];
+    const Vec3& b = mesh.vertices[To(tris, first_bad)];
+    throw InputError(fmt::format(
+        "mesh is not a closed manifold surface, so it encloses no well-defined solid: {} "
+        "boundary edge(s) (used by one triangle) and {} non-manifold edge(s) (used by three or "
+        "more); the first is the {} edge from {} to {}. Close the mesh in the CAD tool, or use "
+        "mode: shell with a thickness or areal density for sheet parts",
+        boundary, nonmanifold, first_kind, FormatPoint(a), FormatPoint(b)));
+  }
+
+  // Connected components by breadth-first search over shared edges. parity[t] says whether t
+  // must be reversed to agree with the component's first triangle: crossing an edge that both
+  // triangles traverse in the same direction toggles it.
+  std::vector<std::uint32_t> component(nt, kNone);
+  std::vector<std::uint8_t> parity(nt, 0);
+  std::vector<std::uint32_t> queue;
+  queue.reserve(nt);
+  std::vector<std::uint32_t> component_start;  // offsets into queue
+  for (std::uint32_t seed = 0; seed < nt; ++seed) {
+    if (component[seed] != kNone) continue;
+    const auto c = static_cast<std::uint32_t>(component_start.size());
+    component_start.push_back(static_cast<std::uint32_t>(queue.size()));
+    component[seed] = c;
+    queue.push_back(seed);
+    for (std::size_t q = component_start.back(); q < queue.size(); ++q) {
+      const std::uint32_t t = queue[q];
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const std::uint32_t he = 3 * t + k;
+        const std::uint32_t tw = twin[he];
+        const std::uint32_t u = tw / 3;
+        const std::uint8_t p = parity[t] ^ (From(tris, he) == From(tris, tw) ? 1 : 0);
+        if (component[u] == kNone) {
+          component[u] = c;
+          parity[u] = p;
+          queue.push_back(u);
+        } else if (inconsistent > 0 && parity[u] != p) {
+          throw InputError(fmt::format(
+              "mesh is not orientable (like a Moebius strip): no choice of triangle orientations "
+              "makes the edge from {} to {} consistent; it cannot bound a solid",
+              FormatPoint(mesh.vertices[From(tris, he)]),
+              FormatPoint(mesh.vertices[To(tris, he)])));
+        }
+      }
+    }
+  }
+  component_start.push_back(static_cast<std::uint32_t>(nt));
+  const std::size_t nc = component_start.size() - 1;
+  rep.components = nc;
+
+  if (inconsistent > 0) {
+    // Keep the majority orientation of each component: fewest triangles reversed.
+    std::size_t flipped = 0;
+    for (std::size_t c = 0; c < nc; ++c) {
+      std::size_t ones = 0;
+      for (std::uint32_t q = component_start[c]; q < component_start[c + 1]; ++q) {
+        ones += parity[queue[q]];
+      }
+      const std::size_t size = component_start[c + 1] - component_start[c];
+      const std::uint8_t reverse = 2 * ones > size ? 0 : 1;
+      for (std::uint32_t q = component_start[c]; q < component_start[c + 1]; ++q) {
+        const std::uint32_t t = queue[q];
+        if (parity[t] == reverse) {
+          std::swap(tris[t][1], tris[t][2]);
+          ++flipped;
+        }
+      }
+    }
+    rep.triangles_flipped += flipped;
+    rep.warnings.push_back(fmt::format(
+        "inconsistent triangle orientation: {} of {} triangles reversed to agree with their "
+        "neighbours (flood fill per connected component)",
+        flipped, nt));
+  }
+
+  // Enclosed volume per component (divergence theorem, signed tetrahedra from the bounding-box
+  // centre; see mesh_mass.cpp), to detect an inside-out mesh.
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (const Vec3& p : mesh.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec3 r = 0.5 * (lo + hi);
+  std::vector<double> volume(nc, 0.0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Vec3 a = mesh.vertices[tris[t][0]] - r;
+    const Vec3 b = mesh.vertices[tris[t][1]] - r;
+    const Vec3 c = mesh.vertices[tris[t][2]] - r;
+    volume[component[t]] += a.dot(b.cross(c));
+  }
+  double total = 0.0;
+  for (double& vol : volume) {
+    vol /= 6.0;
+    total += vol;
+  }
+  const double scale3 = std::pow((hi - lo).norm(), 3);
+  if (!(std::abs(total) > 1e-12 * scale3)) {
+    throw InputError(fmt::format(
+        "mesh encloses no volume ({:.6g} for a bounding-box diagonal of {:.6g}): a flat or "
+        "self-cancelling surface cannot be a solid; use mode: shell with a thickness or areal "
+        "density for sheet parts",
+        total, (hi - lo).norm()));
+  }
+  if (total < 0.0) {
+    for (TriangleIndices& t : tris) std::swap(t[1], t[2]);
+    for (double& vol : volume) vol = -vol;
+    rep.inside_out_flipped = true;
+    rep.warnings.push_back(fmt::format(
+        "mesh was inside out (enclosed volume {:.6g} < 0, normals pointing in); all triangles "
+        "reversed",
+        total));
+  }
+  for (std::size_t c = 0; c < nc; ++c) {
+    if (volume[c] < 0.0) {
+      rep.warnings.push_back(fmt::format(
+          "component {} ({} triangles) encloses a negative volume ({:.6g}) and is treated as a "
+          "cavity; reverse it if it is a separate part",
+          c, component_start[c + 1] - component_start[c], volume[c]));
+    }
+  }
+}
+
+}  // namespace chasles
