@@ -147,6 +147,12 @@ MeshFileData ReadWithAssimp(const std::string& path) {
   const aiScene* scene = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
   if (scene == nullptr) {
+    const std::string why = importer.GetErrorString();
+    // Point clouds and line sets are read, but their primitives are dropped above.
+    if (why.find("No output meshes") != std::string::npos) {
+      throw InputError(
+          fmt::format("mesh file '{}': empty mesh (no triangles found; {})", path, why));
+    }
     throw InputError(
         fmt::format("mesh file '{}': unreadable or garbled ({})", path, importer.GetErrorString()));
   }

@@ -26,142 +26,128 @@ inline std::uint64_t Mix(std::uint64_t x) {
   return x;
 }
 
-std::size_t TableSizeFor(std::size_t n) {
-  return std::bit_ceil(std::max<std::size_t>(2 * n, 16));
-}
-
-template <typename T>
-using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
-
-// Bit pattern of a coordinate with -0 folded into +0, so that equal positions hash equally.
-template <typename T>
-inline Bits<T> CoordBits(T x) {
-  return std::bit_cast<Bits<T>>(static_cast<T>(x + T(0)));
-}
-
 std::string FormatPoint(const Vec3& p) {
   return fmt::format("({:.9g}, {:.9g}, {:.9g})", p.x(), p.y(), p.z());
 }
 
-// Stage 1: merge vertices with bit-identical coordinates (an STL shares no vertex, so every
-// position appears once per incident triangle). Open addressing on the index of the first
-// occurrence; returns the map from input vertex to unique vertex and the unique positions,
-// scaled to double.
+// Welding in one pass over the input vertices (an STL repeats each position once per incident
+// triangle, so this pass sees about six copies of every vertex). Positions are scaled to
+// double and sorted into grid cells of size h >= 2 tol: the tol-ball of a point then reaches
+// at most one neighbouring cell along each axis (on the side where the point lies within tol
+// of the cell wall), so at most 8 cells are searched, and usually only the point's own,
+// because h is made much larger than the default tol (h >= diagonal / 2^20). Exact
+// duplicates, at distance 0, are always found in the own cell. Each vertex maps to the
+// earliest kept vertex within tol; kept vertices are never merged later, so chains of near
+// points cannot drift. Cell coordinates (offset by one, < 2^21) pack into one 64-bit key;
+// the hash table grows with the number of kept vertices, not of input vertices, which keeps
+// it small enough to stay in cache (a table sized for the input was twice as slow).
 template <typename T>
-std::vector<std::uint32_t> WeldExact(std::span<const T> xyz, double scale,
-                                     std::vector<Vec3>* unique) {
+std::vector<std::uint32_t> Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo,
+                                double diagonal, std::vector<Vec3>* kept) {
   const std::size_t n = xyz.size() / 3;
-  std::vector<std::uint32_t> remap(n);
-  std::vector<std::uint32_t> table(TableSizeFor(n), kNone);
-  const std::size_t mask = table.size() - 1;
-  std::vector<T> raw;  // unique raw coordinates, compared on probing
-  raw.reserve(xyz.size() / 4);
-  for (std::size_t i = 0; i < n; ++i) {
-    const T x = xyz[3 * i], y = xyz[3 * i + 1], z = xyz[3 * i + 2];
-    const std::uint64_t h =
-        Mix(std::uint64_t{CoordBits(x)} * 0x9E3779B97F4A7C15ULL ^
-            Mix(std::uint64_t{CoordBits(y)} + 0x632BE59BD9B4E019ULL) ^ std::uint64_t{CoordBits(z)});
-    std::size_t slot = h & mask;
-    for (;;) {
-      const std::uint32_t u = table[slot];
-      if (u == kNone) {
-        const auto id = static_cast<std::uint32_t>(raw.size() / 3);
-        table[slot] = id;
-        raw.insert(raw.end(), {x, y, z});
-        remap[i] = id;
-        break;
-      }
-      if (raw[3 * u] == x && raw[3 * u + 1] == y && raw[3 * u + 2] == z) {
-        remap[i] = u;
-        break;
-      }
-      slot = (slot + 1) & mask;
-    }
-  }
-  unique->resize(raw.size() / 3);
-  for (std::size_t u = 0; u < unique->size(); ++u) {
-    (*unique)[u] = Vec3(raw[3 * u], raw[3 * u + 1], raw[3 * u + 2]) * scale;
-  }
-  return remap;
-}
-
-// Stage 2: merge vertices closer than `tol`. Vertices go into grid cells of size h >= 2 tol,
-// so the tol-ball of a point reaches at most one neighbouring cell along each axis (the one on
-// the side where the point is within tol of the cell wall): at most 8 cells to search, and
-// usually 1 because h is chosen much larger than tol when the mesh allows. Each vertex maps to
-// the earliest kept vertex within tol; kept vertices are never merged later, so the result
-// does not depend on chains of near points drifting. Returns the map from unique vertex to
-// kept vertex (compacted) and compacts `vertices`.
-std::vector<std::uint32_t> WeldNear(std::vector<Vec3>* vertices, double tol, const Vec3& lo,
-                                    double diagonal) {
-  const std::size_t n = vertices->size();
   std::vector<std::uint32_t> map(n);
-  const double h = std::max(2.0 * tol, 1e-6 * diagonal);
+  constexpr double kCellsPerDiagonal = 1 << 20;
+  const double h = diagonal > 0.0 ? std::max(2.0 * tol, diagonal / kCellsPerDiagonal) : 1.0;
   const double inv_h = 1.0 / h;
   const double tol2 = tol * tol;
-  struct Cell {
-    std::int64_t ix, iy, iz;
-    std::uint32_t head = kNone;
-  };
-  std::vector<Cell> table(TableSizeFor(n));
-  const std::size_t mask = table.size() - 1;
+  // The table holds, per occupied cell, the index of its most recent kept vertex (the head of
+  // the cell's chain); the cell key of a kept vertex sits in kept_key, in insertion order.
+  // Four bytes a slot keep the table small enough for the caches: with 16-byte slots holding
+  // the key the random probes made welding 1.5 times slower.
+  std::vector<std::uint32_t> table(16, kNone);
+  std::size_t mask = table.size() - 1;
+  std::vector<std::uint64_t> kept_key;
   std::vector<std::uint32_t> next;  // chain of kept vertices within a cell
-  std::vector<std::uint32_t> kept;  // kept vertex -> original unique id
-  next.reserve(n);
-  kept.reserve(n);
-  auto find = [&](std::int64_t ix, std::int64_t iy, std::int64_t iz, bool insert) -> Cell* {
-    std::size_t slot = Mix(static_cast<std::uint64_t>(ix) * 0x9E3779B97F4A7C15ULL ^
-                           Mix(static_cast<std::uint64_t>(iy) + 0x632BE59BD9B4E019ULL) ^
-                           static_cast<std::uint64_t>(iz)) &
-                       mask;
-    for (;;) {
-      Cell& c = table[slot];
-      if (c.head == kNone) {
-        if (!insert) return nullptr;
-        c.ix = ix;
-        c.iy = iy;
-        c.iz = iz;
-        return &c;
-      }
-      if (c.ix == ix && c.iy == iy && c.iz == iz) return &c;
-      slot = (slot + 1) & mask;
-    }
+  kept_key.reserve(n / 4);
+  next.reserve(n / 4);
+  kept->clear();
+  kept->reserve(n / 4);
+  auto pack = [](std::int64_t ix, std::int64_t iy, std::int64_t iz) {
+    return static_cast<std::uint64_t>(ix + 1) << 42 | static_cast<std::uint64_t>(iy + 1) << 21 |
+           static_cast<std::uint64_t>(iz + 1);
   };
-  const std::vector<Vec3>& v = *vertices;
+  // The slot of `key`: holding its head, or empty (kNone) where it would go.
+  auto find = [&](std::uint64_t key) -> std::uint32_t& {
+    std::size_t slot = Mix(key) & mask;
+    while (table[slot] != kNone && kept_key[table[slot]] != key) slot = (slot + 1) & mask;
+    return table[slot];
+  };
+  // A small direct-mapped cache of recently seen exact positions in front of the grid: the
+  // triangles of a file usually come in strips, so most repeated vertices were seen a few
+  // hundred triangles earlier. A hit gives the same answer as the grid would (the earliest
+  // kept vertex within tol of a position cannot change later: later kept vertices have larger
+  // indices). It halves the welding time on a tessellated torus.
+  using U = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+  struct Recent {
+    U x, y, z;
+    std::uint32_t id = kNone;
+  };
+  constexpr std::size_t kRecent = 1 << 14;
+  std::vector<Recent> recent(kRecent);
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 q = (v[i] - lo) * inv_h;
-    const std::int64_t base[3] = {static_cast<std::int64_t>(std::floor(q.x())),
-                                  static_cast<std::int64_t>(std::floor(q.y())),
-                                  static_cast<std::int64_t>(std::floor(q.z()))};
+    const U ux = std::bit_cast<U>(xyz[3 * i]), uy = std::bit_cast<U>(xyz[3 * i + 1]),
+            uz = std::bit_cast<U>(xyz[3 * i + 2]);
+    Recent& r = recent[Mix(std::uint64_t{ux} * 0x9E3779B97F4A7C15ULL +
+                           std::uint64_t{uy} * 0xC2B2AE3D27D4EB4FULL + std::uint64_t{uz}) &
+                       (kRecent - 1)];
+    if (r.id != kNone && r.x == ux && r.y == uy && r.z == uz) {
+      map[i] = r.id;
+      continue;
+    }
+    const Vec3 p(static_cast<double>(xyz[3 * i]) * scale,
+                 static_cast<double>(xyz[3 * i + 1]) * scale,
+                 static_cast<double>(xyz[3 * i + 2]) * scale);
+    const Vec3 q = (p - lo) * inv_h;
+    const std::int64_t base[3] = {static_cast<std::int64_t>(q.x()),
+                                  static_cast<std::int64_t>(q.y()),
+                                  static_cast<std::int64_t>(q.z())};  // q >= 0: truncation floors
+    const std::uint64_t own = pack(base[0], base[1], base[2]);
+    std::uint32_t best = kNone;
+    std::uint32_t& cell = find(own);
+    for (std::uint32_t k = cell; k != kNone; k = next[k]) {
+      if (((*kept)[k] - p).squaredNorm() <= tol2 && k < best) best = k;
+    }
     int side[3];
+    bool near_wall = false;
     for (int a = 0; a < 3; ++a) {
       const double f = (q[a] - static_cast<double>(base[a])) * h;  // distance to lower wall
       side[a] = f <= tol ? -1 : (h - f <= tol ? 1 : 0);
+      near_wall |= side[a] != 0;
     }
-    std::uint32_t best = kNone;
-    for (int m = 0; m < 8; ++m) {
-      if (((m & 1) && !side[0]) || ((m & 2) && !side[1]) || ((m & 4) && !side[2])) continue;
-      const Cell* c = find(base[0] + ((m & 1) ? side[0] : 0), base[1] + ((m & 2) ? side[1] : 0),
-                           base[2] + ((m & 4) ? side[2] : 0), false);
-      if (c == nullptr) continue;
-      for (std::uint32_t k = c->head; k != kNone; k = next[k]) {
-        if ((v[kept[k]] - v[i]).squaredNorm() <= tol2 && k < best) best = k;
+    if (near_wall) {
+      for (int m = 1; m < 8; ++m) {
+        if (((m & 1) && !side[0]) || ((m & 2) && !side[1]) || ((m & 4) && !side[2])) continue;
+        const std::uint32_t c =
+            find(pack(base[0] + ((m & 1) ? side[0] : 0), base[1] + ((m & 2) ? side[1] : 0),
+                      base[2] + ((m & 4) ? side[2] : 0)));
+        for (std::uint32_t k = c; k != kNone; k = next[k]) {
+          if (((*kept)[k] - p).squaredNorm() <= tol2 && k < best) best = k;
+        }
       }
     }
+    r = Recent{ux, uy, uz, best};
     if (best != kNone) {
       map[i] = best;
       continue;
     }
-    const auto k = static_cast<std::uint32_t>(kept.size());
-    Cell* c = find(base[0], base[1], base[2], true);
-    next.push_back(c->head);
-    c->head = k;
-    kept.push_back(static_cast<std::uint32_t>(i));
+    const auto k = static_cast<std::uint32_t>(kept->size());
+    r.id = k;
+    std::uint32_t* target = &cell;
+    kept_key.push_back(own);
+    if (cell == kNone && 2 * (k + 1) > table.size()) {  // keep the load factor below 1/2
+      std::vector<std::uint32_t> old(2 * table.size(), kNone);
+      old.swap(table);
+      mask = table.size() - 1;
+      for (std::uint32_t head : old) {
+        if (head != kNone) find(kept_key[head]) = head;
+      }
+      target = &find(own);
+    }
+    next.push_back(*target);
+    *target = k;
+    kept->push_back(p);
     map[i] = k;
   }
-  std::vector<Vec3> out(kept.size());
-  for (std::size_t k = 0; k < kept.size(); ++k) out[k] = v[kept[k]];
-  *vertices = std::move(out);
   return map;
 }
 
@@ -200,25 +186,25 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
   rep.vertices_in = nv;
   rep.triangles_in = indices.size() / 3;
 
-  TriangleMesh mesh;
-  std::vector<std::uint32_t> remap = WeldExact(xyz, scale, &mesh.vertices);
-
+  // Bounding box of the scaled input, for the default tolerance and the weld grid.
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 hi = -lo;
-  for (const Vec3& p : mesh.vertices) {
+  for (std::size_t i = 0; i < nv; ++i) {
+    const Vec3 p(static_cast<double>(xyz[3 * i]), static_cast<double>(xyz[3 * i + 1]),
+                 static_cast<double>(xyz[3 * i + 2]));
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  const double diagonal = mesh.vertices.empty() ? 0.0 : (hi - lo).norm();
+  lo *= scale;
+  hi *= scale;
+  const double diagonal = nv == 0 ? 0.0 : (hi - lo).norm();
   const double tol = std::isnan(tolerance) ? kDefaultWeldRelativeTolerance * diagonal : tolerance;
   if (!(tol >= 0.0) || !std::isfinite(tol)) {
     throw InputError(fmt::format("mesh weld tolerance is {} m; it must be zero or positive", tol));
   }
   rep.weld_tolerance = tol;
-  if (tol > 0.0 && diagonal > 0.0) {
-    const std::vector<std::uint32_t> near = WeldNear(&mesh.vertices, tol, lo, diagonal);
-    for (std::uint32_t& r : remap) r = near[r];
-  }
+  TriangleMesh mesh;
+  const std::vector<std::uint32_t> remap = Weld(xyz, scale, tol, lo, diagonal, &mesh.vertices);
   rep.vertices_out = mesh.vertices.size();
 
   mesh.triangles.reserve(indices.size() / 3);

@@ -363,6 +363,30 @@ TEST(MeshMass, ShellOpenBoxMatchesThinPlates) {
   EXPECT_TRUE(MatNear(res.mass_properties.I_BBcm_B().matrix(), expect.I_BBcm_B().matrix(), 1e-13));
 }
 
+TEST(MeshMass, ShellRightTriangleMatchesPlateFormulas) {
+  // One right triangle with legs a (x) and b (y): an odd triangle count exercises the
+  // integrator's last, half-filled lane. Over it ∫x² dA = a³b/12, ∫xy dA = a²b²/24,
+  // A = ab/2, centroid (a, b)/3; about the centroid ∫x² dm = m a²/18, ∫y² dm = m b²/18,
+  // ∫xy dm = -m ab/36, so Ixx = m b²/18, Iyy = m a²/18, Izz = m (a² + b²)/18 and the
+  // tensor entry Ixy = -∫xy dm = m ab/36.
+  const double a = 3.0, b = 2.0, mass = 4.0;
+  TriangleMesh t;
+  t.vertices = {Vec3(0, 0, 1), Vec3(a, 0, 1), Vec3(0, b, 1)};
+  t.triangles = {{0, 1, 2}};
+  MeshMassOptions o;
+  o.mode = MeshMassMode::kShell;
+  o.mass = mass;
+  const MeshMassResult res = ComputeMeshMassProperties(t, o);
+  EXPECT_TRUE(Near(res.report.area, a * b / 2, 1e-15));
+  EXPECT_TRUE(Near(res.report.density, mass / (a * b / 2), 1e-15));
+  EXPECT_TRUE(MatNear(res.mass_properties.p_BoBcm_B(), Vec3(a / 3, b / 3, 1), 1e-15));
+  Mat3 I;
+  I << mass * b * b / 18, mass * a * b / 36, 0,  //
+      mass * a * b / 36, mass * a * a / 18, 0,   //
+      0, 0, mass * (a * a + b * b) / 18;
+  EXPECT_TRUE(MatNear(res.mass_properties.I_BBcm_B().matrix(), I, 1e-14));
+}
+
 TEST(MeshMass, ShellHemisphereConvergesToThinShellFormulas) {
   // Thin hemispherical shell, radius R, areal density σ: m = 2πR²σ. On a sphere ∫z dA over
   // the upper half is πR³, so the centroid is R/2 above the flat face. By symmetry
