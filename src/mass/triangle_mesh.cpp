@@ -41,11 +41,11 @@ std::string FormatPoint(const Vec3& p) {
 // points cannot drift. Cell coordinates (offset by one, < 2^21) pack into one 64-bit key;
 // the hash table grows with the number of kept vertices, not of input vertices, which keeps
 // it small enough to stay in cache (a table sized for the input was twice as slow).
-template <typename T>
-std::vector<std::uint32_t> Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo,
-                                double diagonal, std::vector<Vec3>* kept) {
+// `put(i, k)` receives the kept vertex k of input vertex i.
+template <typename T, typename Put>
+void Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo, double diagonal,
+          std::vector<Vec3>* kept, Put put) {
   const std::size_t n = xyz.size() / 3;
-  std::vector<std::uint32_t> map(n);
   constexpr double kCellsPerDiagonal = 1 << 20;
   const double h = diagonal > 0.0 ? std::max(2.0 * tol, diagonal / kCellsPerDiagonal) : 1.0;
   const double inv_h = 1.0 / h;
@@ -84,14 +84,24 @@ std::vector<std::uint32_t> Weld(std::span<const T> xyz, double scale, double tol
   };
   constexpr std::size_t kRecent = 1 << 14;
   std::vector<Recent> recent(kRecent);
+  auto cell_key = [&](std::size_t i) {
+    return pack(
+        static_cast<std::int64_t>((static_cast<double>(xyz[3 * i]) * scale - lo.x()) * inv_h),
+        static_cast<std::int64_t>((static_cast<double>(xyz[3 * i + 1]) * scale - lo.y()) * inv_h),
+        static_cast<std::int64_t>((static_cast<double>(xyz[3 * i + 2]) * scale - lo.z()) * inv_h));
+  };
+  // The table probes are cache misses; requesting the slot of the vertex kPrefetch places
+  // ahead lets several misses overlap (measured: welding 1.4 times faster).
+  constexpr std::size_t kPrefetch = 16;
   for (std::size_t i = 0; i < n; ++i) {
+    if (i + kPrefetch < n) __builtin_prefetch(&table[Mix(cell_key(i + kPrefetch)) & mask]);
     const U ux = std::bit_cast<U>(xyz[3 * i]), uy = std::bit_cast<U>(xyz[3 * i + 1]),
             uz = std::bit_cast<U>(xyz[3 * i + 2]);
     Recent& r = recent[Mix(std::uint64_t{ux} * 0x9E3779B97F4A7C15ULL +
                            std::uint64_t{uy} * 0xC2B2AE3D27D4EB4FULL + std::uint64_t{uz}) &
                        (kRecent - 1)];
     if (r.id != kNone && r.x == ux && r.y == uy && r.z == uz) {
-      map[i] = r.id;
+      put(i, r.id);
       continue;
     }
     const Vec3 p(static_cast<double>(xyz[3 * i]) * scale,
@@ -127,7 +137,7 @@ std::vector<std::uint32_t> Weld(std::span<const T> xyz, double scale, double tol
     }
     r = Recent{ux, uy, uz, best};
     if (best != kNone) {
-      map[i] = best;
+      put(i, best);
       continue;
     }
     const auto k = static_cast<std::uint32_t>(kept->size());
@@ -146,9 +156,8 @@ std::vector<std::uint32_t> Weld(std::span<const T> xyz, double scale, double tol
     next.push_back(*target);
     *target = k;
     kept->push_back(p);
-    map[i] = k;
+    put(i, k);
   }
-  return map;
 }
 
 template <typename T>
@@ -204,20 +213,40 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
   }
   rep.weld_tolerance = tol;
   TriangleMesh mesh;
-  const std::vector<std::uint32_t> remap = Weld(xyz, scale, tol, lo, diagonal, &mesh.vertices);
+  // A triangle soup (an STL: triangle t uses vertices 3t, 3t + 1, 3t + 2) is welded straight
+  // into the triangle array, without a separate vertex map: 12 bytes a triangle less memory.
+  bool soup = indices.size() == nv;
+  for (std::size_t i = 0; soup && i < nv; ++i) soup = indices[i] == i;
+  if (soup) {
+    mesh.triangles.resize(nv / 3);
+    TriangleIndices* tris = mesh.triangles.data();
+    Weld(xyz, scale, tol, lo, diagonal, &mesh.vertices,
+         [tris](std::size_t i, std::uint32_t k) { tris[i / 3][i % 3] = k; });
+  } else {
+    std::vector<std::uint32_t> remap(nv);
+    Weld(xyz, scale, tol, lo, diagonal, &mesh.vertices,
+         [&remap](std::size_t i, std::uint32_t k) { remap[i] = k; });
+    mesh.triangles.resize(indices.size() / 3);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      mesh.triangles[t] = {remap[indices[3 * t]], remap[indices[3 * t + 1]],
+                           remap[indices[3 * t + 2]]};
+    }
+  }
   rep.vertices_out = mesh.vertices.size();
 
-  mesh.triangles.reserve(indices.size() / 3);
+  // Drop degenerate triangles, compacting in place.
   const Vec3* v = mesh.vertices.data();
-  for (std::size_t t = 0; t < indices.size(); t += 3) {
-    const TriangleIndices tri = {remap[indices[t]], remap[indices[t + 1]], remap[indices[t + 2]]};
+  std::size_t kept_triangles = 0;
+  for (const TriangleIndices& tri : mesh.triangles) {
     const bool repeated = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
     if (repeated || (v[tri[1]] - v[tri[0]]).cross(v[tri[2]] - v[tri[0]]).isZero(0.0)) {
       ++rep.degenerate_dropped;
       continue;
     }
-    mesh.triangles.push_back(tri);
+    mesh.triangles[kept_triangles++] = tri;
   }
+  mesh.triangles.resize(kept_triangles);
+  mesh.triangles.shrink_to_fit();
   if (rep.degenerate_dropped > 0) {
     rep.warnings.push_back(fmt::format(
         "{} degenerate triangle(s) (zero area or a repeated vertex after welding) dropped",

@@ -146,6 +146,47 @@ TEST(MeshMass, TetrahedronIsExact) {
   EXPECT_TRUE(MatNear(mp.I_BBcm_B().matrix(), I, 1e-14));
 }
 
+TEST(MeshMass, MillionTriangleBoxIsExactToRoundOff) {
+  // Each face of the box cut into k x k squares (12 k² = 1,080,000 triangles): the polyhedron
+  // is still exactly the box, so the integrals must be too, up to the round-off of the
+  // (compensated) summation over a million terms.
+  const int k = 300;
+  const double a = 1.0, b = 2.0, c = 3.0, rho = 1000;
+  TriangleMesh m;
+  auto add_face = [&](const Vec3& o, const Vec3& u, const Vec3& v) {  // u x v points out
+    const auto base = std::uint32_t(m.vertices.size());
+    for (int i = 0; i <= k; ++i) {
+      for (int j = 0; j <= k; ++j)
+        m.vertices.push_back(o + u * (double(i) / k) + v * (double(j) / k));
+    }
+    auto id = [&](int i, int j) { return base + std::uint32_t(i * (k + 1) + j); };
+    for (int i = 0; i < k; ++i) {
+      for (int j = 0; j < k; ++j) {
+        m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+    }
+  };
+  const Vec3 X(a, 0, 0), Y(0, b, 0), Z(0, 0, c), O = Vec3::Zero();
+  add_face(O, Y, X);                                                    // z = 0, normal -z
+  add_face(Z, X, Y);                                                    // z = c, normal +z
+  add_face(O, X, Z);                                                    // y = 0, normal -y
+  add_face(Y, Z, X);                                                    // y = b, normal +y
+  add_face(O, Z, Y);                                                    // x = 0, normal -x
+  add_face(X, Y, Z);                                                    // x = a, normal +x
+  const MeshMassResult res = ComputeMeshMassProperties(m, Solid(rho));  // welds the face seams
+  EXPECT_EQ(res.report.triangles, 12u * k * k);
+  EXPECT_EQ(res.report.repair.vertices_out, std::size_t(6 * k * k + 2));  // Euler: V = T/2 + 2
+  const double mass = rho * a * b * c;
+  constexpr double kRoundOff = 1e-15;
+  EXPECT_TRUE(Near(res.mass_properties.mass(), mass, kRoundOff));
+  EXPECT_TRUE(MatNear(res.mass_properties.p_BoBcm_B(), Vec3(a, b, c) / 2, kRoundOff));
+  const Mat3 I =
+      Vec3(mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12, mass * (a * a + b * b) / 12)
+          .asDiagonal();
+  EXPECT_TRUE(MatNear(res.mass_properties.I_BBcm_B().matrix(), I, kRoundOff));
+}
+
 // ---- Convergence on curved parts -----------------------------------------------------------
 
 struct Errors {
