@@ -63,11 +63,13 @@ const MeshFileData& Soup() {
   return soup;
 }
 
-const std::string& StlPath() {
-  static const std::string path = [] {
-    const std::string p =
-        (std::filesystem::temp_directory_path() / "chasles_bench_torus_1m.stl").string();
-    std::ofstream f(p, std::ios::binary);
+// The 1,000,000-triangle binary STL (50 MB), written to the temporary directory on first use
+// and removed when the program ends.
+struct TempStl {
+  std::string path;
+  TempStl()
+      : path((std::filesystem::temp_directory_path() / "chasles_bench_torus_1m.stl").string()) {
+    std::ofstream f(path, std::ios::binary);
     char header[80] = "binary STL written by mesh_mass_bench";
     f.write(header, 80);
     const auto n = std::uint32_t(Soup().triangle_count());
@@ -79,9 +81,16 @@ const std::string& StlPath() {
       f.write(reinterpret_cast<const char*>(Soup().xyz.data() + 9 * t), 36);
       f.write(reinterpret_cast<const char*>(&attr), 2);
     }
-    return p;
-  }();
-  return path;
+  }
+  ~TempStl() {
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+  }
+};
+
+const std::string& StlPath() {
+  static const TempStl file;
+  return file.path;
 }
 
 void BM_IntegrateSolid(benchmark::State& state) {
