@@ -449,6 +449,9 @@ TEST(MeshMass, ShellHemisphereConvergesToThinShellFormulas) {
     EXPECT_TRUE(Near(mp.I_BBcm_B().Izz(), 2.0 / 3 * m * R * R, 4 * em));
     EXPECT_TRUE(Near(mp.I_BBcm_B().Ixx(), 5.0 / 12 * m * R * R, 4 * em));
     EXPECT_TRUE(Near(mp.I_BBcm_B().Iyy(), 5.0 / 12 * m * R * R, 4 * em));
+    const RotationalInertia I_base = mp.CalcInertiaAbout(Vec3::Zero());  // base centre
+    EXPECT_TRUE(Near(I_base.Ixx(), 2.0 / 3 * m * R * R, 4 * em));
+    EXPECT_TRUE(Near(I_base.Iyy(), 2.0 / 3 * m * R * R, 4 * em));
     if (prev > 0) {
       EXPECT_NEAR(prev / em, 4.0, 0.1) << "n = " << n;
     }
