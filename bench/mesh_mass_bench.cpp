@@ -15,6 +15,7 @@
 
 #include "chasles/io/mesh_reader.h"
 #include "chasles/mass/mesh_mass.h"
+#include "chasles/scene/mesh_file.h"
 #include "chasles/mass/triangle_mesh.h"
 #include "io/internal/mesh_readers.h"
 
@@ -154,7 +155,7 @@ void BM_EndToEndBinaryStl(benchmark::State& state) {
   MeshMassOptions opts;
   opts.density = 7850;
   for (auto _ : state) {
-    MeshMassResult res = ComputeMeshMassProperties(path, opts);
+    MeshMassResult res = LoadMeshMassProperties(path, opts);
     benchmark::DoNotOptimize(res.mass_properties.mass());
     state.counters["read_s"] = res.report.read_seconds;
     state.counters["weld_s"] = res.report.weld_seconds;

@@ -10,7 +10,6 @@
 #include <fmt/format.h>
 
 #include "chasles/error.h"
-#include "chasles/io/mesh_reader.h"
 
 namespace chasles {
 namespace {
@@ -248,25 +247,22 @@ MassProperties MassPropertiesFromIntegrals(const MeshIntegrals& g, double densit
   return MassProperties(density * g.measure, g.p_BoR_B + c, RotationalInertia::FromMatrix(I));
 }
 
-MeshMassResult ComputeMeshMassProperties(const std::string& path, const MeshMassOptions& opts) {
-  const std::string what = fmt::format("mesh file '{}'", path);
+MeshMassResult ComputeMeshMassProperties(std::vector<float>&& xyz,
+                                         std::vector<std::uint32_t>&& indices,
+                                         const MeshMassOptions& opts, const std::string& what,
+                                         MeshMassReport report) {
   const double density = DensityFromOptions(opts, what);
-  MeshMassReport report;
-  report.path = path;
-  auto t0 = std::chrono::steady_clock::now();
-  MeshFileData data = ReadMeshFile(path);
-  report.read_seconds = Seconds(t0);
-  report.format = data.format;
-  t0 = std::chrono::steady_clock::now();
+  const auto t0 = std::chrono::steady_clock::now();
   TriangleMesh mesh;
   try {
-    mesh = BuildTriangleMesh(std::span<const float>(data.xyz),
-                             std::span<const std::uint32_t>(data.indices), opts.scale,
-                             opts.weld_tolerance, &report.repair);
+    mesh = BuildTriangleMesh(std::span<const float>(xyz), std::span<const std::uint32_t>(indices),
+                             opts.scale, opts.weld_tolerance, &report.repair);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", what, e.what()));
   }
-  data = MeshFileData();  // release the raw arrays before validation allocates
+  // Release the raw arrays before validation allocates.
+  std::vector<float>().swap(xyz);
+  std::vector<std::uint32_t>().swap(indices);
   report.weld_seconds = Seconds(t0);
   return Finish(mesh, opts, density, what, std::move(report));
 }

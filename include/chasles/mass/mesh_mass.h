@@ -103,10 +103,17 @@ struct MeshMassResult {
   MeshMassReport report;
 };
 
-/// Reads a mesh file (ReadMeshFile), welds and cleans it (BuildTriangleMesh), validates and
-/// orients it in solid mode (ValidateSolid), integrates and applies the material. Throws
-/// InputError naming the file on a bad file, a bad mesh or bad options.
-MeshMassResult ComputeMeshMassProperties(const std::string& path, const MeshMassOptions& opts);
+/// Mass properties of a triangle soup as a file reader returns it: `xyz` holds vertex
+/// coordinates in the unit given by opts.scale, `indices` three vertex indices per triangle.
+/// Welds and cleans it (BuildTriangleMesh), validates and orients it in solid mode
+/// (ValidateSolid), integrates and applies the material. The arrays are taken by value and
+/// released once welded, so peak memory stays near the welded mesh. `what` names the source
+/// in errors ("mesh file 'part.stl'"); `report` arrives with what the reader filled in (path,
+/// format, read time). Throws InputError on a bad mesh or bad options.
+MeshMassResult ComputeMeshMassProperties(std::vector<float>&& xyz,
+                                         std::vector<std::uint32_t>&& indices,
+                                         const MeshMassOptions& opts, const std::string& what,
+                                         MeshMassReport report = {});
 
 /// The same for an in-memory mesh whose vertices are in the unit given by opts.scale.
 MeshMassResult ComputeMeshMassProperties(const TriangleMesh& mesh, const MeshMassOptions& opts);

@@ -13,6 +13,7 @@
 
 #include "chasles/error.h"
 #include "chasles/mass/mesh_mass.h"
+#include "chasles/scene/mesh_file.h"
 #include "test_support.h"
 
 namespace chasles {
@@ -112,7 +113,7 @@ class MeshReaderTest : public ::testing::Test {
   static void ExpectBoxMass(const std::string& path) {
     MeshMassOptions o;
     o.density = 1000;
-    const MeshMassResult r = ComputeMeshMassProperties(path, o);
+    const MeshMassResult r = LoadMeshMassProperties(path, o);
     const double m = 1000 * kA * kB * kC;
     EXPECT_TRUE(test::Near(r.mass_properties.mass(), m, 1e-14)) << path;
     // Appendix A, rectangular prism.
@@ -220,7 +221,7 @@ TEST_F(MeshReaderTest, ScaleAppliesToFileUnits) {
   MeshMassOptions o;
   o.density = 1000;
   o.scale = 1e-3;
-  const MeshMassResult r = ComputeMeshMassProperties(p, o);
+  const MeshMassResult r = LoadMeshMassProperties(p, o);
   EXPECT_TRUE(test::Near(r.mass_properties.mass(), 1000 * kA * kB * kC * 1e-9, 1e-14));
   EXPECT_TRUE(test::MatNear(r.mass_properties.p_BoBcm_B(), Vec3(kA, kB, kC) * 0.5e-3, 1e-14));
   EXPECT_EQ(r.report.format, "binary STL");
@@ -234,7 +235,7 @@ TEST_F(MeshReaderTest, OpenMeshFileErrorNamesTheFile) {
   const std::string p = WriteText("open.obj", obj);
   MeshMassOptions o;
   o.density = 1000;
-  EXPECT_THAT([&] { ComputeMeshMassProperties(p, o); },
+  EXPECT_THAT([&] { LoadMeshMassProperties(p, o); },
               ::testing::ThrowsMessage<InputError>(::testing::AllOf(
                   HasSubstr(p), HasSubstr("4 boundary edge(s)"), HasSubstr("use mode: shell"))));
 }

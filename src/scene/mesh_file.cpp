@@ -1,0 +1,23 @@
+#include "chasles/scene/mesh_file.h"
+
+#include <chrono>
+
+#include <fmt/format.h>
+
+#include "chasles/io/mesh_reader.h"
+
+namespace chasles {
+
+MeshMassResult LoadMeshMassProperties(const std::string& path, const MeshMassOptions& opts) {
+  MeshMassReport report;
+  report.path = path;
+  const auto t0 = std::chrono::steady_clock::now();
+  MeshFileData data = ReadMeshFile(path);
+  report.read_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  report.format = data.format;
+  return ComputeMeshMassProperties(std::move(data.xyz), std::move(data.indices), opts,
+                                   fmt::format("mesh file '{}'", path), std::move(report));
+}
+
+}  // namespace chasles
