@@ -24,6 +24,10 @@ struct MassArgs {
   std::string frame;               // orientation of a report frame in the body
   std::string output;              // file, or "" for standard output
   bool hide_parts = false;
+  // A mesh file given instead of a scene (chasles mass part.stl --unit mm --density 7850):
+  // these say what the scene's mesh part would.
+  std::string mesh_unit, mesh_mode, mesh_density, mesh_material, mesh_mass, mesh_areal_density,
+      mesh_thickness;
 };
 
 CLI::App* AddMassCommand(CLI::App& app, MassArgs& args);

@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "chasles/scene/mesh_file.h"
 #include "chasles/scene/scene.h"
+#include "chasles/scene/scene_error.h"
 #include "chasles/scene/units.h"
 #include "commands.h"
 #include "scene_args.h"
@@ -264,18 +266,55 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
   cmd->add_option("-o,--output", args.output,
                   "Write the report to this file instead of the terminal");
   cmd->add_flag("--no-parts", args.hide_parts, "Leave out the table of parts");
+  CLI::Option_group* mesh = cmd->add_option_group(
+      "Mesh file", "When SCENE is a mesh file (.stl, .obj, .ply, .off) instead of a scene");
+  mesh->add_option("--unit", args.mesh_unit,
+                   "Length of one unit of the mesh file, e.g. mm or in (mesh files carry no units)");
+  mesh->add_option("--density", args.mesh_density, "Density, e.g. 7850 or '7.85 g/cm^3'");
+  mesh->add_option("--material", args.mesh_material, "A material name instead of a density");
+  mesh->add_option("--mass", args.mesh_mass, "The total mass instead of a density");
+  mesh->add_option("--mode", args.mesh_mode,
+                   "solid (default: a closed surface) or shell (a thin sheet)");
+  mesh->add_option("--thickness", args.mesh_thickness, "Shell mode: sheet thickness");
+  mesh->add_option("--areal-density", args.mesh_areal_density, "Shell mode: mass per area");
   cmd->footer(
       "Examples:\n"
       "  chasles mass examples/example-8.1-cylinder.yaml\n"
       "  chasles mass examples/example-8.1-cylinder.yaml --set 'h1=0.25*h' --units mm,g\n"
       "  chasles mass examples/example-8.2-two-rods.yaml --format json -o rods.json\n"
+      "  chasles mass part.stl --unit mm --density 7850\n"
       "Exit codes: 0 success, 2 bad input (the message names file, line, column and key), "
       "1 internal error.");
   return cmd;
 }
 
+namespace {
+Scene LoadMassInput(const MassArgs& args) {
+  const bool mesh_options =
+      !(args.mesh_unit + args.mesh_mode + args.mesh_density + args.mesh_material + args.mesh_mass +
+        args.mesh_areal_density + args.mesh_thickness)
+           .empty();
+  if (!args.scene.scene.empty() && IsMeshFileName(args.scene.scene)) {
+    if (!args.scene.set.empty()) {
+      throw SceneError("command line", 0, 0, "--set", "--set is for scene parameters; a mesh file has none");
+    }
+    return LoadMeshAsScene(args.scene.scene,
+                           MeshCommandOptions{args.mesh_unit, args.mesh_mode, args.mesh_density,
+                                              args.mesh_material, args.mesh_mass,
+                                              args.mesh_areal_density, args.mesh_thickness});
+  }
+  if (mesh_options) {
+    throw SceneError("command line", 0, 0, "",
+                     "--unit, --density, --material, --mass, --mode, --thickness and "
+                     "--areal-density are for a mesh file given instead of a scene; in a scene, "
+                     "a mesh part says them itself");
+  }
+  return LoadScene(args.scene);
+}
+}  // namespace
+
 int RunMass(const MassArgs& args) {
-  const Scene scene = LoadScene(args.scene);
+  const Scene scene = LoadMassInput(args);
   const Presenter P(UnitSystem::Parse(args.units.empty() ? scene.units : args.units));
   std::vector<ReportPoint> extra;
   for (const std::string& a : args.about) {

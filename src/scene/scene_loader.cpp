@@ -441,12 +441,17 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
       R_BP = ReadOrientation(at);
     }
     if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
+  } else if (part.shape == "mesh") {
+    local = ReadMeshPart(at, body_at, fmt::format("part '{}' (mesh)", part.name), part);
+    if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
+    R_BP = ReadOrientation(at);
   } else {
     const ShapeEntry* shape = scene_internal::FindShape(part.shape);
     if (!shape) {
       std::vector<std::string> names = scene_internal::ShapeNames();
       names.emplace_back("point");
       names.emplace_back("custom");
+      names.emplace_back("mesh");
       report_.Fail(shape_at, fmt::format("unknown shape '{}'{}; shapes: {}", part.shape,
                                          DidYouMean(part.shape, names), fmt::join(names, ", ")));
     }
@@ -685,6 +690,12 @@ MassProperties SceneReader::ReadShapeMass(const At& at, const At& body_at, const
 
 }  // namespace scene_internal
 
+Scene scene_internal::ReadSceneDocument(const YAML::Node& document, const std::string& name,
+                                        const SceneOptions& options) {
+  SceneReader reader(name, options);
+  return reader.Read(document);
+}
+
 Scene LoadSceneText(std::string_view text, const std::string& name, const SceneOptions& options) {
   YAML::Node document;
   try {
@@ -693,8 +704,7 @@ Scene LoadSceneText(std::string_view text, const std::string& name, const SceneO
     throw SceneError(name, e.mark.line + 1, e.mark.column + 1, "",
                      fmt::format("this is not valid YAML: {}", e.msg));
   }
-  SceneReader reader(name, options);
-  return reader.Read(document);
+  return scene_internal::ReadSceneDocument(document, name, options);
 }
 
 namespace {

@@ -331,8 +331,8 @@ std::string UnitSystem::FormatUnit(const Dimension& dim, Angular angular) const 
   return Compose(dim, angular).name;
 }
 
-double UnitSystem::FromSI(double si_value, const Dimension& dim, Angular angular) const {
-  return si_value / Compose(dim, angular).factor;
+double UnitSystem::FromSI(double value_si, const Dimension& dim, Angular angular) const {
+  return value_si / Compose(dim, angular).factor;
 }
 
 double UnitSystem::ToSI(double value, const Dimension& dim, Angular angular) const {

@@ -24,6 +24,16 @@ inline std::string SourcePath(const std::string& relative) {
   return std::string(CHASLES_SOURCE_DIR) + "/" + relative;
 }
 
+/// `text` in single quotes for the shell (paths here have no quotes of their own).
+inline std::string Quote(const std::string& text) {
+  std::string quoted;
+  quoted.reserve(text.size() + 2);
+  quoted.push_back('\'');
+  quoted.append(text);
+  quoted.push_back('\'');
+  return quoted;
+}
+
 /// Runs `chasles ARGS` (ARGS already shell-quoted by the caller).
 inline CliResult RunCli(const std::string& args) {
   const std::filesystem::path err_file = std::filesystem::temp_directory_path() /

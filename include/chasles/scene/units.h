@@ -106,8 +106,8 @@ class UnitSystem {
   /// "N*m", "kg/m^3", "rad/s"; "" for a dimensionless non-angular quantity.
   std::string FormatUnit(const Dimension& dim, Angular angular = Angular::kNo) const;
 
-  /// The SI value `si_value` of dimension `dim` expressed in FormatUnit(dim, angular).
-  double FromSI(double si_value, const Dimension& dim, Angular angular = Angular::kNo) const;
+  /// The SI value `value_si` of dimension `dim` expressed in FormatUnit(dim, angular).
+  double FromSI(double value_si, const Dimension& dim, Angular angular = Angular::kNo) const;
 
   /// The SI value of `value` given in FormatUnit(dim, angular) (inverse of FromSI).
   double ToSI(double value, const Dimension& dim, Angular angular = Angular::kNo) const;

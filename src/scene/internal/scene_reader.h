@@ -79,6 +79,9 @@ class SceneReader {
   MassProperties ReadShapeMass(const At& at, const At& body_at, const Shape& geometry,
                                const std::string& what, ScenePart& part);
   Mat3 ReadOrientation(const At& part);
+  /// A `shape: mesh` part (scene_mesh.cpp): mass properties in the part frame.
+  MassProperties ReadMeshPart(const At& at, const At& body_at, const std::string& what,
+                              ScenePart& part);
   double MaterialDensity(const At& at);
 
   Reporter report_;
@@ -90,5 +93,9 @@ class SceneReader {
   std::map<std::string, double, std::less<>> materials_;  // the scene's own, by name
   std::vector<std::string> warnings_;
 };
+
+/// Reads a parsed YAML document as a scene named `name` in messages.
+Scene ReadSceneDocument(const YAML::Node& document, const std::string& name,
+                        const SceneOptions& options);
 
 }  // namespace chasles::scene_internal

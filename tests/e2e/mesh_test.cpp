@@ -1,0 +1,155 @@
+// End-to-end: mesh parts in scenes and mesh files on the command line, against the exact mass
+// properties of the boxes and cylinders they are made of (Appendix A, eq. 8.29).
+
+#include <filesystem>
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cli_runner.h"
+#include "test_support.h"
+
+namespace chasles::test {
+namespace {
+
+constexpr double kTight = 1e-12;
+
+// A piece of a composite: mass, centre and central inertia.
+struct Piece {
+  double m;
+  Vec3 c;
+  Mat3 I;
+};
+
+Piece Box(double rho, const Vec3& size, const Vec3& c) {
+  const double m = rho * size.prod();
+  const Vec3 s2 = size.cwiseProduct(size);
+  return {m, c,
+          Mat3(Vec3(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y()).asDiagonal()) * m / 12};
+}
+
+// A solid cylinder of radius r and length L along coordinate axis `axis`.
+Piece Cylinder(double rho, double r, double L, int axis, const Vec3& c) {
+  const double m = rho * M_PI * r * r * L;
+  Vec3 d = Vec3::Constant(m * (3 * r * r + L * L) / 12);
+  d[axis] = m * r * r / 2;
+  return {m, c, Mat3(d.asDiagonal())};
+}
+
+// Eq. 8.4 and 8.29: the sum of the pieces about its centre of mass.
+Piece Sum(const std::vector<Piece>& pieces) {
+  Piece total{0, Vec3::Zero(), Mat3::Zero()};
+  for (const Piece& p : pieces) {
+    total.m += p.m;
+    total.c += p.m * p.c;
+  }
+  total.c /= total.m;
+  for (const Piece& p : pieces) {
+    const Vec3 d = p.c - total.c;
+    total.I += p.I + p.m * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+  }
+  return total;
+}
+
+Piece Negate(Piece p) {
+  p.m = -p.m;
+  p.I = -p.I;
+  return p;
+}
+
+Mat3 ToMat(const nlohmann::json& j) {
+  Mat3 m;
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) m(i, k) = j.at(i).at(k).get<double>();
+  }
+  return m;
+}
+Vec3 ToVec(const nlohmann::json& j) {
+  return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
+}
+
+const double mm = 1e-3;
+const double kAluminium = 2700, kSteel = 7850;
+
+// The bracket of examples/meshes/l-bracket.obj: two boxes.
+std::vector<Piece> Bracket() {
+  return {Box(kAluminium, Vec3(60, 40, 10) * mm, Vec3(30, 20, 5) * mm),
+          Box(kAluminium, Vec3(10, 40, 40) * mm, Vec3(5, 20, 30) * mm)};
+}
+
+TEST(Mesh, MeshFileOnTheCommandLine) {
+  const CliResult r = RunCli("mass " + Quote(SourcePath("examples/meshes/l-bracket.obj")) +
+                             " --unit mm --density 2700 --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto body = nlohmann::json::parse(r.out).at("bodies").at(0);
+  const Piece expected = Sum(Bracket());
+  EXPECT_TRUE(Near(body.at("mass").get<double>(), expected.m, kTight));
+  EXPECT_TRUE(MatNear(ToVec(body.at("center_of_mass")), expected.c, kTight));
+  EXPECT_TRUE(MatNear(ToMat(body.at("inertia_about_center_of_mass")), expected.I, kTight));
+}
+
+TEST(Mesh, SceneCombinesMeshPrimitivesAndTwoMaterials) {
+  const CliResult r = RunCli("mass " + Quote(SourcePath("examples/mesh-bracket-assembly.yaml")) +
+                             " --format json --units SI");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto body = nlohmann::json::parse(r.out).at("bodies").at(0);
+  std::vector<Piece> pieces = Bracket();
+  pieces.push_back(Cylinder(kSteel, 4 * mm, 30 * mm, 2, Vec3(35, 20, 25) * mm));
+  pieces.push_back(Negate(Cylinder(kAluminium, 3 * mm, 10 * mm, 0, Vec3(5, 20, 35) * mm)));
+  const Piece expected = Sum(pieces);
+  EXPECT_TRUE(Near(body.at("mass").get<double>(), expected.m, kTight));
+  EXPECT_TRUE(MatNear(ToVec(body.at("center_of_mass")), expected.c, kTight));
+  EXPECT_TRUE(MatNear(ToMat(body.at("inertia_about_center_of_mass")), expected.I, kTight));
+  EXPECT_EQ(body.at("parts").at(0).at("shape"), "mesh");
+}
+
+TEST(Mesh, CommandLineMistakes) {
+  const std::string obj = Quote(SourcePath("examples/meshes/l-bracket.obj"));
+  const CliResult no_unit = RunCli("mass " + obj + " --density 2700");
+  EXPECT_EQ(no_unit.exit_code, 2);
+  EXPECT_THAT(no_unit.err, ::testing::HasSubstr("--unit"));
+  const CliResult no_mass = RunCli("mass " + obj + " --unit mm");
+  EXPECT_EQ(no_mass.exit_code, 2);
+  EXPECT_THAT(no_mass.err, ::testing::HasSubstr("--density, --material or --mass"));
+  const CliResult bad_dim = RunCli("mass " + obj + " --unit mm --density '3 kg'");
+  EXPECT_EQ(bad_dim.exit_code, 2);
+  EXPECT_THAT(bad_dim.err, ::testing::HasSubstr("--density"));
+  const CliResult scene_with_mesh_option =
+      RunCli("mass " + Quote(SourcePath("examples/section-8.5-cube.yaml")) + " --density 2700");
+  EXPECT_EQ(scene_with_mesh_option.exit_code, 2);
+  EXPECT_THAT(scene_with_mesh_option.err, ::testing::HasSubstr("for a mesh file"));
+}
+
+TEST(Mesh, OpenMeshInSolidModeSuggestsShell) {
+  // A cube with its top missing, written as an ASCII STL.
+  const auto path = std::filesystem::temp_directory_path() / "chasles_open_box.stl";
+  {
+    std::ofstream f(path);
+    f << "solid open\n";
+    const double v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                            {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    const int t[10][3] = {{0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4}, {1, 2, 6},
+                          {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+    for (const auto& tri : t) {
+      f << " facet normal 0 0 0\n  outer loop\n";
+      for (int k : tri) f << "   vertex " << v[k][0] << " " << v[k][1] << " " << v[k][2] << "\n";
+      f << "  endloop\n endfacet\n";
+    }
+    f << "endsolid open\n";
+  }
+  const CliResult solid = RunCli("mass " + Quote(path.string()) + " --unit m --density 1000");
+  EXPECT_EQ(solid.exit_code, 2);
+  EXPECT_THAT(solid.err, ::testing::HasSubstr("shell"));
+  // As a sheet of 1 kg/m^2: five unit squares, centre of mass at z = (4 * 0.5 + 0) / 5 = 0.4.
+  const CliResult shell = RunCli("mass " + Quote(path.string()) +
+                                 " --unit m --mode shell --areal-density 1 --format json");
+  ASSERT_EQ(shell.exit_code, 0) << shell.err;
+  const auto body = nlohmann::json::parse(shell.out).at("bodies").at(0);
+  EXPECT_TRUE(Near(body.at("mass").get<double>(), 5.0, kTight));
+  EXPECT_TRUE(MatNear(ToVec(body.at("center_of_mass")), Vec3(0.5, 0.5, 0.4), kTight));
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace chasles::test
