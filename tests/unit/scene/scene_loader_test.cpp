@@ -1,0 +1,158 @@
+// The scene loader read directly (no program): how values, units, placements and masses in a
+// scene become mass properties. Expected values are Appendix-A formulas written here.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "chasles/scene/scene.h"
+#include "chasles/scene/scene_error.h"
+#include "test_support.h"
+
+namespace chasles {
+namespace {
+
+using test::kExact;
+using test::MatNear;
+using test::Near;
+using ::testing::HasSubstr;
+
+const MassProperties& Body0(const Scene& s) {
+  return s.bodies.at(0).mass_properties;
+}
+
+TEST(SceneLoader, BareNumbersTakeTheScenesUnits) {
+  // 2 lb sphere of radius 3 in: I = 2/5 m r^2.
+  const Scene s = LoadSceneText(R"(
+units: in, lb
+bodies:
+  - parts: [{shape: sphere, radius: 3, mass: 2}]
+)",
+                                "t.yaml");
+  const double m = 2 * 0.45359237, r = 3 * 0.0254;
+  EXPECT_TRUE(Near(Body0(s).mass(), m, kExact));
+  EXPECT_TRUE(Near(Body0(s).I_BBcm_B().Ixx(), 0.4 * m * r * r, kExact));
+  EXPECT_EQ(s.bodies[0].name, "body 1");
+  EXPECT_EQ(s.units, "in, lb");
+}
+
+TEST(SceneLoader, ParametersInAnyOrderAndOverrides) {
+  const char* text = R"(
+parameters:
+  L: 2*half
+  half: 0.5 m
+  m: 3 kg
+bodies:
+  - parts: [{shape: rod, length: L, mass: m}]
+)";
+  const Scene s = LoadSceneText(text, "t.yaml");
+  EXPECT_TRUE(Near(Body0(s).I_BBcm_B().Ixx(), 3.0 * 1.0 / 12, kExact));
+  SceneOptions o;
+  o.parameter_overrides = {{"half", "1 m"}};
+  const Scene t = LoadSceneText(text, "t.yaml", o);
+  EXPECT_TRUE(Near(Body0(t).I_BBcm_B().Ixx(), 3.0 * 4.0 / 12, kExact));
+  ASSERT_EQ(t.parameters.size(), 3u);
+}
+
+TEST(SceneLoader, FromToPlacesAxialShapes) {
+  // A rod from the origin to (0, 0, 2): centre at z = 1, about the origin Ixx = m L^2 / 3.
+  const Scene s = LoadSceneText(R"(
+bodies:
+  - parts: [{shape: rod, mass: 3 kg, from: [0, 0, 0], to: [0, 0, 2 m]}]
+)",
+                                "t.yaml");
+  EXPECT_TRUE(MatNear(Body0(s).p_BoBcm_B(), Vec3(0, 0, 1), kExact));
+  EXPECT_TRUE(Near(Body0(s).CalcInertiaAbout(Vec3::Zero()).Ixx(), 3.0 * 4 / 3, kExact));
+  // A cone from its base centre to its apex: centroid a quarter of the way up.
+  const Scene c = LoadSceneText(R"(
+bodies:
+  - parts: [{shape: cone, radius: 1 m, mass: 1 kg, from: [0, 0, 0], to: [4 m, 0, 0]}]
+)",
+                                "t.yaml");
+  EXPECT_TRUE(MatNear(Body0(c).p_BoBcm_B(), Vec3(1, 0, 0), kExact, 1.0));
+}
+
+TEST(SceneLoader, OrientationsAgree) {
+  // The same cylinder turned so its axis lies along x, four ways: Ixx = m R^2 / 2.
+  const double m = 2, R = 0.3, h = 1.2;
+  for (const char* orientation : {"axis: [1, 0, 0]", "rotation: {axis: [0, 1, 0], angle: 90 deg}",
+                                  "euler: {sequence: ZYX, angles: [0, 90 deg, 0]}",
+                                  "quaternion: [0.7071067811865476, 0, 0.7071067811865476, 0]"}) {
+    const Scene s = LoadSceneText(std::string(R"(
+bodies:
+  - parts:
+      - shape: cylinder
+        radius: 0.3 m
+        length: 1.2 m
+        mass: 2 kg
+        )") + orientation + "\n",
+                                  "t.yaml");
+    const Mat3 expected =
+        Vec3(m * R * R / 2, m * (3 * R * R + h * h) / 12, m * (3 * R * R + h * h) / 12)
+            .asDiagonal();
+    EXPECT_TRUE(MatNear(Body0(s).I_BBcm_B().matrix(), expected, 1e-15)) << orientation;
+  }
+}
+
+TEST(SceneLoader, ThinShapesFromDensity) {
+  // Steel disk of radius 0.1 m and thickness 2 mm: m = rho pi R^2 t.
+  const Scene disk = LoadSceneText(R"(
+bodies:
+  - parts: [{shape: disk, radius: 0.1 m, material: steel, thickness: 2 mm}]
+)",
+                                   "t.yaml");
+  EXPECT_TRUE(Near(Body0(disk).mass(), 7850 * M_PI * 0.01 * 0.002, kExact));
+  // Ring of 0.5 kg/m: m = lambda 2 pi R.
+  const Scene ring = LoadSceneText(R"(
+bodies:
+  - parts: [{shape: ring, radius: 0.2 m, linear_density: 0.5 kg/m}]
+)",
+                                   "t.yaml");
+  EXPECT_TRUE(Near(Body0(ring).mass(), 0.5 * 2 * M_PI * 0.2, kExact));
+  EXPECT_TRUE(Near(Body0(ring).I_BBcm_B().Izz(), Body0(ring).mass() * 0.04, kExact));
+}
+
+TEST(SceneLoader, CustomPartWithProducts) {
+  const Scene s = LoadSceneText(R"(
+bodies:
+  - parts:
+      - shape: custom
+        mass: 2 kg
+        center_of_mass: [0.1 m, 0, 0]
+        inertia: {Ixx: 1 kg*m^2, Iyy: 2 kg*m^2, Izz: 2.5 kg*m^2, Ixy: -0.1 kg*m^2}
+)",
+                                "t.yaml");
+  EXPECT_TRUE(Near(Body0(s).I_BBcm_B().Ixy(), -0.1, kExact));
+  EXPECT_TRUE(MatNear(Body0(s).p_BoBcm_B(), Vec3(0.1, 0, 0), kExact));
+}
+
+TEST(SceneLoader, DensityFieldEqualsConstantDensity) {
+  // A "field" that is constant gives the constant-density result (to the cubature's 1e-10).
+  const char* field = R"(
+bodies:
+  - parts: [{shape: torus, major_radius: 0.3 m, minor_radius: 0.1 m, density: "2700 kg/m^3 + 0 kg/m^4 * x"}]
+)";
+  const char* constant = R"(
+bodies:
+  - parts: [{shape: torus, major_radius: 0.3 m, minor_radius: 0.1 m, density: 2700 kg/m^3}]
+)";
+  const MassProperties a = Body0(LoadSceneText(field, "t.yaml"));
+  const MassProperties b = Body0(LoadSceneText(constant, "t.yaml"));
+  EXPECT_TRUE(Near(a.mass(), b.mass(), 1e-10));
+  EXPECT_TRUE(MatNear(a.I_BBcm_B().matrix(), b.I_BBcm_B().matrix(), 1e-10));
+}
+
+TEST(SceneLoader, ErrorsCarryPosition) {
+  try {
+    LoadSceneText("bodies:\n  - parts:\n      - {shape: sphere, radius: 2 kg, mass: 1 kg}\n",
+                  "t.yaml");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_EQ(e.column(), 33);  // the first character of "2 kg"
+    EXPECT_EQ(e.key(), "bodies[0].parts[0].radius");
+    EXPECT_THAT(e.message(), HasSubstr("expected length"));
+  }
+}
+
+}  // namespace
+}  // namespace chasles
