@@ -560,11 +560,11 @@ std::vector<double> SceneReader::ReadDimension(const At& at,
   return {};
 }
 
-MassProperties SceneReader::ReadShapeMass(const At& at, const At& body_at, const Shape& geometry,
-                                          const std::string& what, ScenePart& part) {
-  // How much mass: exactly one of the mass keys on the part, or the body's material/density.
+SceneReader::MassSource SceneReader::FindMassSource(const At& at, const At& body_at,
+                                                    std::initializer_list<const char*> keys,
+                                                    const std::string& missing) {
   const char* given = nullptr;
-  for (const char* k : {"mass", "density", "material", "linear_density", "areal_density"}) {
+  for (const char* k : keys) {
     if (!at.Has(k)) continue;
     if (given) {
       report_.Fail(at.Child(k),
@@ -572,22 +572,20 @@ MassProperties SceneReader::ReadShapeMass(const At& at, const At& body_at, const
     }
     given = k;
   }
-  At source;
-  std::string key;
-  if (given) {
-    source = at.Child(given);
-    key = given;
-  } else if (body_at.Has("material")) {
-    source = body_at.Child("material");
-    key = "material";
-  } else if (body_at.Has("density")) {
-    source = body_at.Child("density");
-    key = "density";
-  } else {
-    report_.Fail(at, fmt::format("{} has no mass: give 'mass', 'density' or 'material' (on the "
-                                 "part or on its body)",
-                                 what));
-  }
+  if (given) return {at.Child(given), given};
+  // A part that gives none takes its body's material or density.
+  if (body_at.Has("material")) return {body_at.Child("material"), "material"};
+  if (body_at.Has("density")) return {body_at.Child("density"), "density"};
+  report_.Fail(at, missing);
+}
+
+MassProperties SceneReader::ReadShapeMass(const At& at, const At& body_at, const Shape& geometry,
+                                          const std::string& what, ScenePart& part) {
+  const auto [source, key] = FindMassSource(
+      at, body_at, {"mass", "density", "material", "linear_density", "areal_density"},
+      fmt::format("{} has no mass: give 'mass', 'density' or 'material' (on the part or on its "
+                  "body)",
+                  what));
   const Shape::Measure measure = geometry.measure();
   const bool slender = measure == Shape::Measure::kLength;
   const bool sheet = measure == Shape::Measure::kArea;

@@ -70,30 +70,10 @@ MassProperties SceneReader::ReadMeshPart(const At& at, const At& body_at, const 
     if (options.weld_tolerance < 0) report_.Fail(w, "the weld tolerance cannot be negative");
   }
 
-  const char* given = nullptr;
-  for (const char* k : {"mass", "density", "material", "areal_density"}) {
-    if (!at.Has(k)) continue;
-    if (given) {
-      report_.Fail(at.Child(k), fmt::format("give the part's mass one way: '{}' or '{}', not both",
-                                            given, k));
-    }
-    given = k;
-  }
-  At source;
-  std::string key;
-  if (given) {
-    source = at.Child(given);
-    key = given;
-  } else if (body_at.Has("material")) {
-    source = body_at.Child("material");
-    key = "material";
-  } else if (body_at.Has("density")) {
-    source = body_at.Child("density");
-    key = "density";
-  } else {
-    report_.Fail(at, fmt::format("{} has no mass: give 'mass', 'density' or 'material'{}", what,
+  const auto [source, key] =
+      FindMassSource(at, body_at, {"mass", "density", "material", "areal_density"},
+                     fmt::format("{} has no mass: give 'mass', 'density' or 'material'{}", what,
                                  shell ? " (with 'thickness'), or 'areal_density'" : ""));
-  }
   if (at.Has("thickness") && !shell) {
     report_.Fail(at.Child("thickness"), "'thickness' is for mode: shell");
   }
@@ -114,8 +94,9 @@ MassProperties SceneReader::ReadMeshPart(const At& at, const At& body_at, const 
     options.density = rho;
     if (shell) {
       if (!at.Has("thickness")) {
-        report_.Fail(source, "a shell is a thin sheet (an area, no volume): give 'thickness' "
-                             "with a density or material, or 'areal_density', or 'mass'");
+        report_.Fail(source,
+                     "a shell is a thin sheet (an area, no volume): give 'thickness' "
+                     "with a density or material, or 'areal_density', or 'mass'");
       }
       options.thickness = PositiveValue(at.Child("thickness"), kLength, "the thickness");
     }

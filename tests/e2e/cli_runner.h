@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 namespace chasles::test {
@@ -55,6 +56,20 @@ inline CliResult RunCli(const std::string& args) {
   r.err = ss.str();
   std::filesystem::remove(err_file);
   return r;
+}
+
+/// A 3x3 matrix from a JSON report ([[row], [row], [row]]).
+inline Eigen::Matrix3d ToMat(const nlohmann::json& j) {
+  Eigen::Matrix3d m;
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) m(i, k) = j.at(i).at(k).get<double>();
+  }
+  return m;
+}
+
+/// A 3-vector from a JSON report.
+inline Eigen::Vector3d ToVec(const nlohmann::json& j) {
+  return Eigen::Vector3d(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
 }
 
 /// Runs `chasles mass FILE EXTRA --format json --units SI` and parses the report.

@@ -16,16 +16,6 @@ namespace {
 // Results that are exact up to the round-off of a few dozen operations and of unit factors.
 constexpr double kTight = 1e-12;
 
-Mat3 ToMat(const nlohmann::json& j) {
-  Mat3 m;
-  for (int i = 0; i < 3; ++i) {
-    for (int k = 0; k < 3; ++k) m(i, k) = j.at(i).at(k).get<double>();
-  }
-  return m;
-}
-Vec3 ToVec(const nlohmann::json& j) {
-  return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
-}
 const nlohmann::json& Point(const nlohmann::json& body, const std::string& name) {
   for (const auto& p : body.at("points")) {
     if (p.at("name") == name) return p;

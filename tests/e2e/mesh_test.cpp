@@ -58,17 +58,6 @@ Piece Negate(Piece p) {
   return p;
 }
 
-Mat3 ToMat(const nlohmann::json& j) {
-  Mat3 m;
-  for (int i = 0; i < 3; ++i) {
-    for (int k = 0; k < 3; ++k) m(i, k) = j.at(i).at(k).get<double>();
-  }
-  return m;
-}
-Vec3 ToVec(const nlohmann::json& j) {
-  return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
-}
-
 const double mm = 1e-3;
 const double kAluminium = 2700, kSteel = 7850;
 

@@ -5,6 +5,7 @@
 /// scene layer; its parts live in one .cpp per section of the format (scene_loader.cpp for
 /// parameters, materials, bodies and parts).
 
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <optional>
@@ -79,6 +80,14 @@ class SceneReader {
   MassProperties ReadShapeMass(const At& at, const At& body_at, const Shape& geometry,
                                const std::string& what, ScenePart& part);
   Mat3 ReadOrientation(const At& part);
+  /// Where a part's mass comes from: the one mass key it gives (two is an error), or else its
+  /// body's material or density; fails with `missing` when there is none.
+  struct MassSource {
+    At at;
+    std::string key;
+  };
+  MassSource FindMassSource(const At& at, const At& body_at,
+                            std::initializer_list<const char*> keys, const std::string& missing);
   /// A `shape: mesh` part (scene_mesh.cpp): mass properties in the part frame.
   MassProperties ReadMeshPart(const At& at, const At& body_at, const std::string& what,
                               ScenePart& part);
