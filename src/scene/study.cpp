@@ -418,11 +418,10 @@ struct RowMaker {
 Study BuildStudy(const Scene& scene, double until) {
   const double t_end = EndTime(scene, until);
   Segment seg = FirstSegment(scene);
-  Study study{std::move(*seg.model), State{}, BaseOptions(scene, t_end)};
-  // The closures read the Model through model_ref: point it at the Model's new home. The
-  // caller must keep `study` in place (not move it) while simulating.
-  *seg.model_ref = &study.model;
-  study.initial = InitialState(scene, study.model);
+  Study study;
+  study.model = std::shared_ptr<const Model>(std::move(seg.model));  // same address
+  study.options = BaseOptions(scene, t_end);
+  study.initial = InitialState(scene, *study.model);
   study.options.events = BuildEvents(scene, seg.model_ref, seg.map);
   return study;
 }

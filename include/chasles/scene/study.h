@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,7 +27,8 @@ namespace chasles {
 
 /// The first segment of a scene's run, ready for Simulate.
 struct Study {
-  Model model;
+  /// Held by pointer: the force and event functions read it, so its address must not change.
+  std::shared_ptr<const Model> model;
   State initial;
   /// Integrator, end time, output interval, tolerances and events from the scene.
   SimulationOptions options;
