@@ -3,6 +3,7 @@
 /// The subcommands of the chasles program, one file each. Each Add...Command registers its
 /// options on the app and returns the subcommand; Run... does the work once parsed.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,15 @@ struct CheckArgs {
 };
 CLI::App* AddCheckCommand(CLI::App& app, CheckArgs& args);
 int RunCheck(const CheckArgs& args);
+
+struct SimulateArgs {
+  SceneArgs scene;
+  double until = std::numeric_limits<double>::quiet_NaN();  // [s]; NaN: the scene's
+  std::string out_dir;                                      // "" = current directory
+  std::string format = "text";                              // text | json
+};
+CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args);
+int RunSimulate(const SimulateArgs& args);
 
 CLI::App* AddMaterialsCommand(CLI::App& app);
 int RunMaterials();

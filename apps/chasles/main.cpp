@@ -15,7 +15,8 @@ int main(int argc, char** argv) {
   using namespace chasles::cli;
   CLI::App app{
       "chasles: rigid-body kinetics from scene files. Mass properties of bodies and assemblies "
-      "(centre of mass, inertia tensor, principal axes, radii of gyration), with units."};
+      "(centre of mass, inertia tensor, principal axes, radii of gyration), with units; motion "
+      "with an energy/work/momentum ledger."};
   app.set_version_flag("--version", "chasles 0.1.0");
   app.require_subcommand(0, 1);
   app.footer(
@@ -25,12 +26,15 @@ int main(int argc, char** argv) {
       "  chasles mass examples/example-8.1-cylinder.yaml\n"
       "  chasles mass examples/section-8.3-disk-axle.yaml --units in,lb --format json\n"
       "  chasles check my-scene.yaml\n"
+      "  chasles simulate examples/dzhanibekov.yaml --out results\n"
       "Scene format: docs/scene-format.md. Exit codes: 0 ok, 2 bad input, 1 internal error.");
 
   MassArgs mass_args;
   CheckArgs check_args;
+  SimulateArgs simulate_args;
   CLI::App* mass = AddMassCommand(app, mass_args);
   CLI::App* check = AddCheckCommand(app, check_args);
+  CLI::App* simulate = AddSimulateCommand(app, simulate_args);
   CLI::App* materials = AddMaterialsCommand(app);
 
   try {
@@ -45,6 +49,7 @@ int main(int argc, char** argv) {
   try {
     if (mass->parsed()) return RunMass(mass_args);
     if (check->parsed()) return RunCheck(check_args);
+    if (simulate->parsed()) return RunSimulate(simulate_args);
     if (materials->parsed()) return RunMaterials();
     std::fprintf(stderr,
                  "chasles: no command given, so here is the built-in demonstration scene "

@@ -38,9 +38,11 @@ const Dimension kArealDensity{-2, 1, 0};
 const Dimension kArea{2, 0, 0};
 const Dimension kInertia{2, 1, 0};
 
-const std::vector<std::string> kRootKeys = {"chasles",    "title",     "description", "units",
-                                            "parameters", "materials", "bodies"};
-const std::vector<std::string> kBodyKeys = {"name", "material", "density", "points", "parts"};
+const std::vector<std::string> kRootKeys = {
+    "chasles", "title",  "description", "units",    "parameters", "materials",  "bodies",
+    "gravity", "forces", "events",      "impulses", "impacts",    "simulation", "output"};
+const std::vector<std::string> kBodyKeys = {"name",   "material", "density",
+                                            "points", "parts",    "initial"};
 // Keys every part may have; each shape adds its dimensions (see shape_table.cpp).
 const std::vector<std::string> kPartKeys = {
     "name",       "shape",          "subtract",      "mass",      "density",
@@ -290,6 +292,7 @@ Scene SceneReader::Read(const YAML::Node& document) {
       }
     }
   }
+  ReadDynamics(root, scene);
   for (const auto& kv : parameters_) scene.parameters.emplace_back(kv.first, kv.second.value);
   scene.warnings = std::move(warnings_);
   return scene;

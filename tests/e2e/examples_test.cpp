@@ -38,6 +38,32 @@ TEST(Examples, EveryExampleRuns) {
   EXPECT_GE(count, 8);
 }
 
+// Every example with a `simulation:` key also runs through `chasles simulate`.
+TEST(Examples, EveryDynamicsExampleSimulates) {
+  const auto out = std::filesystem::temp_directory_path() /
+                   ("chasles_e2e_examples_" + std::to_string(::getpid()));
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(SourcePath("examples"))) {
+    if (entry.path().extension() != ".yaml") continue;
+    std::ifstream in(entry.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    if (text.str().find("\nsimulation:") == std::string::npos) continue;
+    ++count;
+    for (const char* format : {"text", "json"}) {
+      const CliResult r = RunCli("simulate '" + entry.path().string() + "' --format " + format +
+                                 " --out '" + out.string() + "'");
+      EXPECT_EQ(r.exit_code, 0) << entry.path() << ": " << r.err;
+      EXPECT_FALSE(r.out.empty()) << entry.path();
+      EXPECT_EQ(r.out.find("nan"), std::string::npos) << entry.path();
+    }
+    const auto csv = out / (entry.path().stem().string() + ".csv");
+    EXPECT_TRUE(std::filesystem::exists(csv)) << csv;
+  }
+  EXPECT_GE(count, 8);
+  std::filesystem::remove_all(out);
+}
+
 // Example 8.1: z/h = (1 - c q^2) / (2 (1 - c q)), q = h1/h, c = 1 - rho_Al/rho_Pb.
 TEST(Examples, Example81CentreOfMassForSeveralHeights) {
   const double c = 1.0 - 2712.0 / 11340.0;

@@ -11,6 +11,7 @@
 
 #include "chasles/mass/mass_properties.h"
 #include "chasles/math/types.h"
+#include "chasles/scene/scene_dynamics.h"
 #include "chasles/scene/units.h"
 
 namespace chasles {
@@ -65,6 +66,9 @@ struct Scene {
   std::vector<std::pair<std::string, Quantity>> parameters;
   /// Things the user should know that are not errors.
   std::vector<std::string> warnings;
+  /// Gravity, initial motion, forces, events, impulses, impacts, simulation and output
+  /// settings (read by `chasles simulate`; `chasles mass` ignores them).
+  SceneDynamics dynamics;
 };
 
 struct SceneOptions {

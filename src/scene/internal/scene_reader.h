@@ -93,6 +93,26 @@ class SceneReader {
                               ScenePart& part);
   double MaterialDensity(const At& at);
 
+  // Dynamics (scene_dynamics.cpp) ---------------------------------------------------------
+  /// Reads gravity, every body's `initial`, forces, events, impulses, impacts, simulation and
+  /// output into scene.dynamics (the bodies are already read).
+  void ReadDynamics(const At& root, Scene& scene);
+  void ReadInitial(const At& at, const SceneBody& body, SceneInitialState& initial);
+  SceneForce ReadForce(const At& at, const Scene& scene, size_t index);
+  SceneEvent ReadEvent(const At& at, size_t index);
+  void ReadSimulation(const At& at, SceneSimulation& simulation);
+  void ReadOutput(const At& at, Scene& scene);
+  /// A body named at `at` (scene index), with a did-you-mean among the scene's bodies.
+  int BodyIndexAt(const At& at, const Scene& scene);
+  /// A point of body `body`: a name from its `points` or a position [x, y, z] in B.
+  Vec3 BodyPointAt(const At& at, const SceneBody& body);
+  /// An expression of t and the state, dimension-checked against `expected`.
+  Expression StateExpression(const At& at, const Dimension& expected, std::string_view what);
+  SceneVectorExpression StateVector(const At& at, const Dimension& expected, std::string_view what);
+  /// A time-or-state expression's resolver: t, <body>_<suffix>, then parameters.
+  std::optional<Symbol> ResolveStateSymbol(const At& at, std::string_view name);
+  VectorFrame FrameAt(const At& at);
+
   Reporter report_;
   SceneOptions options_;
   std::unique_ptr<UnitSystem> units_;
@@ -101,6 +121,8 @@ class SceneReader {
   std::vector<std::string> resolving_;  // parameters being evaluated, for cycle messages
   std::map<std::string, double, std::less<>> materials_;  // the scene's own, by name
   std::vector<std::string> warnings_;
+  std::map<std::string, int, std::less<>> state_variables_;  // name -> slot
+  std::vector<std::string> state_variable_names_;
 };
 
 /// Reads a parsed YAML document as a scene named `name` in messages.

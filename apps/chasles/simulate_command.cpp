@@ -1,0 +1,260 @@
+#include <unistd.h>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "chasles/error.h"
+#include "chasles/io/atomic_file.h"
+#include "chasles/math/quaternion.h"
+#include "chasles/scene/scene.h"
+#include "chasles/scene/study.h"
+#include "commands.h"
+#include "scene_args.h"
+
+namespace chasles::cli {
+
+namespace {
+
+nlohmann::json VecJson(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+std::string VecText(const Vec3& v) {
+  return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", v.x(), v.y(), v.z());
+}
+
+std::string CsvName(const std::string& name) {
+  if (name.find_first_of(",\"\n") == std::string::npos) return name;
+  std::string q = "\"";
+  for (char c : name) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string Csv(const StudyResult& r) {
+  std::string out;
+  for (size_t i = 0; i < r.columns.size(); ++i) {
+    out += (i ? "," : "") + CsvName(r.columns[i]);
+  }
+  out += '\n';
+  for (const auto& row : r.rows) {
+    for (size_t i = 0; i < row.size(); ++i) {
+      // Shortest text that reads back as the same double.
+      if (i) out += ',';
+      out += fmt::format("{}", row[i]);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string& csv_path) {
+  nlohmann::json j;
+  j["scene"] = scene.file;
+  j["title"] = scene.title;
+  j["units"] = "SI";
+  j["csv"] = csv_path;
+  j["columns"] = r.columns;
+  j["t_end"] = r.t_end;
+  j["stopped_by_event"] = r.stopped_by_event;
+  j["events"] = nlohmann::json::array();
+  for (const auto& e : r.events) {
+    j["events"].push_back({{"name", e.name}, {"t", e.t}, {"stopped", e.stopped}});
+  }
+  j["jumps"] = nlohmann::json::array();
+  for (const auto& x : r.jumps) {
+    j["jumps"].push_back({{"kind", x.kind},
+                          {"description", x.description},
+                          {"t", x.t},
+                          {"energy_before", x.energy_before},
+                          {"energy_after", x.energy_after},
+                          {"energy_change", x.energy_after - x.energy_before},
+                          {"velocity_after", VecJson(x.v_after_W)},
+                          {"angular_velocity_after", VecJson(x.w_after_W)}});
+  }
+  nlohmann::json bodies = nlohmann::json::array();
+  for (const auto& b : r.final_bodies) {
+    const Eigen::Vector4d q = QuatToWxyz(b.q_WB);
+    bodies.push_back({{"name", b.name},
+                      {"mass", b.mass},
+                      {"center_of_mass", VecJson(b.p_WBcm)},
+                      {"origin", VecJson(b.p_WBo)},
+                      {"quaternion", {q[0], q[1], q[2], q[3]}},
+                      {"velocity", VecJson(b.v_WBcm_W)},
+                      {"angular_velocity", VecJson(b.w_WB_W)},
+                      {"angular_velocity_body", VecJson(b.w_WB_B)}});
+  }
+  j["final"] = {{"t", r.t_end}, {"bodies", bodies}};
+  const StudyLedger& L = r.ledger;
+  nlohmann::json work = nlohmann::json::object();
+  for (const auto& [name, w] : L.work_by_force) work[name] = w;
+  j["ledger"] = {{"kinetic_translational", L.kinetic_translational},
+                 {"kinetic_rotational", L.kinetic_rotational},
+                 {"potential", L.potential},
+                 {"energy", L.energy},
+                 {"energy_initial", L.energy_initial},
+                 {"work_nonconservative", L.work_nonconservative},
+                 {"work_by_force", work},
+                 {"dissipated", L.dissipated},
+                 {"jumps", L.jumps},
+                 {"residual", L.residual},
+                 {"energy_scale", L.energy_scale},
+                 {"relative_residual", L.energy_scale > 0 ? L.residual / L.energy_scale : 0.0},
+                 {"linear_momentum", VecJson(L.linear_momentum_W)},
+                 {"angular_momentum_cm", VecJson(L.angular_momentum_Scm_W)},
+                 {"angular_momentum_origin", VecJson(L.angular_momentum_Wo_W)}};
+  j["integrator"] = {{"name", r.integrator},
+                     {"steps", r.stats.steps},
+                     {"rejected_steps", r.stats.rejected_steps},
+                     {"function_evaluations", r.stats.function_evaluations}};
+  j["notes"] = r.notes;
+  j["warnings"] = scene.warnings;
+  return j;
+}
+
+std::string Text(const Scene& scene, const StudyResult& r, const std::string& csv_path,
+                 const std::string& json_path) {
+  std::string out;
+  out += fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
+                     scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
+  out += fmt::format("Simulated to t = {:.9g} s{} (SI units throughout)\n", r.t_end,
+                     r.stopped_by_event ? ", stopped by an event" : "");
+  if (!r.events.empty()) {
+    out += "\nEvents\n";
+    for (const auto& e : r.events) {
+      out += fmt::format("  {:<24} t = {:.12g} s{}\n", e.name, e.t, e.stopped ? "  (stop)" : "");
+    }
+  }
+  if (!r.jumps.empty()) {
+    out += "\nImpulses and impacts\n";
+    for (const auto& x : r.jumps) {
+      out += fmt::format("  t = {:.9g} s: {}; energy {:.9g} J -> {:.9g} J (change {:+.6g} J)\n",
+                         x.t, x.description, x.energy_before, x.energy_after,
+                         x.energy_after - x.energy_before);
+      out += fmt::format("    afterwards: v = {} m/s, w = {} rad/s\n", VecText(x.v_after_W),
+                         VecText(x.w_after_W));
+    }
+  }
+  out += "\nFinal state (centre of mass, velocity and angular velocity in the world frame)\n";
+  for (const auto& b : r.final_bodies) {
+    const Eigen::Vector4d q = QuatToWxyz(b.q_WB);
+    out += fmt::format(
+        "  {}\n    position {} m\n    quaternion [{:.9g}, {:.9g}, {:.9g}, {:.9g}]\n"
+        "    velocity {} m/s\n    angular velocity {} rad/s (body frame {})\n",
+        b.name, VecText(b.p_WBcm), q[0], q[1], q[2], q[3], VecText(b.v_WBcm_W), VecText(b.w_WB_W),
+        VecText(b.w_WB_B));
+  }
+  const StudyLedger& L = r.ledger;
+  out += "\nLedger (from t = 0)\n";
+  out += fmt::format("  kinetic energy      {:.9g} J (translation {:.9g}, rotation {:.9g})\n",
+                     L.kinetic_translational + L.kinetic_rotational, L.kinetic_translational,
+                     L.kinetic_rotational);
+  out += fmt::format("  potential energy    {:.9g} J\n", L.potential);
+  out += fmt::format("  mechanical energy   {:.9g} J (initially {:.9g} J)\n", L.energy,
+                     L.energy_initial);
+  out += fmt::format("  non-conservative work {:.9g} J\n", L.work_nonconservative);
+  for (const auto& [name, w] : L.work_by_force)
+    out += fmt::format("    {:<20} {:.9g} J\n", name, w);
+  out += fmt::format("  dissipated          {:.9g} J\n", L.dissipated);
+  if (!r.jumps.empty()) out += fmt::format("  impulses and impacts {:+.9g} J\n", L.jumps);
+  out += fmt::format("  balance residual    {:.3e} J ({:.2e} of the energy scale {:.6g} J)\n",
+                     L.residual, L.energy_scale > 0 ? std::abs(L.residual) / L.energy_scale : 0.0,
+                     L.energy_scale);
+  out += fmt::format("  linear momentum     {} kg*m/s\n", VecText(L.linear_momentum_W));
+  out += fmt::format(
+      "  angular momentum    {} kg*m^2/s about the centre of mass, {} about the "
+      "origin\n",
+      VecText(L.angular_momentum_Scm_W), VecText(L.angular_momentum_Wo_W));
+  out += fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n", r.integrator,
+                     r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
+  for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);
+  for (const auto& w : scene.warnings) out += fmt::format("warning: {}\n", w);
+  out += fmt::format("Wrote {} ({} rows) and {}\n", csv_path, r.rows.size(), json_path);
+  return out;
+}
+
+}  // namespace
+
+CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "simulate",
+      "Integrate the motion of a scene's bodies; write a CSV time series and a JSON summary "
+      "(final state, events, energy/work/momentum ledger, integrator statistics)");
+  AddSceneArgs(*cmd, args.scene);
+  cmd->add_option("--until", args.until, "End time [s], overriding the scene's simulation.until");
+  cmd->add_option("--out", args.out_dir,
+                  "Directory for <scene>.csv and <scene>.json (default: the current directory)");
+  cmd->add_option("--format", args.format, "Report on standard output: text (default) or json")
+      ->check(CLI::IsMember({"text", "json"}));
+  cmd->footer(
+      "Examples:\n"
+      "  chasles simulate examples/dzhanibekov.yaml --out results\n"
+      "  chasles simulate examples/projectile-drag.yaml --set 'c=0.2 N*s/m' --format json\n"
+      "  chasles simulate examples/spring-mass.yaml --until 20\n"
+      "Progress is shown on a terminal for runs longer than a second. Scene keys: "
+      "docs/scene-format.md, section Dynamics.");
+  return cmd;
+}
+
+int RunSimulate(const SimulateArgs& args) {
+  if (args.scene.scene.empty()) {
+    throw InputError("chasles simulate needs a scene file (chasles simulate --help)");
+  }
+  const Scene scene = LoadScene(args.scene);
+  StudyOptions options;
+  if (!std::isnan(args.until)) {
+    if (!(args.until > 0) || !std::isfinite(args.until)) {
+      throw InputError(
+          fmt::format("--until must be a positive time in seconds, got {}", args.until));
+    }
+    options.until = args.until;
+  }
+  const bool tty = ::isatty(::fileno(stderr)) != 0;
+  const auto start = std::chrono::steady_clock::now();
+  auto last = start;
+  bool shown = false;
+  const double t_end =
+      std::isfinite(options.until) ? options.until : scene.dynamics.simulation.until;
+  if (tty) {
+    options.progress = [&](double t) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - start < std::chrono::seconds(1) || now - last < std::chrono::milliseconds(200)) {
+        return;
+      }
+      last = now;
+      shown = true;
+      std::fprintf(stderr, "\r  simulating: t = %.6g s of %.6g s (%3.0f%%)", t, t_end,
+                   100.0 * t / t_end);
+      std::fflush(stderr);
+    };
+  }
+  const StudyResult r = RunStudy(scene, options);
+  if (shown) std::fprintf(stderr, "\r%60s\r", "");
+
+  const std::filesystem::path dir = args.out_dir.empty() ? "." : args.out_dir;
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    throw InputError(
+        fmt::format("cannot create the output directory '{}': {}", dir.string(), ec.message()));
+  }
+  const std::string stem = std::filesystem::path(args.scene.scene).stem().string();
+  const std::string csv_path = (dir / (stem + ".csv")).string();
+  const std::string json_path = (dir / (stem + ".json")).string();
+  const nlohmann::json j = Json(scene, r, csv_path);
+  WriteFileAtomically(csv_path, Csv(r));
+  WriteFileAtomically(json_path, j.dump(2) + "\n");
+  if (args.format == "json") {
+    Emit("", j.dump(2) + "\n");
+  } else {
+    Emit("", Text(scene, r, csv_path, json_path));
+  }
+  return 0;
+}
+
+}  // namespace chasles::cli

@@ -1,0 +1,153 @@
+#pragma once
+/// @file
+/// The dynamics part of a scene (docs/scene-format.md, "Dynamics"): gravity, initial motion of
+/// each body, force elements, events, impulses, impacts, simulation and output settings. All
+/// values are SI; force and event expressions are kept compiled, with the state variables of
+/// StateVariableLayout as their variable slots.
+
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "chasles/integrate/simulate.h"
+#include "chasles/math/types.h"
+#include "chasles/model/force_element.h"
+#include "chasles/scene/expression.h"
+
+namespace chasles {
+
+/// Slots of the state variables an expression may read: slot 0 is `t`, then one block of
+/// kPerBody values for each body in scene order (names "<body>_<suffix>").
+struct StateVariableLayout {
+  /// Suffixes in slot order within a body's block: Bcm position (W) [m], Bcm velocity (W)
+  /// [m/s], angular velocity in W and in B [rad/s], tilt (angle of B's z axis from W's z)
+  /// [rad], Euler ZYX yaw, pitch, roll of R_WB [rad], speed |v| [m/s], angular speed |w|
+  /// [rad/s].
+  static constexpr std::array<const char*, 18> kSuffixes = {
+      "x",   "y",   "z",   "vx",   "vy",  "vz",    "wx",   "wy",    "wz",
+      "wbx", "wby", "wbz", "tilt", "yaw", "pitch", "roll", "speed", "omega"};
+  static constexpr int kPerBody = static_cast<int>(kSuffixes.size());
+  /// Slot of variable `suffix_index` of body `body` (scene order).
+  static constexpr int Slot(int body, int suffix_index) {
+    return 1 + body * kPerBody + suffix_index;
+  }
+};
+
+/// Initial motion of one body (key `initial`), resolved to the world frame.
+struct SceneInitialState {
+  /// Position of the body frame origin Bo in W [m].
+  Vec3 p_WBo = Vec3::Zero();
+  /// Orientation of B in W.
+  Quat q_WB = Quat::Identity();
+  /// Velocity of the point P below, in W [m/s].
+  Vec3 v_WP_W = Vec3::Zero();
+  /// The point whose velocity is given, from Bo in B [m] (the centre of mass by default).
+  Vec3 p_BoP_B = Vec3::Zero();
+  /// Angular velocity of B in W, expressed in W [rad/s].
+  Vec3 w_WB_W = Vec3::Zero();
+};
+
+/// A vector of three expressions of t and the state (a force [N] or a moment [N·m]).
+struct SceneVectorExpression {
+  std::array<Expression, 3> components;
+  /// True when no component reads t or the state.
+  bool is_constant() const;
+  /// The vector for the given state variables (at least the largest slot used + 1 values).
+  Vec3 Evaluate(const std::vector<double>& variables) const;
+  /// 1 + the highest slot any component reads.
+  int variable_count() const;
+};
+
+/// One entry of `forces`.
+struct SceneForce {
+  enum class Type { kForce, kMoment, kSpring, kDrag, kCentralGravity };
+  Type type = Type::kForce;
+  /// Unique name (reports, ledger columns "W_<name>").
+  std::string name;
+  /// Body acted on (scene index), or for a spring its first end.
+  int body = -1;
+  /// Point of application from Bo in B [m] (force; spring's first end).
+  Vec3 p_BoP_B = Vec3::Zero();
+  /// Force [N] or moment [N·m] as expressions.
+  SceneVectorExpression value;
+  /// Frame the value is expressed in (force, moment).
+  VectorFrame frame = VectorFrame::kWorld;
+  /// Spring: second end's body (scene index) or kWorld, and its point (from that body's Bo in
+  /// its frame, or the world point) [m].
+  int body_b = kWorld;
+  Vec3 p_BoQ_B = Vec3::Zero();
+  /// Spring rest length [m], stiffness [N/m], damping [N·s/m].
+  double rest_length = 0.0, stiffness = 0.0, damping = 0.0;
+  /// Drag coefficients: linear [N·s/m] and angular [N·m·s].
+  double linear = 0.0, angular = 0.0;
+  /// Central gravity: mu = G M [m³/s²] and the attracting point in W [m].
+  double mu = 0.0;
+  Vec3 centre_W = Vec3::Zero();
+};
+
+/// One entry of `events`: a crossing of `when` through `crosses`.
+struct SceneEvent {
+  std::string name;
+  /// Expression of t and the state.
+  Expression when;
+  /// Level crossed, in SI units of when's dimension.
+  double crosses = 0.0;
+  EventDirection direction = EventDirection::kEither;
+  EventAction action = EventAction::kStop;
+};
+
+/// One entry of `impulses`: J applied at a point of a body at an instant.
+struct SceneImpulse {
+  /// Time [s].
+  double t = 0.0;
+  int body = -1;
+  /// Point from Bo in B [m].
+  Vec3 p_BoP_B = Vec3::Zero();
+  /// Impulse [N·s] expressed in `frame`.
+  Vec3 J = Vec3::Zero();
+  VectorFrame frame = VectorFrame::kWorld;
+};
+
+/// One entry of `impacts`: the projectile body hits the target at its current position.
+struct SceneImpact {
+  /// Time [s].
+  double t = 0.0;
+  int target = -1;
+  int projectile = -1;
+  /// Fraction of its velocity the projectile keeps (0: it embeds and the two become one body).
+  double exit_fraction = 0.0;
+};
+
+/// Key `simulation`.
+struct SceneSimulation {
+  /// True when the scene has the key (the scene can be simulated).
+  bool present = false;
+  /// End time [s]; NaN when not given (the command line must give it).
+  double until = std::numeric_limits<double>::quiet_NaN();
+  IntegratorKind integrator = IntegratorKind::kDormandPrince5;
+  /// Relative and absolute tolerance of the adaptive integrator.
+  double rtol = 1e-10;
+  double atol = 1e-12;
+  /// Step of the fixed-step integrators [s] (NaN when not given).
+  double step = std::numeric_limits<double>::quiet_NaN();
+  /// Output spacing [s]; NaN: 200 intervals over the run.
+  double output_interval = std::numeric_limits<double>::quiet_NaN();
+};
+
+struct SceneDynamics {
+  /// Uniform gravity, when the scene has `gravity` [m/s²].
+  bool has_gravity = false;
+  Vec3 g_W = Vec3::Zero();
+  /// One per body, in scene order (at rest at the origin unless `initial` says otherwise).
+  std::vector<SceneInitialState> initial;
+  std::vector<SceneForce> forces;
+  std::vector<SceneEvent> events;
+  std::vector<SceneImpulse> impulses;
+  std::vector<SceneImpact> impacts;
+  SceneSimulation simulation;
+  /// Output column names (after expanding groups), in order.
+  std::vector<std::string> columns;
+};
+
+}  // namespace chasles

@@ -1,0 +1,140 @@
+#pragma once
+/// @file
+/// A study: a scene's dynamics turned into a Model, an initial State and SimulationOptions,
+/// and the run of it with impulses and impacts (docs/scene-format.md, "Dynamics").
+///
+/// Impulses and impacts split the run into segments. Between them Simulate integrates the
+/// current Model; at each instant the state jumps (ApplyImpulse, ApplyPassThrough) or, when a
+/// projectile embeds, a new Model is built with the composite body (Models are immutable).
+/// The ledger is carried across the segments: each segment's work-energy residual adds up, and
+/// the kinetic-energy jumps are booked separately, so that
+///   E - E0 = W_nc + jumps + residual.
+/// Output samples lie on one grid t = k * output_interval from 0 whatever the segments.
+
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "chasles/integrate/simulate.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+#include "chasles/scene/scene.h"
+
+namespace chasles {
+
+/// The first segment of a scene's run, ready for Simulate.
+struct Study {
+  /// Held by pointer: the force and event functions read it, so its address must not change.
+  std::shared_ptr<const Model> model;
+  State initial;
+  /// Integrator, end time, output interval, tolerances and events from the scene.
+  SimulationOptions options;
+};
+
+/// Builds the Model (one body per scene body, gravity and the scene's force elements), the
+/// initial State and the options. `until` [s] overrides the scene's end time when finite.
+/// Throws InputError when there is no end time or a value is invalid.
+Study BuildStudy(const Scene& scene, double until = std::numeric_limits<double>::quiet_NaN());
+
+struct StudyOptions {
+  /// End time [s], overriding the scene's when finite.
+  double until = std::numeric_limits<double>::quiet_NaN();
+  /// Called with the time of every output sample (e.g. for a progress display).
+  std::function<void(double t)> progress;
+};
+
+struct StudyEvent {
+  std::string name;
+  /// Time of the crossing [s].
+  double t = 0.0;
+  /// True when it stopped the run.
+  bool stopped = false;
+};
+
+/// An impulse or impact applied during the run.
+struct StudyJump {
+  /// "impulse", "embedding" or "pass-through".
+  std::string kind;
+  /// What happened, for the report ("bullet embeds in block").
+  std::string description;
+  /// Time [s].
+  double t = 0.0;
+  /// Mechanical energy just before and just after [J].
+  double energy_before = 0.0;
+  double energy_after = 0.0;
+  /// Velocity of the (composite) target's centre of mass and its angular velocity just after,
+  /// in W [m/s, rad/s].
+  Vec3 v_after_W = Vec3::Zero();
+  Vec3 w_after_W = Vec3::Zero();
+};
+
+/// Motion of one body of the final Model.
+struct StudyBodyState {
+  /// Name ("target+projectile" for a composite).
+  std::string name;
+  /// Mass [kg].
+  double mass = 0.0;
+  /// Centre of mass and frame origin in W [m].
+  Vec3 p_WBcm = Vec3::Zero();
+  Vec3 p_WBo = Vec3::Zero();
+  /// Orientation.
+  Quat q_WB = Quat::Identity();
+  /// Velocity of Bcm in W [m/s]; angular velocity in W and in B [rad/s].
+  Vec3 v_WBcm_W = Vec3::Zero();
+  Vec3 w_WB_W = Vec3::Zero();
+  Vec3 w_WB_B = Vec3::Zero();
+};
+
+/// The ledger at the end of the run, relative to the initial state, across all segments.
+struct StudyLedger {
+  /// Kinetic energy, translational and rotational [J]; potential [J]; E = T + V [J].
+  double kinetic_translational = 0.0;
+  double kinetic_rotational = 0.0;
+  double potential = 0.0;
+  double energy = 0.0;
+  /// Mechanical energy at the start [J].
+  double energy_initial = 0.0;
+  /// Non-conservative work of all force elements [J], and of each (scene order) [J].
+  double work_nonconservative = 0.0;
+  std::vector<std::pair<std::string, double>> work_by_force;
+  /// Energy removed by dampers and drag [J] >= 0.
+  double dissipated = 0.0;
+  /// Sum of the energy jumps at impulses and impacts [J].
+  double jumps = 0.0;
+  /// E - E0 - W_nc - jumps [J]: zero for the exact solution.
+  double residual = 0.0;
+  /// Energy scale for the residual [J].
+  double energy_scale = 0.0;
+  /// Linear momentum, angular momentum about the system's centre of mass and about the
+  /// origin, in W [kg·m/s, kg·m²/s].
+  Vec3 linear_momentum_W = Vec3::Zero();
+  Vec3 angular_momentum_Scm_W = Vec3::Zero();
+  Vec3 angular_momentum_Wo_W = Vec3::Zero();
+};
+
+struct StudyResult {
+  /// CSV column names and one row per output sample (plus the states just after jumps).
+  std::vector<std::string> columns;
+  std::vector<std::vector<double>> rows;
+  std::vector<StudyEvent> events;
+  std::vector<StudyJump> jumps;
+  /// Time the run ended [s] (the end time, or a stopping event's time).
+  double t_end = 0.0;
+  bool stopped_by_event = false;
+  std::vector<StudyBodyState> final_bodies;
+  StudyLedger ledger;
+  /// Integrator name and work counters summed over the segments.
+  std::string integrator;
+  IntegratorStats stats;
+  /// Things to tell the user (impulses after the end time, ...).
+  std::vector<std::string> notes;
+};
+
+/// Runs the scene's study. Throws InputError for bad settings, or when the motion of a body
+/// becomes non-finite (the body and the time are named; nothing non-finite is ever returned).
+StudyResult RunStudy(const Scene& scene, const StudyOptions& options = {});
+
+}  // namespace chasles

@@ -1,0 +1,502 @@
+// Reading the dynamics keys of a scene (docs/scene-format.md, "Dynamics"): gravity, initial
+// motion, forces, events, impulses, impacts, simulation and output.
+
+#include <algorithm>
+#include <cmath>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "chasles/scene/expression.h"
+#include "chasles/scene/scene.h"
+#include "chasles/suggest.h"
+#include "internal/scene_reader.h"
+#include "internal/study_columns.h"
+
+namespace chasles {
+
+namespace {
+
+constexpr Dimension kVelocity{1, 0, -1};
+constexpr Dimension kAngularVelocity{0, 0, -1};
+constexpr Dimension kAcceleration{1, 0, -2};
+constexpr Dimension kForce{1, 1, -2};
+constexpr Dimension kTorque{2, 1, -2};
+constexpr Dimension kImpulse{1, 1, -1};
+constexpr Dimension kStiffness{0, 1, -2};
+constexpr Dimension kLinearDamping{0, 1, -1};
+constexpr Dimension kAngularDamping{2, 1, -1};
+constexpr Dimension kGravitationalParameter{3, 0, -2};
+
+// Dimension of each state variable suffix, in StateVariableLayout order.
+constexpr std::array<Dimension, StateVariableLayout::kPerBody> kSuffixDimensions = {
+    kLength,          kLength,          kLength,          kVelocity,        kVelocity,
+    kVelocity,        kAngularVelocity, kAngularVelocity, kAngularVelocity, kAngularVelocity,
+    kAngularVelocity, kAngularVelocity, kDimensionless,   kDimensionless,   kDimensionless,
+    kDimensionless,   kVelocity,        kAngularVelocity};
+
+// Standard gravity (CGPM 1901, exact) [m/s²].
+constexpr double kStandardGravity = 9.80665;
+
+bool IsIdentifier(const std::string& name) {
+  static const std::regex ident("[A-Za-z_][A-Za-z_0-9]*");
+  return std::regex_match(name, ident);
+}
+
+// Shortest text that parses back to exactly `v` (fmt's round-trip format).
+std::string ExactText(double v) {
+  return v < 0 ? fmt::format("(-{})", -v) : fmt::format("{}", v);
+}
+
+}  // namespace
+
+bool SceneVectorExpression::is_constant() const {
+  return components[0].is_constant() && components[1].is_constant() && components[2].is_constant();
+}
+
+int SceneVectorExpression::variable_count() const {
+  return std::max({components[0].variable_count(), components[1].variable_count(),
+                   components[2].variable_count()});
+}
+
+Vec3 SceneVectorExpression::Evaluate(const std::vector<double>& variables) const {
+  const std::span<const double> v(variables.data(), variables.size());
+  return {components[0].Evaluate(v), components[1].Evaluate(v), components[2].Evaluate(v)};
+}
+
+namespace scene_internal {
+
+std::optional<Symbol> SceneReader::ResolveStateSymbol(const At& at, std::string_view name) {
+  if (auto it = state_variables_.find(name); it != state_variables_.end()) {
+    if (parameters_.count(name)) {
+      report_.Fail(at, fmt::format("'{}' is both a parameter and a state variable in this "
+                                   "expression; rename the parameter",
+                                   name));
+    }
+    const int slot = it->second;
+    const Dimension dim =
+        slot == 0
+            ? kTime
+            : kSuffixDimensions[static_cast<size_t>((slot - 1) % StateVariableLayout::kPerBody)];
+    return Symbol::Variable(slot, dim);
+  }
+  return ResolveParameter(name);
+}
+
+Expression SceneReader::StateExpression(const At& at, const Dimension& expected,
+                                        std::string_view what) {
+  const std::string text = report_.Text(at, fmt::format("{} ({})", what, expected.Describe()));
+  Expression e;
+  try {
+    e = Expression::Parse(
+        text, [&](std::string_view n) { return ResolveStateSymbol(at, n); }, state_variable_names_);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const ExpressionError& err) {
+    report_.Fail(at, err.message(), at.node.Scalar() == text ? err.offset() : 0);
+  }
+  if (e.is_constant()) {
+    // A constant: read as any other value (bare numbers in the scene's units), kept exactly.
+    return Expression::Parse(ExactText(Value(at, expected, what)), {});
+  }
+  if (e.dimension() != expected) {
+    report_.Fail(at, fmt::format("expected {} for {}, got {}", expected.Describe(), what,
+                                 e.dimension().Describe()));
+  }
+  return e;
+}
+
+SceneVectorExpression SceneReader::StateVector(const At& at, const Dimension& expected,
+                                               std::string_view what) {
+  if (!at.node.IsSequence() || at.node.size() != 3) {
+    report_.Fail(at, fmt::format("expected {} as a list of three values [x, y, z], got {}", what,
+                                 KindOf(at.node)));
+  }
+  SceneVectorExpression v;
+  for (size_t i = 0; i < 3; ++i) v.components[i] = StateExpression(at.Item(i), expected, what);
+  return v;
+}
+
+int SceneReader::BodyIndexAt(const At& at, const Scene& scene) {
+  const std::string name = report_.Text(at, "a body name");
+  std::vector<std::string> names;
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].name == name) return static_cast<int>(i);
+    names.push_back(scene.bodies[i].name);
+  }
+  report_.Fail(at, fmt::format("the scene has no body '{}'{}; bodies: {}", name,
+                               DidYouMean(name, names), fmt::join(names, ", ")));
+}
+
+Vec3 SceneReader::BodyPointAt(const At& at, const SceneBody& body) {
+  if (at.node.IsSequence()) return Vector(at, kLength, "a point in the body frame");
+  const std::string name = report_.Text(at, "a point name or a position [x, y, z]");
+  std::vector<std::string> names;
+  for (const ScenePoint& p : body.points) {
+    if (p.name == name) return p.p_BoP_B;
+    names.push_back(p.name);
+  }
+  if (name == "center_of_mass") return body.mass_properties.p_BoBcm_B();
+  if (name == "origin") return Vec3::Zero();
+  names.emplace_back("center_of_mass");
+  names.emplace_back("origin");
+  report_.Fail(at, fmt::format("body '{}' has no point '{}'{}; name one of its 'points' ({}), or "
+                               "give a position [x, y, z] in the body frame",
+                               body.name, name, DidYouMean(name, names), fmt::join(names, ", ")));
+}
+
+VectorFrame SceneReader::FrameAt(const At& at) {
+  const std::string f = report_.Text(at, "world or body");
+  if (f == "world") return VectorFrame::kWorld;
+  if (f == "body") return VectorFrame::kBody;
+  report_.Fail(at, fmt::format("frame must be 'world' or 'body', got '{}'", f));
+}
+
+void SceneReader::ReadInitial(const At& at, const SceneBody& body, SceneInitialState& initial) {
+  report_.CheckMap(at,
+                   {"position", "rotation", "euler", "quaternion", "velocity", "velocity_point",
+                    "angular_velocity", "angular_velocity_frame"},
+                   "an initial state");
+  if (at.Has("position")) initial.p_WBo = Vector(at.Child("position"), kLength, "a position");
+  const Mat3 R_WB = ReadOrientation(at);
+  initial.q_WB = Quat(R_WB).normalized();
+  if (at.Has("velocity")) initial.v_WP_W = Vector(at.Child("velocity"), kVelocity, "a velocity");
+  if (at.Has("velocity_point")) {
+    const At p = at.Child("velocity_point");
+    if (!at.Has("velocity")) report_.Fail(p, "'velocity_point' needs 'velocity'");
+    if (!p.node.IsScalar()) report_.Fail(p, "expected the name of one of the body's points");
+    initial.p_BoP_B = BodyPointAt(p, body);
+  }
+  if (at.Has("angular_velocity")) {
+    initial.w_WB_W = Vector(at.Child("angular_velocity"), kAngularVelocity, "an angular velocity");
+  }
+  if (at.Has("angular_velocity_frame")) {
+    if (FrameAt(at.Child("angular_velocity_frame")) == VectorFrame::kBody) {
+      initial.w_WB_W = R_WB * initial.w_WB_W;
+    }
+  }
+}
+
+SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index) {
+  if (!at.node.IsMap()) {
+    report_.Fail(at, fmt::format("expected a force element (a mapping with 'type:'), got {}",
+                                 KindOf(at.node)));
+  }
+  SceneForce f;
+  const std::string type = report_.Text(report_.Require(at, "type", "a force element"),
+                                        "force, moment, spring, drag or central_gravity");
+  const std::vector<std::string> types = {"force", "moment", "spring", "drag", "central_gravity"};
+  f.name = at.Has("name") ? report_.Text(at.Child("name"), "a name")
+                          : fmt::format("{} {}", type, index + 1);
+  const std::string what = fmt::format("{} '{}'", type, f.name);
+  if (type == "force" || type == "moment") {
+    const bool force = type == "force";
+    std::vector<std::string> keys = {"type", "name", "body", "value", "frame"};
+    if (force) keys.emplace_back("point");
+    report_.CheckMap(at, keys, fmt::format("a {} element", type));
+    f.type = force ? SceneForce::Type::kForce : SceneForce::Type::kMoment;
+    f.body = BodyIndexAt(report_.Require(at, "body", what), scene);
+    const SceneBody& body = scene.bodies[static_cast<size_t>(f.body)];
+    f.p_BoP_B =
+        at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
+    f.value = StateVector(report_.Require(at, "value", what), force ? kForce : kTorque,
+                          force ? "a force" : "a moment");
+    if (at.Has("frame")) f.frame = FrameAt(at.Child("frame"));
+  } else if (type == "spring") {
+    report_.CheckMap(at, {"type", "name", "from", "to", "rest_length", "stiffness", "damping"},
+                     "a spring element");
+    f.type = SceneForce::Type::kSpring;
+    auto end = [&](const At& e, int& body, Vec3& point) {
+      if (e.Has("world")) {
+        report_.CheckMap(e, {"world"}, "a world point");
+        body = kWorld;
+        point = Vector(e.Child("world"), kLength, "a world point");
+        return;
+      }
+      report_.CheckMap(e, {"body", "point"}, "a spring end ({body, point} or {world: [x, y, z]})");
+      body = BodyIndexAt(report_.Require(e, "body", "a spring end"), scene);
+      const SceneBody& b = scene.bodies[static_cast<size_t>(body)];
+      point = e.Has("point") ? BodyPointAt(e.Child("point"), b) : b.mass_properties.p_BoBcm_B();
+    };
+    end(report_.Require(at, "from", what), f.body, f.p_BoP_B);
+    if (f.body == kWorld) {
+      report_.Fail(at.Child("from"), "'from' must be a body end; put the world point in 'to'");
+    }
+    end(report_.Require(at, "to", what), f.body_b, f.p_BoQ_B);
+    f.rest_length =
+        at.Has("rest_length") ? Value(at.Child("rest_length"), kLength, "the rest length") : 0.0;
+    f.stiffness =
+        at.Has("stiffness") ? Value(at.Child("stiffness"), kStiffness, "the stiffness") : 0.0;
+    f.damping = at.Has("damping") ? Value(at.Child("damping"), kLinearDamping, "the damping") : 0.0;
+    if (f.rest_length < 0) report_.Fail(at.Child("rest_length"), "the rest length must be >= 0");
+    if (f.stiffness < 0) report_.Fail(at.Child("stiffness"), "the stiffness must be >= 0");
+    if (f.damping < 0) report_.Fail(at.Child("damping"), "the damping must be >= 0");
+  } else if (type == "drag") {
+    report_.CheckMap(at, {"type", "name", "body", "linear", "angular"}, "a drag element");
+    f.type = SceneForce::Type::kDrag;
+    f.body = BodyIndexAt(report_.Require(at, "body", what), scene);
+    f.linear = at.Has("linear") ? Value(at.Child("linear"), kLinearDamping, "linear drag") : 0.0;
+    f.angular =
+        at.Has("angular") ? Value(at.Child("angular"), kAngularDamping, "angular drag") : 0.0;
+    if (f.linear < 0) report_.Fail(at.Child("linear"), "the linear drag must be >= 0");
+    if (f.angular < 0) report_.Fail(at.Child("angular"), "the angular drag must be >= 0");
+  } else if (type == "central_gravity") {
+    report_.CheckMap(at, {"type", "name", "mu", "centre"}, "a central_gravity element");
+    f.type = SceneForce::Type::kCentralGravity;
+    f.mu = PositiveValue(report_.Require(at, "mu", what), kGravitationalParameter, "mu (= G M)");
+    if (at.Has("centre")) f.centre_W = Vector(at.Child("centre"), kLength, "the centre");
+  } else {
+    report_.Fail(at.Child("type"), fmt::format("unknown force type '{}'{}; types: {}", type,
+                                               DidYouMean(type, types), fmt::join(types, ", ")));
+  }
+  return f;
+}
+
+SceneEvent SceneReader::ReadEvent(const At& at, size_t index) {
+  report_.CheckMap(at, {"name", "when", "crosses", "direction", "action"}, "an event");
+  SceneEvent e;
+  e.name = at.Has("name") ? report_.Text(at.Child("name"), "a name")
+                          : fmt::format("event {}", index + 1);
+  const At when = report_.Require(at, "when", fmt::format("event '{}'", e.name));
+  // The level crossed fixes the dimension: read `when` for its dimension first.
+  const std::string text = report_.Text(when, "an expression of t and the state");
+  Expression probe;
+  try {
+    probe = Expression::Parse(
+        text, [&](std::string_view n) { return ResolveStateSymbol(when, n); },
+        state_variable_names_);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const ExpressionError& err) {
+    report_.Fail(when, err.message(), when.node.Scalar() == text ? err.offset() : 0);
+  }
+  if (probe.is_constant()) {
+    report_.Fail(when,
+                 "an event's 'when' must depend on t or the state (e.g. 'ball_z' or "
+                 "'t - 2 s')");
+  }
+  e.when = probe;
+  if (at.Has("crosses")) e.crosses = Value(at.Child("crosses"), probe.dimension(), "the level");
+  if (at.Has("direction")) {
+    const std::string d = report_.Text(at.Child("direction"), "rising, falling or both");
+    if (d == "rising") {
+      e.direction = EventDirection::kRising;
+    } else if (d == "falling") {
+      e.direction = EventDirection::kFalling;
+    } else if (d == "both") {
+      e.direction = EventDirection::kEither;
+    } else {
+      report_.Fail(at.Child("direction"),
+                   fmt::format("direction must be rising, falling or both, got '{}'", d));
+    }
+  }
+  if (at.Has("action")) {
+    const std::string a = report_.Text(at.Child("action"), "stop or record");
+    if (a == "stop") {
+      e.action = EventAction::kStop;
+    } else if (a == "record") {
+      e.action = EventAction::kRecord;
+    } else {
+      report_.Fail(at.Child("action"), fmt::format("action must be stop or record, got '{}'", a));
+    }
+  }
+  return e;
+}
+
+void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
+  report_.CheckMap(
+      at, {"until", "integrator", "tolerance", "absolute_tolerance", "step", "output_interval"},
+      "the simulation settings");
+  sim.present = true;
+  if (at.Has("until")) sim.until = PositiveValue(at.Child("until"), kTime, "the end time");
+  if (at.Has("integrator")) {
+    const std::string name =
+        report_.Text(at.Child("integrator"), "adaptive, rk4 or energy_momentum");
+    if (name == "adaptive") {
+      sim.integrator = IntegratorKind::kDormandPrince5;
+    } else if (name == "rk4") {
+      sim.integrator = IntegratorKind::kRk4;
+    } else if (name == "energy_momentum") {
+      sim.integrator = IntegratorKind::kEnergyMomentum;
+    } else {
+      report_.Fail(at.Child("integrator"),
+                   fmt::format("unknown integrator '{}'{}; integrators: adaptive (default), rk4, "
+                               "energy_momentum",
+                               name, DidYouMean(name, {"adaptive", "rk4", "energy_momentum"})));
+    }
+  }
+  const bool fixed = sim.integrator != IntegratorKind::kDormandPrince5;
+  if (at.Has("tolerance")) {
+    if (fixed) {
+      report_.Fail(at.Child("tolerance"),
+                   "'tolerance' is for the adaptive integrator; a fixed-step integrator's "
+                   "accuracy is set by 'step'");
+    }
+    sim.rtol = PositiveValue(at.Child("tolerance"), kDimensionless, "the tolerance");
+    sim.atol = 1e-2 * sim.rtol;
+  }
+  if (at.Has("absolute_tolerance")) {
+    sim.atol = PositiveValue(at.Child("absolute_tolerance"), kDimensionless,
+                             "the absolute tolerance (in SI units of each state component)");
+  }
+  if (at.Has("step")) {
+    if (!fixed) {
+      report_.Fail(at.Child("step"),
+                   "'step' is for the fixed-step integrators (rk4, energy_momentum); the "
+                   "adaptive integrator chooses its own steps from 'tolerance'");
+    }
+    sim.step = PositiveValue(at.Child("step"), kTime, "the step");
+  } else if (fixed) {
+    report_.Fail(at.Child("integrator"),
+                 "a fixed-step integrator needs 'step' (e.g. 'step: 1 ms')");
+  }
+  if (at.Has("output_interval")) {
+    sim.output_interval = PositiveValue(at.Child("output_interval"), kTime, "the output interval");
+  }
+}
+
+void SceneReader::ReadOutput(const At& at, Scene& scene) {
+  report_.CheckMap(at, {"columns"}, "the output settings");
+  const At cols = report_.Require(at, "columns", "the output settings");
+  report_.CheckSequence(cols, "a list of columns");
+  std::vector<std::string> columns;
+  for (size_t i = 0; i < cols.node.size(); ++i) {
+    const At c = cols.Item(i);
+    const std::string name = report_.Text(c, "a column or a group of columns");
+    std::string why;
+    const std::vector<std::string> expanded = ExpandColumn(scene, name, &why);
+    if (expanded.empty()) report_.Fail(c, why);
+    for (const auto& e : expanded) {
+      if (std::find(columns.begin(), columns.end(), e) == columns.end()) columns.push_back(e);
+    }
+  }
+  if (columns.empty() || columns.front() != "t") columns.insert(columns.begin(), "t");
+  scene.dynamics.columns = columns;
+}
+
+void SceneReader::ReadDynamics(const At& root, Scene& scene) {
+  SceneDynamics& d = scene.dynamics;
+  state_variables_.clear();
+  state_variable_names_.clear();
+  state_variables_.emplace("t", 0);
+  state_variable_names_.emplace_back("t");
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    if (!IsIdentifier(scene.bodies[b].name)) continue;
+    for (int j = 0; j < StateVariableLayout::kPerBody; ++j) {
+      const std::string name =
+          scene.bodies[b].name + "_" + StateVariableLayout::kSuffixes[static_cast<size_t>(j)];
+      state_variables_.emplace(name, StateVariableLayout::Slot(static_cast<int>(b), j));
+      state_variable_names_.push_back(name);
+    }
+  }
+
+  if (root.Has("gravity")) {
+    const At g = root.Child("gravity");
+    d.has_gravity = true;
+    if (g.node.IsScalar() && g.node.Scalar() == "standard") {
+      d.g_W = Vec3(0, 0, -kStandardGravity);
+    } else if (g.node.IsSequence()) {
+      d.g_W = Vector(g, kAcceleration, "the gravitational acceleration");
+    } else {
+      report_.Fail(g, fmt::format("expected 'standard' (9.80665 m/s^2 along -z) or a vector "
+                                  "such as [0, 0, -9.81 m/s^2], got {}",
+                                  KindOf(g.node)));
+    }
+  }
+
+  const At bodies = root.Child("bodies");
+  d.initial.assign(scene.bodies.size(), SceneInitialState{});
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    d.initial[b].p_BoP_B = scene.bodies[b].mass_properties.p_BoBcm_B();
+    const At body_at = bodies.Item(b);
+    if (body_at.Has("initial"))
+      ReadInitial(body_at.Child("initial"), scene.bodies[b], d.initial[b]);
+  }
+
+  if (root.Has("forces")) {
+    const At forces = root.Child("forces");
+    report_.CheckSequence(forces, "a list of force elements");
+    for (size_t i = 0; i < forces.node.size(); ++i) {
+      SceneForce f = ReadForce(forces.Item(i), scene, i);
+      const bool clash = (d.has_gravity && f.name == "gravity") ||
+                         std::any_of(d.forces.begin(), d.forces.end(),
+                                     [&](const SceneForce& o) { return o.name == f.name; });
+      if (clash) {
+        report_.Fail(
+            forces.Item(i).Has("name") ? forces.Item(i).Child("name") : forces.Item(i),
+            fmt::format("two force elements are named '{}'; names must be unique{}", f.name,
+                        f.name == "gravity" ? " ('gravity' is the root key's)" : ""));
+      }
+      d.forces.push_back(std::move(f));
+    }
+  }
+
+  if (root.Has("simulation")) ReadSimulation(root.Child("simulation"), d.simulation);
+
+  if (root.Has("events")) {
+    const At events = root.Child("events");
+    report_.CheckSequence(events, "a list of events");
+    for (size_t i = 0; i < events.node.size(); ++i)
+      d.events.push_back(ReadEvent(events.Item(i), i));
+    if (!d.events.empty() && d.simulation.integrator != IntegratorKind::kDormandPrince5) {
+      report_.Fail(root.Child("simulation").Child("integrator"),
+                   "events are located only by the adaptive integrator (on its dense output); "
+                   "use 'integrator: adaptive' or remove the events");
+    }
+  }
+
+  if (root.Has("impulses")) {
+    const At list = root.Child("impulses");
+    report_.CheckSequence(list, "a list of impulses");
+    for (size_t i = 0; i < list.node.size(); ++i) {
+      const At at = list.Item(i);
+      report_.CheckMap(at, {"time", "body", "point", "value", "frame"}, "an impulse");
+      SceneImpulse imp;
+      imp.t = Value(report_.Require(at, "time", "an impulse"), kTime, "the time");
+      if (imp.t < 0) report_.Fail(at.Child("time"), "the time must be >= 0");
+      imp.body = BodyIndexAt(report_.Require(at, "body", "an impulse"), scene);
+      const SceneBody& body = scene.bodies[static_cast<size_t>(imp.body)];
+      imp.p_BoP_B =
+          at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
+      imp.J = Vector(report_.Require(at, "value", "an impulse"), kImpulse, "an impulse");
+      if (at.Has("frame")) imp.frame = FrameAt(at.Child("frame"));
+      d.impulses.push_back(imp);
+    }
+  }
+
+  if (root.Has("impacts")) {
+    const At list = root.Child("impacts");
+    report_.CheckSequence(list, "a list of impacts");
+    for (size_t i = 0; i < list.node.size(); ++i) {
+      const At at = list.Item(i);
+      report_.CheckMap(at, {"time", "target", "projectile", "exit_fraction"}, "an impact");
+      SceneImpact imp;
+      imp.t = Value(report_.Require(at, "time", "an impact"), kTime, "the time");
+      if (imp.t < 0) report_.Fail(at.Child("time"), "the time must be >= 0");
+      imp.target = BodyIndexAt(report_.Require(at, "target", "an impact"), scene);
+      imp.projectile = BodyIndexAt(report_.Require(at, "projectile", "an impact"), scene);
+      if (imp.target == imp.projectile) {
+        report_.Fail(at.Child("projectile"), "the projectile and the target are the same body");
+      }
+      if (at.Has("exit_fraction")) {
+        imp.exit_fraction = Value(at.Child("exit_fraction"), kDimensionless, "the exit fraction");
+        if (!(imp.exit_fraction >= 0 && imp.exit_fraction <= 1)) {
+          report_.Fail(at.Child("exit_fraction"),
+                       fmt::format("the exit fraction must be in [0, 1] (0: the projectile "
+                                   "embeds; 1: it passes through unslowed), got {:.6g}",
+                                   imp.exit_fraction));
+        }
+      }
+      d.impacts.push_back(imp);
+    }
+  }
+
+  if (root.Has("output")) {
+    ReadOutput(root.Child("output"), scene);
+  } else {
+    d.columns = DefaultColumns(scene);
+  }
+}
+
+}  // namespace scene_internal
+}  // namespace chasles

@@ -1,0 +1,689 @@
+// Running a scene's dynamics: Model building, segments between impulses and impacts, output
+// rows and the ledger carried across segments (see include/chasles/scene/study.h).
+
+#include "chasles/scene/study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "chasles/analysis/ledger.h"
+#include "chasles/analysis/momentum.h"
+#include "chasles/dynamics/impulse.h"
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/error.h"
+#include "chasles/model/data.h"
+#include "chasles/model/forces.h"
+#include "internal/study_columns.h"
+
+namespace chasles {
+
+namespace {
+
+using scene_internal::AllColumns;
+using scene_internal::ColumnInfo;
+
+/// Where a scene body sits in a Model body: the same body, or a part of a composite after an
+/// embedding. R_MB and p_MoBo_M place the scene body's frame in the model body's frame.
+struct Placement {
+  int model_body = 0;
+  Mat3 R_MB = Mat3::Identity();
+  Vec3 p_MoBo_M = Vec3::Zero();
+};
+
+/// Scene bodies mapped to the current Model, with each scene body's own centre of mass.
+struct BodyMap {
+  std::vector<Placement> place;
+  std::vector<Vec3> p_BoBcm_B;
+};
+
+/// Kinematics of one scene body at a state (exact for a part of a composite too).
+struct SceneBodyMotion {
+  Mat3 R_WB;
+  Vec3 p_WBo, p_WBcm, v_WBcm_W, w_WB_W;
+};
+
+SceneBodyMotion CalcSceneBodyMotion(const Model& model, const State& state, const BodyMap& map,
+                                    int b) {
+  const Placement& pl = map.place[static_cast<size_t>(b)];
+  const BodyState& s = state.bodies[static_cast<size_t>(pl.model_body)];
+  const Body& body = model.body(pl.model_body);
+  const Mat3 R_WM = s.q_WB.toRotationMatrix();
+  SceneBodyMotion m;
+  m.R_WB = R_WM * pl.R_MB;
+  m.w_WB_W = R_WM * s.w_WB_B;
+  const Vec3 p_WMo = s.p_WBcm - R_WM * body.p_BoBcm_B();
+  m.p_WBo = p_WMo + R_WM * pl.p_MoBo_M;
+  m.p_WBcm = m.p_WBo + m.R_WB * map.p_BoBcm_B[static_cast<size_t>(b)];
+  // Rigid-body velocity field: v_P = v_Mcm + w × (p_P - p_Mcm).
+  m.v_WBcm_W = s.v_WBcm_W + m.w_WB_W.cross(m.p_WBcm - s.p_WBcm);
+  return m;
+}
+
+/// Euler ZYX angles (yaw, pitch, roll) of R = Rz(yaw) Ry(pitch) Rx(roll) [rad].
+Vec3 CalcYawPitchRoll(const Mat3& R) {
+  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+  return {std::atan2(R(1, 0), R(0, 0)), pitch, std::atan2(R(2, 1), R(2, 2))};
+}
+
+/// Fills the state variables (StateVariableLayout) up to `count` slots.
+void FillVariables(const Model& model, const State& state, const BodyMap& map, int count,
+                   std::vector<double>& v) {
+  v.assign(static_cast<size_t>(std::max(count, 1)), 0.0);
+  v[0] = state.t;
+  const int per = StateVariableLayout::kPerBody;
+  for (int b = 0; b * per + 1 < count; ++b) {
+    const SceneBodyMotion m = CalcSceneBodyMotion(model, state, map, b);
+    const Vec3 w_B = m.R_WB.transpose() * m.w_WB_W;
+    const Vec3 ypr = CalcYawPitchRoll(m.R_WB);
+    const double block[StateVariableLayout::kPerBody] = {
+        m.p_WBcm.x(),
+        m.p_WBcm.y(),
+        m.p_WBcm.z(),
+        m.v_WBcm_W.x(),
+        m.v_WBcm_W.y(),
+        m.v_WBcm_W.z(),
+        m.w_WB_W.x(),
+        m.w_WB_W.y(),
+        m.w_WB_W.z(),
+        w_B.x(),
+        w_B.y(),
+        w_B.z(),
+        std::acos(std::clamp(m.R_WB(2, 2), -1.0, 1.0)),
+        ypr.x(),
+        ypr.y(),
+        ypr.z(),
+        m.v_WBcm_W.norm(),
+        m.w_WB_W.norm()};
+    for (int j = 0; j < per; ++j) {
+      const int slot = StateVariableLayout::Slot(b, j);
+      if (slot < count) v[static_cast<size_t>(slot)] = block[j];
+    }
+  }
+}
+
+/// A VectorFunction evaluating a scene vector expression; `R_MB` turns a body-frame value into
+/// the model body's frame.
+VectorFunction MakeVectorFunction(std::shared_ptr<const Model*> model_ref,
+                                  std::shared_ptr<const BodyMap> map,
+                                  const SceneVectorExpression& value, const Mat3& R_MB) {
+  auto buffer = std::make_shared<std::vector<double>>();
+  const int count = value.variable_count();
+  return [model_ref, map, value, R_MB, buffer, count](double, const State& state) -> Vec3 {
+    FillVariables(**model_ref, state, *map, count, *buffer);
+    return R_MB * value.Evaluate(*buffer);
+  };
+}
+
+/// The Model of one segment: bodies (name, mass properties) and the scene's force elements
+/// placed through `map`. `model_ref` is set to the Model's final address by the caller.
+Model BuildModel(const Scene& scene,
+                 const std::vector<std::pair<std::string, MassProperties>>& bodies,
+                 const std::shared_ptr<const BodyMap>& map,
+                 const std::shared_ptr<const Model*>& model_ref) {
+  Model model;
+  for (const auto& [name, mp] : bodies) model.AddBody(name, mp);
+  const SceneDynamics& d = scene.dynamics;
+  if (d.has_gravity) model.AddForceElement(std::make_shared<UniformGravity>("gravity", d.g_W));
+  auto point = [&](int b, const Vec3& p_BoP_B) {
+    const Placement& pl = map->place[static_cast<size_t>(b)];
+    return Vec3(pl.R_MB * p_BoP_B + pl.p_MoBo_M);
+  };
+  for (const SceneForce& f : d.forces) {
+    const Placement* pl = f.body >= 0 ? &map->place[static_cast<size_t>(f.body)] : nullptr;
+    switch (f.type) {
+      case SceneForce::Type::kForce:
+        if (f.value.is_constant()) {
+          const Vec3 v = f.value.Evaluate({0.0});
+          model.AddForceElement(AppliedForce::Constant(
+              f.name, pl->model_body, point(f.body, f.p_BoP_B),
+              f.frame == VectorFrame::kBody ? Vec3(pl->R_MB * v) : v, f.frame));
+        } else {
+          model.AddForceElement(std::make_shared<AppliedForce>(
+              f.name, pl->model_body, point(f.body, f.p_BoP_B),
+              MakeVectorFunction(model_ref, map, f.value,
+                                 f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity()),
+              f.frame));
+        }
+        break;
+      case SceneForce::Type::kMoment:
+        if (f.value.is_constant()) {
+          const Vec3 v = f.value.Evaluate({0.0});
+          model.AddForceElement(AppliedMoment::Constant(
+              f.name, pl->model_body, f.frame == VectorFrame::kBody ? Vec3(pl->R_MB * v) : v,
+              f.frame));
+        } else {
+          model.AddForceElement(std::make_shared<AppliedMoment>(
+              f.name, pl->model_body,
+              MakeVectorFunction(model_ref, map, f.value,
+                                 f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity()),
+              f.frame));
+        }
+        break;
+      case SceneForce::Type::kSpring: {
+        const int mb =
+            f.body_b == kWorld ? kWorld : map->place[static_cast<size_t>(f.body_b)].model_body;
+        const Vec3 q = f.body_b == kWorld ? f.p_BoQ_B : point(f.body_b, f.p_BoQ_B);
+        model.AddForceElement(
+            std::make_shared<SpringDamper>(f.name, pl->model_body, point(f.body, f.p_BoP_B), mb, q,
+                                           f.rest_length, f.stiffness, f.damping));
+        break;
+      }
+      case SceneForce::Type::kDrag:
+        model.AddForceElement(
+            std::make_shared<LinearDrag>(f.name, pl->model_body, f.linear, f.angular));
+        break;
+      case SceneForce::Type::kCentralGravity:
+        model.AddForceElement(std::make_shared<CentralGravity>(f.name, f.mu, f.centre_W));
+        break;
+    }
+  }
+  return model;
+}
+
+std::vector<EventSpec> BuildEvents(const Scene& scene, std::shared_ptr<const Model*> model_ref,
+                                   std::shared_ptr<const BodyMap> map) {
+  std::vector<EventSpec> events;
+  for (const SceneEvent& e : scene.dynamics.events) {
+    auto buffer = std::make_shared<std::vector<double>>();
+    const Expression when = e.when;
+    const double level = e.crosses;
+    const int count = when.variable_count();
+    events.push_back(
+        EventSpec{e.name,
+                  [model_ref, map, when, level, buffer, count](double, const State& state) {
+                    FillVariables(**model_ref, state, *map, count, *buffer);
+                    return when.Evaluate(*buffer) - level;
+                  },
+                  e.direction, e.action});
+  }
+  return events;
+}
+
+double MechanicalEnergy(const Model& model, const State& state) {
+  double V = 0.0;
+  for (int i = 0; i < model.num_force_elements(); ++i) {
+    V += model.force_element(i).CalcPotentialEnergy(model, state);
+  }
+  return CalcTranslationalKineticEnergy(model, state) + CalcRotationalKineticEnergy(model, state) +
+         V;
+}
+
+double EndTime(const Scene& scene, double until) {
+  const double t = std::isfinite(until) ? until : scene.dynamics.simulation.until;
+  if (!std::isfinite(t)) {
+    throw InputError(
+        "the scene gives no end time: add 'until' under 'simulation:' (e.g. 'until: 10 s') or "
+        "pass --until");
+  }
+  if (!(t > 0)) throw InputError(fmt::format("the end time must be positive, got {:.6g} s", t));
+  return t;
+}
+
+/// Throws when a body's motion is not finite (or has run away beyond any physical scale).
+void CheckFinite(const Model& model, const State& state) {
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyState& s = state.bodies[static_cast<size_t>(b)];
+    const double big = 1e150;
+    const bool ok = s.p_WBcm.allFinite() && s.v_WBcm_W.allFinite() && s.w_WB_B.allFinite() &&
+                    s.q_WB.coeffs().allFinite() && s.p_WBcm.norm() < big &&
+                    s.v_WBcm_W.norm() < big && s.w_WB_B.norm() < big;
+    if (!ok) {
+      throw InputError(fmt::format(
+          "the motion of body '{}' diverged (non-finite or beyond 1e150 in SI) near t = {:.9g} s; "
+          "the run is stopped. Check the force expressions for a singularity, or use a smaller "
+          "'step' or the adaptive integrator",
+          model.body(b).name(), state.t));
+    }
+  }
+}
+
+const char* IntegratorName(IntegratorKind k) {
+  switch (k) {
+    case IntegratorKind::kDormandPrince5:
+      return "adaptive Dormand-Prince 5(4)";
+    case IntegratorKind::kRk4:
+      return "RK4 (fixed step)";
+    case IntegratorKind::kEnergyMomentum:
+      return "energy-momentum (fixed step)";
+  }
+  return "";
+}
+
+/// Everything that changes at an embedding: the bodies, the map and the Model built on them.
+struct Segment {
+  std::vector<std::pair<std::string, MassProperties>> bodies;
+  std::shared_ptr<BodyMap> map;
+  std::shared_ptr<const Model*> model_ref = std::make_shared<const Model*>(nullptr);
+  std::unique_ptr<Model> model;
+
+  void Build(const Scene& scene) {
+    model_ref = std::make_shared<const Model*>(nullptr);
+    model = std::make_unique<Model>(BuildModel(scene, bodies, map, model_ref));
+    *model_ref = model.get();
+  }
+};
+
+Segment FirstSegment(const Scene& scene) {
+  Segment seg;
+  seg.map = std::make_shared<BodyMap>();
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    seg.bodies.emplace_back(scene.bodies[b].name, scene.bodies[b].mass_properties);
+    seg.map->place.push_back(Placement{static_cast<int>(b), Mat3::Identity(), Vec3::Zero()});
+    seg.map->p_BoBcm_B.push_back(scene.bodies[b].mass_properties.p_BoBcm_B());
+  }
+  seg.Build(scene);
+  return seg;
+}
+
+State InitialState(const Scene& scene, const Model& model) {
+  State s = MakeRestState(model);
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    const SceneInitialState& in = scene.dynamics.initial[b];
+    const int i = static_cast<int>(b);
+    SetBodyPose(model, i, in.p_WBo, in.q_WB, s);
+    // v_Bo = v_P - w × (R p_BoP).
+    const Vec3 v_WBo = in.v_WP_W - in.w_WB_W.cross(in.q_WB * in.p_BoP_B);
+    SetBodyVelocity(model, i, v_WBo, in.w_WB_W, s);
+  }
+  return s;
+}
+
+SimulationOptions BaseOptions(const Scene& scene, double t_end) {
+  const SceneSimulation& sim = scene.dynamics.simulation;
+  SimulationOptions o;
+  o.integrator = sim.integrator;
+  o.t_end = t_end;
+  o.output_interval = std::isfinite(sim.output_interval) ? sim.output_interval : t_end / 200;
+  if (std::isfinite(sim.step)) o.fixed_step = sim.step;
+  o.adaptive.rtol = sim.rtol;
+  o.adaptive.atol = sim.atol;
+  return o;
+}
+
+/// The ledger across segments: totals of the finished segments plus the running one.
+struct LedgerCarry {
+  State segment_initial;
+  double work_nc = 0.0, dissipated = 0.0, jumps = 0.0, residual = 0.0, scale = 0.0;
+  std::map<std::string, double> work_by_force;
+};
+
+struct RowMaker {
+  const Scene& scene;
+  std::vector<ColumnInfo> columns;
+  bool needs_accelerations = false;
+
+  std::vector<double> Row(const Model& model, const BodyMap& map, const State& s,
+                          const LedgerCarry& carry) const {
+    const LedgerSample L = CalcLedgerSample(model, s, carry.segment_initial);
+    Data data;
+    if (needs_accelerations) {
+      data = MakeData(model);
+      CalcAccelerations(model, s, data);
+    }
+    std::vector<double> row;
+    row.reserve(columns.size());
+    for (const ColumnInfo& c : columns) {
+      if (c.body >= 0) {
+        const SceneBodyMotion m = CalcSceneBodyMotion(model, s, map, c.body);
+        const std::string& q = c.quantity;
+        const Vec3 w_B = m.R_WB.transpose() * m.w_WB_W;
+        Vec3 a_W = Vec3::Zero(), al_W = Vec3::Zero();
+        if (q[0] == 'a') {
+          const int mb = map.place[static_cast<size_t>(c.body)].model_body;
+          const BodyState& bs = s.bodies[static_cast<size_t>(mb)];
+          al_W = data.R_WB[static_cast<size_t>(mb)] * data.wdot_WB_B[static_cast<size_t>(mb)];
+          const Vec3 r = m.p_WBcm - bs.p_WBcm;
+          a_W = data.a_WBcm_W[static_cast<size_t>(mb)] + al_W.cross(r) +
+                m.w_WB_W.cross(m.w_WB_W.cross(r));
+        }
+        const Quat q_WB(m.R_WB);
+        const Vec3 ypr = CalcYawPitchRoll(m.R_WB);
+        const Vec3 al_B = m.R_WB.transpose() * al_W;
+        static const std::map<std::string, int> index = {
+            {"x", 0},     {"y", 1},     {"z", 2},    {"ox", 3},   {"oy", 4},   {"oz", 5},
+            {"qw", 6},    {"qx", 7},    {"qy", 8},   {"qz", 9},   {"yaw", 10}, {"pitch", 11},
+            {"roll", 12}, {"tilt", 13}, {"vx", 14},  {"vy", 15},  {"vz", 16},  {"speed", 17},
+            {"wx", 18},   {"wy", 19},   {"wz", 20},  {"wbx", 21}, {"wby", 22}, {"wbz", 23},
+            {"ax", 24},   {"ay", 25},   {"az", 26},  {"alx", 27}, {"aly", 28}, {"alz", 29},
+            {"albx", 30}, {"alby", 31}, {"albz", 32}};
+        // Quaternion sign: keep w >= 0 so that the printed components are continuous where
+        // they can be and the same rotation always prints the same.
+        const double sign = q_WB.w() < 0 ? -1.0 : 1.0;
+        const double values[] = {m.p_WBcm.x(),    m.p_WBcm.y(),
+                                 m.p_WBcm.z(),    m.p_WBo.x(),
+                                 m.p_WBo.y(),     m.p_WBo.z(),
+                                 sign * q_WB.w(), sign * q_WB.x(),
+                                 sign * q_WB.y(), sign * q_WB.z(),
+                                 ypr.x(),         ypr.y(),
+                                 ypr.z(),         std::acos(std::clamp(m.R_WB(2, 2), -1.0, 1.0)),
+                                 m.v_WBcm_W.x(),  m.v_WBcm_W.y(),
+                                 m.v_WBcm_W.z(),  m.v_WBcm_W.norm(),
+                                 m.w_WB_W.x(),    m.w_WB_W.y(),
+                                 m.w_WB_W.z(),    w_B.x(),
+                                 w_B.y(),         w_B.z(),
+                                 a_W.x(),         a_W.y(),
+                                 a_W.z(),         al_W.x(),
+                                 al_W.y(),        al_W.z(),
+                                 al_B.x(),        al_B.y(),
+                                 al_B.z()};
+        row.push_back(values[index.at(q)]);
+        continue;
+      }
+      const std::string& q = c.quantity;
+      double v = 0.0;
+      if (q == "t") {
+        v = s.t;
+      } else if (q == "T_trans") {
+        v = L.kinetic_translational;
+      } else if (q == "T_rot") {
+        v = L.kinetic_rotational;
+      } else if (q == "T") {
+        v = L.kinetic_translational + L.kinetic_rotational;
+      } else if (q == "V") {
+        v = L.potential;
+      } else if (q == "E") {
+        v = L.mechanical_energy;
+      } else if (q == "W_nc") {
+        v = carry.work_nc + L.work_nonconservative;
+      } else if (q == "W") {
+        v = carry.work_by_force.count(c.force) ? carry.work_by_force.at(c.force) : 0.0;
+        for (const ForceLedger& f : L.forces) {
+          if (f.name == c.force) v += f.work_nonconservative;
+        }
+      } else if (q == "dissipated") {
+        v = carry.dissipated + L.dissipated;
+      } else if (q == "jumps") {
+        v = carry.jumps;
+      } else if (q == "residual") {
+        v = carry.residual + L.energy_residual;
+      } else if (q[0] == 'P') {
+        v = L.linear_momentum_W[q[1] - 'x'];
+      } else if (q[0] == 'H' && q[1] == 'O') {
+        v = L.angular_momentum_Wo_W[q[2] - 'x'];
+      } else if (q[0] == 'H') {
+        v = L.angular_momentum_Scm_W[q[1] - 'x'];
+      }
+      row.push_back(v);
+    }
+    return row;
+  }
+};
+
+}  // namespace
+
+Study BuildStudy(const Scene& scene, double until) {
+  const double t_end = EndTime(scene, until);
+  Segment seg = FirstSegment(scene);
+  Study study;
+  study.model = std::shared_ptr<const Model>(std::move(seg.model));  // same address
+  study.options = BaseOptions(scene, t_end);
+  study.initial = InitialState(scene, *study.model);
+  study.options.events = BuildEvents(scene, seg.model_ref, seg.map);
+  return study;
+}
+
+StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
+  const double t_end = EndTime(scene, options.until);
+  const SceneDynamics& d = scene.dynamics;
+  StudyResult result;
+  result.integrator = IntegratorName(d.simulation.integrator);
+
+  RowMaker rows{scene, {}, false};
+  const std::vector<ColumnInfo> all = AllColumns(scene);
+  for (const std::string& name : d.columns) {
+    for (const ColumnInfo& c : all) {
+      if (c.name == name) {
+        rows.columns.push_back(c);
+        if (c.quantity[0] == 'a' && c.body >= 0) rows.needs_accelerations = true;
+        break;
+      }
+    }
+  }
+  for (const ColumnInfo& c : rows.columns) result.columns.push_back(c.name);
+
+  Segment seg = FirstSegment(scene);
+  State state = InitialState(scene, *seg.model);
+  CheckFinite(*seg.model, state);
+  LedgerCarry carry;
+  carry.segment_initial = state;
+  const double E0 = MechanicalEnergy(*seg.model, state);
+  result.rows.push_back(rows.Row(*seg.model, *seg.map, state, carry));
+
+  // Impulses and impacts in time order (stable: the file's order at equal times).
+  struct Jump {
+    double t;
+    const SceneImpulse* impulse;
+    const SceneImpact* impact;
+  };
+  std::vector<Jump> jumps;
+  for (const auto& i : d.impulses) jumps.push_back({i.t, &i, nullptr});
+  for (const auto& i : d.impacts) jumps.push_back({i.t, nullptr, &i});
+  std::stable_sort(jumps.begin(), jumps.end(),
+                   [](const Jump& a, const Jump& b) { return a.t < b.t; });
+
+  const SimulationOptions base = BaseOptions(scene, t_end);
+  const double dt_out = base.output_interval;
+  bool stopped = false;
+
+  // Integrates from state.t to t_b, sampling on the global grid k * dt_out.
+  auto run_to = [&](double t_b) {
+    while (state.t < t_b && !stopped) {
+      const double k = std::ceil(state.t / dt_out - 1e-9);
+      const double next_grid = k * dt_out;
+      const bool on_grid = std::abs(next_grid - state.t) <= 1e-9 * dt_out;
+      SimulationOptions o = base;
+      o.t_end = on_grid ? t_b : std::min(next_grid, t_b);
+      o.output_interval = on_grid ? dt_out : 0.0;
+      o.events = BuildEvents(scene, seg.model_ref, seg.map);
+      o.store_samples = false;
+      bool first = true;
+      o.on_sample = [&](const State& s) {
+        if (first) {
+          first = false;
+          return;
+        }
+        CheckFinite(*seg.model, s);
+        result.rows.push_back(rows.Row(*seg.model, *seg.map, s, carry));
+        if (options.progress) options.progress(s.t);
+      };
+      SimulationResult r;
+      const double t_from = state.t;
+      try {
+        r = Simulate(*seg.model, state, o);
+      } catch (const InputError& e) {
+        const double t_last = result.rows.empty() ? t_from : result.rows.back().front();
+        throw InputError(fmt::format("the run stopped after t = {:.9g} s: {}", t_last, e.what()));
+      }
+      CheckFinite(*seg.model, r.final_state);
+      result.stats.steps += r.stats.steps;
+      result.stats.rejected_steps += r.stats.rejected_steps;
+      result.stats.function_evaluations += r.stats.function_evaluations;
+      for (const EventRecord& e : r.events) {
+        const bool stop = d.events[static_cast<size_t>(e.event)].action == EventAction::kStop;
+        result.events.push_back({e.name, e.t, stop});
+      }
+      state = r.final_state;
+      if (r.stopped_by_event) stopped = true;
+    }
+  };
+
+  auto close_segment = [&]() {
+    const LedgerSample L = CalcLedgerSample(*seg.model, state, carry.segment_initial);
+    carry.work_nc += L.work_nonconservative;
+    carry.dissipated += L.dissipated;
+    carry.residual += L.energy_residual;
+    carry.scale = std::max(carry.scale, L.energy_scale);
+    for (const ForceLedger& f : L.forces) carry.work_by_force[f.name] += f.work_nonconservative;
+  };
+
+  for (const Jump& j : jumps) {
+    if (j.t > t_end) {
+      result.notes.push_back(
+          fmt::format("an impulse or impact at t = {:.6g} s is after the end "
+                      "time {:.6g} s and was not applied",
+                      j.t, t_end));
+      continue;
+    }
+    run_to(j.t);
+    if (stopped) break;
+    close_segment();
+    const double E_before = MechanicalEnergy(*seg.model, state);
+    StudyJump rec;
+    rec.t = state.t;
+    int shown_body = 0;
+    if (j.impulse) {
+      const SceneImpulse& imp = *j.impulse;
+      const Placement& pl = seg.map->place[static_cast<size_t>(imp.body)];
+      const Mat3 R_WM = state.bodies[static_cast<size_t>(pl.model_body)].q_WB.toRotationMatrix();
+      const Vec3 J_W = imp.frame == VectorFrame::kWorld ? imp.J : Vec3(R_WM * pl.R_MB * imp.J);
+      ApplyImpulse(*seg.model, pl.model_body, pl.R_MB * imp.p_BoP_B + pl.p_MoBo_M, J_W, state);
+      rec.kind = "impulse";
+      rec.description =
+          fmt::format("impulse on {}", scene.bodies[static_cast<size_t>(imp.body)].name);
+      shown_body = pl.model_body;
+    } else {
+      const SceneImpact& imp = *j.impact;
+      const std::string& tname = scene.bodies[static_cast<size_t>(imp.target)].name;
+      const std::string& pname = scene.bodies[static_cast<size_t>(imp.projectile)].name;
+      const int mt = seg.map->place[static_cast<size_t>(imp.target)].model_body;
+      const int mp = seg.map->place[static_cast<size_t>(imp.projectile)].model_body;
+      if (mt == mp) {
+        throw InputError(
+            fmt::format("impact at t = {:.6g} s: '{}' and '{}' are already one body "
+                        "(an earlier impact embedded one in the other)",
+                        imp.t, pname, tname));
+      }
+      const BodyState& sp = state.bodies[static_cast<size_t>(mp)];
+      if (imp.exit_fraction > 0) {
+        const Vec3 v_p = sp.v_WBcm_W;
+        ApplyPassThrough(*seg.model, mt, sp.p_WBcm, seg.model->body(mp).mass(), v_p,
+                         imp.exit_fraction, state);
+        state.bodies[static_cast<size_t>(mp)].v_WBcm_W = imp.exit_fraction * v_p;
+        rec.kind = "pass-through";
+        rec.description = fmt::format("{} passes through {} keeping {:.4g} of its velocity", pname,
+                                      tname, imp.exit_fraction);
+        shown_body = mt;
+      } else {
+        auto motion = [&](int m) {
+          const BodyState& s = state.bodies[static_cast<size_t>(m)];
+          BodyMotion bm;
+          bm.mass_properties = seg.model->body(m).mass_properties();
+          bm.R_WB = s.q_WB.toRotationMatrix();
+          bm.p_WBcm = s.p_WBcm;
+          bm.v_WBcm_W = s.v_WBcm_W;
+          bm.w_WB_W = bm.R_WB * s.w_WB_B;
+          return bm;
+        };
+        const BodyMotion target = motion(mt), projectile = motion(mp);
+        const EmbeddingResult e = CalcEmbedding(target, projectile);
+        // Re-place the projectile's scene bodies in the target's frame:
+        // R_TB = R_WTᵀ R_WP R_PB,  p_ToBo_T = R_WTᵀ (p_WPo + R_WP p_PoBo_P - p_WTo).
+        const Vec3 p_WTo = CalcBodyOriginPosition(*seg.model, state, mt);
+        const Vec3 p_WPo = CalcBodyOriginPosition(*seg.model, state, mp);
+        auto map = std::make_shared<BodyMap>(*seg.map);
+        for (Placement& pl : map->place) {
+          if (pl.model_body == mp) {
+            pl.p_MoBo_M = target.R_WB.transpose() * (p_WPo + projectile.R_WB * pl.p_MoBo_M - p_WTo);
+            pl.R_MB = target.R_WB.transpose() * projectile.R_WB * pl.R_MB;
+            pl.model_body = mt;
+          }
+          if (pl.model_body > mp) --pl.model_body;
+        }
+        Segment next;
+        next.map = map;
+        for (int m = 0; m < seg.model->num_bodies(); ++m) {
+          if (m == mp) continue;
+          if (m == mt) {
+            next.bodies.emplace_back(seg.bodies[static_cast<size_t>(mt)].first + "+" +
+                                         seg.bodies[static_cast<size_t>(mp)].first,
+                                     e.composite.mass_properties);
+          } else {
+            next.bodies.push_back(seg.bodies[static_cast<size_t>(m)]);
+          }
+        }
+        next.Build(scene);
+        State s2 = MakeRestState(*next.model);
+        s2.t = state.t;
+        int k = 0;
+        for (int m = 0; m < seg.model->num_bodies(); ++m) {
+          if (m == mp) continue;
+          if (m == mt) {
+            BodyState& c = s2.bodies[static_cast<size_t>(k)];
+            c.p_WBcm = e.composite.p_WBcm;
+            c.q_WB = Quat(e.composite.R_WB).normalized();
+            c.v_WBcm_W = e.composite.v_WBcm_W;
+            c.w_WB_B = e.composite.R_WB.transpose() * e.composite.w_WB_W;
+            shown_body = k;
+          } else {
+            s2.bodies[static_cast<size_t>(k)] = state.bodies[static_cast<size_t>(m)];
+          }
+          ++k;
+        }
+        seg = std::move(next);
+        state = std::move(s2);
+        rec.kind = "embedding";
+        rec.description = fmt::format("{} embeds in {}", pname, tname);
+      }
+    }
+    CheckFinite(*seg.model, state);
+    rec.energy_before = E_before;
+    rec.energy_after = MechanicalEnergy(*seg.model, state);
+    const BodyState& shown = state.bodies[static_cast<size_t>(shown_body)];
+    rec.v_after_W = shown.v_WBcm_W;
+    rec.w_after_W = shown.q_WB * shown.w_WB_B;
+    carry.jumps += rec.energy_after - rec.energy_before;
+    carry.scale = std::max({carry.scale, std::abs(rec.energy_before), std::abs(rec.energy_after)});
+    carry.segment_initial = state;
+    result.jumps.push_back(rec);
+    result.rows.push_back(rows.Row(*seg.model, *seg.map, state, carry));
+  }
+  if (!stopped) run_to(t_end);
+
+  // Final ledger.
+  const Model& model = *seg.model;
+  const LedgerSample L = CalcLedgerSample(model, state, carry.segment_initial);
+  StudyLedger& out = result.ledger;
+  out.kinetic_translational = L.kinetic_translational;
+  out.kinetic_rotational = L.kinetic_rotational;
+  out.potential = L.potential;
+  out.energy = L.mechanical_energy;
+  out.energy_initial = E0;
+  out.work_nonconservative = carry.work_nc + L.work_nonconservative;
+  out.dissipated = carry.dissipated + L.dissipated;
+  out.jumps = carry.jumps;
+  out.residual = carry.residual + L.energy_residual;
+  out.energy_scale = std::max(carry.scale, L.energy_scale);
+  for (const SceneForce& f : d.forces) {
+    double w = carry.work_by_force.count(f.name) ? carry.work_by_force.at(f.name) : 0.0;
+    for (const ForceLedger& fl : L.forces) {
+      if (fl.name == f.name) w += fl.work_nonconservative;
+    }
+    out.work_by_force.emplace_back(f.name, w);
+  }
+  out.linear_momentum_W = L.linear_momentum_W;
+  out.angular_momentum_Scm_W = L.angular_momentum_Scm_W;
+  out.angular_momentum_Wo_W = L.angular_momentum_Wo_W;
+
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyState& s = state.bodies[static_cast<size_t>(b)];
+    StudyBodyState f;
+    f.name = model.body(b).name();
+    f.mass = model.body(b).mass();
+    f.p_WBcm = s.p_WBcm;
+    f.p_WBo = CalcBodyOriginPosition(model, state, b);
+    f.q_WB = s.q_WB.w() < 0 ? Quat(-s.q_WB.coeffs()) : s.q_WB;
+    f.v_WBcm_W = s.v_WBcm_W;
+    f.w_WB_B = s.w_WB_B;
+    f.w_WB_W = s.q_WB * s.w_WB_B;
+    result.final_bodies.push_back(f);
+  }
+  result.t_end = state.t;
+  result.stopped_by_event = stopped;
+  return result;
+}
+
+}  // namespace chasles

@@ -1,0 +1,105 @@
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "chasles/suggest.h"
+#include "internal/study_columns.h"
+
+namespace chasles::scene_internal {
+
+namespace {
+
+struct BodyGroup {
+  const char* group;
+  std::vector<const char*> suffixes;
+};
+
+// Per-body groups and the suffixes of their columns.
+const std::vector<BodyGroup>& BodyGroups() {
+  static const std::vector<BodyGroup> groups = {
+      {"position", {"x", "y", "z"}},
+      {"origin", {"ox", "oy", "oz"}},
+      {"quaternion", {"qw", "qx", "qy", "qz"}},
+      {"euler", {"yaw", "pitch", "roll"}},
+      {"tilt", {"tilt"}},
+      {"velocity", {"vx", "vy", "vz"}},
+      {"speed", {"speed"}},
+      {"angular_velocity", {"wx", "wy", "wz"}},
+      {"angular_velocity_body", {"wbx", "wby", "wbz"}},
+      {"acceleration", {"ax", "ay", "az"}},
+      {"angular_acceleration", {"alx", "aly", "alz"}},
+      {"angular_acceleration_body", {"albx", "alby", "albz"}},
+  };
+  return groups;
+}
+
+}  // namespace
+
+std::vector<std::string> ColumnGroups() {
+  std::vector<std::string> g;
+  for (const auto& b : BodyGroups()) g.emplace_back(b.group);
+  for (const char* s : {"energy", "work", "residual", "momentum", "angular_momentum",
+                        "angular_momentum_origin", "ledger"}) {
+    g.emplace_back(s);
+  }
+  return g;
+}
+
+std::vector<ColumnInfo> AllColumns(const Scene& scene) {
+  std::vector<ColumnInfo> cols;
+  cols.push_back({"t", "t", -1, "t", ""});
+  for (const auto& g : BodyGroups()) {
+    for (size_t b = 0; b < scene.bodies.size(); ++b) {
+      for (const char* s : g.suffixes) {
+        cols.push_back({scene.bodies[b].name + "_" + s, g.group, static_cast<int>(b), s, ""});
+      }
+    }
+  }
+  for (const char* s : {"T_trans", "T_rot", "T", "V", "E"})
+    cols.push_back({s, "energy", -1, s, ""});
+  cols.push_back({"W_nc", "work", -1, "W_nc", ""});
+  for (const auto& f : scene.dynamics.forces) {
+    cols.push_back({"W_" + f.name, "work", -1, "W", f.name});
+  }
+  cols.push_back({"dissipated", "work", -1, "dissipated", ""});
+  cols.push_back({"jumps", "work", -1, "jumps", ""});
+  cols.push_back({"residual", "residual", -1, "residual", ""});
+  for (const char* s : {"Px", "Py", "Pz"}) cols.push_back({s, "momentum", -1, s, ""});
+  for (const char* s : {"Hx", "Hy", "Hz"}) cols.push_back({s, "angular_momentum", -1, s, ""});
+  for (const char* s : {"HOx", "HOy", "HOz"}) {
+    cols.push_back({s, "angular_momentum_origin", -1, s, ""});
+  }
+  return cols;
+}
+
+std::vector<std::string> ExpandColumn(const Scene& scene, const std::string& name,
+                                      std::string* why) {
+  const std::vector<ColumnInfo> all = AllColumns(scene);
+  std::vector<std::string> out;
+  static const std::vector<std::string> ledger = {
+      "energy", "work", "residual", "momentum", "angular_momentum", "angular_momentum_origin"};
+  for (const auto& c : all) {
+    const bool in_ledger =
+        name == "ledger" && std::find(ledger.begin(), ledger.end(), c.group) != ledger.end();
+    if (c.group == name || c.name == name || in_ledger) out.push_back(c.name);
+  }
+  if (out.empty() && why) {
+    std::vector<std::string> known = ColumnGroups();
+    for (const auto& c : all) known.push_back(c.name);
+    *why = fmt::format("unknown column '{}'{}; groups: {}; or a single column such as '{}'", name,
+                       DidYouMean(name, known), fmt::join(ColumnGroups(), ", "),
+                       all.size() > 1 ? all[1].name : "t");
+  }
+  return out;
+}
+
+std::vector<std::string> DefaultColumns(const Scene& scene) {
+  std::vector<std::string> cols;
+  for (const char* g : {"t", "position", "quaternion", "velocity", "angular_velocity", "energy",
+                        "W_nc", "residual"}) {
+    for (auto& c : ExpandColumn(scene, g, nullptr)) cols.push_back(std::move(c));
+  }
+  return cols;
+}
+
+}  // namespace chasles::scene_internal
