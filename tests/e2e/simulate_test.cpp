@@ -42,10 +42,6 @@ nlohmann::json Simulate(const std::string& example, const std::string& extra = "
   return nlohmann::json::parse(r.out);
 }
 
-Vec3 ToVec(const nlohmann::json& j) {
-  return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
-}
-
 const nlohmann::json& FinalBody(const nlohmann::json& j, size_t i = 0) {
   return j.at("final").at("bodies").at(i);
 }
@@ -129,6 +125,29 @@ TEST(Simulate, TorqueFreeDiskPrecessesAtTheBodyRate) {
 }
 
 // Linear drag, k = c/m: z(t) = z0 + (vz0 + g/k)(1 - e^(-kt))/k - g t/k, x(t) = vx0 (1 - e^(-kt))/k.
+// Heavy symmetric top (examples/heavy-top.yaml): a cone of mass m, radius R, height h on its tip,
+// l = 3h/4, A = 3/20 m R^2 + 3/80 m h^2 + m l^2, C = 3/10 m R^2 about the tip. Steady precession
+// at tilt theta and axial spin w3 needs A cos(theta) W^2 - C w3 W + m g l = 0 (slow root).
+// The axis must then turn about the vertical at W with the tilt unchanged.
+TEST(Simulate, HeavyTopPrecessesSteadily) {
+  const double m = 0.5, R = 0.03, h = 0.08, g = 9.80665, l = 0.75 * h;
+  const double A = 3.0 / 20 * m * R * R + 3.0 / 80 * m * h * h + m * l * l;
+  const double C = 3.0 / 10 * m * R * R;
+  const double theta = 0.5, w3 = 600, ct = std::cos(theta);
+  const double W = (C * w3 - std::sqrt(C * C * w3 * w3 - 4 * A * ct * m * g * l)) / (2 * A * ct);
+  const auto j = Simulate("examples/heavy-top.yaml");
+  const double t = j.at("t_end").get<double>();
+  const auto q = FinalBody(j).at("quaternion");
+  const Quat q_WB(q.at(0).get<double>(), q.at(1).get<double>(), q.at(2).get<double>(),
+                  q.at(3).get<double>());
+  const Vec3 axis = q_WB * Vec3::UnitZ();
+  const Vec3 expected(std::sin(theta) * std::cos(W * t), std::sin(theta) * std::sin(W * t), ct);
+  EXPECT_TRUE(MatNear(axis, expected, kRun, 1.0));
+  // The tip stays at the origin and the spin about the axis stays w3.
+  EXPECT_TRUE(MatNear(ToVec(FinalBody(j).at("center_of_mass")), Vec3::Zero(), 0, 1e-12));
+  EXPECT_TRUE(Near(ToVec(FinalBody(j).at("angular_velocity_body")).z(), w3, kRun));
+}
+
 TEST(Simulate, ProjectileWithDragMatchesTheClosedFormAndStopsAtTheGround) {
   const double m = 0.5, c = 0.1, k = c / m, g = kStandardGravity, z0 = 2, vx0 = 15, vz0 = 12;
   auto z = [&](double t) { return z0 + (vz0 + g / k) * (1 - std::exp(-k * t)) / k - g * t / k; };
