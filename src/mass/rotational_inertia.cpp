@@ -97,20 +97,29 @@ PrincipalAxes RotationalInertia::CalcPrincipalAxes() const {
   } else if (eq01 || eq12) {
     // Axisymmetric tensor: the distinct axis u is well defined; within the repeated plane pick
     // the frame axis with the largest projection so that the answer does not depend on the
-    // eigensolver's arbitrary choice.
+    // eigensolver's arbitrary choice. Frame axes are tried in cyclic order after u's own
+    // (u ~ y tries z, then x), so that u ~ y gives (y, z, x): right-handed, all positive.
     const int distinct = eq01 ? 2 : 0;
-    const int first = eq01 ? 0 : 1;
-    const int second = eq01 ? 1 : 2;
-    const Vec3 u = V.col(distinct).normalized();
+    Vec3 u = V.col(distinct).normalized();
+    Eigen::Index k = 0;
+    u.cwiseAbs().maxCoeff(&k);
+    if (u[k] < 0) u = -u;
     Vec3 best = Vec3::Zero();
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 e = Vec3::Unit(k);
+    for (int step = 1; step <= 3; ++step) {
+      const Vec3 e = Vec3::Unit((k + step) % 3);
       const Vec3 proj = e - u * u.dot(e);
       if (proj.norm() > best.norm() + 1e-12) best = proj;
     }
-    V.col(distinct) = u;
-    V.col(first) = best.normalized();
-    V.col(second) = u.cross(V.col(first));  // right-handed for either position of u
+    best.normalize();
+    if (distinct == 0) {  // u is e1: e2 in the plane, e3 = e1 x e2
+      V.col(0) = u;
+      V.col(1) = best;
+      V.col(2) = u.cross(best);
+    } else {  // u is e3: e1 in the plane, e2 = e3 x e1
+      V.col(0) = best;
+      V.col(1) = u.cross(best);
+      V.col(2) = u;
+    }
   }
   // Deterministic signs: the largest-magnitude component of each axis is positive (ties go to
   // the earlier component), then the third axis is fixed by right-handedness.

@@ -108,9 +108,18 @@ TEST(RotationalInertia, RepeatedMomentsGiveFrameAxes) {
   const PrincipalAxes disk = RotationalInertia(0.25, 0.25, 0.5).CalcPrincipalAxes();
   EXPECT_TRUE(MatNear(disk.moments, Vec3(0.25, 0.25, 0.5), kExact));
   EXPECT_TRUE(MatNear(disk.axes, Mat3::Identity(), 1e-15, 1.0));
+  // A rod along z: the smallest moment's axis z first, then x and y in cyclic order.
   const PrincipalAxes rod = RotationalInertia(1.0 / 3, 1.0 / 3, 0.01).CalcPrincipalAxes();
-  EXPECT_TRUE(MatNear(rod.axes.col(0), Vec3::UnitZ(), 1e-15, 1.0));
-  EXPECT_TRUE(Near(rod.axes.determinant(), 1.0, kExact));
+  Mat3 zxy;
+  zxy << 0, 1, 0, 0, 0, 1, 1, 0, 0;
+  EXPECT_TRUE(MatNear(rod.axes, zxy, 1e-15, 1.0));
+  // A disk whose axis lies along y: its largest moment's axis y last, after z and x (cyclic
+  // order after y), so no axis comes out negative.
+  const PrincipalAxes disk_y = RotationalInertia(0.25, 0.5, 0.25).CalcPrincipalAxes();
+  Mat3 zxy_columns;
+  zxy_columns << 0, 1, 0, 0, 0, 1, 1, 0, 0;
+  EXPECT_TRUE(MatNear(disk_y.axes, zxy_columns, 1e-15, 1.0));
+  EXPECT_TRUE(MatNear(disk_y.moments, Vec3(0.25, 0.25, 0.5), kExact));
 }
 
 TEST(RotationalInertia, RadiiOfGyration) {
