@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config git
+  build-essential cmake pkg-config
   libeigen3-dev        # linear algebra
   libyaml-cpp-dev      # scene files, with line/column marks
   libcli11-dev         # command line
