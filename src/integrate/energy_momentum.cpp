@@ -13,6 +13,21 @@
 
 namespace chasles {
 
+namespace {
+// Adds `dt` times each force element's power, force and moment to its running integrals (one
+// half of the trapezoidal rule).
+void AddHalfStepIntegrals(const Data& data, double dt, State& s) {
+  for (size_t e = 0; e < data.elements.size(); ++e) {
+    const ForceElementOutput& o = data.elements[e];
+    ForceIntegrals& fi = s.force_integrals[e];
+    fi.work += dt * o.power;
+    fi.work_nonconservative += dt * o.power_nonconservative;
+    fi.linear_impulse_W += dt * o.force_W;
+    fi.angular_impulse_Wo_W += dt * o.moment_Wo_W;
+  }
+}
+}  // namespace
+
 void StepFreeRotation(const Mat3& I, const Mat3& I_inv, double h, Vec3& M, Quat& q) {
   (void)I;
   // Solve G(X) = X - M₀ - (h/2) X × (I⁻¹X) = 0 for the midpoint X = M̄.
@@ -64,7 +79,6 @@ void EnergyMomentumIntegrator::Step(State& s, double h) {
         fmt::format("energy-momentum step is {:.6g} s; it must be a positive time step", h));
   }
   const int nb = model_.num_bodies();
-  const int ne = model_.num_force_elements();
   const bool reuse = cached_valid_ && SameState(s, cached_);
   if (!reuse) {
     M_B_.resize(static_cast<size_t>(nb));
@@ -77,14 +91,7 @@ void EnergyMomentumIntegrator::Step(State& s, double h) {
     ++stats_.function_evaluations;
   }
   // Trapezoidal force integrals: first half with the start-of-step outputs.
-  for (int e = 0; e < ne; ++e) {
-    const ForceElementOutput& o = data_.elements[static_cast<size_t>(e)];
-    ForceIntegrals& fi = s.force_integrals[static_cast<size_t>(e)];
-    fi.work += 0.5 * h * o.power;
-    fi.work_nonconservative += 0.5 * h * o.power_nonconservative;
-    fi.linear_impulse_W += 0.5 * h * o.force_W;
-    fi.angular_impulse_Wo_W += 0.5 * h * o.moment_Wo_W;
-  }
+  AddHalfStepIntegrals(data_, 0.5 * h, s);
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
     const Body& body = model_.body(b);
@@ -112,14 +119,8 @@ void EnergyMomentumIntegrator::Step(State& s, double h) {
     }
     bs.w_WB_B = body.I_BBcm_B_inverse() * M_B_[i];
   }
-  for (int e = 0; e < ne; ++e) {
-    const ForceElementOutput& o = data_.elements[static_cast<size_t>(e)];
-    ForceIntegrals& fi = s.force_integrals[static_cast<size_t>(e)];
-    fi.work += 0.5 * h * o.power;
-    fi.work_nonconservative += 0.5 * h * o.power_nonconservative;
-    fi.linear_impulse_W += 0.5 * h * o.force_W;
-    fi.angular_impulse_Wo_W += 0.5 * h * o.moment_Wo_W;
-  }
+  // Second half with the end-of-step outputs.
+  AddHalfStepIntegrals(data_, 0.5 * h, s);
   // The forces in data_ were evaluated before the second kick; they are the next step's
   // first-kick forces only for position- and time-dependent forces. Velocity-dependent ones
   // are re-evaluated there only if the caller changed the state; otherwise the half-step

@@ -12,9 +12,12 @@
 
 #include "chasles/error.h"
 #include "test_support.h"
+#include "unit/mass/all_solids.h"
 
 namespace chasles {
 namespace {
+
+using test::AllSolids;
 
 using std::numbers::pi;
 using test::kExact;
@@ -26,21 +29,6 @@ using ::testing::HasSubstr;
 // is conservative (the difference of the 15- and 7-point rules), so 1e-10 requested gives
 // 1e-10 achieved with room to spare.
 constexpr double kTol = 1e-10;
-
-std::vector<std::unique_ptr<Shape>> AllSolids() {
-  std::vector<std::unique_ptr<Shape>> v;
-  v.push_back(MakeSolidCylinder(0.3, 0.8));
-  v.push_back(MakeTube(0.2, 0.3, 0.8));
-  v.push_back(MakeSolidSphere(0.3));
-  v.push_back(MakeThickSphericalShell(0.2, 0.3));
-  v.push_back(MakeSolidHemisphere(0.3));
-  v.push_back(MakeSolidCone(0.3, 0.8));
-  v.push_back(MakeBox(0.5, 0.3, 1.1));
-  v.push_back(MakeEllipsoid(0.5, 0.3, 1.1));
-  v.push_back(MakeTorus(0.3, 0.1));
-  v.push_back(MakeTriangularPrism({0.1, 0.2}, {0.7, 0.3}, {0.2, 0.9}, 0.4));
-  return v;
-}
 
 // Compares mass, centre of mass (relative to `length`) and inertia (relative to its largest
 // entry) of two mass distributions.

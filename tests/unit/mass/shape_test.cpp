@@ -12,9 +12,12 @@
 #include "chasles/error.h"
 #include "chasles/math/rotation.h"
 #include "test_support.h"
+#include "unit/mass/all_solids.h"
 
 namespace chasles {
 namespace {
+
+using test::AllSolids;
 
 using std::numbers::pi;
 using test::kExact;
@@ -242,22 +245,6 @@ TEST(Shape, TwoHemispheresMakeASphere) {
   EXPECT_TRUE(Near(sum.mass(), sphere.mass(), kExact));
   EXPECT_TRUE(MatNear(sum.p_BoBcm_B(), Vec3::Zero(), kExact, R));
   EXPECT_TRUE(MatNear(sum.I_BBcm_B().matrix(), sphere.I_BBcm_B().matrix(), kExact));
-}
-
-// Every solid with moderate dimensions, for the unit-cube map tests.
-std::vector<std::unique_ptr<Shape>> AllSolids() {
-  std::vector<std::unique_ptr<Shape>> v;
-  v.push_back(MakeSolidCylinder(0.3, 0.8));
-  v.push_back(MakeTube(0.2, 0.3, 0.8));
-  v.push_back(MakeSolidSphere(0.3));
-  v.push_back(MakeThickSphericalShell(0.2, 0.3));
-  v.push_back(MakeSolidHemisphere(0.3));
-  v.push_back(MakeSolidCone(0.3, 0.8));
-  v.push_back(MakeBox(0.5, 0.3, 1.1));
-  v.push_back(MakeEllipsoid(0.5, 0.3, 1.1));
-  v.push_back(MakeTorus(0.3, 0.1));
-  v.push_back(MakeTriangularPrism({0.1, 0.2}, {0.7, 0.3}, {0.2, 0.9}, 0.4));
-  return v;
 }
 
 TEST(Shape, UnitCubeMapJacobianIsTheDeterminant) {
