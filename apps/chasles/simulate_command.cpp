@@ -126,7 +126,17 @@ std::string Text(const Scene& scene, const StudyResult& r, const std::string& cs
                      r.stopped_by_event ? ", stopped by an event" : "");
   if (!r.events.empty()) {
     out += "\nEvents\n";
-    for (const auto& e : r.events) {
+    // A long run can record thousands: show the first and the last few, the JSON has all.
+    constexpr size_t kHead = 10, kTail = 3;
+    const size_t n = r.events.size();
+    for (size_t i = 0; i < n; ++i) {
+      if (n > kHead + kTail + 1 && i == kHead) {
+        out +=
+            fmt::format("  ... {} more (every event is in the JSON summary)\n", n - kHead - kTail);
+        i = n - kTail - 1;
+        continue;
+      }
+      const auto& e = r.events[i];
       out += fmt::format("  {:<24} t = {:.12g} s{}\n", e.name, e.t, e.stopped ? "  (stop)" : "");
     }
   }
