@@ -45,6 +45,7 @@ struct SimulateArgs {
   double until = std::numeric_limits<double>::quiet_NaN();  // [s]; NaN: the scene's
   std::string out_dir;                                      // "" = current directory
   std::string format = "text";                              // text | json
+  std::vector<std::string> columns;  // CSV columns or groups, replacing the scene's output
 };
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args);
 int RunSimulate(const SimulateArgs& args);

@@ -249,6 +249,9 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
       "Mass properties of every body and part: mass, centre of mass, inertia tensor, "
       "principal moments and axes, radii of gyration");
   AddSceneArgs(*cmd, args.scene);
+  cmd->get_option("scene")->description(
+      "Scene file (YAML), or a mesh file (.stl, .obj, .ply, .off) with --unit and a density. "
+      "Without one, the built-in demonstration scene is used.");
   cmd->add_option("--units", args.units,
                   "Units of the report: SI, US (in, lb), or a list such as 'mm,g' or 'ft,slug' "
                   "(default: the scene's own units)");
@@ -268,8 +271,9 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
   cmd->add_flag("--no-parts", args.hide_parts, "Leave out the table of parts");
   CLI::Option_group* mesh = cmd->add_option_group(
       "Mesh file", "When SCENE is a mesh file (.stl, .obj, .ply, .off) instead of a scene");
-  mesh->add_option("--unit", args.mesh_unit,
-                   "Length of one unit of the mesh file, e.g. mm or in (mesh files carry no units)");
+  mesh->add_option(
+      "--unit", args.mesh_unit,
+      "Length of one unit of the mesh file, e.g. mm or in (mesh files carry no units)");
   mesh->add_option("--density", args.mesh_density, "Density, e.g. 7850 or '7.85 g/cm^3'");
   mesh->add_option("--material", args.mesh_material, "A material name instead of a density");
   mesh->add_option("--mass", args.mesh_mass, "The total mass instead of a density");
@@ -296,12 +300,13 @@ Scene LoadMassInput(const MassArgs& args) {
            .empty();
   if (!args.scene.scene.empty() && IsMeshFileName(args.scene.scene)) {
     if (!args.scene.set.empty()) {
-      throw SceneError("command line", 0, 0, "--set", "--set is for scene parameters; a mesh file has none");
+      throw SceneError("command line", 0, 0, "--set",
+                       "--set is for scene parameters; a mesh file has none");
     }
-    return LoadMeshAsScene(args.scene.scene,
-                           MeshCommandOptions{args.mesh_unit, args.mesh_mode, args.mesh_density,
-                                              args.mesh_material, args.mesh_mass,
-                                              args.mesh_areal_density, args.mesh_thickness});
+    return LoadMeshAsScene(
+        args.scene.scene,
+        MeshCommandOptions{args.mesh_unit, args.mesh_mode, args.mesh_density, args.mesh_material,
+                           args.mesh_mass, args.mesh_areal_density, args.mesh_thickness});
   }
   if (mesh_options) {
     throw SceneError("command line", 0, 0, "",

@@ -9,7 +9,7 @@ namespace chasles::cli {
 
 void AddSceneArgs(CLI::App& cmd, SceneArgs& args) {
   cmd.add_option("scene", args.scene,
-                 "Scene file (YAML), or for `mass` a mesh file. Without one, the built-in demonstration scene is used.");
+                 "Scene file (YAML). Without one, the built-in demonstration scene is used.");
   cmd.add_option("--set", args.set,
                  "Override a scene parameter: NAME=EXPRESSION, e.g. --set 'h1=0.25*h' (repeatable)")
       ->allow_extra_args(false)

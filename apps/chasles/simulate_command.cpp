@@ -201,6 +201,10 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "Directory for <scene>.csv and <scene>.json (default: the current directory)");
   cmd->add_option("--format", args.format, "Report on standard output: text (default) or json")
       ->check(CLI::IsMember({"text", "json"}));
+  cmd->add_option("--columns", args.columns,
+                  "CSV columns or groups, replacing the scene's output.columns, e.g. "
+                  "--columns position,euler,energy (groups: docs/scene-format.md, output)")
+      ->delimiter(',');
   cmd->footer(
       "Examples:\n"
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
@@ -215,7 +219,8 @@ int RunSimulate(const SimulateArgs& args) {
   if (args.scene.scene.empty()) {
     throw InputError("chasles simulate needs a scene file (chasles simulate --help)");
   }
-  const Scene scene = LoadScene(args.scene);
+  Scene scene = LoadScene(args.scene);
+  if (!args.columns.empty()) scene.dynamics.columns = SelectColumns(scene, args.columns);
   StudyOptions options;
   if (!std::isnan(args.until)) {
     if (!(args.until > 0) || !std::isfinite(args.until)) {

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "chasles/scene/scene_error.h"
+#include "chasles/scene/study.h"
 #include "chasles/suggest.h"
 #include "internal/study_columns.h"
 
@@ -103,3 +105,20 @@ std::vector<std::string> DefaultColumns(const Scene& scene) {
 }
 
 }  // namespace chasles::scene_internal
+
+namespace chasles {
+
+std::vector<std::string> SelectColumns(const Scene& scene, const std::vector<std::string>& names) {
+  std::vector<std::string> columns = {"t"};
+  for (const std::string& name : names) {
+    std::string why;
+    const std::vector<std::string> expanded = scene_internal::ExpandColumn(scene, name, &why);
+    if (expanded.empty()) throw SceneError("command line", 0, 0, "--columns", why);
+    for (const auto& e : expanded) {
+      if (std::find(columns.begin(), columns.end(), e) == columns.end()) columns.push_back(e);
+    }
+  }
+  return columns;
+}
+
+}  // namespace chasles

@@ -289,6 +289,21 @@ TEST(SimulateCli, WritesCsvAndJsonAndAReport) {
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
 }
 
+TEST(SimulateCli, ColumnsFromTheCommandLine) {
+  const auto dir = OutDir();
+  const CliResult r = RunCli("simulate " + Quote(SourcePath("examples/spring-mass.yaml")) +
+                             " --out " + Quote(dir.string()) + " --columns position,energy");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream csv(dir / "spring-mass.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "t,block_x,block_y,block_z,T_trans,T_rot,T,V,E");
+  const CliResult bad = RunCli("simulate " + Quote(SourcePath("examples/spring-mass.yaml")) +
+                               " --out " + Quote(dir.string()) + " --columns postion");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, ::testing::HasSubstr("did you mean 'position'"));
+}
+
 TEST(SimulateCli, HelpAndErrors) {
   const CliResult help = RunCli("simulate --help");
   EXPECT_EQ(help.exit_code, 0);

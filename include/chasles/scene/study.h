@@ -137,4 +137,8 @@ struct StudyResult {
 /// becomes non-finite (the body and the time are named; nothing non-finite is ever returned).
 StudyResult RunStudy(const Scene& scene, const StudyOptions& options = {});
 
+/// The CSV columns named on the command line (groups or single columns, as in the scene's
+/// `output.columns`), with `t` first. Throws SceneError naming --columns for an unknown name.
+std::vector<std::string> SelectColumns(const Scene& scene, const std::vector<std::string>& names);
+
 }  // namespace chasles
