@@ -46,6 +46,7 @@ struct SimulateArgs {
   std::string out_dir;                                      // "" = current directory
   std::string format = "text";                              // text | json
   std::vector<std::string> columns;  // CSV columns or groups, replacing the scene's output
+  std::string units;                 // text report units; "" = the scene's
 };
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args);
 int RunSimulate(const SimulateArgs& args);

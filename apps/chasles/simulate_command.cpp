@@ -14,6 +14,7 @@
 #include "chasles/math/quaternion.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
+#include "chasles/scene/units.h"
 #include "commands.h"
 #include "scene_args.h"
 
@@ -23,10 +24,6 @@ namespace {
 
 nlohmann::json VecJson(const Vec3& v) {
   return {v.x(), v.y(), v.z()};
-}
-
-std::string VecText(const Vec3& v) {
-  return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", v.x(), v.y(), v.z());
 }
 
 std::string CsvName(const std::string& name) {
@@ -117,13 +114,42 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
   return j;
 }
 
-std::string Text(const Scene& scene, const StudyResult& r, const std::string& csv_path,
-                 const std::string& json_path) {
+// Values of the text report in the units asked for (the scene's own by default).
+struct Show {
+  const UnitSystem& u;
+  std::string operator()(double v, const Dimension& d, Angular a = Angular::kNo) const {
+    const std::string unit = u.FormatUnit(d, a);
+    return fmt::format("{:.9g}{}{}", u.FromSI(v, d, a), unit.empty() ? "" : " ", unit);
+  }
+  std::string operator()(const Vec3& v, const Dimension& d, Angular a = Angular::kNo) const {
+    const std::string unit = u.FormatUnit(d, a);
+    return fmt::format("[{:.9g}, {:.9g}, {:.9g}]{}{}", u.FromSI(v.x(), d, a), u.FromSI(v.y(), d, a),
+                       u.FromSI(v.z(), d, a), unit.empty() ? "" : " ", unit);
+  }
+};
+
+constexpr Dimension kTimeDim{0, 0, 1};
+constexpr Dimension kVelocityDim{1, 0, -1};
+constexpr Dimension kRateDim{0, 0, -1};
+constexpr Dimension kEnergyDim{2, 1, -2};
+constexpr Dimension kMomentumDim{1, 1, -1};
+constexpr Dimension kAngularMomentumDim{2, 1, -1};
+
+std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& units,
+                 const std::string& csv_path, const std::string& json_path) {
+  const Show show{units};
+  const auto time = [&](double t) { return show(t, kTimeDim); };
+  // Energy and torque share a dimension; in SI the energy's own name is the joule.
+  const bool joules = units.FormatUnit(kEnergyDim) == "N*m";
+  const auto energy = [&](double e) {
+    return joules ? fmt::format("{:.9g} J", e) : show(e, kEnergyDim);
+  };
   std::string out;
   out += fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
                      scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
-  out += fmt::format("Simulated to t = {:.9g} s{} (SI units throughout)\n", r.t_end,
-                     r.stopped_by_event ? ", stopped by an event" : "");
+  out +=
+      fmt::format("Simulated to t = {}{} (report in {} units; CSV and JSON in SI)\n", time(r.t_end),
+                  r.stopped_by_event ? ", stopped by an event" : "", units.spec());
   if (!r.events.empty()) {
     out += "\nEvents\n";
     // A long run can record thousands: show the first and the last few, the JSON has all.
@@ -137,49 +163,49 @@ std::string Text(const Scene& scene, const StudyResult& r, const std::string& cs
         continue;
       }
       const auto& e = r.events[i];
-      out += fmt::format("  {:<24} t = {:.12g} s{}\n", e.name, e.t, e.stopped ? "  (stop)" : "");
+      out += fmt::format("  {:<24} t = {}{}\n", e.name, show(e.t, kTimeDim),
+                         e.stopped ? "  (stop)" : "");
     }
   }
   if (!r.jumps.empty()) {
     out += "\nImpulses and impacts\n";
     for (const auto& x : r.jumps) {
-      out += fmt::format("  t = {:.9g} s: {}; energy {:.9g} J -> {:.9g} J (change {:+.6g} J)\n",
-                         x.t, x.description, x.energy_before, x.energy_after,
-                         x.energy_after - x.energy_before);
-      out += fmt::format("    afterwards: v = {} m/s, w = {} rad/s\n", VecText(x.v_after_W),
-                         VecText(x.w_after_W));
+      out += fmt::format("  t = {}: {}; energy {} -> {} (change {})\n", time(x.t), x.description,
+                         energy(x.energy_before), energy(x.energy_after),
+                         energy(x.energy_after - x.energy_before));
+      out += fmt::format("    afterwards: v = {}, w = {}\n", show(x.v_after_W, kVelocityDim),
+                         show(x.w_after_W, kRateDim, Angular::kYes));
     }
   }
   out += "\nFinal state (centre of mass, velocity and angular velocity in the world frame)\n";
   for (const auto& b : r.final_bodies) {
     const Eigen::Vector4d q = QuatToWxyz(b.q_WB);
     out += fmt::format(
-        "  {}\n    position {} m\n    quaternion [{:.9g}, {:.9g}, {:.9g}, {:.9g}]\n"
-        "    velocity {} m/s\n    angular velocity {} rad/s (body frame {})\n",
-        b.name, VecText(b.p_WBcm), q[0], q[1], q[2], q[3], VecText(b.v_WBcm_W), VecText(b.w_WB_W),
-        VecText(b.w_WB_B));
+        "  {}\n    position {}\n    quaternion [{:.9g}, {:.9g}, {:.9g}, {:.9g}]\n"
+        "    velocity {}\n    angular velocity {} (body frame {})\n",
+        b.name, show(b.p_WBcm, kLength), q[0], q[1], q[2], q[3], show(b.v_WBcm_W, kVelocityDim),
+        show(b.w_WB_W, kRateDim, Angular::kYes), show(b.w_WB_B, kRateDim, Angular::kYes));
   }
   const StudyLedger& L = r.ledger;
   out += "\nLedger (from t = 0)\n";
-  out += fmt::format("  kinetic energy      {:.9g} J (translation {:.9g}, rotation {:.9g})\n",
-                     L.kinetic_translational + L.kinetic_rotational, L.kinetic_translational,
-                     L.kinetic_rotational);
-  out += fmt::format("  potential energy    {:.9g} J\n", L.potential);
-  out += fmt::format("  mechanical energy   {:.9g} J (initially {:.9g} J)\n", L.energy,
-                     L.energy_initial);
-  out += fmt::format("  non-conservative work {:.9g} J\n", L.work_nonconservative);
+  out += fmt::format("  kinetic energy      {} (translation {}, rotation {})\n",
+                     energy(L.kinetic_translational + L.kinetic_rotational),
+                     energy(L.kinetic_translational), energy(L.kinetic_rotational));
+  out += fmt::format("  potential energy    {}\n", energy(L.potential));
+  out += fmt::format("  mechanical energy   {} (initially {})\n", energy(L.energy),
+                     energy(L.energy_initial));
+  out += fmt::format("  non-conservative work {}\n", energy(L.work_nonconservative));
   for (const auto& [name, w] : L.work_by_force)
-    out += fmt::format("    {:<20} {:.9g} J\n", name, w);
-  out += fmt::format("  dissipated          {:.9g} J\n", L.dissipated);
-  if (!r.jumps.empty()) out += fmt::format("  impulses and impacts {:+.9g} J\n", L.jumps);
-  out += fmt::format("  balance residual    {:.3e} J ({:.2e} of the energy scale {:.6g} J)\n",
-                     L.residual, L.energy_scale > 0 ? std::abs(L.residual) / L.energy_scale : 0.0,
-                     L.energy_scale);
-  out += fmt::format("  linear momentum     {} kg*m/s\n", VecText(L.linear_momentum_W));
+    out += fmt::format("    {:<20} {}\n", name, energy(w));
+  out += fmt::format("  dissipated          {}\n", energy(L.dissipated));
+  if (!r.jumps.empty()) out += fmt::format("  impulses and impacts {}\n", energy(L.jumps));
   out += fmt::format(
-      "  angular momentum    {} kg*m^2/s about the centre of mass, {} about the "
-      "origin\n",
-      VecText(L.angular_momentum_Scm_W), VecText(L.angular_momentum_Wo_W));
+      "  balance residual    {} ({:.2e} of the energy scale {})\n", energy(L.residual),
+      L.energy_scale > 0 ? std::abs(L.residual) / L.energy_scale : 0.0, energy(L.energy_scale));
+  out += fmt::format("  linear momentum     {}\n", show(L.linear_momentum_W, kMomentumDim));
+  out += fmt::format("  angular momentum    {} about the centre of mass, {} about the origin\n",
+                     show(L.angular_momentum_Scm_W, kAngularMomentumDim),
+                     show(L.angular_momentum_Wo_W, kAngularMomentumDim));
   out += fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n", r.integrator,
                      r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
   for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);
@@ -205,6 +231,9 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "CSV columns or groups, replacing the scene's output.columns, e.g. "
                   "--columns position,euler,energy (groups: docs/scene-format.md, output)")
       ->delimiter(',');
+  cmd->add_option("--units", args.units,
+                  "Units of the text report: SI, US (in, lb, lbf), or a list such as 'ft,slug' "
+                  "(default: the scene's own units; the CSV and JSON are always SI)");
   cmd->footer(
       "Examples:\n"
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
@@ -221,6 +250,8 @@ int RunSimulate(const SimulateArgs& args) {
   }
   Scene scene = LoadScene(args.scene);
   if (!args.columns.empty()) scene.dynamics.columns = SelectColumns(scene, args.columns);
+  // Checked before the run, so a mistyped unit does not waste a long simulation.
+  const UnitSystem units = UnitSystem::Parse(args.units.empty() ? scene.units : args.units);
   StudyOptions options;
   if (!std::isnan(args.until)) {
     if (!(args.until > 0) || !std::isfinite(args.until)) {
@@ -267,7 +298,7 @@ int RunSimulate(const SimulateArgs& args) {
   if (args.format == "json") {
     Emit("", j.dump(2) + "\n");
   } else {
-    Emit("", Text(scene, r, csv_path, json_path));
+    Emit("", Text(scene, r, units, csv_path, json_path));
   }
   return 0;
 }

@@ -301,6 +301,11 @@ UnitSystem UnitSystem::Parse(std::string_view spec) {
       }
     }
   }
+  if (!sys.force_ && (sys.mass_.name == "lb" || sys.mass_.name == "lbm")) {
+    // Whoever counts mass in pounds states forces and energies in pound-force (lbf, lbf*in),
+    // as the "US" system does: lb*in^2/s^2 is exact but nobody reads it.
+    sys.force_ = Unit{"lbf", LookupUnit("lbf")->value};
+  }
   return sys;
 }
 

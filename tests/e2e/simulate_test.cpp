@@ -304,6 +304,21 @@ TEST(SimulateCli, ColumnsFromTheCommandLine) {
   EXPECT_THAT(bad.err, ::testing::HasSubstr("did you mean 'position'"));
 }
 
+TEST(SimulateCli, TextReportInTheScenesUnits) {
+  // The cube example is written in inches and pounds: its report follows, the JSON stays SI.
+  const auto dir = OutDir();
+  const std::string cube = Quote(SourcePath("examples/section-8.5-cube-struck.yaml"));
+  const CliResult us = RunCli("simulate " + cube + " --out " + Quote(dir.string()));
+  ASSERT_EQ(us.exit_code, 0) << us.err;
+  EXPECT_THAT(us.out, ::testing::HasSubstr("lbf*in"));
+  EXPECT_THAT(us.out, ::testing::HasSubstr("in/s"));
+  const CliResult si = RunCli("simulate " + cube + " --out " + Quote(dir.string()) + " --units SI");
+  EXPECT_THAT(si.out, ::testing::HasSubstr(" J "));
+  const CliResult bad =
+      RunCli("simulate " + cube + " --out " + Quote(dir.string()) + " --units furlong");
+  EXPECT_EQ(bad.exit_code, 2);
+}
+
 TEST(SimulateCli, HelpAndErrors) {
   const CliResult help = RunCli("simulate --help");
   EXPECT_EQ(help.exit_code, 0);

@@ -88,9 +88,10 @@ enum class Angular { kNo, kYes };
 ///    angle/time, e.g. deg/s);
 ///  - "rpm" or "cps" shows angular velocities in that unit;
 ///  - a force unit (N kN lbf kip dyn) shows every mass*length/time^2 factor as that force
-///    ("lbf*in" for torque). Without one, the force is named only when the base units are
-///    coherent with a named force (kg,m,s -> N; slug,ft,s -> lbf; g,cm,s -> dyn; t,m,s -> kN),
-///    otherwise it is composed ("lb*in/s^2").
+///    ("lbf*in" for torque). Without one, the force is named when the base units are
+///    coherent with a named force (kg,m,s -> N; slug,ft,s -> lbf; g,cm,s -> dyn; t,m,s -> kN)
+///    and is lbf whenever the mass is in pounds (lb, lbm); otherwise it is composed
+///    ("g*mm/s^2").
 /// e.g. "SI", "US", "mm,g", "ft,slug", "US,deg,rpm". Every shown value satisfies
 /// value * factor(FormatUnit(dim)) == SI value, so mixing lb and lbf stays consistent.
 class UnitSystem {

@@ -183,6 +183,11 @@ TEST(UnitSystem, ListedBaseUnitsAndCoherentForces) {
   EXPECT_EQ(ft_slug.FormatUnit({2, 1, 0}), "slug*ft^2");
   EXPECT_EQ(UnitSystem::Parse("cm,g").FormatUnit({1, 1, -2}), "dyn");
   EXPECT_EQ(UnitSystem::Parse("in,lb,s,kip").FormatUnit({2, 1, -2}), "kip*in");
+  // Pounds of mass bring pound-force: energy in lbf*in, exactly 0.0254 * 4.4482216152605 J.
+  const UnitSystem in_lb = UnitSystem::Parse("in,lb");
+  EXPECT_EQ(in_lb.FormatUnit({2, 1, -2}), "lbf*in");
+  EXPECT_TRUE(Near(in_lb.ToSI(1.0, {2, 1, -2}), 0.0254 * 0.45359237 * 9.80665, kExact));
+  EXPECT_EQ(in_lb.FormatUnit({2, 1, 0}), "lb*in^2");
 }
 
 TEST(UnitSystem, AnglesAndAngularVelocities) {
