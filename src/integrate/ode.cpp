@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/math/quaternion.h"
 
@@ -79,6 +80,10 @@ void OdeSystem::Derivative(double t, const Vector& y, Vector& ydot) {
     d[2] = out.force_W.x(), d[3] = out.force_W.y(), d[4] = out.force_W.z();
     d[5] = out.moment_Wo_W.x(), d[6] = out.moment_Wo_W.y(), d[7] = out.moment_Wo_W.z();
   }
+}
+
+void OdeSystem::Project(State& state) {
+  ProjectOntoConstraints(model_, state, data_);
 }
 
 void OdeSystem::NormalizeQuaternions(Vector& y, Vector* ydot) const {

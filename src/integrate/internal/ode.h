@@ -33,6 +33,11 @@ class OdeSystem {
   /// Scales each body's quaternion in y to unit length and the matching entries of `ydot` by
   /// the same factor (q̇ = ½ q ⊗ w is linear in q, so ydot stays f(t, y) exactly).
   void NormalizeQuaternions(Vector& y, Vector* ydot) const;
+  /// True when the model has constraints (then the state is projected after each step).
+  bool has_constraints() const { return model_.num_constraints() > 0; }
+  /// Projects `state` onto the constraint manifold (positions, then velocities); see
+  /// ProjectOntoConstraints.
+  void Project(State& state);
   /// Number of derivative evaluations so far.
   long long evaluations() const { return evaluations_; }
 

@@ -1,0 +1,243 @@
+#include "chasles/dynamics/constraint_solve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
+
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/error.h"
+#include "chasles/math/quaternion.h"
+
+namespace chasles {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// X M⁻¹ for a matrix X with 6 columns per body: linear block / m, angular block times
+// I_W⁻¹ = R I_B⁻¹ Rᵀ (symmetric, so right and left products agree).
+MatrixXd TimesMassInverse(const Model& model, const Data& data, const MatrixXd& X) {
+  MatrixXd Y(X.rows(), X.cols());
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    const Body& body = model.body(b);
+    const Mat3 I_inv_W = data.R_WB[i] * body.I_BBcm_B_inverse() * data.R_WB[i].transpose();
+    Y.middleCols<3>(6 * b) = X.middleCols<3>(6 * b) / body.mass();
+    Y.middleCols<3>(6 * b + 3) = X.middleCols<3>(6 * b + 3) * I_inv_W;
+  }
+  return Y;
+}
+
+// Solves A x = r for symmetric positive semi-definite A = J M⁻¹ Jᵀ. Returns the rank. LDLᵀ
+// when A is well conditioned; otherwise the least-norm least-squares solution. Throws when
+// the least-squares residual shows the rows cannot all hold (inconsistent constraints).
+int SolveSchur(const Model& model, const std::vector<int>& row_owner, const MatrixXd& A,
+               const VectorXd& r, VectorXd& x, const char* what) {
+  const Eigen::Index n = A.rows();
+  if (n == 0) {
+    x.resize(0);
+    return 0;
+  }
+  const double a_max = A.diagonal().cwiseAbs().maxCoeff();
+  Eigen::LDLT<MatrixXd> ldlt(A);
+  if (ldlt.info() == Eigen::Success && a_max > 0.0) {
+    const VectorXd d = ldlt.vectorD();
+    if (d.minCoeff() > 1e-10 * a_max) {
+      x = ldlt.solve(r);
+      return static_cast<int>(n);
+    }
+  }
+  Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(A);
+  cod.setThreshold(1e-10);
+  x = cod.solve(r);
+  const VectorXd res = A * x - r;
+  const double scale = r.cwiseAbs().maxCoeff() + a_max * x.cwiseAbs().maxCoeff();
+  const double tol = 1e-8 * std::max(scale, 1e-300);
+  if (res.cwiseAbs().maxCoeff() > tol) {
+    std::string names;
+    int last = -1;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const int c = row_owner[static_cast<size_t>(k)];
+      if (std::abs(res[k]) > tol && c != last &&
+          names.find("'" + model.constraint(c).name() + "'") == std::string::npos) {
+        names += (names.empty() ? "'" : ", '") + model.constraint(c).name() + "'";
+        last = c;
+      }
+    }
+    throw InputError(fmt::format(
+        "constraints {} are inconsistent: no {} satisfies all of them (least-squares residual "
+        "{:.3g}); remove or change one of them (two drivers on the same coordinate, or a "
+        "joint that contradicts another)",
+        names, what, res.cwiseAbs().maxCoeff()));
+  }
+  return static_cast<int>(cod.rank());
+}
+
+std::vector<int> RowOwners(const Model& model) {
+  std::vector<int> owner(static_cast<size_t>(model.num_constraint_rows()));
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const int o = model.constraint_row_offset(c);
+    for (int k = 0; k < model.constraint(c).num_rows(); ++k) owner[static_cast<size_t>(o + k)] = c;
+  }
+  return owner;
+}
+
+VectorXd GeneralizedVelocity(const Model& model, const State& state, const Data& data) {
+  VectorXd u(6 * model.num_bodies());
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    u.segment<3>(6 * b) = state.bodies[i].v_WBcm_W;
+    u.segment<3>(6 * b + 3) = data.w_WB_W[i];
+  }
+  return u;
+}
+
+}  // namespace
+
+void CalcConstraintRows(const Model& model, const State& state, Data& data) {
+  data.J.setZero();
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const Constraint& con = model.constraint(c);
+    ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+    e = ConstraintEval{};
+    con.Evaluate(model, state, data, e);
+    const int o = model.constraint_row_offset(c);
+    const int n = con.num_rows();
+    if (con.parent() != kWorld) data.J.block(o, 6 * con.parent(), n, 6) = e.J_parent.topRows(n);
+    data.J.block(o, 6 * con.child(), n, 6) = e.J_child.topRows(n);
+    data.velocity_rhs.segment(o, n) = e.velocity_rhs.head(n);
+    data.acceleration_rhs.segment(o, n) = e.acceleration_rhs.head(n);
+    data.position_error.segment(o, n) = e.position_error.head(n);
+  }
+}
+
+void SolveConstraintForces(const Model& model, const State& state, Data& data) {
+  const int nb = model.num_bodies();
+  CalcConstraintRows(model, state, data);
+  // Free accelerations u̇_free = [a_WBcm_W; R ẇ_B] from the Newton–Euler stage.
+  VectorXd u_dot(6 * nb);
+  for (int b = 0; b < nb; ++b) {
+    const auto i = static_cast<size_t>(b);
+    u_dot.segment<3>(6 * b) = data.a_WBcm_W[i];
+    u_dot.segment<3>(6 * b + 3) = data.R_WB[i] * data.wdot_WB_B[i];
+  }
+  const MatrixXd JMinv = TimesMassInverse(model, data, data.J);
+  const MatrixXd A = JMinv * data.J.transpose();
+  const VectorXd r = data.acceleration_rhs - data.J * u_dot;
+  data.constraint_rank = SolveSchur(model, RowOwners(model), A, r, data.lambda, "set of reactions");
+  u_dot += JMinv.transpose() * data.lambda;  // M⁻¹ Jᵀ λ (M⁻¹ symmetric)
+  for (int b = 0; b < nb; ++b) {
+    const auto i = static_cast<size_t>(b);
+    data.a_WBcm_W[i] = u_dot.segment<3>(6 * b);
+    data.wdot_WB_B[i] = data.R_WB[i].transpose() * u_dot.segment<3>(6 * b + 3);
+  }
+  // Reactions: the child's share of Jᵀλ is a force at Bcm and a moment about Bcm (in W);
+  // moved to the joint point J: M_J = M_Bcm - (p_WJ - p_WBcm) × F.
+  const VectorXd Ju = data.J * GeneralizedVelocity(model, state, data);
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const Constraint& con = model.constraint(c);
+    const auto ci = static_cast<size_t>(c);
+    const ConstraintEval& e = data.constraint_rows[ci];
+    ConstraintOutput& out = data.constraints[ci];
+    const int o = model.constraint_row_offset(c);
+    const int n = con.num_rows();
+    out.lambda.setZero();
+    out.lambda.head(n) = data.lambda.segment(o, n);
+    const Eigen::Matrix<double, 6, 1> Fc = e.J_child.topRows(n).transpose() * out.lambda.head(n);
+    const auto bi = static_cast<size_t>(con.child());
+    const Vec3 F = Fc.head<3>();
+    const Vec3 r_J = e.p_WJ - state.bodies[bi].p_WBcm;
+    out.p_WJ = e.p_WJ;
+    out.F_Jc_W = F;
+    out.M_Jc_W = Fc.tail<3>() - r_J.cross(F);
+    out.F_Jc_B = data.R_WB[bi].transpose() * out.F_Jc_W;
+    out.M_Jc_B = data.R_WB[bi].transpose() * out.M_Jc_W;
+    out.power = data.lambda.segment(o, n).dot(Ju.segment(o, n));
+  }
+}
+
+ConstraintViolation CalcConstraintViolation(const Model& model, const State& state, Data& data) {
+  ConstraintViolation v;
+  if (model.num_constraints() == 0) return v;
+  CalcKinematics(model, state, data);
+  CalcConstraintRows(model, state, data);
+  const VectorXd res = data.J * GeneralizedVelocity(model, state, data) - data.velocity_rhs;
+  double worst = -1.0;
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+    const int o = model.constraint_row_offset(c);
+    for (int k = 0; k < model.constraint(c).num_rows(); ++k) {
+      const double g = e.holonomic[static_cast<size_t>(k)] ? std::abs(e.position_error[k]) : 0.0;
+      const double dv = std::abs(res[o + k]);
+      v.position = std::max(v.position, g);
+      v.velocity = std::max(v.velocity, dv);
+      if (std::max(g, dv) > worst) worst = std::max(g, dv), v.worst = c;
+    }
+  }
+  return v;
+}
+
+void ProjectOntoConstraints(const Model& model, State& state, Data& data,
+                            const ProjectionOptions& options) {
+  if (model.num_constraints() == 0) return;
+  const int nb = model.num_bodies();
+  const std::vector<int> owner = RowOwners(model);
+  std::vector<int> hol;  // holonomic rows
+  std::vector<int> hol_owner;
+  VectorXd mu, dx;
+  for (int iter = 0; iter < options.max_iterations; ++iter) {
+    CalcKinematics(model, state, data);
+    CalcConstraintRows(model, state, data);
+    if (iter == 0) {
+      for (int c = 0; c < model.num_constraints(); ++c) {
+        const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+        for (int k = 0; k < model.constraint(c).num_rows(); ++k) {
+          if (e.holonomic[static_cast<size_t>(k)]) {
+            hol.push_back(model.constraint_row_offset(c) + k);
+            hol_owner.push_back(c);
+          }
+        }
+      }
+      if (hol.empty()) break;
+    }
+    const auto nh = static_cast<Eigen::Index>(hol.size());
+    MatrixXd G(nh, 6 * nb);
+    VectorXd g(nh);
+    for (Eigen::Index k = 0; k < nh; ++k) {
+      G.row(k) = data.J.row(hol[static_cast<size_t>(k)]);
+      g[k] = data.position_error[hol[static_cast<size_t>(k)]];
+    }
+    if (g.cwiseAbs().maxCoeff() <= options.position_tolerance) break;
+    const MatrixXd GMinv = TimesMassInverse(model, data, G);
+    SolveSchur(model, hol_owner, GMinv * G.transpose(), g, mu, "configuration");
+    dx = -GMinv.transpose() * mu;
+    for (int b = 0; b < nb; ++b) {
+      BodyState& bs = state.bodies[static_cast<size_t>(b)];
+      bs.p_WBcm += dx.segment<3>(6 * b);
+      // δθ is a small rotation about W's axes: q ← exp(δθ) ⊗ q.
+      bs.q_WB = (QuatExp(dx.segment<3>(6 * b + 3)) * bs.q_WB).normalized();
+    }
+  }
+  // Velocities: J u = b at the projected configuration.
+  CalcKinematics(model, state, data);
+  CalcConstraintRows(model, state, data);
+  const VectorXd res = data.J * GeneralizedVelocity(model, state, data) - data.velocity_rhs;
+  if (res.size() == 0 || res.cwiseAbs().maxCoeff() == 0.0) return;
+  const MatrixXd JMinv = TimesMassInverse(model, data, data.J);
+  SolveSchur(model, owner, JMinv * data.J.transpose(), res, mu, "velocity");
+  const VectorXd du = -JMinv.transpose() * mu;
+  for (int b = 0; b < nb; ++b) {
+    const auto i = static_cast<size_t>(b);
+    BodyState& bs = state.bodies[i];
+    bs.v_WBcm_W += du.segment<3>(6 * b);
+    bs.w_WB_B += data.R_WB[i].transpose() * du.segment<3>(6 * b + 3);
+  }
+  CalcKinematics(model, state, data);  // leave the kinematics stage consistent with `state`
+}
+
+}  // namespace chasles
