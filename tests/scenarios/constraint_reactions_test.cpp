@@ -326,5 +326,65 @@ TEST(SupportReaction, TiltedDiskOnARotatingShaftProblem831) {
                       Vec3(0, 0, Omega), 1e-9));
 }
 
+// A conical pendulum on a spherical joint: a small sphere (mass m) at distance L from the
+// pivot, the string at angle α from the downward vertical, going round a horizontal circle of
+// radius ρ = L sin α. Vertical balance T cos α = m g, radial T sin α = m v²/ρ give
+// T = m g / cos α and v² = g L sin α tan α; the whole body turns at Ω = v/ρ about z, and a
+// sphere's spin adds no moment (I w is parallel to w).
+TEST(SupportReaction, ConicalPendulumOnASphericalJoint) {
+  const double m = 0.9, L = 1.1, alpha = 0.6, r = 0.02;
+  const double rho = L * std::sin(alpha), v = std::sqrt(kG * L * std::sin(alpha) * std::tan(alpha));
+  Model model;
+  model.AddBody("bob", Diagonal(m, Vec3::Constant(0.4 * m * r * r)));
+  model.AddForceElement(std::make_shared<UniformGravity>("gravity", kGravity));
+  State s = MakeRestState(model);
+  // Gravity along -y, so the circle lies in a plane y = const: the bob at (ρ, -L cos α, 0)
+  // moving along -z, the body turning at Ω = (v/ρ) ŷ (Ω ŷ × ρ x̂ = -Ωρ ẑ).
+  SetBodyPose(model, 0, Vec3(rho, -L * std::cos(alpha), 0), Quat::Identity(), s);
+  SetBodyVelocity(model, 0, Vec3(0, 0, -v), Vec3(0, v / rho, 0), s);
+  model.AddConstraint(std::make_shared<Joint>(
+      "ball", JointKind::kSpherical, kWorld, AttachmentFrame{Vec3::Zero()}, 0,
+      AttachmentFrameAtWorldPose(model, s, 0, Vec3::Zero(), Mat3::Identity())));
+  const InstantaneousSolution sol = SolveInstantaneous(model, s);
+  const double T = m * kG / std::cos(alpha);
+  const Vec3 to_pivot = -s.bodies[0].p_WBcm.normalized();
+  EXPECT_TRUE(MatNear(sol.reactions[0].F_Jc_W, T * to_pivot, kSolve));
+  EXPECT_TRUE(MatNear(sol.bodies[0].a_WBcm_W, Vec3(-v * v / rho, 0, 0), kSolve, kG));
+  EXPECT_TRUE(MatNear(sol.bodies[0].alpha_WB_W, Vec3::Zero(), kSolve, kG / L));
+}
+
+// A weld: a uniform rod (m1, L) pinned at its top end, with a small block (m2, moment I2
+// about its centre) welded at its lower end, released at φ from the downward vertical. As
+// one compound pendulum about the pin: I_O φ̈ = -(m1 L/2 + m2 L) g sin φ,
+// I_O = m1 L²/3 + m2 L² + I2. The weld then carries the block's Newton–Euler load:
+// F = m2 (a_2 - g) and, about the block's centre, M = I2 φ̈ ẑ.
+TEST(SupportReaction, WeldedBlockMovesWithTheRod) {
+  const double m1 = 1.5, L = 1.2, m2 = 0.8, I2 = 0.004, phi = 0.7;
+  Model model;
+  model.AddBody("rod", SlenderRod(m1, L));
+  model.AddBody("block", Diagonal(m2, Vec3(I2, I2, I2)));
+  model.AddForceElement(std::make_shared<UniformGravity>("gravity", kGravity));
+  State s = MakeRestState(model);
+  const Vec3 e(std::sin(phi), -std::cos(phi), 0);   // pin to lower end
+  const Quat q = RotZ(phi - std::numbers::pi / 2);  // body x along e
+  SetBodyPose(model, 0, 0.5 * L * e, q, s);
+  SetBodyPose(model, 1, L * e, q, s);
+  model.AddConstraint(std::make_shared<Joint>("pin", JointKind::kRevolute, kWorld,
+                                              AttachmentFrame{Vec3::Zero()}, 0,
+                                              AttachmentFrame{Vec3(-L / 2, 0, 0)}));
+  model.AddConstraint(std::make_shared<Joint>("weld", JointKind::kWeld, 0,
+                                              AttachmentFrame{Vec3(L / 2, 0, 0)}, 1,
+                                              AttachmentFrame{Vec3::Zero()}));
+  const InstantaneousSolution sol = SolveInstantaneous(model, s);
+  const double I_O = m1 * L * L / 3 + m2 * L * L + I2;
+  const double phi_dd = -(m1 * L / 2 + m2 * L) * kG * std::sin(phi) / I_O;
+  EXPECT_TRUE(Near(sol.bodies[0].alpha_WB_W.z(), phi_dd, 1e-11));
+  EXPECT_TRUE(Near(sol.bodies[1].alpha_WB_W.z(), phi_dd, 1e-11));
+  const Vec3 a2 = Vec3(0, 0, phi_dd).cross(L * e);
+  EXPECT_TRUE(MatNear(sol.bodies[1].a_WBcm_W, a2, 1e-11, kG));
+  EXPECT_TRUE(MatNear(sol.reactions[1].F_Jc_W, m2 * (a2 - kGravity), 1e-11, m2 * kG));
+  EXPECT_TRUE(MatNear(sol.reactions[1].M_Jc_W, Vec3(0, 0, I2 * phi_dd), 1e-10, m2 * kG * L));
+}
+
 }  // namespace
 }  // namespace chasles

@@ -3,7 +3,7 @@
 /// The equations of motion as a first-order ODE y' = f(t, y) over a flat vector, for the
 /// Runge–Kutta integrators. Layout per body: p_WBcm (3), q_WB (w, x, y, z) (4), v_WBcm_W (3),
 /// w_WB_B (3); then per force element the integrals of its power, non-conservative power,
-/// force (3) and moment about Wo (3).
+/// force (3) and moment about Wo (3); then per constraint the work of its forces.
 
 #include <Eigen/Core>
 
