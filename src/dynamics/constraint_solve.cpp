@@ -34,10 +34,12 @@ MatrixXd TimesMassInverse(const Model& model, const Data& data, const MatrixXd& 
 }
 
 // Solves A x = r for symmetric positive semi-definite A = J M⁻¹ Jᵀ. Returns the rank. LDLᵀ
-// when A is well conditioned; otherwise the least-norm least-squares solution. Throws when
-// the least-squares residual shows the rows cannot all hold (inconsistent constraints).
+// when A is well conditioned; otherwise the least-norm least-squares solution. With
+// `what` given, throws when the least-squares residual shows that the rows cannot all hold
+// (inconsistent constraints); `r_scale` is the size of the terms r was formed from, so that
+// a right-hand side that cancels to round-off is not mistaken for an inconsistency.
 int SolveSchur(const Model& model, const std::vector<int>& row_owner, const MatrixXd& A,
-               const VectorXd& r, VectorXd& x, const char* what) {
+               const VectorXd& r, VectorXd& x, const char* what, double r_scale) {
   const Eigen::Index n = A.rows();
   if (n == 0) {
     x.resize(0);
@@ -55,9 +57,10 @@ int SolveSchur(const Model& model, const std::vector<int>& row_owner, const Matr
   Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(A);
   cod.setThreshold(1e-10);
   x = cod.solve(r);
+  if (what == nullptr) return static_cast<int>(cod.rank());
   const VectorXd res = A * x - r;
-  const double scale = r.cwiseAbs().maxCoeff() + a_max * x.cwiseAbs().maxCoeff();
-  const double tol = 1e-8 * std::max(scale, 1e-300);
+  const double scale = std::max(r_scale, r.cwiseAbs().maxCoeff()) + a_max * x.cwiseAbs().maxCoeff();
+  const double tol = 1e-8 * scale;
   if (res.cwiseAbs().maxCoeff() > tol) {
     std::string names;
     int last = -1;
@@ -128,8 +131,12 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
   }
   const MatrixXd JMinv = TimesMassInverse(model, data, data.J);
   const MatrixXd A = JMinv * data.J.transpose();
-  const VectorXd r = data.acceleration_rhs - data.J * u_dot;
-  data.constraint_rank = SolveSchur(model, RowOwners(model), A, r, data.lambda, "set of reactions");
+  const VectorXd Ju_dot = data.J * u_dot;
+  const VectorXd r = data.acceleration_rhs - Ju_dot;
+  const double r_scale =
+      std::max(data.acceleration_rhs.cwiseAbs().maxCoeff(), Ju_dot.cwiseAbs().maxCoeff());
+  data.constraint_rank =
+      SolveSchur(model, RowOwners(model), A, r, data.lambda, "set of reactions", r_scale);
   u_dot += JMinv.transpose() * data.lambda;  // M⁻¹ Jᵀ λ (M⁻¹ symmetric)
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
@@ -190,7 +197,7 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
   std::vector<int> hol;  // holonomic rows
   std::vector<int> hol_owner;
   VectorXd mu, dx;
-  for (int iter = 0; iter < options.max_iterations; ++iter) {
+  for (int iter = 0; iter <= options.max_iterations; ++iter) {
     CalcKinematics(model, state, data);
     CalcConstraintRows(model, state, data);
     if (iter == 0) {
@@ -212,9 +219,27 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
       G.row(k) = data.J.row(hol[static_cast<size_t>(k)]);
       g[k] = data.position_error[hol[static_cast<size_t>(k)]];
     }
-    if (g.cwiseAbs().maxCoeff() <= options.position_tolerance) break;
+    Eigen::Index worst = 0;
+    const double g_max = g.cwiseAbs().maxCoeff(&worst);
+    if (g_max <= options.position_tolerance) break;
+    if (iter == options.max_iterations) {
+      // Not converged: fine while the remainder is round-off of a large model, an input error
+      // when the constraints cannot be assembled at all (wrong lengths, a closed loop that
+      // does not close).
+      if (g_max > options.assembly_tolerance) {
+        throw InputError(fmt::format(
+            "constraint '{}' cannot be satisfied: after {} Gauss-Newton steps its position "
+            "error is still {:.3g}; check its attachment points and axes against the other "
+            "constraints",
+            model.constraint(hol_owner[static_cast<size_t>(worst)]).name(), options.max_iterations,
+            g_max));
+      }
+      break;
+    }
     const MatrixXd GMinv = TimesMassInverse(model, data, G);
-    SolveSchur(model, hol_owner, GMinv * G.transpose(), g, mu, "configuration");
+    // Least squares without the consistency check: an inconsistent set is reported by the
+    // acceleration solve, and here the right-hand side is only the drift.
+    SolveSchur(model, hol_owner, GMinv * G.transpose(), g, mu, nullptr, 0.0);
     dx = -GMinv.transpose() * mu;
     for (int b = 0; b < nb; ++b) {
       BodyState& bs = state.bodies[static_cast<size_t>(b)];
@@ -229,7 +254,7 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
   const VectorXd res = data.J * GeneralizedVelocity(model, state, data) - data.velocity_rhs;
   if (res.size() == 0 || res.cwiseAbs().maxCoeff() == 0.0) return;
   const MatrixXd JMinv = TimesMassInverse(model, data, data.J);
-  SolveSchur(model, owner, JMinv * data.J.transpose(), res, mu, "velocity");
+  SolveSchur(model, owner, JMinv * data.J.transpose(), res, mu, nullptr, 0.0);
   const VectorXd du = -JMinv.transpose() * mu;
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);

@@ -54,10 +54,14 @@ struct ProjectionOptions {
   double position_tolerance = 1e-13;
   /// Most Gauss–Newton iterations per projection.
   int max_iterations = 6;
+  /// A position error still above this after max_iterations is an InputError (the
+  /// constraints cannot be assembled) [m].
+  double assembly_tolerance = 1e-8;
 };
 
 /// Projects `state` onto the constraint manifold: positions (Gauss–Newton, mass-weighted),
-/// then velocities (exact). Leaves models without constraints unchanged.
+/// then velocities (exact). Leaves models without constraints unchanged. Throws InputError
+/// naming the constraint when the positions cannot be assembled.
 void ProjectOntoConstraints(const Model& model, State& state, Data& data,
                             const ProjectionOptions& options = {});
 

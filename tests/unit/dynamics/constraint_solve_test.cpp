@@ -13,6 +13,7 @@
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
+#include "chasles/integrate/simulate.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/math/rotation.h"
 #include "chasles/model/constraints.h"
@@ -199,6 +200,14 @@ TEST(ConstraintSolve, RedundantHingesGiveLeastNormReactionsAndAWarning) {
   const Vec3 total = sol.reactions[0].F_Jc_W + sol.reactions[1].F_Jc_W;
   EXPECT_TRUE(
       test::MatNear(total, Vec3(m * sol.bodies[0].a_WBcm_W - m * Vec3(0, -g, 0)), 1e-12, m * g));
+  // It also simulates: the projection copes with the rank-deficient rows.
+  SimulationOptions o;
+  o.t_end = 1.0;
+  const SimulationResult r = Simulate(model, s, o);
+  Data data = MakeData(model);
+  const ConstraintViolation v = CalcConstraintViolation(model, r.final_state, data);
+  EXPECT_LT(v.position, 1e-12);
+  EXPECT_LT(v.velocity, 1e-12);
 }
 
 TEST(ConstraintSolve, InconsistentDriversAreAnInputErrorNamingThem) {
@@ -240,6 +249,23 @@ TEST(ConstraintSolve, StateOffTheConstraintsIsRejectedByTheAnalysis) {
   const ConstraintViolation v = CalcConstraintViolation(model, s, data);
   EXPECT_LT(v.position, 1e-13);
   EXPECT_LT(v.velocity, 1e-13);
+}
+
+// Two spherical joints that hold a body's point at two world points 1 m apart: no
+// configuration satisfies both.
+TEST(ConstraintSolve, ConstraintsThatCannotBeAssembledAreNamed) {
+  Model model;
+  model.AddBody("bob", Box(1.0, Vec3(0.1, 0.1, 0.1)));
+  model.AddConstraint(std::make_shared<Joint>("here", JointKind::kSpherical, kWorld,
+                                              AttachmentFrame{Vec3::Zero()}, 0,
+                                              AttachmentFrame{Vec3::Zero()}));
+  model.AddConstraint(std::make_shared<Joint>("there", JointKind::kSpherical, kWorld,
+                                              AttachmentFrame{Vec3(1, 0, 0)}, 0,
+                                              AttachmentFrame{Vec3::Zero()}));
+  State s = MakeRestState(model);
+  Data data = MakeData(model);
+  EXPECT_THAT([&] { ProjectOntoConstraints(model, s, data); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("cannot be satisfied")));
 }
 
 TEST(ConstraintModel, BadInputIsNamed) {
