@@ -19,40 +19,42 @@ namespace {
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-// X M⁻¹ for a matrix X with 6 columns per body: linear block / m, angular block times
-// I_W⁻¹ = R I_B⁻¹ Rᵀ (symmetric, so right and left products agree).
-MatrixXd TimesMassInverse(const Model& model, const Data& data, const MatrixXd& X) {
-  MatrixXd Y(X.rows(), X.cols());
+// Y = X M⁻¹ for a matrix X with 6 columns per body: linear block / m, angular block times
+// I_W⁻¹ = R I_B⁻¹ Rᵀ (symmetric, so right and left products agree). Y is resized only when
+// its shape differs.
+void TimesMassInverse(const Model& model, const Data& data, const MatrixXd& X, MatrixXd& Y) {
+  Y.resize(X.rows(), X.cols());
   for (int b = 0; b < model.num_bodies(); ++b) {
     const auto i = static_cast<size_t>(b);
     const Body& body = model.body(b);
     const Mat3 I_inv_W = data.R_WB[i] * body.I_BBcm_B_inverse() * data.R_WB[i].transpose();
     Y.middleCols<3>(6 * b) = X.middleCols<3>(6 * b) / body.mass();
-    Y.middleCols<3>(6 * b + 3) = X.middleCols<3>(6 * b + 3) * I_inv_W;
+    Y.middleCols<3>(6 * b + 3).noalias() = X.middleCols<3>(6 * b + 3) * I_inv_W;
   }
-  return Y;
 }
 
-// Solves A x = r for symmetric positive semi-definite A = J M⁻¹ Jᵀ. Returns the rank. LDLᵀ
-// when A is well conditioned; otherwise the least-norm least-squares solution. With
-// `what` given, throws when the least-squares residual shows that the rows cannot all hold
-// (inconsistent constraints); `r_scale` is the size of the terms r was formed from, so that
-// a right-hand side that cancels to round-off is not mistaken for an inconsistency.
-int SolveSchur(const Model& model, const std::vector<int>& row_owner, const MatrixXd& A,
-               const VectorXd& r, VectorXd& x, const char* what, double r_scale) {
+std::vector<int> RowOwners(const Model& model);
+
+// Solves A x = r for symmetric positive semi-definite A = J M⁻¹ Jᵀ with the factorisation
+// object `ldlt` (reused: no allocation at a fixed size). Returns the rank. LDLᵀ when A is
+// well conditioned; otherwise the least-norm least-squares solution. With `what` given,
+// throws when the least-squares residual shows that the rows cannot all hold (inconsistent
+// constraints); `r_scale` is the size of the terms r was formed from, so that a right-hand
+// side that cancels to round-off is not mistaken for an inconsistency. `row_owner` maps rows
+// to constraints (all rows of the model when null).
+int SolveSchur(const Model& model, const std::vector<int>* row_owner, const MatrixXd& A,
+               Eigen::LDLT<MatrixXd>& ldlt, const VectorXd& r, VectorXd& x, const char* what,
+               double r_scale) {
   const Eigen::Index n = A.rows();
   if (n == 0) {
     x.resize(0);
     return 0;
   }
   const double a_max = A.diagonal().cwiseAbs().maxCoeff();
-  Eigen::LDLT<MatrixXd> ldlt(A);
-  if (ldlt.info() == Eigen::Success && a_max > 0.0) {
-    const VectorXd d = ldlt.vectorD();
-    if (d.minCoeff() > 1e-10 * a_max) {
-      x = ldlt.solve(r);
-      return static_cast<int>(n);
-    }
+  ldlt.compute(A);
+  if (ldlt.info() == Eigen::Success && a_max > 0.0 && ldlt.vectorD().minCoeff() > 1e-10 * a_max) {
+    x = ldlt.solve(r);
+    return static_cast<int>(n);
   }
   Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(A);
   cod.setThreshold(1e-10);
@@ -62,14 +64,13 @@ int SolveSchur(const Model& model, const std::vector<int>& row_owner, const Matr
   const double scale = std::max(r_scale, r.cwiseAbs().maxCoeff()) + a_max * x.cwiseAbs().maxCoeff();
   const double tol = 1e-8 * scale;
   if (res.cwiseAbs().maxCoeff() > tol) {
+    const std::vector<int> all = row_owner ? std::vector<int>() : RowOwners(model);
+    const std::vector<int>& owner = row_owner ? *row_owner : all;
     std::string names;
-    int last = -1;
     for (Eigen::Index k = 0; k < n; ++k) {
-      const int c = row_owner[static_cast<size_t>(k)];
-      if (std::abs(res[k]) > tol && c != last &&
-          names.find("'" + model.constraint(c).name() + "'") == std::string::npos) {
-        names += (names.empty() ? "'" : ", '") + model.constraint(c).name() + "'";
-        last = c;
+      const std::string quoted = "'" + model.constraint(owner[static_cast<size_t>(k)]).name() + "'";
+      if (std::abs(res[k]) > tol && names.find(quoted) == std::string::npos) {
+        names += (names.empty() ? "" : ", ") + quoted;
       }
     }
     throw InputError(fmt::format(
@@ -90,14 +91,13 @@ std::vector<int> RowOwners(const Model& model) {
   return owner;
 }
 
-VectorXd GeneralizedVelocity(const Model& model, const State& state, const Data& data) {
-  VectorXd u(6 * model.num_bodies());
+void GeneralizedVelocity(const Model& model, const State& state, const Data& data, VectorXd& u) {
+  u.resize(6 * model.num_bodies());
   for (int b = 0; b < model.num_bodies(); ++b) {
     const auto i = static_cast<size_t>(b);
     u.segment<3>(6 * b) = state.bodies[i].v_WBcm_W;
     u.segment<3>(6 * b + 3) = data.w_WB_W[i];
   }
-  return u;
 }
 
 }  // namespace
@@ -123,21 +123,21 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
   const int nb = model.num_bodies();
   CalcConstraintRows(model, state, data);
   // Free accelerations u̇_free = [a_WBcm_W; R ẇ_B] from the Newton–Euler stage.
-  VectorXd u_dot(6 * nb);
+  VectorXd& u_dot = data.u_dot;
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
     u_dot.segment<3>(6 * b) = data.a_WBcm_W[i];
     u_dot.segment<3>(6 * b + 3) = data.R_WB[i] * data.wdot_WB_B[i];
   }
-  const MatrixXd JMinv = TimesMassInverse(model, data, data.J);
-  const MatrixXd A = JMinv * data.J.transpose();
-  const VectorXd Ju_dot = data.J * u_dot;
-  const VectorXd r = data.acceleration_rhs - Ju_dot;
+  TimesMassInverse(model, data, data.J, data.JMinv);
+  data.schur.noalias() = data.JMinv * data.J.transpose();
+  data.Ju.noalias() = data.J * u_dot;  // J u̇_free here; J u below
+  data.schur_rhs = data.acceleration_rhs - data.Ju;
   const double r_scale =
-      std::max(data.acceleration_rhs.cwiseAbs().maxCoeff(), Ju_dot.cwiseAbs().maxCoeff());
-  data.constraint_rank =
-      SolveSchur(model, RowOwners(model), A, r, data.lambda, "set of reactions", r_scale);
-  u_dot += JMinv.transpose() * data.lambda;  // M⁻¹ Jᵀ λ (M⁻¹ symmetric)
+      std::max(data.acceleration_rhs.cwiseAbs().maxCoeff(), data.Ju.cwiseAbs().maxCoeff());
+  data.constraint_rank = SolveSchur(model, nullptr, data.schur, data.schur_ldlt, data.schur_rhs,
+                                    data.lambda, "set of reactions", r_scale);
+  u_dot.noalias() += data.JMinv.transpose() * data.lambda;  // M⁻¹ Jᵀ λ (M⁻¹ symmetric)
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
     data.a_WBcm_W[i] = u_dot.segment<3>(6 * b);
@@ -145,7 +145,9 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
   }
   // Reactions: the child's share of Jᵀλ is a force at Bcm and a moment about Bcm (in W);
   // moved to the joint point J: M_J = M_Bcm - (p_WJ - p_WBcm) × F.
-  const VectorXd Ju = data.J * GeneralizedVelocity(model, state, data);
+  GeneralizedVelocity(model, state, data, data.u);
+  data.Ju.noalias() = data.J * data.u;
+  const VectorXd& Ju = data.Ju;
   for (int c = 0; c < model.num_constraints(); ++c) {
     const Constraint& con = model.constraint(c);
     const auto ci = static_cast<size_t>(c);
@@ -173,7 +175,8 @@ ConstraintViolation CalcConstraintViolation(const Model& model, const State& sta
   if (model.num_constraints() == 0) return v;
   CalcKinematics(model, state, data);
   CalcConstraintRows(model, state, data);
-  const VectorXd res = data.J * GeneralizedVelocity(model, state, data) - data.velocity_rhs;
+  GeneralizedVelocity(model, state, data, data.u);
+  const VectorXd res = data.J * data.u - data.velocity_rhs;
   double worst = -1.0;
   for (int c = 0; c < model.num_constraints(); ++c) {
     const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
@@ -193,10 +196,11 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
                             const ProjectionOptions& options) {
   if (model.num_constraints() == 0) return;
   const int nb = model.num_bodies();
-  const std::vector<int> owner = RowOwners(model);
   std::vector<int> hol;  // holonomic rows
   std::vector<int> hol_owner;
   VectorXd mu, dx;
+  MatrixXd G, GMinv;
+  Eigen::LDLT<MatrixXd> ldlt;
   for (int iter = 0; iter <= options.max_iterations; ++iter) {
     CalcKinematics(model, state, data);
     CalcConstraintRows(model, state, data);
@@ -213,7 +217,7 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
       if (hol.empty()) break;
     }
     const auto nh = static_cast<Eigen::Index>(hol.size());
-    MatrixXd G(nh, 6 * nb);
+    G.resize(nh, 6 * nb);
     VectorXd g(nh);
     for (Eigen::Index k = 0; k < nh; ++k) {
       G.row(k) = data.J.row(hol[static_cast<size_t>(k)]);
@@ -236,10 +240,10 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
       }
       break;
     }
-    const MatrixXd GMinv = TimesMassInverse(model, data, G);
+    TimesMassInverse(model, data, G, GMinv);
     // Least squares without the consistency check: an inconsistent set is reported by the
     // acceleration solve, and here the right-hand side is only the drift.
-    SolveSchur(model, hol_owner, GMinv * G.transpose(), g, mu, nullptr, 0.0);
+    SolveSchur(model, &hol_owner, GMinv * G.transpose(), ldlt, g, mu, nullptr, 0.0);
     dx = -GMinv.transpose() * mu;
     for (int b = 0; b < nb; ++b) {
       BodyState& bs = state.bodies[static_cast<size_t>(b)];
@@ -251,11 +255,13 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
   // Velocities: J u = b at the projected configuration.
   CalcKinematics(model, state, data);
   CalcConstraintRows(model, state, data);
-  const VectorXd res = data.J * GeneralizedVelocity(model, state, data) - data.velocity_rhs;
+  GeneralizedVelocity(model, state, data, data.u);
+  const VectorXd res = data.J * data.u - data.velocity_rhs;
   if (res.size() == 0 || res.cwiseAbs().maxCoeff() == 0.0) return;
-  const MatrixXd JMinv = TimesMassInverse(model, data, data.J);
-  SolveSchur(model, owner, JMinv * data.J.transpose(), res, mu, nullptr, 0.0);
-  const VectorXd du = -JMinv.transpose() * mu;
+  TimesMassInverse(model, data, data.J, data.JMinv);
+  data.schur.noalias() = data.JMinv * data.J.transpose();
+  SolveSchur(model, nullptr, data.schur, data.schur_ldlt, res, mu, nullptr, 0.0);
+  const VectorXd du = -data.JMinv.transpose() * mu;
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
     BodyState& bs = state.bodies[i];

@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include <Eigen/Cholesky>
+
 #include "chasles/math/types.h"
 #include "chasles/model/constraint.h"
 
@@ -82,6 +84,12 @@ struct Data {
   Eigen::VectorXd lambda;
   /// Rank of J M⁻¹ Jᵀ found by the solve (< rows when constraints are redundant).
   int constraint_rank = 0;
+  /// Workspace of the constraint solve, sized once by MakeData so that the derivative
+  /// evaluations do not allocate: J M⁻¹, J M⁻¹ Jᵀ and its factorisation, the generalised
+  /// velocity u and acceleration u̇, J u, and the right-hand side of the multiplier system.
+  Eigen::MatrixXd JMinv, schur;
+  Eigen::LDLT<Eigen::MatrixXd> schur_ldlt;
+  Eigen::VectorXd u, u_dot, Ju, schur_rhs;
 };
 
 /// A Data sized for `model`.
