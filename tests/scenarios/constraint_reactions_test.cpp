@@ -84,27 +84,32 @@ TEST(SupportReaction, PinnedRodReleasedFromHorizontal) {
   EXPECT_TRUE(MatNear(sol.reactions[0].M_Jc_W, Vec3::Zero(), kSolve, m * kG * L));
 }
 
-// A block on a frictionless guide down an incline of angle θ (prismatic joint along the
-// slope): m a = m g sin θ along the slope, N = m g cos θ normal to it, and no moment (gravity
-// acts at the centre of mass, which is the joint point).
+// A block on a frictionless guide down an incline of angle θ: m a = m g sin θ along the
+// slope, N = m g cos θ normal to it, and no moment (gravity acts at the centre of mass, which
+// is the joint point). The same for a prismatic guide, a cylindrical one (free to turn about
+// the guide) and a bead on a wire (point on a line).
 TEST(SupportReaction, SliderOnAnInclinedGuide) {
   const double m = 3.0, theta = 0.5;
   const Vec3 down(std::cos(theta), -std::sin(theta), 0), n(std::sin(theta), std::cos(theta), 0);
-  Model model;
-  model.AddBody("block", Diagonal(m, Vec3(0.1, 0.2, 0.15)));
-  model.AddForceElement(std::make_shared<UniformGravity>("gravity", kGravity));
-  State s = MakeRestState(model);
-  SetBodyPose(model, 0, Vec3(0.2, 0.3, 0), Quat::Identity(), s);
-  SetBodyVelocity(model, 0, 1.7 * down, Vec3::Zero(), s);
-  const Mat3 R = FrameWithZAxis(down);
-  model.AddConstraint(std::make_shared<Joint>(
-      "guide", JointKind::kPrismatic, kWorld, AttachmentFrame{Vec3(0.2, 0.3, 0), R}, 0,
-      AttachmentFrameAtWorldPose(model, s, 0, Vec3(0.2, 0.3, 0), R)));
-  const InstantaneousSolution sol = SolveInstantaneous(model, s);
-  EXPECT_TRUE(MatNear(sol.bodies[0].a_WBcm_W, kG * std::sin(theta) * down, kSolve, kG));
-  EXPECT_TRUE(MatNear(sol.reactions[0].F_Jc_W, m * kG * std::cos(theta) * n, kSolve));
-  EXPECT_TRUE(MatNear(sol.reactions[0].M_Jc_W, Vec3::Zero(), kSolve, m * kG));
-  EXPECT_TRUE(Near(sol.reactions[0].power, 0.0, kSolve, m * kG * 1.7));
+  for (JointKind kind : {JointKind::kPrismatic, JointKind::kCylindrical, JointKind::kPointOnLine}) {
+    Model model;
+    model.AddBody("block", Diagonal(m, Vec3(0.1, 0.2, 0.15)));
+    model.AddForceElement(std::make_shared<UniformGravity>("gravity", kGravity));
+    State s = MakeRestState(model);
+    SetBodyPose(model, 0, Vec3(0.2, 0.3, 0), Quat::Identity(), s);
+    SetBodyVelocity(model, 0, 1.7 * down, Vec3::Zero(), s);
+    const Mat3 R = FrameWithZAxis(down);
+    model.AddConstraint(
+        std::make_shared<Joint>("guide", kind, kWorld, AttachmentFrame{Vec3(0.2, 0.3, 0), R}, 0,
+                                AttachmentFrameAtWorldPose(model, s, 0, Vec3(0.2, 0.3, 0), R)));
+    const InstantaneousSolution sol = SolveInstantaneous(model, s);
+    SCOPED_TRACE(JointKindName(kind));
+    EXPECT_TRUE(MatNear(sol.bodies[0].a_WBcm_W, kG * std::sin(theta) * down, kSolve, kG));
+    EXPECT_TRUE(MatNear(sol.bodies[0].alpha_WB_W, Vec3::Zero(), kSolve, kG));
+    EXPECT_TRUE(MatNear(sol.reactions[0].F_Jc_W, m * kG * std::cos(theta) * n, kSolve));
+    EXPECT_TRUE(MatNear(sol.reactions[0].M_Jc_W, Vec3::Zero(), kSolve, m * kG));
+    EXPECT_TRUE(Near(sol.reactions[0].power, 0.0, kSolve, m * kG * 1.7));
+  }
 }
 
 // Example 8.4: a slender rod (mass m, length L) with end A on a frictionless wall (x = 0) and
