@@ -226,6 +226,8 @@ void DormandPrince5Integrator::Interpolate(double t, State& out) {
   w.yt = w.r1 + theta * (w.r2 + theta1 * (w.r3 + theta * (w.r4 + theta1 * w.r5)));
   ode_->NormalizeQuaternions(w.yt, nullptr);
   ode_->Unpack(t, w.yt, out);
+  // The interpolant meets the constraints only to its own error; put the output back on them.
+  if (ode_->has_constraints()) ode_->Project(out);
 }
 
 }  // namespace chasles

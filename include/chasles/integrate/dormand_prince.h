@@ -61,8 +61,8 @@ class DormandPrince5Integrator {
   double t_previous() const { return t_prev_; }
   /// Time at the end of the last step [s].
   double t() const { return state_.t; }
-  /// Dense output: the state at `t` in [t_previous(), t()] (quaternions normalised), written
-  /// into `out` (resized to the model).
+  /// Dense output: the state at `t` in [t_previous(), t()] (quaternions normalised; projected
+  /// onto the constraints of a constrained model), written into `out` (resized to the model).
   void Interpolate(double t, State& out);
   /// Step size the controller proposes next [s].
   double next_step() const { return h_next_; }
