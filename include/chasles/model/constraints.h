@@ -32,8 +32,12 @@ const char* JointKindName(JointKind kind);
 ///   point coincidence d = 0; axis-aligned distance d·a_k = 0; perpendicularity a_i·b_j = 0.
 class Joint final : public Constraint {
  public:
+  /// `X_PJ` the joint frame on the parent (a world pose when the parent is kWorld), `X_CJ` on
+  /// the child; assembled, the held parts of the two frames coincide (AttachmentFrameAtWorldPose
+  /// makes both from one world pose). Throws InputError for non-orthonormal axes.
   Joint(std::string name, JointKind kind, BodyIndex parent, const AttachmentFrame& X_PJ,
         BodyIndex child, const AttachmentFrame& X_CJ);
+  /// Which joint this is.
   JointKind joint_kind() const { return kind_; }
   int num_rows() const override;
   std::string kind() const override { return JointKindName(kind_); }
@@ -103,6 +107,8 @@ enum class DriverKind {
 /// driver with the world as parent (frame at the origin, z along the component).
 class PrescribedMotion final : public Constraint {
  public:
+  /// Frames as for Joint; the driven coordinate is zero when the two J origins coincide
+  /// (translation) or their x axes do (rotation). `f` must have all three functions.
   PrescribedMotion(std::string name, DriverKind kind, BodyIndex parent, const AttachmentFrame& X_PJ,
                    BodyIndex child, const AttachmentFrame& X_CJ, TimeFunction f);
   int num_rows() const override { return 1; }
