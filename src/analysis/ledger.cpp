@@ -12,7 +12,8 @@ LedgerSample CalcLedgerSample(const Model& model, const State& s, const State& s
   L.t = s.t;
   L.kinetic_translational = CalcTranslationalKineticEnergy(model, s);
   L.kinetic_rotational = CalcRotationalKineticEnergy(model, s);
-  const double T0 = CalcTranslationalKineticEnergy(model, s0) + CalcRotationalKineticEnergy(model, s0);
+  const double T0 =
+      CalcTranslationalKineticEnergy(model, s0) + CalcRotationalKineticEnergy(model, s0);
   double V0 = 0.0, abs_work = 0.0;
   Vec3 imp = Vec3::Zero(), ang_imp = Vec3::Zero();
   L.forces.resize(static_cast<size_t>(model.num_force_elements()));
@@ -39,11 +40,24 @@ LedgerSample CalcLedgerSample(const Model& model, const State& s, const State& s
     imp += f.linear_impulse_W;
     ang_imp += f.angular_impulse_Wo_W;
   }
+  L.constraints.resize(static_cast<size_t>(model.num_constraints()));
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const auto i = static_cast<size_t>(c);
+    ConstraintLedger& cl = L.constraints[i];
+    cl.name = model.constraint(c).name();
+    // An empty list (a state made before the constraints were added) reads as zeros.
+    const double w = i < s.constraint_work.size() ? s.constraint_work[i] : 0.0;
+    const double w0 = i < s0.constraint_work.size() ? s0.constraint_work[i] : 0.0;
+    cl.work = w - w0;
+    L.constraint_work += cl.work;
+    abs_work += std::abs(cl.work);
+  }
+  L.work_nonconservative += L.constraint_work;
   L.mechanical_energy = L.kinetic_translational + L.kinetic_rotational + L.potential;
   L.energy_residual = (L.mechanical_energy - (T0 + V0)) - L.work_nonconservative;
-  L.energy_scale = std::max({std::abs(T0) + std::abs(V0),
-                             L.kinetic_translational + L.kinetic_rotational + std::abs(L.potential),
-                             abs_work});
+  L.energy_scale =
+      std::max({std::abs(T0) + std::abs(V0),
+                L.kinetic_translational + L.kinetic_rotational + std::abs(L.potential), abs_work});
   L.linear_momentum_W = CalcLinearMomentum(model, s);
   L.p_WScm = CalcSystemCenterOfMass(model, s);
   L.angular_momentum_Scm_W = CalcAngularMomentum(model, s, L.p_WScm);

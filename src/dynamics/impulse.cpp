@@ -11,8 +11,8 @@ namespace chasles {
 void ApplyImpulseAtWorldPoint(const Model& model, BodyIndex b, const Vec3& p_WP, const Vec3& J_W,
                               State& state) {
   if (b < 0 || b >= model.num_bodies()) {
-    throw InputError(fmt::format("impulse on body index {}: the model has {} bodies", b,
-                                 model.num_bodies()));
+    throw InputError(
+        fmt::format("impulse on body index {}: the model has {} bodies", b, model.num_bodies()));
   }
   if (!J_W.allFinite() || !p_WP.allFinite()) {
     throw InputError(fmt::format("impulse on body '{}': impulse and point must be finite",
@@ -30,8 +30,8 @@ void ApplyImpulseAtWorldPoint(const Model& model, BodyIndex b, const Vec3& p_WP,
 void ApplyImpulse(const Model& model, BodyIndex b, const Vec3& p_BoP_B, const Vec3& J_W,
                   State& state) {
   if (b < 0 || b >= model.num_bodies()) {
-    throw InputError(fmt::format("impulse on body index {}: the model has {} bodies", b,
-                                 model.num_bodies()));
+    throw InputError(
+        fmt::format("impulse on body index {}: the model has {} bodies", b, model.num_bodies()));
   }
   const BodyState& bs = state.bodies[static_cast<size_t>(b)];
   const Vec3 p_WP = bs.p_WBcm + bs.q_WB.normalized() * model.body(b).PointFromCenterOfMass(p_BoP_B);
@@ -61,10 +61,8 @@ EmbeddingResult CalcEmbedding(const BodyMotion& target, const BodyMotion& projec
   // Po sits where its centre of mass sits minus R_WP p_PoPcm.
   const Mat3 R_BW = target.R_WB.transpose();
   const Mat3 R_BP = R_BW * projectile.R_WB;
-  const Vec3 p_WBo =
-      target.p_WBcm - target.R_WB * target.mass_properties.p_BoBcm_B();
-  const Vec3 p_WPo =
-      projectile.p_WBcm - projectile.R_WB * projectile.mass_properties.p_BoBcm_B();
+  const Vec3 p_WBo = target.p_WBcm - target.R_WB * target.mass_properties.p_BoBcm_B();
+  const Vec3 p_WPo = projectile.p_WBcm - projectile.R_WB * projectile.mass_properties.p_BoBcm_B();
   const MassProperties combined =
       target.mass_properties +
       projectile.mass_properties.ExpressedInParent(R_BP, R_BW * (p_WPo - p_WBo));
@@ -92,8 +90,8 @@ PassThroughResult ApplyPassThrough(const Model& model, BodyIndex b, const Vec3& 
                                    double projectile_mass, const Vec3& v_projectile_W,
                                    double exit_fraction, State& state) {
   if (!(projectile_mass > 0.0) || !std::isfinite(projectile_mass)) {
-    throw InputError(fmt::format(
-        "pass-through: projectile mass is {:.6g} kg; it must be positive", projectile_mass));
+    throw InputError(fmt::format("pass-through: projectile mass is {:.6g} kg; it must be positive",
+                                 projectile_mass));
   }
   if (!(exit_fraction >= 0.0 && exit_fraction <= 1.0)) {
     throw InputError(fmt::format(

@@ -70,6 +70,10 @@ void DormandPrince5Integrator::Initialize(const State& state) {
   ode_->Pack(state_, w.y0);
   ode_->NormalizeQuaternions(w.y0, nullptr);
   ode_->Unpack(state_.t, w.y0, state_);
+  if (ode_->has_constraints()) {
+    ode_->Project(state_);
+    ode_->Pack(state_, w.y0);
+  }
   ode_->Derivative(state_.t, w.y0, w.k1);
   ++stats_.function_evaluations;
   t_prev_ = state_.t;
@@ -164,6 +168,18 @@ void DormandPrince5Integrator::Step(double t_limit) {
   std::swap(w.y0, w.y1);
   std::swap(w.k1, w.k7);
   ode_->Unpack(t_new, w.y0, state_);
+  ProjectAfterStep();
+}
+
+void DormandPrince5Integrator::ProjectAfterStep() {
+  if (!ode_->has_constraints()) return;
+  // Project the accepted end state onto the constraint manifold; the FSAL derivative is then
+  // re-evaluated there (one evaluation per step). The dense output keeps its end points.
+  Work& w = *work_;
+  ode_->Project(state_);
+  ode_->Pack(state_, w.y0);
+  ode_->Derivative(state_.t, w.y0, w.k1);
+  ++stats_.function_evaluations;
 }
 
 void DormandPrince5Integrator::StepFixed(double h) {
@@ -178,6 +194,7 @@ void DormandPrince5Integrator::StepFixed(double h) {
   std::swap(w.y0, w.y1);
   std::swap(w.k1, w.k7);
   ode_->Unpack(t + h, w.y0, state_);
+  ProjectAfterStep();
 }
 
 void DormandPrince5Integrator::PrepareDense() {
@@ -209,6 +226,8 @@ void DormandPrince5Integrator::Interpolate(double t, State& out) {
   w.yt = w.r1 + theta * (w.r2 + theta1 * (w.r3 + theta * (w.r4 + theta1 * w.r5)));
   ode_->NormalizeQuaternions(w.yt, nullptr);
   ode_->Unpack(t, w.yt, out);
+  // The interpolant meets the constraints only to its own error; put the output back on them.
+  if (ode_->has_constraints()) ode_->Project(out);
 }
 
 }  // namespace chasles

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/math/quaternion.h"
 
@@ -9,7 +10,8 @@ namespace chasles::internal {
 
 OdeSystem::OdeSystem(const Model& model)
     : model_(model),
-      size_(kBodySize * model.num_bodies() + kForceSize * model.num_force_elements()),
+      size_(kBodySize * model.num_bodies() + kForceSize * model.num_force_elements() +
+            model.num_constraints()),
       body_offset_end_(kBodySize * model.num_bodies()),
       state_(MakeRestState(model)),
       data_(MakeData(model)) {}
@@ -32,6 +34,11 @@ void OdeSystem::Pack(const State& s, Vector& y) const {
     o[5] = fi.angular_impulse_Wo_W.x(), o[6] = fi.angular_impulse_Wo_W.y();
     o[7] = fi.angular_impulse_Wo_W.z();
   }
+  const int c0 = body_offset_end_ + kForceSize * model_.num_force_elements();
+  for (int c = 0; c < model_.num_constraints(); ++c) {
+    const auto i = static_cast<size_t>(c);
+    y[c0 + c] = i < s.constraint_work.size() ? s.constraint_work[i] : 0.0;
+  }
 }
 
 void OdeSystem::Unpack(double t, const Vector& y, State& s) const {
@@ -51,6 +58,11 @@ void OdeSystem::Unpack(double t, const Vector& y, State& s) const {
     fi.work_nonconservative = o[1];
     fi.linear_impulse_W = Vec3(o[2], o[3], o[4]);
     fi.angular_impulse_Wo_W = Vec3(o[5], o[6], o[7]);
+  }
+  const int c0 = body_offset_end_ + kForceSize * model_.num_force_elements();
+  s.constraint_work.resize(static_cast<size_t>(model_.num_constraints()));
+  for (int c = 0; c < model_.num_constraints(); ++c) {
+    s.constraint_work[static_cast<size_t>(c)] = y[c0 + c];
   }
 }
 
@@ -79,6 +91,14 @@ void OdeSystem::Derivative(double t, const Vector& y, Vector& ydot) {
     d[2] = out.force_W.x(), d[3] = out.force_W.y(), d[4] = out.force_W.z();
     d[5] = out.moment_Wo_W.x(), d[6] = out.moment_Wo_W.y(), d[7] = out.moment_Wo_W.z();
   }
+  const int c0 = body_offset_end_ + kForceSize * model_.num_force_elements();
+  for (int c = 0; c < model_.num_constraints(); ++c) {
+    ydot[c0 + c] = data_.constraints[static_cast<size_t>(c)].power;
+  }
+}
+
+void OdeSystem::Project(State& state) {
+  ProjectOntoConstraints(model_, state, data_);
 }
 
 void OdeSystem::NormalizeQuaternions(Vector& y, Vector* ydot) const {

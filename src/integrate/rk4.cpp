@@ -35,6 +35,8 @@ void Rk4Integrator::Step(State& state, double h) {
   w.y += (h / 6.0) * (w.k1 + 2.0 * (w.k2 + w.k3) + w.k4);
   ode_->NormalizeQuaternions(w.y, nullptr);
   ode_->Unpack(t + h, w.y, state);
+  // Constrained models: back onto the constraint manifold (removes the drift of g and J u).
+  if (ode_->has_constraints()) ode_->Project(state);
   ++stats_.steps;
   stats_.function_evaluations += 4;
 }

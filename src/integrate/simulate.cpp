@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "chasles/dynamics/constraint_solve.h"
 #include "chasles/error.h"
 #include "chasles/integrate/energy_momentum.h"
 #include "chasles/integrate/rk4.h"
@@ -200,13 +201,20 @@ SimulationResult RunFixed(const Model& model, const State& initial, const Simula
 SimulationResult Simulate(const Model& model, const State& initial,
                           const SimulationOptions& options) {
   Validate(model, initial, options);
+  // A constrained model starts on its constraints: the initial state is projected (positions,
+  // then velocities), so the first sample is the state actually integrated.
+  State start = initial;
+  if (model.num_constraints() > 0 && options.integrator != IntegratorKind::kEnergyMomentum) {
+    Data data = MakeData(model);
+    ProjectOntoConstraints(model, start, data);
+  }
   switch (options.integrator) {
     case IntegratorKind::kRk4:
-      return RunFixed<Rk4Integrator>(model, initial, options);
+      return RunFixed<Rk4Integrator>(model, start, options);
     case IntegratorKind::kEnergyMomentum:
-      return RunFixed<EnergyMomentumIntegrator>(model, initial, options);
+      return RunFixed<EnergyMomentumIntegrator>(model, start, options);
     default:
-      return RunAdaptive(model, initial, options);
+      return RunAdaptive(model, start, options);
   }
 }
 

@@ -14,6 +14,23 @@ Data MakeData(const Model& model) {
   d.elements.assign(static_cast<size_t>(model.num_force_elements()), ForceElementOutput{});
   d.a_WBcm_W.assign(nb, Vec3::Zero());
   d.wdot_WB_B.assign(nb, Vec3::Zero());
+  const auto nc = static_cast<size_t>(model.num_constraints());
+  const int rows = model.num_constraint_rows();
+  d.constraint_rows.assign(nc, ConstraintEval{});
+  d.constraints.assign(nc, ConstraintOutput{});
+  d.J = Eigen::MatrixXd::Zero(rows, 6 * model.num_bodies());
+  d.velocity_rhs = Eigen::VectorXd::Zero(rows);
+  d.acceleration_rhs = Eigen::VectorXd::Zero(rows);
+  d.position_error = Eigen::VectorXd::Zero(rows);
+  d.lambda = Eigen::VectorXd::Zero(rows);
+  d.constraint_rank = rows;
+  d.JMinv = Eigen::MatrixXd::Zero(rows, 6 * model.num_bodies());
+  d.schur = Eigen::MatrixXd::Zero(rows, rows);
+  d.schur_ldlt = Eigen::LDLT<Eigen::MatrixXd>(rows);
+  d.u = Eigen::VectorXd::Zero(6 * model.num_bodies());
+  d.u_dot = Eigen::VectorXd::Zero(6 * model.num_bodies());
+  d.Ju = Eigen::VectorXd::Zero(rows);
+  d.schur_rhs = Eigen::VectorXd::Zero(rows);
   return d;
 }
 

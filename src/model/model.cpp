@@ -38,6 +38,44 @@ int Model::AddForceElement(std::shared_ptr<const ForceElement> element) {
   return num_force_elements() - 1;
 }
 
+int Model::AddConstraint(std::shared_ptr<const Constraint> constraint) {
+  if (!constraint) throw InputError("constraint is null");
+  for (const auto& c : constraints_) {
+    if (c->name() == constraint->name()) {
+      throw InputError(fmt::format(
+          "constraint '{}' is defined twice; give each constraint its own name", c->name()));
+    }
+  }
+  for (BodyIndex b : {constraint->parent(), constraint->child()}) {
+    if (b == kWorld) continue;
+    if (b < 0 || b >= num_bodies()) {
+      throw InputError(fmt::format(
+          "constraint '{}' acts on body index {}, but the model has {} bodies (0 to {}); use "
+          "kWorld ({}) for the ground",
+          constraint->name(), b, num_bodies(), num_bodies() - 1, kWorld));
+    }
+  }
+  const int rows = constraint->num_rows();
+  if (rows < 1 || rows > kMaxConstraintRows) {
+    throw InputError(fmt::format("constraint '{}' has {} rows; 1 to {} are supported",
+                                 constraint->name(), rows, kMaxConstraintRows));
+  }
+  row_offsets_.push_back(num_constraint_rows_);
+  num_constraint_rows_ += rows;
+  constraints_.push_back(std::move(constraint));
+  return num_constraints() - 1;
+}
+
+int Model::FindConstraint(std::string_view name) const {
+  std::string known;
+  for (int i = 0; i < num_constraints(); ++i) {
+    if (constraint(i).name() == name) return i;
+    known += (i ? ", " : "") + constraint(i).name();
+  }
+  throw InputError(fmt::format("no constraint named '{}'; the constraints are: {}", name,
+                               known.empty() ? "(none)" : known));
+}
+
 BodyIndex Model::FindBody(std::string_view name) const {
   std::string known;
   for (int i = 0; i < num_bodies(); ++i) {

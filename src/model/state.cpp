@@ -19,6 +19,7 @@ State MakeRestState(const Model& model) {
   rest.w_WB_B.setZero();
   s.bodies.assign(static_cast<size_t>(model.num_bodies()), rest);
   s.force_integrals.assign(static_cast<size_t>(model.num_force_elements()), ForceIntegrals{});
+  s.constraint_work.assign(static_cast<size_t>(model.num_constraints()), 0.0);
   return s;
 }
 
@@ -50,12 +51,15 @@ Vec3 CalcBodyOriginPosition(const Model& model, const State& state, int b) {
 
 void ValidateState(const Model& model, const State& state) {
   if (state.bodies.size() != static_cast<size_t>(model.num_bodies()) ||
-      state.force_integrals.size() != static_cast<size_t>(model.num_force_elements())) {
+      state.force_integrals.size() != static_cast<size_t>(model.num_force_elements()) ||
+      (!state.constraint_work.empty() &&
+       state.constraint_work.size() != static_cast<size_t>(model.num_constraints()))) {
     throw InputError(fmt::format(
-        "state has {} bodies and {} force integrals but the model has {} bodies and {} force "
-        "elements; make the state with MakeRestState(model)",
-        state.bodies.size(), state.force_integrals.size(), model.num_bodies(),
-        model.num_force_elements()));
+        "state has {} bodies, {} force integrals and {} constraint work entries but the model "
+        "has {} bodies, {} force elements and {} constraints; make the state with "
+        "MakeRestState(model)",
+        state.bodies.size(), state.force_integrals.size(), state.constraint_work.size(),
+        model.num_bodies(), model.num_force_elements(), model.num_constraints()));
   }
   if (!std::isfinite(state.t)) throw InputError("state time is not a finite number");
   for (int b = 0; b < model.num_bodies(); ++b) {

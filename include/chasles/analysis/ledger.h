@@ -5,7 +5,9 @@
 /// extra ODE states (State::force_integrals), so they are as accurate as the motion.
 /// Work-energy balance: (T + V) - (T₀ + V₀) = W_nc (the non-conservative work); the residual
 /// of that equation measures the integration error. Impulse-momentum: P - P₀ = Σ Imp and
-/// H_Wo - H_Wo₀ = Σ AngImp_Wo.
+/// H_Wo - H_Wo₀ = Σ AngImp_Wo. Constraints: their work (zero for ideal joints and rolling, a
+/// driver's input otherwise) counts as non-conservative work; their impulses are not carried,
+/// so the momentum residuals of a constrained model include the supports' impulses.
 
 #include <string>
 #include <vector>
@@ -33,6 +35,14 @@ struct ForceLedger {
   Vec3 angular_impulse_Wo_W = Vec3::Zero();
 };
 
+struct ConstraintLedger {
+  /// Name of the constraint.
+  std::string name;
+  /// Work done by its forces on all its bodies since the initial state [J] (zero for ideal
+  /// joints and rolling up to the integration error; a driver's input otherwise).
+  double work = 0.0;
+};
+
 struct LedgerSample {
   /// Time [s].
   double t = 0.0;
@@ -43,7 +53,7 @@ struct LedgerSample {
   double potential = 0.0;
   /// T + V [J].
   double mechanical_energy = 0.0;
-  /// Non-conservative work of all elements since the initial state [J].
+  /// Non-conservative work of all elements and constraints since the initial state [J].
   double work_nonconservative = 0.0;
   /// Energy removed by dissipative elements (dampers, drag) since the initial state [J] >= 0.
   double dissipated = 0.0;
@@ -65,6 +75,10 @@ struct LedgerSample {
   Vec3 angular_momentum_residual_W = Vec3::Zero();
   /// Per force element, in Model order.
   std::vector<ForceLedger> forces;
+  /// Work of all constraint forces since the initial state [J] (part of work_nonconservative).
+  double constraint_work = 0.0;
+  /// Per constraint, in Model order.
+  std::vector<ConstraintLedger> constraints;
 };
 
 /// The ledger at `state` relative to `initial` (the run's first state; its force integrals

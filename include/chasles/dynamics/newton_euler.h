@@ -18,7 +18,9 @@ void CalcKinematics(const Model& model, const State& state, Data& data);
 /// Force stage (needs the kinematics stage): Data::F_Bcm_W, Data::M_Bcm_W, Data::elements.
 void CalcForces(const Model& model, const State& state, Data& data);
 
-/// All three stages: kinematics, forces, then Data::a_WBcm_W and Data::wdot_WB_B.
+/// All three stages: kinematics, forces, then Data::a_WBcm_W and Data::wdot_WB_B; for a model
+/// with constraints also the constraint stage (SolveConstraintForces in constraint_solve.h),
+/// so the accelerations are the constrained ones and Data::constraints holds the reactions.
 void CalcAccelerations(const Model& model, const State& state, Data& data);
 
 /// Body-frame angular acceleration from Euler's equations with the full tensor:

@@ -9,6 +9,8 @@
 /// reads), accept when err <= 1, next step h·min(5, max(0.2, 0.9 err^(-1/5))).
 /// Quaternions are renormalised after each accepted step; the FSAL derivative is rescaled with
 /// them (q̇ is linear in q), so the projection costs no evaluation.
+/// Models with constraints: the state is projected onto the constraint manifold after each
+/// accepted step (ProjectOntoConstraints) and the FSAL derivative re-evaluated there.
 /// This is the default integrator: use it for accuracy and whenever events are located.
 
 #include <limits>
@@ -59,8 +61,8 @@ class DormandPrince5Integrator {
   double t_previous() const { return t_prev_; }
   /// Time at the end of the last step [s].
   double t() const { return state_.t; }
-  /// Dense output: the state at `t` in [t_previous(), t()] (quaternions normalised), written
-  /// into `out` (resized to the model).
+  /// Dense output: the state at `t` in [t_previous(), t()] (quaternions normalised; projected
+  /// onto the constraints of a constrained model), written into `out` (resized to the model).
   void Interpolate(double t, State& out);
   /// Step size the controller proposes next [s].
   double next_step() const { return h_next_; }
@@ -70,6 +72,7 @@ class DormandPrince5Integrator {
   struct Work;
   void Attempt(double h);
   void PrepareDense();
+  void ProjectAfterStep();
 
   std::unique_ptr<internal::OdeSystem> ode_;
   std::unique_ptr<Work> work_;

@@ -39,7 +39,8 @@ namespace chasles {
 
 class EnergyMomentumIntegrator {
  public:
-  /// `model` must outlive the integrator.
+  /// `model` must outlive the integrator. Throws InputError for a model with constraints
+  /// (free bodies only).
   explicit EnergyMomentumIntegrator(const Model& model);
 
   /// Advances `state` by one step of `h` [s] > 0.

@@ -5,6 +5,8 @@
 /// The quaternion is integrated as four numbers with q̇ = ½ q ⊗ (0, w_WB_B) and renormalised
 /// after every step: the projection changes it by O(h⁵) (the norm's drift is a local error
 /// term) so the order stays 4 and |q| = 1 to round-off at every output.
+/// Models with constraints: the state is projected onto the constraint manifold after each
+/// step (ProjectOntoConstraints), so positions and velocities do not drift.
 /// Use it for a fixed output grid and for predictable cost per step; use the adaptive
 /// Dormand–Prince integrator when accuracy must be guaranteed or events located.
 

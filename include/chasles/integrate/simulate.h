@@ -83,7 +83,9 @@ struct SimulationResult {
 };
 
 /// Runs the simulation. Throws InputError for an invalid initial state or options (the message
-/// names the option and the fix).
+/// names the option and the fix). For a model with constraints the initial state is first
+/// projected onto them (ProjectOntoConstraints), and so are the output samples and event
+/// states taken from the dense output.
 SimulationResult Simulate(const Model& model, const State& initial,
                           const SimulationOptions& options);
 

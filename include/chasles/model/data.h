@@ -5,7 +5,10 @@
 
 #include <vector>
 
+#include <Eigen/Cholesky>
+
 #include "chasles/math/types.h"
+#include "chasles/model/constraint.h"
 
 namespace chasles {
 
@@ -21,6 +24,28 @@ struct ForceElementOutput {
   Vec3 force_W = Vec3::Zero();
   /// Sum of the moments of its forces about the world origin plus its pure moments, in W [N·m].
   Vec3 moment_Wo_W = Vec3::Zero();
+};
+
+/// What one constraint does at the evaluated state (filled by the constraint stage of
+/// CalcAccelerations). The reaction is the force and moment the parent (or the world) exerts
+/// on the child at the joint point J: the child's share of Jᵀλ, with its moment moved from the
+/// child's centre of mass to J.
+struct ConstraintOutput {
+  /// Multipliers of its rows (the first num_rows() entries) [N or N·m per row].
+  ConstraintEval::Column lambda = ConstraintEval::Column::Zero();
+  /// Joint (or contact) point J on the child, in W [m].
+  Vec3 p_WJ = Vec3::Zero();
+  /// Reaction force on the child at J, in W [N].
+  Vec3 F_Jc_W = Vec3::Zero();
+  /// Reaction moment on the child about J, in W [N·m].
+  Vec3 M_Jc_W = Vec3::Zero();
+  /// Reaction force on the child at J, in the child's frame B [N].
+  Vec3 F_Jc_B = Vec3::Zero();
+  /// Reaction moment on the child about J, in the child's frame B [N·m].
+  Vec3 M_Jc_B = Vec3::Zero();
+  /// Power of the constraint's forces on all its bodies, λᵀ J u [W] (0 for ideal joints and
+  /// rolling; a driver's power otherwise).
+  double power = 0.0;
 };
 
 struct Data {
@@ -43,6 +68,28 @@ struct Data {
   std::vector<Vec3> a_WBcm_W;
   /// Angular acceleration of each body, expressed in B [rad/s²].
   std::vector<Vec3> wdot_WB_B;
+
+  // --- Constraint stage: CalcAccelerations, after the free accelerations (models with
+  //     constraints only); the rows alone: CalcConstraintRows ---
+  /// Per constraint (Model order): its rows at the evaluated state.
+  std::vector<ConstraintEval> constraint_rows;
+  /// Per constraint (Model order): multipliers and reactions.
+  std::vector<ConstraintOutput> constraints;
+  /// Stacked Jacobian J (num_constraint_rows × 6 num_bodies); columns per body
+  /// [v_WBcm_W, w_WB_W].
+  Eigen::MatrixXd J;
+  /// Stacked velocity right-hand side b, acceleration right-hand side c, position error g.
+  Eigen::VectorXd velocity_rhs, acceleration_rhs, position_error;
+  /// Stacked multipliers λ (generalised constraint force Jᵀλ).
+  Eigen::VectorXd lambda;
+  /// Rank of J M⁻¹ Jᵀ found by the solve (< rows when constraints are redundant).
+  int constraint_rank = 0;
+  /// Workspace of the constraint solve, sized once by MakeData so that the derivative
+  /// evaluations do not allocate: J M⁻¹, J M⁻¹ Jᵀ and its factorisation, the generalised
+  /// velocity u and acceleration u̇, J u, and the right-hand side of the multiplier system.
+  Eigen::MatrixXd JMinv, schur;
+  Eigen::LDLT<Eigen::MatrixXd> schur_ldlt;
+  Eigen::VectorXd u, u_dot, Ju, schur_rhs;
 };
 
 /// A Data sized for `model`.

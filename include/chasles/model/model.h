@@ -2,7 +2,7 @@
 /// @file
 /// Model: the bodies and force elements of a system, built once and then only read (it is
 /// passed as `const Model&` to every algorithm). Maximal coordinates: each body moves freely
-/// unless something constrains it; joints, constraints and contacts will join the model here.
+/// unless a constraint (joint, rolling contact, prescribed motion) holds it.
 
 #include <memory>
 #include <string>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "chasles/model/body.h"
+#include "chasles/model/constraint.h"
 #include "chasles/model/force_element.h"
 
 namespace chasles {
@@ -31,6 +32,19 @@ class Model {
   int num_force_elements() const { return static_cast<int>(forces_.size()); }
   /// Force element `i`.
   const ForceElement& force_element(int i) const { return *forces_[static_cast<size_t>(i)]; }
+  /// Adds a constraint (joint, rolling contact, driver); returns its index. Throws InputError
+  /// for a duplicate name or a body index that does not exist.
+  int AddConstraint(std::shared_ptr<const Constraint> constraint);
+  /// Number of constraints.
+  int num_constraints() const { return static_cast<int>(constraints_.size()); }
+  /// Constraint `i`.
+  const Constraint& constraint(int i) const { return *constraints_[static_cast<size_t>(i)]; }
+  /// Total number of constraint rows (multipliers).
+  int num_constraint_rows() const { return num_constraint_rows_; }
+  /// First row of constraint `i` in the stacked system.
+  int constraint_row_offset(int i) const { return row_offsets_[static_cast<size_t>(i)]; }
+  /// Index of the constraint called `name`; InputError otherwise.
+  int FindConstraint(std::string_view name) const;
   /// Index of the body called `name`; InputError listing the known names otherwise.
   BodyIndex FindBody(std::string_view name) const;
   /// Index of the force element called `name`; InputError otherwise.
@@ -39,6 +53,9 @@ class Model {
  private:
   std::vector<Body> bodies_;
   std::vector<std::shared_ptr<const ForceElement>> forces_;
+  std::vector<std::shared_ptr<const Constraint>> constraints_;
+  std::vector<int> row_offsets_;
+  int num_constraint_rows_ = 0;
 };
 
 }  // namespace chasles

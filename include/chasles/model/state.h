@@ -45,10 +45,16 @@ struct State {
   std::vector<BodyState> bodies;
   /// One entry per force element, in the Model's force order.
   std::vector<ForceIntegrals> force_integrals;
+  /// One entry per constraint, in the Model's order: work done by its forces on all its
+  /// bodies since the start, ∫ λᵀ J u dt [J] (zero for ideal joints and rolling; what a
+  /// prescribed-motion driver puts in). Carried as ODE states like the force integrals.
+  /// May be left empty (read as zeros), e.g. for a state made before the constraints were
+  /// added to the model.
+  std::vector<double> constraint_work;
 };
 
 /// A state for `model` at t = 0 with every body at rest at the world origin, identity
-/// orientation, and zero force integrals.
+/// orientation, and zero force integrals and constraint work.
 State MakeRestState(const Model& model);
 
 /// Places body `b`'s own frame origin Bo at p_WBo [m] with orientation q_WB (normalised here):

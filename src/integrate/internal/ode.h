@@ -3,7 +3,7 @@
 /// The equations of motion as a first-order ODE y' = f(t, y) over a flat vector, for the
 /// Runge–Kutta integrators. Layout per body: p_WBcm (3), q_WB (w, x, y, z) (4), v_WBcm_W (3),
 /// w_WB_B (3); then per force element the integrals of its power, non-conservative power,
-/// force (3) and moment about Wo (3).
+/// force (3) and moment about Wo (3); then per constraint the work of its forces.
 
 #include <Eigen/Core>
 
@@ -33,6 +33,11 @@ class OdeSystem {
   /// Scales each body's quaternion in y to unit length and the matching entries of `ydot` by
   /// the same factor (q̇ = ½ q ⊗ w is linear in q, so ydot stays f(t, y) exactly).
   void NormalizeQuaternions(Vector& y, Vector* ydot) const;
+  /// True when the model has constraints (then the state is projected after each step).
+  bool has_constraints() const { return model_.num_constraints() > 0; }
+  /// Projects `state` onto the constraint manifold (positions, then velocities); see
+  /// ProjectOntoConstraints.
+  void Project(State& state);
   /// Number of derivative evaluations so far.
   long long evaluations() const { return evaluations_; }
 

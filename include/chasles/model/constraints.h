@@ -1,0 +1,134 @@
+#pragma once
+/// @file
+/// The constraint kinds: ideal joints between two bodies (or a body and the world), rolling
+/// without slipping of a round body on a world plane, and prescribed-motion drivers. Every
+/// constructor validates its input (InputError naming the constraint). The joint frame J is
+/// given on both bodies; its z axis is the joint axis (or the plane's normal, or the line).
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "chasles/model/constraint.h"
+
+namespace chasles {
+
+enum class JointKind {
+  kWeld,          ///< no relative motion (6 rows)
+  kRevolute,      ///< rotation about z only (5 rows)
+  kPrismatic,     ///< translation along z only (5 rows)
+  kSpherical,     ///< rotation about the common point (3 rows)
+  kCylindrical,   ///< rotation about and translation along z (4 rows)
+  kPlanar,        ///< child's x-y plane slides on parent's x-y plane (3 rows)
+  kPointOnPlane,  ///< child's J origin stays on parent's x-y plane (1 row, frictionless)
+  kPointOnLine,   ///< child's J origin stays on parent's z line (2 rows, frictionless)
+};
+
+/// Name of a joint kind ("revolute", ...).
+const char* JointKindName(JointKind kind);
+
+/// An ideal (frictionless, workless) joint. Rows, with a_i the parent frame's axes, b_i the
+/// child's, d = p_WJc - p_WJp the offset of the child's J origin from the parent's:
+///   point coincidence d = 0; axis-aligned distance d·a_k = 0; perpendicularity a_i·b_j = 0.
+class Joint final : public Constraint {
+ public:
+  /// `X_PJ` the joint frame on the parent (a world pose when the parent is kWorld), `X_CJ` on
+  /// the child; assembled, the held parts of the two frames coincide (AttachmentFrameAtWorldPose
+  /// makes both from one world pose). Throws InputError for non-orthonormal axes.
+  Joint(std::string name, JointKind kind, BodyIndex parent, const AttachmentFrame& X_PJ,
+        BodyIndex child, const AttachmentFrame& X_CJ);
+  /// Which joint this is.
+  JointKind joint_kind() const { return kind_; }
+  int num_rows() const override;
+  std::string kind() const override { return JointKindName(kind_); }
+  void Evaluate(const Model& model, const State& state, const Data& data,
+                ConstraintEval& eval) const override;
+
+ private:
+  JointKind kind_;
+  AttachmentFrame X_PJ_, X_CJ_;
+};
+
+enum class RollingShape {
+  kSphere,    ///< touches at centre - R n
+  kCylinder,  ///< axis stays parallel to the plane; touches along a line (its mid point used)
+  kDisk,      ///< thin disk or wheel rim, may tilt: touches at the rim's lowest point
+};
+
+/// Rolling without slipping of a round body on a fixed world plane (nonholonomic). Rows:
+/// normal n·v_C = 0 (holonomic: the height of the lowest point), tangential t1·v_C = t2·v_C = 0
+/// (nonholonomic) where v_C is the velocity of the body's material point at the contact C,
+/// and for a cylinder its axis e stays parallel to the plane, e·n = 0. Multipliers: the
+/// normal force N (row 0) and the friction force components along t1, t2 (rows 1, 2).
+class RollingContact final : public Constraint {
+ public:
+  /// `p_BoC_B` the centre of the sphere / cylinder / disk from Bo in B [m]; `axis_B` its
+  /// symmetry axis in B (ignored for a sphere); `radius` R > 0 [m]; the plane passes through
+  /// `p_WO` [m] with upward unit normal `n_W` (normalised here).
+  RollingContact(std::string name, RollingShape shape, BodyIndex body, const Vec3& p_BoC_B,
+                 const Vec3& axis_B, double radius, const Vec3& p_WO, const Vec3& n_W);
+  int num_rows() const override { return shape_ == RollingShape::kCylinder ? 4 : 3; }
+  std::string kind() const override;
+  void Evaluate(const Model& model, const State& state, const Data& data,
+                ConstraintEval& eval) const override;
+  /// Upward unit normal of the plane, in W.
+  const Vec3& n_W() const { return n_W_; }
+  /// First and second tangent directions of the plane (t1 × t2 = n), in W.
+  const Vec3& t1_W() const { return t1_W_; }
+  const Vec3& t2_W() const { return t2_W_; }
+
+ private:
+  RollingShape shape_;
+  Vec3 p_BoC_B_, axis_B_;
+  double radius_;
+  Vec3 p_WO_, n_W_, t1_W_, t2_W_;
+};
+
+/// A prescribed function of time f(t) with its first two derivatives (for drivers).
+struct TimeFunction {
+  /// f(t) [m or rad].
+  std::function<double(double)> value;
+  /// ḟ(t) [m/s or rad/s].
+  std::function<double(double)> rate;
+  /// f̈(t) [m/s² or rad/s²].
+  std::function<double(double)> acceleration;
+  /// f = f0 + f1 t + ½ f2 t² (constant acceleration f2; f2 = 0 gives a constant rate).
+  static TimeFunction Quadratic(double f0, double f1, double f2);
+};
+
+enum class DriverKind {
+  kTranslation,  ///< d·a_z = f(t): the child's J origin along the parent's z axis
+  kRotation,     ///< angle from a_x to b_x about a_z = f(t) (with a revolute joint on z)
+};
+
+/// A prescribed motion (one row, rheonomic): J u = ḟ, J u̇ = f̈ - (velocity products). Its
+/// multiplier is the force [N] (translation) or moment [N·m] (rotation) the driver supplies
+/// along/about the parent's z axis. A body's world position component is a translation
+/// driver with the world as parent (frame at the origin, z along the component).
+class PrescribedMotion final : public Constraint {
+ public:
+  /// Frames as for Joint; the driven coordinate is zero when the two J origins coincide
+  /// (translation) or their x axes do (rotation). `f` must have all three functions.
+  PrescribedMotion(std::string name, DriverKind kind, BodyIndex parent, const AttachmentFrame& X_PJ,
+                   BodyIndex child, const AttachmentFrame& X_CJ, TimeFunction f);
+  int num_rows() const override { return 1; }
+  std::string kind() const override;
+  void Evaluate(const Model& model, const State& state, const Data& data,
+                ConstraintEval& eval) const override;
+
+ private:
+  DriverKind kind_;
+  AttachmentFrame X_PJ_, X_CJ_;
+  TimeFunction f_;
+};
+
+/// The attachment frame on body `b` (or kWorld) that coincides with the world pose
+/// (p_WJ, R_WJ) at `state`: what a scene gives as "joint at this world point, axis z".
+AttachmentFrame AttachmentFrameAtWorldPose(const Model& model, const State& state, BodyIndex b,
+                                           const Vec3& p_WJ, const Mat3& R_WJ);
+
+/// A rotation whose z column is the unit vector along `axis` (x, y completed arbitrarily but
+/// deterministically). Throws InputError for a zero axis.
+Mat3 FrameWithZAxis(const Vec3& axis);
+
+}  // namespace chasles

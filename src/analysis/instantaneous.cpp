@@ -1,0 +1,75 @@
+#include "chasles/analysis/instantaneous.h"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/error.h"
+#include "chasles/model/constraints.h"
+#include "chasles/model/data.h"
+
+namespace chasles {
+
+InstantaneousSolution SolveInstantaneous(const Model& model, const State& state,
+                                         const InstantaneousOptions& options) {
+  ValidateState(model, state);
+  Data data = MakeData(model);
+  const ConstraintViolation v = CalcConstraintViolation(model, state, data);
+  if (v.position > options.tolerance || v.velocity > options.tolerance) {
+    throw InputError(fmt::format(
+        "the state violates constraint '{}' (position error {:.3g}, velocity error {:.3g}; "
+        "tolerance {:.3g}): give positions and velocities that satisfy the constraints, or "
+        "project the state with ProjectOntoConstraints first",
+        model.constraint(v.worst).name(), v.position, v.velocity, options.tolerance));
+  }
+  CalcAccelerations(model, state, data);
+  InstantaneousSolution s;
+  s.t = state.t;
+  s.num_rows = model.num_constraint_rows();
+  s.rank = model.num_constraints() > 0 ? data.constraint_rank : 0;
+  if (s.rank < s.num_rows) {
+    s.warnings.push_back(fmt::format(
+        "the constraints are redundant ({} rows, rank {}): the reactions reported are the "
+        "least-norm ones; how a rigid structure shares them is statically indeterminate",
+        s.num_rows, s.rank));
+  }
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    BodyAccelerationReport r;
+    r.name = model.body(b).name();
+    r.a_WBcm_W = data.a_WBcm_W[i];
+    r.alpha_WB_B = data.wdot_WB_B[i];
+    r.alpha_WB_W = data.R_WB[i] * data.wdot_WB_B[i];
+    s.bodies.push_back(r);
+  }
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const Constraint& con = model.constraint(c);
+    const ConstraintOutput& o = data.constraints[static_cast<size_t>(c)];
+    ReactionReport r;
+    r.name = con.name();
+    r.kind = con.kind();
+    r.parent = con.parent();
+    r.child = con.child();
+    r.p_WJ = o.p_WJ;
+    r.F_Jc_W = o.F_Jc_W;
+    r.M_Jc_W = o.M_Jc_W;
+    r.F_Jc_B = o.F_Jc_B;
+    r.M_Jc_B = o.M_Jc_B;
+    r.power = o.power;
+    for (int k = 0; k < con.num_rows(); ++k) r.lambda.push_back(o.lambda[k]);
+    if (const auto* roll = dynamic_cast<const RollingContact*>(&con)) {
+      r.is_rolling = true;
+      r.normal_force = o.lambda[0];
+      r.friction_W = o.lambda[1] * roll->t1_W() + o.lambda[2] * roll->t2_W();
+      r.friction_needed = r.normal_force > 0.0 ? r.friction_W.norm() / r.normal_force
+                                               : std::numeric_limits<double>::infinity();
+    }
+    s.reactions.push_back(std::move(r));
+  }
+  return s;
+}
+
+}  // namespace chasles

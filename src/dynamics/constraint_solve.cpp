@@ -1,0 +1,274 @@
+#include "chasles/dynamics/constraint_solve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
+
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/error.h"
+#include "chasles/math/quaternion.h"
+
+namespace chasles {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// Y = X M⁻¹ for a matrix X with 6 columns per body: linear block / m, angular block times
+// I_W⁻¹ = R I_B⁻¹ Rᵀ (symmetric, so right and left products agree). Y is resized only when
+// its shape differs.
+void TimesMassInverse(const Model& model, const Data& data, const MatrixXd& X, MatrixXd& Y) {
+  Y.resize(X.rows(), X.cols());
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    const Body& body = model.body(b);
+    const Mat3 I_inv_W = data.R_WB[i] * body.I_BBcm_B_inverse() * data.R_WB[i].transpose();
+    Y.middleCols<3>(6 * b) = X.middleCols<3>(6 * b) / body.mass();
+    Y.middleCols<3>(6 * b + 3).noalias() = X.middleCols<3>(6 * b + 3) * I_inv_W;
+  }
+}
+
+std::vector<int> RowOwners(const Model& model);
+
+// Solves A x = r for symmetric positive semi-definite A = J M⁻¹ Jᵀ with the factorisation
+// object `ldlt` (reused: no allocation at a fixed size). Returns the rank. LDLᵀ when A is
+// well conditioned; otherwise the least-norm least-squares solution. With `what` given,
+// throws when the least-squares residual shows that the rows cannot all hold (inconsistent
+// constraints); `r_scale` is the size of the terms r was formed from, so that a right-hand
+// side that cancels to round-off is not mistaken for an inconsistency. `row_owner` maps rows
+// to constraints (all rows of the model when null).
+int SolveSchur(const Model& model, const std::vector<int>* row_owner, const MatrixXd& A,
+               Eigen::LDLT<MatrixXd>& ldlt, const VectorXd& r, VectorXd& x, const char* what,
+               double r_scale) {
+  const Eigen::Index n = A.rows();
+  if (n == 0) {
+    x.resize(0);
+    return 0;
+  }
+  const double a_max = A.diagonal().cwiseAbs().maxCoeff();
+  ldlt.compute(A);
+  if (ldlt.info() == Eigen::Success && a_max > 0.0 && ldlt.vectorD().minCoeff() > 1e-10 * a_max) {
+    x = ldlt.solve(r);
+    return static_cast<int>(n);
+  }
+  Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(A);
+  cod.setThreshold(1e-10);
+  x = cod.solve(r);
+  if (what == nullptr) return static_cast<int>(cod.rank());
+  const VectorXd res = A * x - r;
+  const double scale = std::max(r_scale, r.cwiseAbs().maxCoeff()) + a_max * x.cwiseAbs().maxCoeff();
+  const double tol = 1e-8 * scale;
+  if (res.cwiseAbs().maxCoeff() > tol) {
+    const std::vector<int> all = row_owner ? std::vector<int>() : RowOwners(model);
+    const std::vector<int>& owner = row_owner ? *row_owner : all;
+    std::string names;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const std::string quoted = "'" + model.constraint(owner[static_cast<size_t>(k)]).name() + "'";
+      if (std::abs(res[k]) > tol && names.find(quoted) == std::string::npos) {
+        names += (names.empty() ? "" : ", ") + quoted;
+      }
+    }
+    throw InputError(fmt::format(
+        "constraints {} are inconsistent: no {} satisfies all of them (least-squares residual "
+        "{:.3g}); remove or change one of them (two drivers on the same coordinate, or a "
+        "joint that contradicts another)",
+        names, what, res.cwiseAbs().maxCoeff()));
+  }
+  return static_cast<int>(cod.rank());
+}
+
+std::vector<int> RowOwners(const Model& model) {
+  std::vector<int> owner(static_cast<size_t>(model.num_constraint_rows()));
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const int o = model.constraint_row_offset(c);
+    for (int k = 0; k < model.constraint(c).num_rows(); ++k) owner[static_cast<size_t>(o + k)] = c;
+  }
+  return owner;
+}
+
+void GeneralizedVelocity(const Model& model, const State& state, const Data& data, VectorXd& u) {
+  u.resize(6 * model.num_bodies());
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    u.segment<3>(6 * b) = state.bodies[i].v_WBcm_W;
+    u.segment<3>(6 * b + 3) = data.w_WB_W[i];
+  }
+}
+
+}  // namespace
+
+void CalcConstraintRows(const Model& model, const State& state, Data& data) {
+  data.J.setZero();
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const Constraint& con = model.constraint(c);
+    ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+    e = ConstraintEval{};
+    con.Evaluate(model, state, data, e);
+    const int o = model.constraint_row_offset(c);
+    const int n = con.num_rows();
+    if (con.parent() != kWorld) data.J.block(o, 6 * con.parent(), n, 6) = e.J_parent.topRows(n);
+    data.J.block(o, 6 * con.child(), n, 6) = e.J_child.topRows(n);
+    data.velocity_rhs.segment(o, n) = e.velocity_rhs.head(n);
+    data.acceleration_rhs.segment(o, n) = e.acceleration_rhs.head(n);
+    data.position_error.segment(o, n) = e.position_error.head(n);
+  }
+}
+
+void SolveConstraintForces(const Model& model, const State& state, Data& data) {
+  const int nb = model.num_bodies();
+  CalcConstraintRows(model, state, data);
+  // Free accelerations u̇_free = [a_WBcm_W; R ẇ_B] from the Newton–Euler stage.
+  VectorXd& u_dot = data.u_dot;
+  for (int b = 0; b < nb; ++b) {
+    const auto i = static_cast<size_t>(b);
+    u_dot.segment<3>(6 * b) = data.a_WBcm_W[i];
+    u_dot.segment<3>(6 * b + 3) = data.R_WB[i] * data.wdot_WB_B[i];
+  }
+  TimesMassInverse(model, data, data.J, data.JMinv);
+  data.schur.noalias() = data.JMinv * data.J.transpose();
+  data.Ju.noalias() = data.J * u_dot;  // J u̇_free here; J u below
+  data.schur_rhs = data.acceleration_rhs - data.Ju;
+  const double r_scale =
+      std::max(data.acceleration_rhs.cwiseAbs().maxCoeff(), data.Ju.cwiseAbs().maxCoeff());
+  data.constraint_rank = SolveSchur(model, nullptr, data.schur, data.schur_ldlt, data.schur_rhs,
+                                    data.lambda, "set of reactions", r_scale);
+  u_dot.noalias() += data.JMinv.transpose() * data.lambda;  // M⁻¹ Jᵀ λ (M⁻¹ symmetric)
+  for (int b = 0; b < nb; ++b) {
+    const auto i = static_cast<size_t>(b);
+    data.a_WBcm_W[i] = u_dot.segment<3>(6 * b);
+    data.wdot_WB_B[i] = data.R_WB[i].transpose() * u_dot.segment<3>(6 * b + 3);
+  }
+  // Reactions: the child's share of Jᵀλ is a force at Bcm and a moment about Bcm (in W);
+  // moved to the joint point J: M_J = M_Bcm - (p_WJ - p_WBcm) × F.
+  GeneralizedVelocity(model, state, data, data.u);
+  data.Ju.noalias() = data.J * data.u;
+  const VectorXd& Ju = data.Ju;
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const Constraint& con = model.constraint(c);
+    const auto ci = static_cast<size_t>(c);
+    const ConstraintEval& e = data.constraint_rows[ci];
+    ConstraintOutput& out = data.constraints[ci];
+    const int o = model.constraint_row_offset(c);
+    const int n = con.num_rows();
+    out.lambda.setZero();
+    out.lambda.head(n) = data.lambda.segment(o, n);
+    const Eigen::Matrix<double, 6, 1> Fc = e.J_child.topRows(n).transpose() * out.lambda.head(n);
+    const auto bi = static_cast<size_t>(con.child());
+    const Vec3 F = Fc.head<3>();
+    const Vec3 r_J = e.p_WJ - state.bodies[bi].p_WBcm;
+    out.p_WJ = e.p_WJ;
+    out.F_Jc_W = F;
+    out.M_Jc_W = Fc.tail<3>() - r_J.cross(F);
+    out.F_Jc_B = data.R_WB[bi].transpose() * out.F_Jc_W;
+    out.M_Jc_B = data.R_WB[bi].transpose() * out.M_Jc_W;
+    out.power = data.lambda.segment(o, n).dot(Ju.segment(o, n));
+  }
+}
+
+ConstraintViolation CalcConstraintViolation(const Model& model, const State& state, Data& data) {
+  ConstraintViolation v;
+  if (model.num_constraints() == 0) return v;
+  CalcKinematics(model, state, data);
+  CalcConstraintRows(model, state, data);
+  GeneralizedVelocity(model, state, data, data.u);
+  const VectorXd res = data.J * data.u - data.velocity_rhs;
+  double worst = -1.0;
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+    const int o = model.constraint_row_offset(c);
+    for (int k = 0; k < model.constraint(c).num_rows(); ++k) {
+      const double g = e.holonomic[static_cast<size_t>(k)] ? std::abs(e.position_error[k]) : 0.0;
+      const double dv = std::abs(res[o + k]);
+      v.position = std::max(v.position, g);
+      v.velocity = std::max(v.velocity, dv);
+      if (std::max(g, dv) > worst) worst = std::max(g, dv), v.worst = c;
+    }
+  }
+  return v;
+}
+
+void ProjectOntoConstraints(const Model& model, State& state, Data& data,
+                            const ProjectionOptions& options) {
+  if (model.num_constraints() == 0) return;
+  const int nb = model.num_bodies();
+  std::vector<int> hol;  // holonomic rows
+  std::vector<int> hol_owner;
+  VectorXd mu, dx;
+  MatrixXd G, GMinv;
+  Eigen::LDLT<MatrixXd> ldlt;
+  for (int iter = 0; iter <= options.max_iterations; ++iter) {
+    CalcKinematics(model, state, data);
+    CalcConstraintRows(model, state, data);
+    if (iter == 0) {
+      for (int c = 0; c < model.num_constraints(); ++c) {
+        const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+        for (int k = 0; k < model.constraint(c).num_rows(); ++k) {
+          if (e.holonomic[static_cast<size_t>(k)]) {
+            hol.push_back(model.constraint_row_offset(c) + k);
+            hol_owner.push_back(c);
+          }
+        }
+      }
+      if (hol.empty()) break;
+    }
+    const auto nh = static_cast<Eigen::Index>(hol.size());
+    G.resize(nh, 6 * nb);
+    VectorXd g(nh);
+    for (Eigen::Index k = 0; k < nh; ++k) {
+      G.row(k) = data.J.row(hol[static_cast<size_t>(k)]);
+      g[k] = data.position_error[hol[static_cast<size_t>(k)]];
+    }
+    Eigen::Index worst = 0;
+    const double g_max = g.cwiseAbs().maxCoeff(&worst);
+    if (g_max <= options.position_tolerance) break;
+    if (iter == options.max_iterations) {
+      // Not converged: fine while the remainder is round-off of a large model, an input error
+      // when the constraints cannot be assembled at all (wrong lengths, a closed loop that
+      // does not close).
+      if (g_max > options.assembly_tolerance) {
+        throw InputError(fmt::format(
+            "constraint '{}' cannot be satisfied: after {} Gauss-Newton steps its position "
+            "error is still {:.3g}; check its attachment points and axes against the other "
+            "constraints",
+            model.constraint(hol_owner[static_cast<size_t>(worst)]).name(), options.max_iterations,
+            g_max));
+      }
+      break;
+    }
+    TimesMassInverse(model, data, G, GMinv);
+    // Least squares without the consistency check: an inconsistent set is reported by the
+    // acceleration solve, and here the right-hand side is only the drift.
+    SolveSchur(model, &hol_owner, GMinv * G.transpose(), ldlt, g, mu, nullptr, 0.0);
+    dx = -GMinv.transpose() * mu;
+    for (int b = 0; b < nb; ++b) {
+      BodyState& bs = state.bodies[static_cast<size_t>(b)];
+      bs.p_WBcm += dx.segment<3>(6 * b);
+      // δθ is a small rotation about W's axes: q ← exp(δθ) ⊗ q.
+      bs.q_WB = (QuatExp(dx.segment<3>(6 * b + 3)) * bs.q_WB).normalized();
+    }
+  }
+  // Velocities: J u = b at the projected configuration.
+  CalcKinematics(model, state, data);
+  CalcConstraintRows(model, state, data);
+  GeneralizedVelocity(model, state, data, data.u);
+  const VectorXd res = data.J * data.u - data.velocity_rhs;
+  if (res.size() == 0 || res.cwiseAbs().maxCoeff() == 0.0) return;
+  TimesMassInverse(model, data, data.J, data.JMinv);
+  data.schur.noalias() = data.JMinv * data.J.transpose();
+  SolveSchur(model, nullptr, data.schur, data.schur_ldlt, res, mu, nullptr, 0.0);
+  const VectorXd du = -data.JMinv.transpose() * mu;
+  for (int b = 0; b < nb; ++b) {
+    const auto i = static_cast<size_t>(b);
+    BodyState& bs = state.bodies[i];
+    bs.v_WBcm_W += du.segment<3>(6 * b);
+    bs.w_WB_B += data.R_WB[i].transpose() * du.segment<3>(6 * b + 3);
+  }
+  CalcKinematics(model, state, data);  // leave the kinematics stage consistent with `state`
+}
+
+}  // namespace chasles
