@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh >&2
-./scripts/build.sh -DCHASLES_BUILD_TESTS=OFF -DCHASLES_BUILD_BENCH=OFF >&2
+./scripts/build.sh -DCHASLES_SANITIZE=OFF -DCHASLES_BUILD_TESTS=OFF -DCHASLES_BUILD_BENCH=OFF >&2
 exec ./build/bin/chasles "$@"
