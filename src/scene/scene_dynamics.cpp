@@ -416,11 +416,14 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
   if (root.Has("forces")) {
     const At forces = root.Child("forces");
     report_.CheckSequence(forces, "a list of force elements");
+    const std::vector<std::string> constraint_names = d.constraints.names();
     for (size_t i = 0; i < forces.node.size(); ++i) {
       SceneForce f = ReadForce(forces.Item(i), scene, i);
       const bool clash = (d.has_gravity && f.name == "gravity") ||
                          std::any_of(d.forces.begin(), d.forces.end(),
-                                     [&](const SceneForce& o) { return o.name == f.name; });
+                                     [&](const SceneForce& o) { return o.name == f.name; }) ||
+                         std::any_of(constraint_names.begin(), constraint_names.end(),
+                                     [&](const std::string& o) { return o == f.name; });
       if (clash) {
         report_.Fail(
             forces.Item(i).Has("name") ? forces.Item(i).Child("name") : forces.Item(i),

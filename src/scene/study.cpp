@@ -15,6 +15,7 @@
 #include "chasles/dynamics/impulse.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
+#include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
 #include "internal/study_columns.h"
@@ -118,6 +119,46 @@ VectorFunction MakeVectorFunction(std::shared_ptr<const Model*> model_ref,
   };
 }
 
+State InitialState(const Scene& scene, const Model& model);
+
+/// Adds the scene's joints, rolling contacts and drivers to `model` (bodies already added, one
+/// per scene body). A scene gives joint points and axes in W at the initial configuration;
+/// each side's attachment frame is the one that coincides with that world pose there.
+void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
+  const SceneConstraints& c = scene.dynamics.constraints;
+  if (c.empty()) return;
+  if (model.num_bodies() != static_cast<int>(scene.bodies.size())) {
+    throw InputError(
+        "an impact that embeds a projectile cannot be combined with joints, rolling contacts "
+        "or drivers (the constrained bodies would change); use exit_fraction > 0 or remove "
+        "the constraints");
+  }
+  const State s0 = InitialState(scene, model);
+  auto model_body = [&](int b) {
+    return b == kWorld ? kWorld : map.place[static_cast<size_t>(b)].model_body;
+  };
+  auto frame = [&](int b, const Vec3& p_WJ, const Mat3& R_WJ) {
+    return AttachmentFrameAtWorldPose(model, s0, model_body(b), p_WJ, R_WJ);
+  };
+  for (const SceneJoint& j : c.joints) {
+    const Mat3 R_WJ = FrameWithZAxis(j.axis_W);
+    model.AddConstraint(std::make_shared<Joint>(j.name, j.kind, model_body(j.parent),
+                                                frame(j.parent, j.p_WJ, R_WJ), model_body(j.child),
+                                                frame(j.child, j.p_WJ, R_WJ)));
+  }
+  for (const SceneRolling& r : c.rolling) {
+    model.AddConstraint(std::make_shared<RollingContact>(r.name, r.shape, model_body(r.body),
+                                                         r.p_BoC_B, r.axis_B, r.radius,
+                                                         r.plane_point_W, r.plane_normal_W));
+  }
+  for (const SceneDriver& d : c.drivers) {
+    const Mat3 R_WJ = FrameWithZAxis(d.axis_W);
+    model.AddConstraint(std::make_shared<PrescribedMotion>(
+        d.name, d.kind, model_body(d.parent), frame(d.parent, d.p_WJ, R_WJ), model_body(d.child),
+        frame(d.child, d.p_WJ, R_WJ), TimeFunction::Quadratic(d.f0, d.f1, d.f2)));
+  }
+}
+
 /// The Model of one segment: bodies (name, mass properties) and the scene's force elements
 /// placed through `map`. `model_ref` is set to the Model's final address by the caller.
 Model BuildModel(const Scene& scene,
@@ -181,6 +222,7 @@ Model BuildModel(const Scene& scene,
         break;
     }
   }
+  AddSceneConstraints(scene, *map, model);
   return model;
 }
 
@@ -374,6 +416,13 @@ struct RowMaker {
         continue;
       }
       const std::string& q = c.quantity;
+      if (c.group == "reactions") {
+        // Force (F) or moment about J (M) the parent exerts on the child, in W.
+        const ConstraintOutput& r =
+            data.constraints[static_cast<size_t>(model.FindConstraint(c.force))];
+        row.push_back((q[0] == 'F' ? r.F_Jc_W : r.M_Jc_W)[q[1] - 'x']);
+        continue;
+      }
       double v = 0.0;
       if (q == "t") {
         v = s.t;
@@ -393,6 +442,9 @@ struct RowMaker {
         v = carry.work_by_force.count(c.force) ? carry.work_by_force.at(c.force) : 0.0;
         for (const ForceLedger& f : L.forces) {
           if (f.name == c.force) v += f.work_nonconservative;
+        }
+        for (const ConstraintLedger& f : L.constraints) {
+          if (f.name == c.force) v += f.work;
         }
       } else if (q == "dissipated") {
         v = carry.dissipated + L.dissipated;
@@ -438,7 +490,9 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
     for (const ColumnInfo& c : all) {
       if (c.name == name) {
         rows.columns.push_back(c);
-        if (c.quantity[0] == 'a' && c.body >= 0) rows.needs_accelerations = true;
+        if ((c.quantity[0] == 'a' && c.body >= 0) || c.group == "reactions") {
+          rows.needs_accelerations = true;
+        }
         break;
       }
     }
@@ -518,6 +572,7 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
     carry.residual += L.energy_residual;
     carry.scale = std::max(carry.scale, L.energy_scale);
     for (const ForceLedger& f : L.forces) carry.work_by_force[f.name] += f.work_nonconservative;
+    for (const ConstraintLedger& f : L.constraints) carry.work_by_force[f.name] += f.work;
   };
 
   for (const Jump& j : jumps) {
@@ -663,6 +718,28 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
       if (fl.name == f.name) w += fl.work_nonconservative;
     }
     out.work_by_force.emplace_back(f.name, w);
+  }
+  for (const ConstraintLedger& cl : L.constraints) {
+    const double w =
+        (carry.work_by_force.count(cl.name) ? carry.work_by_force.at(cl.name) : 0.0) + cl.work;
+    out.work_by_constraint.emplace_back(cl.name, w);
+  }
+  if (model.num_constraints() > 0) {
+    // The reactions at the final state (the constraint stage of CalcAccelerations).
+    Data data = MakeData(model);
+    CalcAccelerations(model, state, data);
+    for (int i = 0; i < model.num_constraints(); ++i) {
+      const Constraint& con = model.constraint(i);
+      const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
+      StudyReaction r;
+      r.name = con.name();
+      r.kind = con.kind();
+      r.p_WJ = o.p_WJ;
+      r.F_Jc_W = o.F_Jc_W;
+      r.M_Jc_W = o.M_Jc_W;
+      r.power = o.power;
+      result.final_reactions.push_back(r);
+    }
   }
   out.linear_momentum_W = L.linear_momentum_W;
   out.angular_momentum_Scm_W = L.angular_momentum_Scm_W;

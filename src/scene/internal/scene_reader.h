@@ -113,6 +113,17 @@ class SceneReader {
   std::optional<Symbol> ResolveStateSymbol(const At& at, std::string_view name);
   VectorFrame FrameAt(const At& at);
 
+  // Constraints (scene_constraints.cpp) ---------------------------------------------------
+  /// Reads `joints`, `rolling` and `drivers` into scene.dynamics.constraints.
+  void ReadConstraints(const At& root, Scene& scene);
+  /// A body name or `world` (kWorld).
+  int ParentIndexAt(const At& at, const Scene& scene);
+  /// A unit direction from a vector of any length; fails for a zero vector.
+  Vec3 AxisAt(const At& at, std::string_view what);
+  /// The entry's name (or "<kind>N"), unique among all constraints (`taken`).
+  std::string ConstraintName(const At& at, const char* kind, size_t index,
+                             std::vector<std::string>& taken);
+
   Reporter report_;
   SceneOptions options_;
   std::unique_ptr<UnitSystem> units_;
