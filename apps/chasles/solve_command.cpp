@@ -3,6 +3,7 @@
 // exert?"), and for rolling the friction it needs against mu_s. With --sweep, the same over a
 // range of one parameter, as a table.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -18,6 +19,7 @@
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/study.h"
+#include "chasles/suggest.h"
 #include "commands.h"
 #include "scene_args.h"
 
@@ -214,6 +216,16 @@ int RunSolve(const SolveArgs& args) {
     return 0;
   }
   const Sweep sweep = ParseSweep(args.sweep);
+  {
+    const Scene scene = LoadScene(args.scene);
+    std::vector<std::string> known;
+    for (const auto& p : scene.parameters) known.push_back(p.first);
+    if (std::find(known.begin(), known.end(), sweep.name) == known.end()) {
+      throw SceneError("command line", 0, 0, "--sweep",
+                       fmt::format("the scene has no parameter '{}'{}; parameters: {}", sweep.name,
+                                   DidYouMean(sweep.name, known), fmt::join(known, ", ")));
+    }
+  }
   std::vector<std::string> names;
   std::vector<std::vector<double>> rows;
   for (int k = 0; k < sweep.count; ++k) {

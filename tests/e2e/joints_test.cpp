@@ -2,6 +2,7 @@
 // against closed forms derived in the tests (and in the examples' comments). The examples use
 // integrator tolerance 1e-12; the answers below are met to 1e-7 relative or better.
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -219,6 +220,75 @@ TEST(Joints, ReactionColumnsAreNamedByConstraint) {
   std::getline(in, header);
   EXPECT_THAT(header, ::testing::HasSubstr("pin_Fx,pin_Fy,pin_Fz,pin_Mx,pin_My,pin_Mz"));
   EXPECT_THAT(header, ::testing::HasSubstr("W_pin"));
+}
+
+// Example 8.3: a solid cylinder rolling down an incline at θ = 30°: a = (2/3) g sin θ,
+// friction f = m g sin θ / 3, N = m g cos θ, so rolling needs f/N = tan θ / 3 = 0.19245.
+TEST(Solve, Example83CylinderOnAnInclineNeedsTanThetaOverThreeFriction) {
+  const CliResult r =
+      RunCli("solve " + Quote(SourcePath("examples/example-8.3-cylinder-incline.yaml")) +
+             " --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double g = kStandardGravity, m = 5.0, theta = kPi / 6;
+  constexpr double kSolve = 1e-9;  // one linear solve: round-off only
+  const auto& c = Named(j.at("reactions"), "contact");
+  EXPECT_NEAR(c.at("friction_needed").get<double>(), std::tan(theta) / 3,
+              kSolve * std::tan(theta) / 3);
+  EXPECT_NEAR(c.at("friction_needed").get<double>(), 0.19245008972987526, kSolve);
+  EXPECT_NEAR(c.at("friction_magnitude").get<double>(), m * g * std::sin(theta) / 3,
+              kSolve * m * g);
+  EXPECT_NEAR(c.at("normal_force").get<double>(), m * g * std::cos(theta), kSolve * m * g);
+  EXPECT_EQ(c.at("mu_s").get<double>(), 0.25);
+  EXPECT_TRUE(c.at("rolls").get<bool>());
+  const auto& b = Named(j.at("bodies"), "cylinder");
+  const Vec3 a(At(b.at("acceleration"), 0), At(b.at("acceleration"), 1),
+               At(b.at("acceleration"), 2));
+  EXPECT_NEAR(a.norm(), 2.0 / 3.0 * g * std::sin(theta), kSolve * g);
+  // Along the slope, down: (cos θ, 0, -sin θ).
+  EXPECT_NEAR(a.x() * std::cos(theta) - a.z() * std::sin(theta), 2.0 / 3.0 * g * std::sin(theta),
+              kSolve * g);
+}
+
+TEST(Solve, SweepTabulatesOverAParameterRange) {
+  const CliResult r =
+      RunCli("solve " + Quote(SourcePath("examples/example-8.3-cylinder-incline.yaml")) +
+             " --sweep 'theta=10 deg:50 deg:5' --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& cols = j.at("columns");
+  size_t ratio = cols.size();
+  for (size_t i = 0; i < cols.size(); ++i) {
+    if (cols[i] == "contact_f_over_N") ratio = i;
+  }
+  ASSERT_LT(ratio, cols.size());
+  ASSERT_EQ(j.at("rows").size(), 5u);
+  for (size_t k = 0; k < 5; ++k) {
+    const auto& row = j.at("rows")[k];
+    const double theta = (10.0 + 10.0 * static_cast<double>(k)) * kPi / 180;
+    EXPECT_NEAR(At(row, 0), theta, 1e-15);
+    EXPECT_NEAR(At(row, ratio), std::tan(theta) / 3, 1e-9);
+  }
+  // The text table has a header and one line per value.
+  const CliResult t =
+      RunCli("solve " + Quote(SourcePath("examples/example-8.3-cylinder-incline.yaml")) +
+             " --sweep 'theta=10 deg:50 deg:5'");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_THAT(t.out, ::testing::HasSubstr("theta,cylinder_ax"));
+  EXPECT_EQ(std::count(t.out.begin(), t.out.end(), '\n'), 7);
+}
+
+TEST(Solve, BadSweepIsAClearError) {
+  const CliResult r =
+      RunCli("solve " + Quote(SourcePath("examples/example-8.3-cylinder-incline.yaml")) +
+             " --sweep 'theta=10 deg:50 deg'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, ::testing::HasSubstr("NAME=START:STOP:COUNT"));
+  const CliResult u =
+      RunCli("solve " + Quote(SourcePath("examples/example-8.3-cylinder-incline.yaml")) +
+             " --sweep 'thetta=10 deg:50 deg:3'");
+  EXPECT_EQ(u.exit_code, 2);
+  EXPECT_THAT(u.err, ::testing::HasSubstr("thetta"));
 }
 
 }  // namespace
