@@ -213,6 +213,40 @@ TEST(Joints, TranslationDriverSuppliesForceAndWork) {
   EXPECT_LT(std::abs(j.at("ledger").at("relative_residual").get<double>()), 1e-9);
 }
 
+// A rotation driver spins a disk (I = m R²/2 about its axis) on a revolute joint at constant
+// angular acceleration α from rest: it supplies the moment I α, and its work after t is the
+// kinetic energy I (α t)² / 2 (eq. 8.116 with the work-energy principle).
+TEST(Joints, RotationDriverSuppliesMomentAndWork) {
+  const auto dir = OutDir();
+  const auto scene = dir / "spin.yaml";
+  {
+    std::ofstream out(scene);
+    out << "bodies:\n"
+           "  - name: disk\n"
+           "    parts: [{shape: disk, radius: 0.2 m, mass: 4 kg}]\n"
+           "joints:\n"
+           "  - {name: axle, type: revolute, parent: world, child: disk, at: [0, 0, 0],\n"
+           "     axis: [0, 0, 1]}\n"
+           "drivers:\n"
+           "  - {name: motor, type: rotation, parent: world, child: disk, at: [0, 0, 0],\n"
+           "     axis: [0, 0, 1], value: {acceleration: 3 rad/s^2}}\n"
+           "simulation: {until: 2 s, tolerance: 1e-12}\n";
+  }
+  const CliResult r =
+      RunCli("simulate " + Quote(scene.string()) + " --format json --out " + Quote(dir.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double m = 4.0, R = 0.2, alpha = 3.0, t = 2.0;
+  const double I = m * R * R / 2;
+  const auto& motor = Named(j.at("final").at("reactions"), "motor");
+  EXPECT_NEAR(At(motor.at("moment"), 2), I * alpha, kRun * I * alpha);
+  const auto& b = Named(j.at("final").at("bodies"), "disk");
+  EXPECT_NEAR(At(b.at("angular_velocity"), 2), alpha * t, kRun * alpha * t);
+  const double W = I * (alpha * t) * (alpha * t) / 2;
+  EXPECT_NEAR(j.at("ledger").at("work_by_constraint").at("motor").get<double>(), W, kRun * W);
+  EXPECT_NEAR(j.at("ledger").at("work_by_constraint").at("axle").get<double>(), 0.0, kRun * W);
+}
+
 TEST(Joints, ReactionColumnsAreNamedByConstraint) {
   const auto j = Simulate("examples/pinned-rod.yaml");
   std::ifstream in(j.at("csv").get<std::string>());
