@@ -76,7 +76,8 @@ void FillVariables(const Model& model, const State& state, const BodyMap& map, i
   v.assign(static_cast<size_t>(std::max(count, 1)), 0.0);
   v[0] = state.t;
   const int per = StateVariableLayout::kPerBody;
-  for (int b = 0; b * per + 1 < count; ++b) {
+  const int num_scene_bodies = static_cast<int>(map.place.size());
+  for (int b = 0; b < num_scene_bodies && b * per + 1 < count; ++b) {
     const SceneBodyMotion m = CalcSceneBodyMotion(model, state, map, b);
     const Vec3 w_B = m.R_WB.transpose() * m.w_WB_W;
     const Vec3 ypr = CalcYawPitchRoll(m.R_WB);
@@ -102,6 +103,19 @@ void FillVariables(const Model& model, const State& state, const BodyMap& map, i
     for (int j = 0; j < per; ++j) {
       const int slot = StateVariableLayout::Slot(b, j);
       if (slot < count) v[static_cast<size_t>(slot)] = block[j];
+    }
+  }
+  // Reactions (events only): six slots per constraint after the scene bodies' blocks.
+  const int first = StateVariableLayout::Slot(num_scene_bodies, 0);
+  if (count > first && model.num_constraints() > 0) {
+    Data data = MakeData(model);
+    CalcAccelerations(model, state, data);
+    for (int i = 0; i < model.num_constraints(); ++i) {
+      const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
+      for (int k = 0; k < 6; ++k) {
+        const int slot = first + 6 * i + k;
+        if (slot < count) v[static_cast<size_t>(slot)] = k < 3 ? o.F_Jc_W[k] : o.M_Jc_W[k - 3];
+      }
     }
   }
 }

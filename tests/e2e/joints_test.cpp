@@ -168,9 +168,14 @@ TEST(Joints, Example84LadderLeavesTheWallWhereNormalForceVanishes) {
     EXPECT_NEAR(csv.at("wall_Fz")[i], 0.0, kRun * m * g);  // frictionless
     EXPECT_NEAR(csv.at("floor_Fx")[i], 0.0, kRun * m * g);
   }
-  // The event stops the run at φ_leave, where the wall's force is zero and N_B = m g / 4.
+  // The event on the wall's reaction (wall_Fx crossing zero) stops the run at φ_leave, where
+  // N_B = m g / 4.
   ASSERT_EQ(j.at("events").size(), 1u);
   EXPECT_TRUE(j.at("stopped_by_event").get<bool>());
+  EXPECT_EQ(j.at("events")[0].at("name"), "leaves wall");
+  const auto& q = Named(j.at("final").at("bodies"), "ladder").at("quaternion");
+  // q = (cos(-φ/2), 0, sin(-φ/2), 0) up to sign: φ = 2 acos(|qw|).
+  EXPECT_NEAR(2 * std::acos(std::abs(At(q, 0))), phi_leave, kRun);
   const auto& wall = Named(j.at("final").at("reactions"), "wall");
   const auto& floor = Named(j.at("final").at("reactions"), "floor");
   EXPECT_NEAR(At(wall.at("force"), 0), 0.0, kRun * m * g);

@@ -6,6 +6,7 @@
 /// parameters, materials, bodies and parts).
 
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -134,6 +135,10 @@ class SceneReader {
   std::vector<std::string> warnings_;
   std::map<std::string, int, std::less<>> state_variables_;  // name -> slot
   std::vector<std::string> state_variable_names_;
+  // First slot of the constraints' reaction variables (after every body's block), and whether
+  // the expression being read may use them (only events' `when`).
+  int reaction_slot_begin_ = std::numeric_limits<int>::max();
+  bool allow_reactions_ = false;
 };
 
 /// Reads a parsed YAML document as a scene named `name` in messages.
