@@ -12,6 +12,7 @@
 
 #include "chasles/analysis/ledger.h"
 #include "chasles/analysis/momentum.h"
+#include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/impulse.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
@@ -697,6 +698,13 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
         rec.kind = "embedding";
         rec.description = fmt::format("{} embeds in {}", pname, tname);
       }
+    }
+    if (seg.model->num_constraints() > 0) {
+      // The supports' impulsive reaction: projecting the velocities onto the constraints with
+      // the mass metric, du = -M⁻¹ Jᵀ μ, is exactly the response of ideal constraints to the
+      // impulse (impulse-momentum with the constraint impulse Jᵀ μ).
+      Data data = MakeData(*seg.model);
+      ProjectOntoConstraints(*seg.model, state, data);
     }
     CheckFinite(*seg.model, state);
     rec.energy_before = E_before;

@@ -252,6 +252,43 @@ TEST(Joints, RotationDriverSuppliesMomentAndWork) {
   EXPECT_NEAR(j.at("ledger").at("work_by_constraint").at("axle").get<double>(), 0.0, kRun * W);
 }
 
+// An impulse J across the free end of a pinned rod at rest (no gravity): the pin's impulsive
+// reaction leaves the rod turning about the pin with I_O w = L J, I_O = m L²/3 (angular
+// impulse-momentum about the pin, chapter 8.5), so w = 3 J / (m L) and the kinetic energy
+// jumps by I_O w² / 2 = 3 J² / (2 m).
+TEST(Joints, ImpulseOnAPinnedRodTurnsItAboutThePin) {
+  const auto dir = OutDir();
+  const auto scene = dir / "struck-rod.yaml";
+  {
+    std::ofstream out(scene);
+    out << "bodies:\n"
+           "  - name: rod\n"
+           "    parts:\n"
+           "      - {shape: custom, mass: 2 kg, center_of_mass: [0.5 m, 0, 0],\n"
+           "         inertia: {Ixx: 1e-4 kg*m^2, Iyy: 2 kg*(1 m)^2/12, Izz: 2 kg*(1 m)^2/12}}\n"
+           "joints:\n"
+           "  - {name: pin, type: revolute, parent: world, child: rod, at: [0, 0, 0],\n"
+           "     axis: [0, 1, 0]}\n"
+           "impulses:\n"
+           "  - {time: 0.1 s, body: rod, point: [1 m, 0, 0], value: [0, 0, 0.5 N*s]}\n"
+           "simulation: {until: 0.3 s, tolerance: 1e-12}\n";
+  }
+  const CliResult r =
+      RunCli("simulate " + Quote(scene.string()) + " --format json --out " + Quote(dir.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double m = 2.0, L = 1.0, J = 0.5;
+  const double w = 3 * J / (m * L);
+  ASSERT_EQ(j.at("jumps").size(), 1u);
+  const double dE = j.at("jumps")[0].at("energy_change").get<double>();
+  EXPECT_NEAR(dE, 3 * J * J / (2 * m), 1e-12);
+  const auto& b = Named(j.at("final").at("bodies"), "rod");
+  // r × J about the pin is along -y.
+  EXPECT_NEAR(At(b.at("angular_velocity"), 1), -w, kRun * w);
+  EXPECT_NEAR(std::hypot(At(b.at("velocity"), 0), At(b.at("velocity"), 2)), w * L / 2,
+              kRun * w * L);
+}
+
 TEST(Joints, ReactionColumnsAreNamedByConstraint) {
   const auto j = Simulate("examples/pinned-rod.yaml");
   std::ifstream in(j.at("csv").get<std::string>());
