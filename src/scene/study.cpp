@@ -480,6 +480,62 @@ struct RowMaker {
   }
 };
 
+/// Watches the friction each rolling contact with a `mu_s` needs over the output samples: the
+/// simulation holds the rolling whatever friction it takes, so the report says when more than
+/// mu_s N was needed (the body would slip).
+struct SlipWatch {
+  struct Entry {
+    const SceneRolling* rolling;
+    int constraint;  // Model index
+    double worst = 0.0, t_worst = 0.0;
+    bool lifts = false;
+    double t_lift = 0.0;
+  };
+  std::vector<Entry> entries;
+
+  explicit SlipWatch(const Scene& scene) {
+    const SceneConstraints& c = scene.dynamics.constraints;
+    for (size_t i = 0; i < c.rolling.size(); ++i) {
+      if (std::isnan(c.rolling[i].mu_s)) continue;
+      entries.push_back({&c.rolling[i], static_cast<int>(c.joints.size() + i)});
+    }
+  }
+  void Sample(const Model& model, const State& s) {
+    if (entries.empty() || model.num_constraints() == 0) return;
+    Data data = MakeData(model);
+    CalcAccelerations(model, s, data);
+    for (Entry& e : entries) {
+      // N = F·n, friction = F - N n, with F the plane's force on the body at the contact.
+      const Vec3& F = data.constraints[static_cast<size_t>(e.constraint)].F_Jc_W;
+      const Vec3& n = e.rolling->plane_normal_W;
+      const double N = F.dot(n);
+      if (!(N > 0)) {
+        if (!e.lifts) e.lifts = true, e.t_lift = s.t;
+        continue;
+      }
+      const double ratio = (F - N * n).norm() / N;
+      if (ratio > e.worst) e.worst = ratio, e.t_worst = s.t;
+    }
+  }
+  void Report(std::vector<std::string>& notes) const {
+    for (const Entry& e : entries) {
+      if (e.lifts) {
+        notes.push_back(
+            fmt::format("rolling contact '{}': the plane would have to pull (N <= 0) "
+                        "at t = {:.6g} s: the body would lift off",
+                        e.rolling->name, e.t_lift));
+      }
+      if (e.worst > e.rolling->mu_s) {
+        notes.push_back(
+            fmt::format("rolling contact '{}' needs f/N = {:.6g} at t = {:.6g} s, "
+                        "more than mu_s = {:.6g}: the body would slip (the "
+                        "simulation holds it rolling)",
+                        e.rolling->name, e.worst, e.t_worst, e.rolling->mu_s));
+      }
+    }
+  }
+};
+
 }  // namespace
 
 Study BuildStudy(const Scene& scene, double until) {
@@ -521,6 +577,8 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
   carry.segment_initial = state;
   const double E0 = MechanicalEnergy(*seg.model, state);
   result.rows.push_back(rows.Row(*seg.model, *seg.map, state, carry));
+  SlipWatch slip(scene);
+  slip.Sample(*seg.model, state);
 
   // Impulses and impacts in time order (stable: the file's order at equal times).
   struct Jump {
@@ -557,6 +615,7 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
         }
         CheckFinite(*seg.model, s);
         result.rows.push_back(rows.Row(*seg.model, *seg.map, s, carry));
+        slip.Sample(*seg.model, s);
         if (options.progress) options.progress(s.t);
       };
       SimulationResult r;
@@ -780,6 +839,7 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
     f.w_WB_W = s.q_WB * s.w_WB_B;
     result.final_bodies.push_back(f);
   }
+  slip.Report(result.notes);
   result.t_end = state.t;
   result.stopped_by_event = stopped;
   return result;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -67,6 +68,13 @@ const nlohmann::json& Named(const nlohmann::json& list, const std::string& name)
 
 double At(const nlohmann::json& v, size_t i) {
   return v.at(i).get<double>();
+}
+
+// A ratio as the report prints it (6 significant digits).
+std::string RatioText(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "f/N = %.6g", v);
+  return buf;
 }
 
 // Example 8.6: from rest down a height h, v / sqrt(2 g h) = 1 / sqrt(1 + k²/R²) (energy with
@@ -287,6 +295,19 @@ TEST(Joints, ImpulseOnAPinnedRodTurnsItAboutThePin) {
   EXPECT_NEAR(At(b.at("angular_velocity"), 1), -w, kRun * w);
   EXPECT_NEAR(std::hypot(At(b.at("velocity"), 0), At(b.at("velocity"), 2)), w * L / 2,
               kRun * w * L);
+}
+
+// The simulation holds rolling whatever friction it takes, and says when more than mu_s N was
+// needed: for the cylinder of Example 8.3, f/N = tan θ / 3, under mu_s = 0.25 at 30° and over
+// it at 40° (0.27970).
+TEST(Joints, SimulateSaysWhenRollingNeedsMoreFrictionThanMuS) {
+  const auto ok = Simulate("examples/example-8.3-cylinder-incline.yaml");
+  EXPECT_TRUE(ok.at("notes").empty()) << ok.at("notes").dump();
+  const auto steep = Simulate("examples/example-8.3-cylinder-incline.yaml", "--set 'theta=40 deg'");
+  ASSERT_EQ(steep.at("notes").size(), 1u);
+  const std::string note = steep.at("notes")[0].get<std::string>();
+  EXPECT_THAT(note, ::testing::HasSubstr("would slip"));
+  EXPECT_THAT(note, ::testing::HasSubstr(RatioText(std::tan(40 * kPi / 180) / 3)));
 }
 
 TEST(Joints, ReactionColumnsAreNamedByConstraint) {
