@@ -51,6 +51,14 @@ struct SimulateArgs {
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args);
 int RunSimulate(const SimulateArgs& args);
 
+struct SolveArgs {
+  SceneArgs scene;
+  std::string sweep;            // NAME=START:STOP:COUNT, or "" for one solve
+  std::string format = "text";  // text | json
+};
+CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args);
+int RunSolve(const SolveArgs& args);
+
 CLI::App* AddMaterialsCommand(CLI::App& app);
 int RunMaterials();
 

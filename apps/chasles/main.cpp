@@ -27,14 +27,17 @@ int main(int argc, char** argv) {
       "  chasles mass examples/section-8.3-disk-axle.yaml --units in,lb --format json\n"
       "  chasles check my-scene.yaml\n"
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
+      "  chasles solve examples/example-8.3-cylinder-incline.yaml\n"
       "Scene format: docs/scene-format.md. Exit codes: 0 ok, 2 bad input, 1 internal error.");
 
   MassArgs mass_args;
   CheckArgs check_args;
   SimulateArgs simulate_args;
+  SolveArgs solve_args;
   CLI::App* mass = AddMassCommand(app, mass_args);
   CLI::App* check = AddCheckCommand(app, check_args);
   CLI::App* simulate = AddSimulateCommand(app, simulate_args);
+  CLI::App* solve = AddSolveCommand(app, solve_args);
   CLI::App* materials = AddMaterialsCommand(app);
 
   try {
@@ -50,6 +53,7 @@ int main(int argc, char** argv) {
     if (mass->parsed()) return RunMass(mass_args);
     if (check->parsed()) return RunCheck(check_args);
     if (simulate->parsed()) return RunSimulate(simulate_args);
+    if (solve->parsed()) return RunSolve(solve_args);
     if (materials->parsed()) return RunMaterials();
     std::fprintf(stderr,
                  "chasles: no command given, so here is the built-in demonstration scene "

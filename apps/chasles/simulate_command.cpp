@@ -86,10 +86,21 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                       {"angular_velocity", VecJson(b.w_WB_W)},
                       {"angular_velocity_body", VecJson(b.w_WB_B)}});
   }
-  j["final"] = {{"t", r.t_end}, {"bodies", bodies}};
+  nlohmann::json reactions = nlohmann::json::array();
+  for (const auto& x : r.final_reactions) {
+    reactions.push_back({{"name", x.name},
+                         {"kind", x.kind},
+                         {"point", VecJson(x.p_WJ)},
+                         {"force", VecJson(x.F_Jc_W)},
+                         {"moment", VecJson(x.M_Jc_W)},
+                         {"power", x.power}});
+  }
+  j["final"] = {{"t", r.t_end}, {"bodies", bodies}, {"reactions", reactions}};
   const StudyLedger& L = r.ledger;
   nlohmann::json work = nlohmann::json::object();
   for (const auto& [name, w] : L.work_by_force) work[name] = w;
+  nlohmann::json constraint_work = nlohmann::json::object();
+  for (const auto& [name, w] : L.work_by_constraint) constraint_work[name] = w;
   j["ledger"] = {{"kinetic_translational", L.kinetic_translational},
                  {"kinetic_rotational", L.kinetic_rotational},
                  {"potential", L.potential},
@@ -97,6 +108,7 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                  {"energy_initial", L.energy_initial},
                  {"work_nonconservative", L.work_nonconservative},
                  {"work_by_force", work},
+                 {"work_by_constraint", constraint_work},
                  {"dissipated", L.dissipated},
                  {"jumps", L.jumps},
                  {"residual", L.residual},
@@ -186,6 +198,16 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
         b.name, show(b.p_WBcm, kLength), q[0], q[1], q[2], q[3], show(b.v_WBcm_W, kVelocityDim),
         show(b.w_WB_W, kRateDim, Angular::kYes), show(b.w_WB_B, kRateDim, Angular::kYes));
   }
+  if (!r.final_reactions.empty()) {
+    out += "\nReactions at the end (on the child at the joint point, world frame)\n";
+    constexpr Dimension kForceDim{1, 1, -2};
+    constexpr Dimension kMomentDim{2, 1, -2};
+    for (const auto& x : r.final_reactions) {
+      out +=
+          fmt::format("  {} ({}) at {}\n    force {}\n    moment {}\n", x.name, x.kind,
+                      show(x.p_WJ, kLength), show(x.F_Jc_W, kForceDim), show(x.M_Jc_W, kMomentDim));
+    }
+  }
   const StudyLedger& L = r.ledger;
   out += "\nLedger (from t = 0)\n";
   out += fmt::format("  kinetic energy      {} (translation {}, rotation {})\n",
@@ -197,6 +219,8 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
   out += fmt::format("  non-conservative work {}\n", energy(L.work_nonconservative));
   for (const auto& [name, w] : L.work_by_force)
     out += fmt::format("    {:<20} {}\n", name, energy(w));
+  for (const auto& [name, w] : L.work_by_constraint)
+    out += fmt::format("    {:<20} {} (constraint)\n", name, energy(w));
   out += fmt::format("  dissipated          {}\n", energy(L.dissipated));
   if (!r.jumps.empty()) out += fmt::format("  impulses and impacts {}\n", energy(L.jumps));
   out += fmt::format(

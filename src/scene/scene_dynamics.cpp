@@ -74,6 +74,16 @@ std::optional<Symbol> SceneReader::ResolveStateSymbol(const At& at, std::string_
                                    name));
     }
     const int slot = it->second;
+    if (slot >= reaction_slot_begin_) {
+      // A constraint's reaction: known only after the constraint solve, so only an event may
+      // read it (a force that read it would feed back into the solve).
+      if (!allow_reactions_) {
+        report_.Fail(at, fmt::format("'{}' is a reaction; reactions may appear only in an "
+                                     "event's 'when'",
+                                     name));
+      }
+      return Symbol::Variable(slot, (slot - reaction_slot_begin_) % 6 < 3 ? kForce : kTorque);
+    }
     const Dimension dim =
         slot == 0
             ? kTime
@@ -261,15 +271,19 @@ SceneEvent SceneReader::ReadEvent(const At& at, size_t index) {
   // The level crossed fixes the dimension: read `when` for its dimension first.
   const std::string text = report_.Text(when, "an expression of t and the state");
   Expression probe;
+  allow_reactions_ = true;
   try {
     probe = Expression::Parse(
         text, [&](std::string_view n) { return ResolveStateSymbol(when, n); },
         state_variable_names_);
   } catch (const SceneError&) {
+    allow_reactions_ = false;
     throw;
   } catch (const ExpressionError& err) {
+    allow_reactions_ = false;
     report_.Fail(when, err.message(), when.node.Scalar() == text ? err.offset() : 0);
   }
+  allow_reactions_ = false;
   if (probe.is_constant()) {
     report_.Fail(when,
                  "an event's 'when' must depend on t or the state (e.g. 'ball_z' or "
@@ -389,6 +403,18 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
       state_variable_names_.push_back(name);
     }
   }
+  // Reactions of the constraints, after the bodies' blocks: "<name>_Fx" ... "<name>_Mz" (W).
+  reaction_slot_begin_ = StateVariableLayout::Slot(static_cast<int>(scene.bodies.size()), 0);
+  const std::vector<std::string> constraint_names = d.constraints.names();
+  for (size_t i = 0; i < constraint_names.size(); ++i) {
+    if (!IsIdentifier(constraint_names[i])) continue;
+    const char* suffixes[] = {"Fx", "Fy", "Fz", "Mx", "My", "Mz"};
+    for (int k = 0; k < 6; ++k) {
+      const std::string name = constraint_names[i] + "_" + suffixes[k];
+      state_variables_.emplace(name, reaction_slot_begin_ + 6 * static_cast<int>(i) + k);
+      state_variable_names_.push_back(name);
+    }
+  }
 
   if (root.Has("gravity")) {
     const At g = root.Child("gravity");
@@ -420,7 +446,9 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
       SceneForce f = ReadForce(forces.Item(i), scene, i);
       const bool clash = (d.has_gravity && f.name == "gravity") ||
                          std::any_of(d.forces.begin(), d.forces.end(),
-                                     [&](const SceneForce& o) { return o.name == f.name; });
+                                     [&](const SceneForce& o) { return o.name == f.name; }) ||
+                         std::any_of(constraint_names.begin(), constraint_names.end(),
+                                     [&](const std::string& o) { return o == f.name; });
       if (clash) {
         report_.Fail(
             forces.Item(i).Has("name") ? forces.Item(i).Child("name") : forces.Item(i),

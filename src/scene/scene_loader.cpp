@@ -40,7 +40,8 @@ const Dimension kInertia{2, 1, 0};
 
 const std::vector<std::string> kRootKeys = {
     "chasles", "title",  "description", "units",    "parameters", "materials",  "bodies",
-    "gravity", "forces", "events",      "impulses", "impacts",    "simulation", "output"};
+    "gravity", "forces", "events",      "impulses", "impacts",    "simulation", "output",
+    "joints",  "rolling", "drivers"};
 const std::vector<std::string> kBodyKeys = {"name",   "material", "density",
                                             "points", "parts",    "initial"};
 // Keys every part may have; each shape adds its dimensions (see shape_table.cpp).
@@ -292,6 +293,7 @@ Scene SceneReader::Read(const YAML::Node& document) {
       }
     }
   }
+  ReadConstraints(root, scene);
   ReadDynamics(root, scene);
   for (const auto& kv : parameters_) scene.parameters.emplace_back(kv.first, kv.second.value);
   scene.warnings = std::move(warnings_);

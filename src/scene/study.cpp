@@ -12,9 +12,11 @@
 
 #include "chasles/analysis/ledger.h"
 #include "chasles/analysis/momentum.h"
+#include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/impulse.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
+#include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
 #include "internal/study_columns.h"
@@ -75,7 +77,8 @@ void FillVariables(const Model& model, const State& state, const BodyMap& map, i
   v.assign(static_cast<size_t>(std::max(count, 1)), 0.0);
   v[0] = state.t;
   const int per = StateVariableLayout::kPerBody;
-  for (int b = 0; b * per + 1 < count; ++b) {
+  const int num_scene_bodies = static_cast<int>(map.place.size());
+  for (int b = 0; b < num_scene_bodies && b * per + 1 < count; ++b) {
     const SceneBodyMotion m = CalcSceneBodyMotion(model, state, map, b);
     const Vec3 w_B = m.R_WB.transpose() * m.w_WB_W;
     const Vec3 ypr = CalcYawPitchRoll(m.R_WB);
@@ -103,6 +106,19 @@ void FillVariables(const Model& model, const State& state, const BodyMap& map, i
       if (slot < count) v[static_cast<size_t>(slot)] = block[j];
     }
   }
+  // Reactions (events only): six slots per constraint after the scene bodies' blocks.
+  const int first = StateVariableLayout::Slot(num_scene_bodies, 0);
+  if (count > first && model.num_constraints() > 0) {
+    Data data = MakeData(model);
+    CalcAccelerations(model, state, data);
+    for (int i = 0; i < model.num_constraints(); ++i) {
+      const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
+      for (int k = 0; k < 6; ++k) {
+        const int slot = first + 6 * i + k;
+        if (slot < count) v[static_cast<size_t>(slot)] = k < 3 ? o.F_Jc_W[k] : o.M_Jc_W[k - 3];
+      }
+    }
+  }
 }
 
 /// A VectorFunction evaluating a scene vector expression; `R_MB` turns a body-frame value into
@@ -116,6 +132,46 @@ VectorFunction MakeVectorFunction(std::shared_ptr<const Model*> model_ref,
     FillVariables(**model_ref, state, *map, count, *buffer);
     return R_MB * value.Evaluate(*buffer);
   };
+}
+
+State InitialState(const Scene& scene, const Model& model);
+
+/// Adds the scene's joints, rolling contacts and drivers to `model` (bodies already added, one
+/// per scene body). A scene gives joint points and axes in W at the initial configuration;
+/// each side's attachment frame is the one that coincides with that world pose there.
+void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
+  const SceneConstraints& c = scene.dynamics.constraints;
+  if (c.empty()) return;
+  if (model.num_bodies() != static_cast<int>(scene.bodies.size())) {
+    throw InputError(
+        "an impact that embeds a projectile cannot be combined with joints, rolling contacts "
+        "or drivers (the constrained bodies would change); use exit_fraction > 0 or remove "
+        "the constraints");
+  }
+  const State s0 = InitialState(scene, model);
+  auto model_body = [&](int b) {
+    return b == kWorld ? kWorld : map.place[static_cast<size_t>(b)].model_body;
+  };
+  auto frame = [&](int b, const Vec3& p_WJ, const Mat3& R_WJ) {
+    return AttachmentFrameAtWorldPose(model, s0, model_body(b), p_WJ, R_WJ);
+  };
+  for (const SceneJoint& j : c.joints) {
+    const Mat3 R_WJ = FrameWithZAxis(j.axis_W);
+    model.AddConstraint(std::make_shared<Joint>(j.name, j.kind, model_body(j.parent),
+                                                frame(j.parent, j.p_WJ, R_WJ), model_body(j.child),
+                                                frame(j.child, j.p_WJ, R_WJ)));
+  }
+  for (const SceneRolling& r : c.rolling) {
+    model.AddConstraint(std::make_shared<RollingContact>(r.name, r.shape, model_body(r.body),
+                                                         r.p_BoC_B, r.axis_B, r.radius,
+                                                         r.plane_point_W, r.plane_normal_W));
+  }
+  for (const SceneDriver& d : c.drivers) {
+    const Mat3 R_WJ = FrameWithZAxis(d.axis_W);
+    model.AddConstraint(std::make_shared<PrescribedMotion>(
+        d.name, d.kind, model_body(d.parent), frame(d.parent, d.p_WJ, R_WJ), model_body(d.child),
+        frame(d.child, d.p_WJ, R_WJ), TimeFunction::Quadratic(d.f0, d.f1, d.f2)));
+  }
 }
 
 /// The Model of one segment: bodies (name, mass properties) and the scene's force elements
@@ -181,6 +237,7 @@ Model BuildModel(const Scene& scene,
         break;
     }
   }
+  AddSceneConstraints(scene, *map, model);
   return model;
 }
 
@@ -374,6 +431,13 @@ struct RowMaker {
         continue;
       }
       const std::string& q = c.quantity;
+      if (c.group == "reactions") {
+        // Force (F) or moment about J (M) the parent exerts on the child, in W.
+        const ConstraintOutput& r =
+            data.constraints[static_cast<size_t>(model.FindConstraint(c.force))];
+        row.push_back((q[0] == 'F' ? r.F_Jc_W : r.M_Jc_W)[q[1] - 'x']);
+        continue;
+      }
       double v = 0.0;
       if (q == "t") {
         v = s.t;
@@ -394,6 +458,9 @@ struct RowMaker {
         for (const ForceLedger& f : L.forces) {
           if (f.name == c.force) v += f.work_nonconservative;
         }
+        for (const ConstraintLedger& f : L.constraints) {
+          if (f.name == c.force) v += f.work;
+        }
       } else if (q == "dissipated") {
         v = carry.dissipated + L.dissipated;
       } else if (q == "jumps") {
@@ -410,6 +477,62 @@ struct RowMaker {
       row.push_back(v);
     }
     return row;
+  }
+};
+
+/// Watches the friction each rolling contact with a `mu_s` needs over the output samples: the
+/// simulation holds the rolling whatever friction it takes, so the report says when more than
+/// mu_s N was needed (the body would slip).
+struct SlipWatch {
+  struct Entry {
+    const SceneRolling* rolling;
+    int constraint;  // Model index
+    double worst = 0.0, t_worst = 0.0;
+    bool lifts = false;
+    double t_lift = 0.0;
+  };
+  std::vector<Entry> entries;
+
+  explicit SlipWatch(const Scene& scene) {
+    const SceneConstraints& c = scene.dynamics.constraints;
+    for (size_t i = 0; i < c.rolling.size(); ++i) {
+      if (std::isnan(c.rolling[i].mu_s)) continue;
+      entries.push_back({&c.rolling[i], static_cast<int>(c.joints.size() + i)});
+    }
+  }
+  void Sample(const Model& model, const State& s) {
+    if (entries.empty() || model.num_constraints() == 0) return;
+    Data data = MakeData(model);
+    CalcAccelerations(model, s, data);
+    for (Entry& e : entries) {
+      // N = F·n, friction = F - N n, with F the plane's force on the body at the contact.
+      const Vec3& F = data.constraints[static_cast<size_t>(e.constraint)].F_Jc_W;
+      const Vec3& n = e.rolling->plane_normal_W;
+      const double N = F.dot(n);
+      if (!(N > 0)) {
+        if (!e.lifts) e.lifts = true, e.t_lift = s.t;
+        continue;
+      }
+      const double ratio = (F - N * n).norm() / N;
+      if (ratio > e.worst) e.worst = ratio, e.t_worst = s.t;
+    }
+  }
+  void Report(std::vector<std::string>& notes) const {
+    for (const Entry& e : entries) {
+      if (e.lifts) {
+        notes.push_back(
+            fmt::format("rolling contact '{}': the plane would have to pull (N <= 0) "
+                        "at t = {:.6g} s: the body would lift off",
+                        e.rolling->name, e.t_lift));
+      }
+      if (e.worst > e.rolling->mu_s) {
+        notes.push_back(
+            fmt::format("rolling contact '{}' needs f/N = {:.6g} at t = {:.6g} s, "
+                        "more than mu_s = {:.6g}: the body would slip (the "
+                        "simulation holds it rolling)",
+                        e.rolling->name, e.worst, e.t_worst, e.rolling->mu_s));
+      }
+    }
   }
 };
 
@@ -438,7 +561,9 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
     for (const ColumnInfo& c : all) {
       if (c.name == name) {
         rows.columns.push_back(c);
-        if (c.quantity[0] == 'a' && c.body >= 0) rows.needs_accelerations = true;
+        if ((c.quantity[0] == 'a' && c.body >= 0) || c.group == "reactions") {
+          rows.needs_accelerations = true;
+        }
         break;
       }
     }
@@ -452,6 +577,8 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
   carry.segment_initial = state;
   const double E0 = MechanicalEnergy(*seg.model, state);
   result.rows.push_back(rows.Row(*seg.model, *seg.map, state, carry));
+  SlipWatch slip(scene);
+  slip.Sample(*seg.model, state);
 
   // Impulses and impacts in time order (stable: the file's order at equal times).
   struct Jump {
@@ -488,6 +615,7 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
         }
         CheckFinite(*seg.model, s);
         result.rows.push_back(rows.Row(*seg.model, *seg.map, s, carry));
+        slip.Sample(*seg.model, s);
         if (options.progress) options.progress(s.t);
       };
       SimulationResult r;
@@ -518,6 +646,7 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
     carry.residual += L.energy_residual;
     carry.scale = std::max(carry.scale, L.energy_scale);
     for (const ForceLedger& f : L.forces) carry.work_by_force[f.name] += f.work_nonconservative;
+    for (const ConstraintLedger& f : L.constraints) carry.work_by_force[f.name] += f.work;
   };
 
   for (const Jump& j : jumps) {
@@ -629,6 +758,13 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
         rec.description = fmt::format("{} embeds in {}", pname, tname);
       }
     }
+    if (seg.model->num_constraints() > 0) {
+      // The supports' impulsive reaction: projecting the velocities onto the constraints with
+      // the mass metric, du = -M⁻¹ Jᵀ μ, is exactly the response of ideal constraints to the
+      // impulse (impulse-momentum with the constraint impulse Jᵀ μ).
+      Data data = MakeData(*seg.model);
+      ProjectOntoConstraints(*seg.model, state, data);
+    }
     CheckFinite(*seg.model, state);
     rec.energy_before = E_before;
     rec.energy_after = MechanicalEnergy(*seg.model, state);
@@ -664,6 +800,28 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
     }
     out.work_by_force.emplace_back(f.name, w);
   }
+  for (const ConstraintLedger& cl : L.constraints) {
+    const double w =
+        (carry.work_by_force.count(cl.name) ? carry.work_by_force.at(cl.name) : 0.0) + cl.work;
+    out.work_by_constraint.emplace_back(cl.name, w);
+  }
+  if (model.num_constraints() > 0) {
+    // The reactions at the final state (the constraint stage of CalcAccelerations).
+    Data data = MakeData(model);
+    CalcAccelerations(model, state, data);
+    for (int i = 0; i < model.num_constraints(); ++i) {
+      const Constraint& con = model.constraint(i);
+      const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
+      StudyReaction r;
+      r.name = con.name();
+      r.kind = con.kind();
+      r.p_WJ = o.p_WJ;
+      r.F_Jc_W = o.F_Jc_W;
+      r.M_Jc_W = o.M_Jc_W;
+      r.power = o.power;
+      result.final_reactions.push_back(r);
+    }
+  }
   out.linear_momentum_W = L.linear_momentum_W;
   out.angular_momentum_Scm_W = L.angular_momentum_Scm_W;
   out.angular_momentum_Wo_W = L.angular_momentum_Wo_W;
@@ -681,6 +839,7 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
     f.w_WB_W = s.q_WB * s.w_WB_B;
     result.final_bodies.push_back(f);
   }
+  slip.Report(result.notes);
   result.t_end = state.t;
   result.stopped_by_event = stopped;
   return result;

@@ -41,7 +41,7 @@ std::vector<std::string> ColumnGroups() {
   std::vector<std::string> g;
   for (const auto& b : BodyGroups()) g.emplace_back(b.group);
   for (const char* s : {"energy", "work", "residual", "momentum", "angular_momentum",
-                        "angular_momentum_origin", "ledger"}) {
+                        "angular_momentum_origin", "ledger", "reactions"}) {
     g.emplace_back(s);
   }
   return g;
@@ -63,6 +63,10 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
   for (const auto& f : scene.dynamics.forces) {
     cols.push_back({"W_" + f.name, "work", -1, "W", f.name});
   }
+  // Work of each joint, rolling contact and driver (zero for the ideal ones).
+  for (const auto& n : scene.dynamics.constraints.names()) {
+    cols.push_back({"W_" + n, "work", -1, "W", n});
+  }
   cols.push_back({"dissipated", "work", -1, "dissipated", ""});
   cols.push_back({"jumps", "work", -1, "jumps", ""});
   cols.push_back({"residual", "residual", -1, "residual", ""});
@@ -70,6 +74,12 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
   for (const char* s : {"Hx", "Hy", "Hz"}) cols.push_back({s, "angular_momentum", -1, s, ""});
   for (const char* s : {"HOx", "HOy", "HOz"}) {
     cols.push_back({s, "angular_momentum_origin", -1, s, ""});
+  }
+  // Reaction on the child at the joint point, in W (Data::constraints).
+  for (const auto& n : scene.dynamics.constraints.names()) {
+    for (const char* s : {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}) {
+      cols.push_back({n + "_" + s, "reactions", -1, s, n});
+    }
   }
   return cols;
 }

@@ -14,6 +14,7 @@
 #include "chasles/math/types.h"
 #include "chasles/model/force_element.h"
 #include "chasles/scene/expression.h"
+#include "chasles/scene/scene_constraints.h"
 
 namespace chasles {
 
@@ -146,6 +147,8 @@ struct SceneDynamics {
   std::vector<SceneImpulse> impulses;
   std::vector<SceneImpact> impacts;
   SceneSimulation simulation;
+  /// Joints, rolling contacts and drivers (keys `joints`, `rolling`, `drivers`).
+  SceneConstraints constraints;
   /// Output column names (after expanding groups), in order.
   std::vector<std::string> columns;
 };

@@ -34,8 +34,9 @@ struct Study {
   SimulationOptions options;
 };
 
-/// Builds the Model (one body per scene body, gravity and the scene's force elements), the
-/// initial State and the options. `until` [s] overrides the scene's end time when finite.
+/// Builds the Model (one body per scene body, gravity, the scene's force elements, and its
+/// joints, rolling contacts and drivers with attachment frames taken from their world poses at
+/// the initial State), the initial State and the options. `until` [s] overrides the scene's end time when finite.
 /// Throws InputError when there is no end time or a value is invalid.
 Study BuildStudy(const Scene& scene, double until = std::numeric_limits<double>::quiet_NaN());
 
@@ -100,6 +101,9 @@ struct StudyLedger {
   /// Non-conservative work of all force elements [J], and of each (scene order) [J].
   double work_nonconservative = 0.0;
   std::vector<std::pair<std::string, double>> work_by_force;
+  /// Work of each joint, rolling contact and driver (Model order) [J]: zero for the ideal
+  /// ones up to the integration error, a driver's input otherwise (part of W_nc).
+  std::vector<std::pair<std::string, double>> work_by_constraint;
   /// Energy removed by dampers and drag [J] >= 0.
   double dissipated = 0.0;
   /// Sum of the energy jumps at impulses and impacts [J].
@@ -115,6 +119,20 @@ struct StudyLedger {
   Vec3 angular_momentum_Wo_W = Vec3::Zero();
 };
 
+/// The reaction of one constraint at the end of the run.
+struct StudyReaction {
+  /// Name and kind ("revolute", "rolling sphere", ...).
+  std::string name;
+  std::string kind;
+  /// Joint or contact point on the child, in W [m].
+  Vec3 p_WJ = Vec3::Zero();
+  /// Force and moment about J the parent (or the world) exerts on the child, in W [N, N·m].
+  Vec3 F_Jc_W = Vec3::Zero();
+  Vec3 M_Jc_W = Vec3::Zero();
+  /// Power of its forces [W] (0 for ideal joints and rolling).
+  double power = 0.0;
+};
+
 struct StudyResult {
   /// CSV column names and one row per output sample (plus the states just after jumps).
   std::vector<std::string> columns;
@@ -125,6 +143,8 @@ struct StudyResult {
   double t_end = 0.0;
   bool stopped_by_event = false;
   std::vector<StudyBodyState> final_bodies;
+  /// Reaction of every joint, rolling contact and driver at the final state (Model order).
+  std::vector<StudyReaction> final_reactions;
   StudyLedger ledger;
   /// Integrator name and work counters summed over the segments.
   std::string integrator;

@@ -6,6 +6,7 @@
 /// parameters, materials, bodies and parts).
 
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -113,6 +114,17 @@ class SceneReader {
   std::optional<Symbol> ResolveStateSymbol(const At& at, std::string_view name);
   VectorFrame FrameAt(const At& at);
 
+  // Constraints (scene_constraints.cpp) ---------------------------------------------------
+  /// Reads `joints`, `rolling` and `drivers` into scene.dynamics.constraints.
+  void ReadConstraints(const At& root, Scene& scene);
+  /// A body name or `world` (kWorld).
+  int ParentIndexAt(const At& at, const Scene& scene);
+  /// A unit direction from a vector of any length; fails for a zero vector.
+  Vec3 AxisAt(const At& at, std::string_view what);
+  /// The entry's name (or "<kind>N"), unique among all constraints (`taken`).
+  std::string ConstraintName(const At& at, const char* kind, size_t index,
+                             std::vector<std::string>& taken);
+
   Reporter report_;
   SceneOptions options_;
   std::unique_ptr<UnitSystem> units_;
@@ -123,6 +135,10 @@ class SceneReader {
   std::vector<std::string> warnings_;
   std::map<std::string, int, std::less<>> state_variables_;  // name -> slot
   std::vector<std::string> state_variable_names_;
+  // First slot of the constraints' reaction variables (after every body's block), and whether
+  // the expression being read may use them (only events' `when`).
+  int reaction_slot_begin_ = std::numeric_limits<int>::max();
+  bool allow_reactions_ = false;
 };
 
 /// Reads a parsed YAML document as a scene named `name` in messages.

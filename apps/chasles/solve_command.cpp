@@ -1,0 +1,267 @@
+// chasles solve: the instantaneous problem of chapter 8.2-8.3 at a scene's initial state —
+// every body's acceleration and every constraint's reaction ("what force does the support
+// exert?"), and for rolling the friction it needs against mu_s. With --sweep, the same over a
+// range of one parameter, as a table.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "chasles/analysis/instantaneous.h"
+#include "chasles/dynamics/constraint_solve.h"
+#include "chasles/error.h"
+#include "chasles/model/data.h"
+#include "chasles/scene/scene.h"
+#include "chasles/scene/scene_error.h"
+#include "chasles/scene/study.h"
+#include "chasles/suggest.h"
+#include "commands.h"
+#include "scene_args.h"
+
+namespace chasles::cli {
+
+namespace {
+
+nlohmann::json VecJson(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+struct Solved {
+  InstantaneousSolution solution;
+  /// mu_s of each constraint (NaN when not a rolling contact with `mu_s`), Model order.
+  std::vector<double> mu_s;
+};
+
+Solved SolveScene(const Scene& scene) {
+  // The end time plays no part in an instantaneous solve.
+  Study study = BuildStudy(scene, 1.0);
+  State state = study.initial;
+  Data data = MakeData(*study.model);
+  ProjectOntoConstraints(*study.model, state, data);
+  Solved s{SolveInstantaneous(*study.model, state), {}};
+  const SceneConstraints& c = scene.dynamics.constraints;
+  s.mu_s.assign(s.solution.reactions.size(), std::numeric_limits<double>::quiet_NaN());
+  for (size_t i = 0; i < c.rolling.size(); ++i) s.mu_s[c.joints.size() + i] = c.rolling[i].mu_s;
+  return s;
+}
+
+nlohmann::json Json(const Solved& s) {
+  nlohmann::json j;
+  j["t"] = s.solution.t;
+  j["bodies"] = nlohmann::json::array();
+  for (const auto& b : s.solution.bodies) {
+    j["bodies"].push_back({{"name", b.name},
+                           {"acceleration", VecJson(b.a_WBcm_W)},
+                           {"angular_acceleration", VecJson(b.alpha_WB_W)},
+                           {"angular_acceleration_body", VecJson(b.alpha_WB_B)}});
+  }
+  j["reactions"] = nlohmann::json::array();
+  for (size_t i = 0; i < s.solution.reactions.size(); ++i) {
+    const ReactionReport& r = s.solution.reactions[i];
+    nlohmann::json x = {{"name", r.name},
+                        {"kind", r.kind},
+                        {"point", VecJson(r.p_WJ)},
+                        {"force", VecJson(r.F_Jc_W)},
+                        {"moment", VecJson(r.M_Jc_W)},
+                        {"force_body", VecJson(r.F_Jc_B)},
+                        {"moment_body", VecJson(r.M_Jc_B)},
+                        {"multipliers", r.lambda},
+                        {"power", r.power}};
+    if (r.is_rolling) {
+      x["normal_force"] = r.normal_force;
+      x["friction"] = VecJson(r.friction_W);
+      x["friction_magnitude"] = r.friction_W.norm();
+      x["friction_needed"] = r.friction_needed;
+      if (!std::isnan(s.mu_s[i])) {
+        x["mu_s"] = s.mu_s[i];
+        x["rolls"] = r.friction_needed <= s.mu_s[i];
+      }
+    }
+    j["reactions"].push_back(x);
+  }
+  j["rank"] = s.solution.rank;
+  j["rows"] = s.solution.num_rows;
+  j["warnings"] = s.solution.warnings;
+  return j;
+}
+
+std::string Text(const Scene& scene, const Solved& s) {
+  std::string out = fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
+                                scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
+  out += "Instantaneous solution at the initial state (SI, world frame)\n\nAccelerations\n";
+  for (const auto& b : s.solution.bodies) {
+    out += fmt::format("  {}\n    a_cm  [{:.9g}, {:.9g}, {:.9g}] m/s^2\n", b.name, b.a_WBcm_W.x(),
+                       b.a_WBcm_W.y(), b.a_WBcm_W.z());
+    out += fmt::format("    alpha [{:.9g}, {:.9g}, {:.9g}] rad/s^2\n", b.alpha_WB_W.x(),
+                       b.alpha_WB_W.y(), b.alpha_WB_W.z());
+  }
+  if (!s.solution.reactions.empty()) {
+    out += "\nReactions (on the child at the joint point)\n";
+  }
+  for (size_t i = 0; i < s.solution.reactions.size(); ++i) {
+    const ReactionReport& r = s.solution.reactions[i];
+    out += fmt::format("  {} ({}) at [{:.9g}, {:.9g}, {:.9g}] m\n", r.name, r.kind, r.p_WJ.x(),
+                       r.p_WJ.y(), r.p_WJ.z());
+    out += fmt::format("    force  [{:.9g}, {:.9g}, {:.9g}] N\n", r.F_Jc_W.x(), r.F_Jc_W.y(),
+                       r.F_Jc_W.z());
+    out += fmt::format("    moment [{:.9g}, {:.9g}, {:.9g}] N*m\n", r.M_Jc_W.x(), r.M_Jc_W.y(),
+                       r.M_Jc_W.z());
+    if (r.is_rolling) {
+      out += fmt::format("    normal force {:.9g} N, friction {:.9g} N, f/N = {:.9g}",
+                         r.normal_force, r.friction_W.norm(), r.friction_needed);
+      if (!std::isnan(s.mu_s[i])) {
+        out += fmt::format(" against mu_s = {:.6g}: {}", s.mu_s[i],
+                           r.friction_needed <= s.mu_s[i] ? "rolls" : "slips");
+      }
+      out += "\n";
+    }
+  }
+  for (const auto& w : s.solution.warnings) out += fmt::format("warning: {}\n", w);
+  return out;
+}
+
+// The table's columns for one solution: per body a and alpha, per constraint F and M, and
+// for rolling N, |f| and f/N.
+void TableColumns(const Solved& s, std::vector<std::string>* names, std::vector<double>* values) {
+  auto add = [&](const std::string& name, double v) {
+    if (names) names->push_back(name);
+    if (values) values->push_back(v);
+  };
+  const char* xyz[] = {"x", "y", "z"};
+  for (const auto& b : s.solution.bodies) {
+    for (int k = 0; k < 3; ++k) add(b.name + "_a" + xyz[k], b.a_WBcm_W[k]);
+    for (int k = 0; k < 3; ++k) add(b.name + "_al" + xyz[k], b.alpha_WB_W[k]);
+  }
+  for (const auto& r : s.solution.reactions) {
+    for (int k = 0; k < 3; ++k) add(r.name + "_F" + xyz[k], r.F_Jc_W[k]);
+    for (int k = 0; k < 3; ++k) add(r.name + "_M" + xyz[k], r.M_Jc_W[k]);
+    if (r.is_rolling) {
+      add(r.name + "_N", r.normal_force);
+      add(r.name + "_f", r.friction_W.norm());
+      add(r.name + "_f_over_N", r.friction_needed);
+    }
+  }
+}
+
+struct Sweep {
+  std::string name, start, stop;
+  int count = 0;
+};
+
+Sweep ParseSweep(const std::string& text) {
+  const auto fail = [&](const std::string& why) {
+    throw SceneError("command line", 0, 0, "--sweep", why);
+  };
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    fail("expected NAME=START:STOP:COUNT, e.g. --sweep 'theta=0 deg:60 deg:7', got '" + text + "'");
+  }
+  Sweep s;
+  s.name = text.substr(0, eq);
+  const std::string rest = text.substr(eq + 1);
+  const auto c1 = rest.find(':');
+  const auto c2 = c1 == std::string::npos ? c1 : rest.find(':', c1 + 1);
+  if (c2 == std::string::npos || rest.find(':', c2 + 1) != std::string::npos) {
+    fail("expected NAME=START:STOP:COUNT (three fields after '='), got '" + text + "'");
+  }
+  s.start = rest.substr(0, c1);
+  s.stop = rest.substr(c1 + 1, c2 - c1 - 1);
+  const std::string count = rest.substr(c2 + 1);
+  try {
+    size_t used = 0;
+    s.count = std::stoi(count, &used);
+    if (used != count.size()) s.count = 0;
+  } catch (const std::exception&) {
+    s.count = 0;
+  }
+  if (s.count < 2) fail("COUNT must be a whole number >= 2, got '" + count + "'");
+  return s;
+}
+
+}  // namespace
+
+CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "solve",
+      "Solve the instantaneous problem at a scene's initial state: every body's acceleration, "
+      "every joint's reaction, the friction rolling needs (chapter 8.2-8.3)");
+  AddSceneArgs(*cmd, args.scene);
+  cmd->add_option("--sweep", args.sweep,
+                  "Repeat over a parameter range: NAME=START:STOP:COUNT (START and STOP are "
+                  "expressions with units, e.g. 'theta=0 deg:60 deg:7'); prints a table");
+  cmd->add_option("--format", args.format, "text (default) or json")
+      ->check(CLI::IsMember({"text", "json"}));
+  cmd->footer(
+      "Examples:\n"
+      "  chasles solve examples/example-8.3-cylinder-incline.yaml\n"
+      "  chasles solve examples/example-8.3-cylinder-incline.yaml --sweep 'theta=10 deg:50 "
+      "deg:5'\n"
+      "Scene keys: docs/scene-format.md, section Joints, rolling and drivers.");
+  return cmd;
+}
+
+int RunSolve(const SolveArgs& args) {
+  if (args.scene.scene.empty()) {
+    throw InputError("chasles solve needs a scene file (chasles solve --help)");
+  }
+  if (args.sweep.empty()) {
+    const Scene scene = LoadScene(args.scene);
+    const Solved s = SolveScene(scene);
+    Emit("", args.format == "json" ? Json(s).dump(2) + "\n" : Text(scene, s));
+    return 0;
+  }
+  const Sweep sweep = ParseSweep(args.sweep);
+  {
+    const Scene scene = LoadScene(args.scene);
+    std::vector<std::string> known;
+    for (const auto& p : scene.parameters) known.push_back(p.first);
+    if (std::find(known.begin(), known.end(), sweep.name) == known.end()) {
+      throw SceneError("command line", 0, 0, "--sweep",
+                       fmt::format("the scene has no parameter '{}'{}; parameters: {}", sweep.name,
+                                   DidYouMean(sweep.name, known), fmt::join(known, ", ")));
+    }
+  }
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+  for (int k = 0; k < sweep.count; ++k) {
+    // The k-th value as an expression, so START and STOP keep their units.
+    SceneArgs a = args.scene;
+    a.set.push_back(fmt::format("{}=({}) + (({}) - ({})) * {} / {}", sweep.name, sweep.start,
+                                sweep.stop, sweep.start, k, sweep.count - 1));
+    const Scene scene = LoadScene(a);
+    double value = std::numeric_limits<double>::quiet_NaN();
+    for (const auto& [n, q] : scene.parameters) {
+      if (n == sweep.name) value = q.value;
+    }
+    const Solved s = SolveScene(scene);
+    std::vector<double> row = {value};
+    if (k == 0) {
+      names.push_back(sweep.name);
+      TableColumns(s, &names, &row);
+    } else {
+      TableColumns(s, nullptr, &row);
+    }
+    rows.push_back(std::move(row));
+  }
+  if (args.format == "json") {
+    nlohmann::json j = {{"parameter", sweep.name}, {"columns", names}, {"rows", rows}};
+    Emit("", j.dump(2) + "\n");
+    return 0;
+  }
+  std::string out = fmt::format("# {} swept (SI values); one row per value\n", sweep.name);
+  for (size_t c = 0; c < names.size(); ++c) out += fmt::format("{}{}", c ? "," : "", names[c]);
+  out += "\n";
+  for (const auto& row : rows) {
+    for (size_t c = 0; c < row.size(); ++c) out += fmt::format("{}{:.12g}", c ? "," : "", row[c]);
+    out += "\n";
+  }
+  Emit("", out);
+  return 0;
+}
+
+}  // namespace chasles::cli

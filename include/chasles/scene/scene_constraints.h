@@ -1,0 +1,76 @@
+#pragma once
+/// @file
+/// The constraint part of a scene (docs/scene-format.md, "Joints, rolling and drivers"):
+/// joints, rolling contacts and prescribed-motion drivers as the file gives them, in SI and in
+/// world coordinates at the initial configuration. BuildStudy turns them into the Model's
+/// Joint, RollingContact and PrescribedMotion (include/chasles/model/constraints.h).
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "chasles/math/types.h"
+#include "chasles/model/body.h"
+#include "chasles/model/constraints.h"
+
+namespace chasles {
+
+/// One entry of `joints`.
+struct SceneJoint {
+  /// Unique name (reports, CSV columns "<name>_Fx" ...).
+  std::string name;
+  JointKind kind = JointKind::kWeld;
+  /// Parent body (scene index) or kWorld; child body (scene index).
+  int parent = kWorld;
+  int child = -1;
+  /// The joint point in W at the initial configuration [m].
+  Vec3 p_WJ = Vec3::Zero();
+  /// Unit joint axis in W at the initial configuration (plane normal, line direction).
+  Vec3 axis_W = Vec3::UnitZ();
+};
+
+/// One entry of `rolling`: a round body rolling without slipping on a fixed world plane.
+struct SceneRolling {
+  std::string name;
+  RollingShape shape = RollingShape::kSphere;
+  /// The rolling body (scene index).
+  int body = -1;
+  /// Centre of the sphere / cylinder / disk from Bo in B [m] (the centre of mass by default).
+  Vec3 p_BoC_B = Vec3::Zero();
+  /// Symmetry axis in B (cylinder, disk).
+  Vec3 axis_B = Vec3::UnitZ();
+  /// Radius [m].
+  double radius = 0.0;
+  /// A point of the plane [m] and its upward unit normal, in W.
+  Vec3 plane_point_W = Vec3::Zero();
+  Vec3 plane_normal_W = Vec3::UnitZ();
+  /// Coefficient of static friction (key `mu_s`), for `chasles solve` to compare the friction
+  /// rolling needs with; NaN when not given (the simulation does not use it).
+  double mu_s = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// One entry of `drivers`: a prescribed translation or rotation f(t) = f0 + f1 t + ½ f2 t².
+struct SceneDriver {
+  std::string name;
+  DriverKind kind = DriverKind::kTranslation;
+  int parent = kWorld;
+  int child = -1;
+  /// Driver point and unit axis in W at the initial configuration [m].
+  Vec3 p_WJ = Vec3::Zero();
+  Vec3 axis_W = Vec3::UnitZ();
+  /// f0 [m or rad], f1 [m/s or rad/s], f2 [m/s² or rad/s²].
+  double f0 = 0.0, f1 = 0.0, f2 = 0.0;
+};
+
+/// Keys `joints`, `rolling`, `drivers`.
+struct SceneConstraints {
+  std::vector<SceneJoint> joints;
+  std::vector<SceneRolling> rolling;
+  std::vector<SceneDriver> drivers;
+  /// True when the scene has none.
+  bool empty() const { return joints.empty() && rolling.empty() && drivers.empty(); }
+  /// Names in Model order (joints, then rolling, then drivers).
+  std::vector<std::string> names() const;
+};
+
+}  // namespace chasles
