@@ -135,8 +135,8 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
   data.schur_rhs = data.acceleration_rhs - data.Ju;
   const double r_scale =
       std::max(data.acceleration_rhs.cwiseAbs().maxCoeff(), data.Ju.cwiseAbs().maxCoeff());
-  data.constraint_rank = SolveSchur(model, nullptr, data.schur, data.schur_ldlt, data.schur_rhs,
-                                    data.lambda, "set of reactions", r_scale);
+  data.constraint_rank = SolveSchur(model, nullptr, data.schur, data.schur_ldlt.ldlt,
+                                    data.schur_rhs, data.lambda, "set of reactions", r_scale);
   u_dot.noalias() += data.JMinv.transpose() * data.lambda;  // M⁻¹ Jᵀ λ (M⁻¹ symmetric)
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
@@ -260,7 +260,7 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
   if (res.size() == 0 || res.cwiseAbs().maxCoeff() == 0.0) return;
   TimesMassInverse(model, data, data.J, data.JMinv);
   data.schur.noalias() = data.JMinv * data.J.transpose();
-  SolveSchur(model, nullptr, data.schur, data.schur_ldlt, res, mu, nullptr, 0.0);
+  SolveSchur(model, nullptr, data.schur, data.schur_ldlt.ldlt, res, mu, nullptr, 0.0);
   const VectorXd du = -data.JMinv.transpose() * mu;
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);

@@ -26,7 +26,6 @@ Data MakeData(const Model& model) {
   d.constraint_rank = rows;
   d.JMinv = Eigen::MatrixXd::Zero(rows, 6 * model.num_bodies());
   d.schur = Eigen::MatrixXd::Zero(rows, rows);
-  d.schur_ldlt = Eigen::LDLT<Eigen::MatrixXd>(rows);
   d.u = Eigen::VectorXd::Zero(6 * model.num_bodies());
   d.u_dot = Eigen::VectorXd::Zero(6 * model.num_bodies());
   d.Ju = Eigen::VectorXd::Zero(rows);

@@ -48,6 +48,17 @@ struct ConstraintOutput {
   double power = 0.0;
 };
 
+/// Factorisation workspace of the constraint solve. Eigen's LDLT leaves its status flag unset
+/// until compute() yet copies it with the object, which is undefined behaviour (UBSan reports
+/// it). Every solve refactorises, so a copy of Data starts with a fresh, empty factorisation
+/// instead of copying one; the first compute() sizes it and later ones reuse its storage.
+struct SchurFactorization {
+  Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  SchurFactorization() = default;
+  SchurFactorization(const SchurFactorization&) {}
+  SchurFactorization& operator=(const SchurFactorization&) { return *this; }
+};
+
 struct Data {
   // --- Position and velocity stage: CalcKinematics(model, state, data) ---
   /// Rotation matrix of each body, R_WB (from the normalised quaternion).
@@ -88,7 +99,7 @@ struct Data {
   /// evaluations do not allocate: J M⁻¹, J M⁻¹ Jᵀ and its factorisation, the generalised
   /// velocity u and acceleration u̇, J u, and the right-hand side of the multiplier system.
   Eigen::MatrixXd JMinv, schur;
-  Eigen::LDLT<Eigen::MatrixXd> schur_ldlt;
+  SchurFactorization schur_ldlt;
   Eigen::VectorXd u, u_dot, Ju, schur_rhs;
 };
 
