@@ -15,8 +15,8 @@
 
 #include "chasles/io/mesh_reader.h"
 #include "chasles/mass/mesh_mass.h"
-#include "chasles/scene/mesh_file.h"
 #include "chasles/mass/triangle_mesh.h"
+#include "chasles/scene/mesh_file.h"
 #include "io/internal/mesh_readers.h"
 
 namespace chasles {

@@ -36,8 +36,8 @@ struct Study {
 
 /// Builds the Model (one body per scene body, gravity, the scene's force elements, and its
 /// joints, rolling contacts and drivers with attachment frames taken from their world poses at
-/// the initial State), the initial State and the options. `until` [s] overrides the scene's end time when finite.
-/// Throws InputError when there is no end time or a value is invalid.
+/// the initial State), the initial State and the options. `until` [s] overrides the scene's end
+/// time when finite. Throws InputError when there is no end time or a value is invalid.
 Study BuildStudy(const Scene& scene, double until = std::numeric_limits<double>::quiet_NaN());
 
 struct StudyOptions {
