@@ -7,8 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
@@ -70,6 +72,25 @@ inline Eigen::Matrix3d ToMat(const nlohmann::json& j) {
 /// A 3-vector from a JSON report.
 inline Eigen::Vector3d ToVec(const nlohmann::json& j) {
   return Eigen::Vector3d(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
+}
+
+/// A CSV file written by `chasles simulate`, as columns by name.
+inline std::map<std::string, std::vector<double>> ReadCsv(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string cell; std::getline(header, cell, ',');) names.push_back(cell);
+  std::map<std::string, std::vector<double>> cols;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    size_t i = 0;
+    for (std::string cell; std::getline(row, cell, ','); ++i) {
+      cols[names.at(i)].push_back(std::stod(cell));
+    }
+  }
+  return cols;
 }
 
 /// Runs `chasles mass FILE EXTRA --format json --units SI` and parses the report.

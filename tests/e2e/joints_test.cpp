@@ -41,24 +41,6 @@ nlohmann::json Simulate(const std::string& example, const std::string& extra = "
   return nlohmann::json::parse(r.out);
 }
 
-// The CSV as columns by name.
-std::map<std::string, std::vector<double>> ReadCsv(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::stringstream header(line);
-  for (std::string cell; std::getline(header, cell, ',');) names.push_back(cell);
-  std::map<std::string, std::vector<double>> cols;
-  while (std::getline(in, line)) {
-    std::stringstream row(line);
-    size_t i = 0;
-    for (std::string cell; std::getline(row, cell, ','); ++i)
-      cols[names.at(i)].push_back(std::stod(cell));
-  }
-  return cols;
-}
-
 const nlohmann::json& Named(const nlohmann::json& list, const std::string& name) {
   for (const auto& x : list) {
     if (x.at("name") == name) return x;

@@ -46,24 +46,6 @@ const nlohmann::json& FinalBody(const nlohmann::json& j, size_t i = 0) {
   return j.at("final").at("bodies").at(i);
 }
 
-// The CSV as columns by name.
-std::map<std::string, std::vector<double>> ReadCsv(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::stringstream header(line);
-  for (std::string cell; std::getline(header, cell, ',');) names.push_back(cell);
-  std::map<std::string, std::vector<double>> cols;
-  while (std::getline(in, line)) {
-    std::stringstream row(line);
-    size_t i = 0;
-    for (std::string cell; std::getline(row, cell, ','); ++i)
-      cols[names.at(i)].push_back(std::stod(cell));
-  }
-  return cols;
-}
-
 // Dzhanibekov: I = (1, 2, 3) kg m², w0 = (0.01, 10, 0.01) rad/s. Closed form of Euler's
 // equations (Landau & Lifshitz, Mechanics, §37), for H² > 2T I2:
 //   w1 = A1 cn τ, w2 = A2 sn τ, w3 = A3 dn τ, τ = λ t + τ0,
