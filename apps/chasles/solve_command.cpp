@@ -90,25 +90,29 @@ nlohmann::json Json(const Solved& s) {
   return j;
 }
 
+// A vector for the report: components that are round-off against the vector's own size
+// (1e-12 of it) show as 0, so a student reads [2.83, 0, -1.63], not [2.83, -2.5e-32, -1.63].
+std::string V(const Vec3& v) {
+  const double floor = 1e-12 * v.norm();
+  const auto c = [floor](double x) { return std::abs(x) <= floor ? 0.0 : x; };
+  return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", c(v.x()), c(v.y()), c(v.z()));
+}
+
 std::string Text(const Scene& scene, const Solved& s) {
   std::string out = fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
                                 scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
   out += "Instantaneous solution at the initial state (SI, world frame)\n\nAccelerations\n";
   for (const auto& b : s.solution.bodies) {
-    out += fmt::format("  {}\n    a_cm  [{:.9g}, {:.9g}, {:.9g}] m/s^2\n", b.name, b.a_WBcm_W.x(),
-                       b.a_WBcm_W.y(), b.a_WBcm_W.z());
-    out += fmt::format("    alpha [{:.9g}, {:.9g}, {:.9g}] rad/s^2\n", b.alpha_WB_W.x(),
-                       b.alpha_WB_W.y(), b.alpha_WB_W.z());
+    out += fmt::format("  {}\n    a_cm  {} m/s^2\n", b.name, V(b.a_WBcm_W));
+    out += fmt::format("    alpha {} rad/s^2\n", V(b.alpha_WB_W));
   }
   if (!s.solution.reactions.empty()) {
     out += "\nReactions (on the child at the joint point)\n";
   }
   for (size_t i = 0; i < s.solution.reactions.size(); ++i) {
     const ReactionReport& r = s.solution.reactions[i];
-    out += fmt::format("  {} ({}) at [{:.9g}, {:.9g}, {:.9g}] m\n", r.name, r.kind, r.p_WJ.x(),
-                       r.p_WJ.y(), r.p_WJ.z());
-    out += fmt::format("    force  [{:.9g}, {:.9g}, {:.9g}] N\n", r.F_Jc_W.x(), r.F_Jc_W.y(),
-                       r.F_Jc_W.z());
+    out += fmt::format("  {} ({}) at {} m\n", r.name, r.kind, V(r.p_WJ));
+    out += fmt::format("    force  {} N\n", V(r.F_Jc_W));
     out += fmt::format("    moment [{:.9g}, {:.9g}, {:.9g}] N*m\n", r.M_Jc_W.x(), r.M_Jc_W.y(),
                        r.M_Jc_W.z());
     if (r.is_rolling) {
