@@ -63,7 +63,8 @@ InstantaneousSolution SolveInstantaneous(const Model& model, const State& state,
     if (const auto* roll = dynamic_cast<const RollingContact*>(&con)) {
       r.is_rolling = true;
       r.normal_force = o.lambda[0];
-      r.friction_W = o.lambda[1] * roll->t1_W() + o.lambda[2] * roll->t2_W();
+      const Mat3 T = roll->CalcPlaneFrame(data);  // [t1 t2 n] in W now
+      r.friction_W = o.lambda[1] * T.col(0) + o.lambda[2] * T.col(1);
       r.friction_needed = r.normal_force > 0.0 ? r.friction_W.norm() / r.normal_force
                                                : std::numeric_limits<double>::infinity();
     }

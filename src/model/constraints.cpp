@@ -102,6 +102,68 @@ void PerpendicularRow(ConstraintEval& e, int k, const Side& P, const Side& C, co
   e.holonomic[static_cast<size_t>(k)] = true;
 }
 
+// A row on the relative velocity of the two bodies' material points at a point p that moves
+// over both (a contact or pitch point): k·Δv = 0, Δv = (v_c + w_c × r) - (v_p + w_p × ρ),
+// r = p - p_ccm, ρ = p - p_pcm. Its parts: linear k and angular r × k on the child, the
+// opposite on the parent (so Jᵀλ is a force λk on the child at p and -λk on the parent at p).
+// Differentiating along the motion, with ṙ = ṗ - v_c and ρ̇ = ṗ - v_p:
+//   d/dt(k·Δv) = k̇·Δv + k·(a_c + ẇ_c × r - a_p - ẇ_p × ρ) + k·(w_c × ṙ - w_p × ρ̇),
+// so c = -[k̇·Δv + k·(w_c × ṙ - w_p × ρ̇)].
+void RelativePointRow(ConstraintEval& e, int row, const Side& P, const Side& C, const Vec3& p,
+                      const Vec3& p_dot, const Vec3& k, const Vec3& k_dot) {
+  const Vec3 r = p - C.p_cm, rho = p - P.p_cm;
+  SetRow(e, row, k, r.cross(k), -k, -rho.cross(k));
+  const Vec3 dv = C.v + C.w.cross(r) - P.v - P.w.cross(rho);
+  e.acceleration_rhs[row] =
+      -(k_dot.dot(dv) + k.dot(C.w.cross(p_dot - C.v) - P.w.cross(p_dot - P.v)));
+}
+
+// A material point of body b (or a fixed world point) and its velocity, in W: `p_BoX_B` is
+// from Bo in B (a world position for kWorld).
+struct MovingPoint {
+  Vec3 p, v;
+};
+MovingPoint BodyPoint(const Model& model, const Side& s, BodyIndex b, const Vec3& p_BoX_B) {
+  if (b == kWorld) return {p_BoX_B, Vec3::Zero()};
+  const Vec3 r = s.R * model.body(b).PointFromCenterOfMass(p_BoX_B);
+  return {s.p_cm + r, s.v + s.w.cross(r)};
+}
+
+// The point of a round body's rim (or sphere) nearest a plane of normal n: C = c - R m, with
+// m the unit vector from C to the centre c, in W.
+//  sphere, cylinder (axis e ⊥ n): m = n (ṁ = ṅ).
+//  disk (rim in the plane ⊥ e): the rim's lowest point along n is at m = u/s, u = n - σ e,
+//  σ = n·e, s = |u| = √(1 - σ²). With ė, ṅ the rates: σ̇ = ṅ·e + n·ė,
+//  u̇ = ṅ - σ̇ e - σ ė, ṡ = m·u̇, ṁ = (u̇ - m ṡ)/s.
+// The height of C above the plane through O is h = (c - O)·n - R s; by the envelope theorem
+// (C is the lowest point) ḣ = n·Δv_C, the relative velocity of the two material points at C.
+struct RimContact {
+  Vec3 m = Vec3::Zero(), m_dot = Vec3::Zero();
+  double s = 1.0;
+};
+RimContact CalcRimContact(const std::string& name, bool disk, const Vec3& e, const Vec3& e_dot,
+                          const Vec3& n, const Vec3& n_dot) {
+  RimContact rc;
+  if (!disk) {
+    rc.m = n, rc.m_dot = n_dot;
+    return rc;
+  }
+  const double sigma = n.dot(e);
+  const Vec3 u = n - sigma * e;
+  rc.s = u.norm();
+  if (rc.s < 1e-9) {
+    throw InputError(fmt::format(
+        "constraint '{}': the disk lies flat on the plane (its axis is along the normal); "
+        "rolling on the rim is undefined there",
+        name));
+  }
+  rc.m = u / rc.s;
+  const double sigma_dot = n_dot.dot(e) + n.dot(e_dot);
+  const Vec3 u_dot = n_dot - sigma_dot * e - sigma * e_dot;
+  rc.m_dot = (u_dot - rc.m * rc.m.dot(u_dot)) / rc.s;
+  return rc;
+}
+
 void RequireFrame(const std::string& name, const char* which, const AttachmentFrame& X) {
   if (!X.p_BoJ_B.allFinite() || !X.R_BJ.allFinite()) {
     throw InputError(fmt::format(
@@ -271,27 +333,31 @@ void Joint::Evaluate(const Model& model, const State& state, const Data& data,
 RollingContact::RollingContact(std::string name, RollingShape shape, BodyIndex body,
                                const Vec3& p_BoC_B, const Vec3& axis_B, double radius,
                                const Vec3& p_WO, const Vec3& n_W)
-    : Constraint(std::move(name), kWorld, body),
+    : RollingContact(std::move(name), shape, kWorld, p_WO, n_W, body, p_BoC_B, axis_B, radius) {}
+
+RollingContact::RollingContact(std::string name, RollingShape shape, BodyIndex parent,
+                               const Vec3& p_PoO_P, const Vec3& n_P, BodyIndex body,
+                               const Vec3& p_BoC_B, const Vec3& axis_B, double radius)
+    : Constraint(std::move(name), parent, body),
       shape_(shape),
       p_BoC_B_(p_BoC_B),
       radius_(radius),
-      p_WO_(p_WO) {
+      p_PoO_P_(p_PoO_P) {
   if (!std::isfinite(radius) || !(radius > 0.0)) {
     throw InputError(
         fmt::format("constraint '{}': rolling radius is {:.6g} m; it must be a positive length",
                     this->name(), radius));
   }
-  if (!p_BoC_B.allFinite() || !p_WO.allFinite()) {
+  if (!p_BoC_B.allFinite() || !p_PoO_P.allFinite()) {
     throw InputError(fmt::format(
         "constraint '{}': the body's centre or the plane's point is not finite", this->name()));
   }
-  if (!(n_W.norm() > 0.0) || !n_W.allFinite()) {
+  if (!(n_P.norm() > 0.0) || !n_P.allFinite()) {
     throw InputError(fmt::format(
         "constraint '{}': the plane normal is zero or not finite; give the upward normal",
         this->name()));
   }
-  const Mat3 T = FrameWithZAxis(n_W);
-  t1_W_ = T.col(0), t2_W_ = T.col(1), n_W_ = T.col(2);
+  R_PT_ = FrameWithZAxis(n_P);
   if (shape != RollingShape::kSphere) {
     if (!(axis_B.norm() > 0.0) || !axis_B.allFinite()) {
       throw InputError(fmt::format(
@@ -317,60 +383,164 @@ std::string RollingContact::kind() const {
   return "rolling";
 }
 
+Mat3 RollingContact::CalcPlaneFrame(const Data& data) const {
+  if (parent() == kWorld) return R_PT_;
+  return data.R_WB[static_cast<size_t>(parent())] * R_PT_;
+}
+
 void RollingContact::Evaluate(const Model& model, const State& state, const Data& data,
                               ConstraintEval& e) const {
+  const Side P = GetSide(state, data, parent());
   const Side B = GetSide(state, data, child());
-  const Vec3 r_c = B.R * model.body(child()).PointFromCenterOfMass(p_BoC_B_);  // Bcm to centre
-  const Vec3& n = n_W_;
-  // Unit vector m from the contact point C to the centre: C = centre - R m.
-  //  sphere, cylinder (axis e ⊥ n): m = n, constant.
-  //  disk (rim in the plane ⊥ e): the rim's lowest point along n is at m = u/|u|,
-  //  u = n - (n·e) e. With σ = n·e, ė = w × e, σ̇ = n·ė:
-  //  u̇ = -σ̇ e - σ ė, s = |u| = √(1 - σ²), ṡ = -σ σ̇ / s, ṁ = u̇/s - u ṡ/s².
-  Vec3 m = n, m_dot = Vec3::Zero();
-  double s = 1.0;
-  if (shape_ == RollingShape::kDisk) {
-    const Vec3 ax = B.R * axis_B_;
-    const double sigma = n.dot(ax);
-    const Vec3 u = n - sigma * ax;
-    s = u.norm();
-    if (s < 1e-9) {
-      throw InputError(fmt::format(
-          "constraint '{}': the disk lies flat on the plane (its axis is along the normal); "
-          "rolling on the rim is undefined there",
-          name()));
-    }
-    m = u / s;
-    const Vec3 e_dot = B.w.cross(ax);
-    const double sigma_dot = n.dot(e_dot);
-    const Vec3 u_dot = -sigma_dot * ax - sigma * e_dot;
-    const double s_dot = -sigma * sigma_dot / s;
-    m_dot = u_dot / s - u * (s_dot / (s * s));
-  }
-  const Vec3 r = r_c - radius_ * m;  // Bcm to the contact point C, in W
-  e.p_WJ = B.p_cm + r;
-  // Rows k·v_C = k·(v + w × r) = 0 for k = n, t1, t2 (k fixed in W). Differentiating along
-  // the motion, r moves over the body: ṙ = w × r_c - R ṁ (r_c is a material vector), so
-  //   k·(a + ẇ × r) + k·(w × ṙ) = 0,  c = -k·(w × ṙ).
-  // The normal row is the derivative of the holonomic height of the lowest point,
-  //   h = (centre - p_O)·n - R s  (envelope theorem: ḣ = n·v_C).
-  const Vec3 r_dot = B.w.cross(r_c) - radius_ * m_dot;
-  const Vec3 w_x_rdot = B.w.cross(r_dot);
-  const Vec3 dirs[3] = {n, t1_W_, t2_W_};
+  // The plane's axes turn with the parent: k̇ = w_p × k for k = t1, t2, n.
+  const Mat3 T = P.R * R_PT_;
+  const Vec3 t1 = T.col(0), t2 = T.col(1), n = T.col(2);
+  const MovingPoint O = BodyPoint(model, P, parent(), p_PoO_P_);
+  const MovingPoint c = BodyPoint(model, B, child(), p_BoC_B_);  // the round body's centre
+  const Vec3 ax = B.R * axis_B_;
+  const RimContact rc =
+      CalcRimContact(name(), shape_ == RollingShape::kDisk, ax, B.w.cross(ax), n, P.w.cross(n));
+  // Contact point C = c - R m and its rate (a geometric point, not a material one).
+  const Vec3 p_C = c.p - radius_ * rc.m;
+  const Vec3 p_C_dot = c.v - radius_ * rc.m_dot;
+  e.p_WJ = p_C;
+  const Vec3 dirs[3] = {n, t1, t2};
   for (int k = 0; k < 3; ++k) {
-    SetRow(e, k, dirs[k], r.cross(dirs[k]), Vec3::Zero(), Vec3::Zero());
-    e.acceleration_rhs[k] = -dirs[k].dot(w_x_rdot);
+    RelativePointRow(e, k, P, B, p_C, p_C_dot, dirs[k], P.w.cross(dirs[k]));
   }
-  e.position_error[0] = (B.p_cm + r_c - p_WO_).dot(n) - radius_ * s;
+  e.position_error[0] = (c.p - O.p).dot(n) - radius_ * rc.s;
   e.holonomic[0] = true;
   if (shape_ == RollingShape::kCylinder) {
-    // Axis parallel to the plane, g = e·n: ġ = (w × e)·n = w·(e × n);
-    // g̈ = ẇ·(e × n) + w·((w × e) × n).
-    const Vec3 ax = B.R * axis_B_;
-    SetRow(e, 3, Vec3::Zero(), ax.cross(n), Vec3::Zero(), Vec3::Zero());
-    e.acceleration_rhs[3] = -B.w.dot(B.w.cross(ax).cross(n));
+    // Axis parallel to the plane, g = e·n: ġ = (w_c × e)·n + e·(w_p × n) = (e × n)·(w_c - w_p);
+    // g̈ = (e × n)·(ẇ_c - ẇ_p) + (ė × n + e × ṅ)·(w_c - w_p).
+    const Vec3 exn = ax.cross(n);
+    SetRow(e, 3, Vec3::Zero(), exn, Vec3::Zero(), -exn);
+    const Vec3 exn_dot = B.w.cross(ax).cross(n) + ax.cross(P.w.cross(n));
+    e.acceleration_rhs[3] = -exn_dot.dot(B.w - P.w);
     e.position_error[3] = ax.dot(n);
     e.holonomic[3] = true;
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+const char* GearKindName(GearKind kind) {
+  switch (kind) {
+    case GearKind::kExternal:
+      return "external";
+    case GearKind::kInternal:
+      return "internal";
+    case GearKind::kFace:
+      return "face";
+  }
+  return "gear";
+}
+
+GearMesh::GearMesh(std::string name, GearKind kind, BodyIndex parent,
+                   const PitchCircle& parent_circle, BodyIndex child,
+                   const PitchCircle& child_circle, bool keep_contact)
+    : Constraint(std::move(name), parent, child),
+      kind_(kind),
+      parent_circle_(parent_circle),
+      child_circle_(child_circle),
+      keep_contact_(keep_contact) {
+  const auto check = [&](const PitchCircle& c, const char* which, bool needs_radius) {
+    if (!c.p_BoO_B.allFinite()) {
+      throw InputError(fmt::format("gear mesh '{}': the {} pitch circle's centre is not finite",
+                                   this->name(), which));
+    }
+    if (!(c.axis_B.norm() > 0.0) || !c.axis_B.allFinite()) {
+      throw InputError(fmt::format(
+          "gear mesh '{}': the {} gear's axis is zero or not finite; give its direction",
+          this->name(), which));
+    }
+    if (needs_radius && !(std::isfinite(c.radius) && c.radius > 0.0)) {
+      throw InputError(fmt::format(
+          "gear mesh '{}': the {} pitch radius is {:.6g} m; it must be a positive length",
+          this->name(), which, c.radius));
+    }
+  };
+  check(parent_circle, "parent", kind != GearKind::kFace);
+  check(child_circle, "child", true);
+  parent_circle_.axis_B.normalize();
+  child_circle_.axis_B.normalize();
+  if (kind == GearKind::kInternal && !(child_circle.radius < parent_circle.radius)) {
+    throw InputError(fmt::format(
+        "gear mesh '{}': an internal mesh needs the child's pitch radius ({:.6g} m) smaller "
+        "than the ring's ({:.6g} m)",
+        this->name(), child_circle.radius, parent_circle.radius));
+  }
+}
+
+std::string GearMesh::kind() const {
+  return fmt::format("{} gear mesh", GearKindName(kind_));
+}
+
+void GearMesh::Evaluate(const Model& model, const State& state, const Data& data,
+                        ConstraintEval& e) const {
+  const Side P = GetSide(state, data, parent());
+  const Side C = GetSide(state, data, child());
+  // Child's pitch circle: centre a (material point), axis e_a (ė_a = w_c × e_a), radius r_a.
+  const MovingPoint a = BodyPoint(model, C, child(), child_circle_.p_BoO_B);
+  const Vec3 ea = C.R * child_circle_.axis_B, ea_dot = C.w.cross(ea);
+  const double ra = child_circle_.radius;
+  // Parent's: centre b, axis e_b.
+  const MovingPoint b = BodyPoint(model, P, parent(), parent_circle_.p_BoO_B);
+  const Vec3 eb = P.R * parent_circle_.axis_B, eb_dot = P.w.cross(eb);
+  if (kind_ == GearKind::kFace) {
+    // The child's pitch circle on the parent's pitch plane (through b, normal e_b): the
+    // rolling disk's geometry, P = a - r_a m; the mesh direction is the circle's tangent there,
+    // t = e_a × m (in the plane: n lies in span(m, e_a)), ṫ = ė_a × m + e_a × ṁ.
+    const RimContact rc = CalcRimContact(name(), true, ea, ea_dot, eb, eb_dot);
+    const Vec3 p = a.p - ra * rc.m, p_dot = a.v - ra * rc.m_dot;
+    e.p_WJ = p;
+    RelativePointRow(e, 0, P, C, p, p_dot, ea.cross(rc.m), ea_dot.cross(rc.m) + ea.cross(rc.m_dot));
+    if (keep_contact_) {
+      RelativePointRow(e, 1, P, C, p, p_dot, eb, eb_dot);
+      e.position_error[1] = (a.p - b.p).dot(eb) - ra * rc.s;
+      e.holonomic[1] = true;
+    }
+    return;
+  }
+  // Spur and ring gears: d = b - a, its part in the child's plane d_p = d - (d·e_a) e_a, of
+  // length ℓ along d̂ = d_p/ℓ. The pitch point P = a + σ r_a d̂ (σ = +1 external: on the side
+  // towards the other centre; σ = -1 internal: away from the ring's centre), the common
+  // tangent t = e_a × d̂. Rates: ḋ = ḃ - ȧ, ḋ_p = ḋ - (ḋ·e_a + d·ė_a) e_a - (d·e_a) ė_a,
+  // d̂̇ = (ḋ_p - d̂ (d̂·ḋ_p))/ℓ, ṫ = ė_a × d̂ + e_a × d̂̇.
+  const double sigma = kind_ == GearKind::kExternal ? 1.0 : -1.0;
+  const Vec3 d = b.p - a.p, d_dot = b.v - a.v;
+  const double de = d.dot(ea);
+  const Vec3 dp = d - de * ea;
+  const double ell = dp.norm();
+  if (!(ell > 1e-12 * (1.0 + ra))) {
+    throw InputError(fmt::format(
+        "gear mesh '{}': the two pitch circles are concentric; the pitch point is undefined",
+        name()));
+  }
+  const Vec3 dh = dp / ell;
+  const double de_dot = d_dot.dot(ea) + d.dot(ea_dot);
+  const Vec3 dp_dot = d_dot - de_dot * ea - de * ea_dot;
+  const Vec3 dh_dot = (dp_dot - dh * dh.dot(dp_dot)) / ell;
+  const Vec3 p = a.p + sigma * ra * dh, p_dot = a.v + sigma * ra * dh_dot;
+  const Vec3 t = ea.cross(dh), t_dot = ea_dot.cross(dh) + ea.cross(dh_dot);
+  e.p_WJ = p;
+  RelativePointRow(e, 0, P, C, p, p_dot, t, t_dot);
+  if (keep_contact_) {
+    // g = ℓ - (r_a + r_b) (external), (r_b - r_a) - ℓ (internal): ġ = σ ℓ̇ with
+    //   ℓ̇ = d̂·ḋ_p = d̂·ḋ - (d·e_a) w_c·t   (d̂·e_a = 0, d̂·(w × e_a) = w·t)
+    //     = -d̂·Δv_P - (d·e_a) t·(w_c - w_p)   (d̂·v_P(child) = d̂·ȧ, d̂·v_P(parent) = d̂·ḃ -
+    //                                          (d·e_a) w_p·t, from P - b = (σ r_a - ℓ) d̂ - (d·e_a)
+    //                                          e_a)
+    // so a relative point row along -σ d̂ plus the angular part -σ (d·e_a) t on the child and
+    // +σ (d·e_a) t on the parent, which vanishes when the gears are coplanar. Its rate adds
+    //   c += σ [(ḋ·e_a + d·ė_a) t·Δw + (d·e_a) ṫ·Δw],  Δw = w_c - w_p.
+    RelativePointRow(e, 1, P, C, p, p_dot, -sigma * dh, -sigma * dh_dot);
+    e.J_child.block<1, 3>(1, 3) -= sigma * de * t.transpose();
+    e.J_parent.block<1, 3>(1, 3) += sigma * de * t.transpose();
+    const Vec3 dw = C.w - P.w;
+    e.acceleration_rhs[1] += sigma * (de_dot * t.dot(dw) + de * t_dot.dot(dw));
+    const double rb = parent_circle_.radius;
+    e.position_error[1] = kind_ == GearKind::kExternal ? ell - (ra + rb) : (rb - ra) - ell;
+    e.holonomic[1] = true;
   }
 }
 

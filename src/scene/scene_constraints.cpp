@@ -19,6 +19,7 @@ std::vector<std::string> SceneConstraints::names() const {
   for (const auto& j : joints) n.push_back(j.name);
   for (const auto& r : rolling) n.push_back(r.name);
   for (const auto& d : drivers) n.push_back(d.name);
+  for (const auto& g : gears) n.push_back(g.name);
   return n;
 }
 
@@ -80,8 +81,8 @@ std::string SceneReader::ConstraintName(const At& at, const char* kind, size_t i
                                           : fmt::format("{}{}", kind, index + 1);
   if (std::find(taken.begin(), taken.end(), name) != taken.end()) {
     report_.Fail(at.Has("name") ? at.Child("name") : at,
-                 fmt::format("two joints, rolling contacts or drivers are named '{}'; names must "
-                             "be unique",
+                 fmt::format("two joints, rolling contacts, drivers or gears are named '{}'; names "
+                             "must be unique",
                              name));
   }
   taken.push_back(name);
@@ -134,12 +135,19 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
     report_.CheckSequence(list, "a list of rolling contacts");
     for (size_t i = 0; i < list.node.size(); ++i) {
       const At at = list.Item(i);
-      report_.CheckMap(at, {"name", "body", "shape", "radius", "axis", "center", "plane", "mu_s"},
+      report_.CheckMap(at,
+                       {"name", "body", "on", "shape", "radius", "axis", "center", "plane", "mu_s"},
                        "a rolling contact");
       SceneRolling r;
       r.name = ConstraintName(at, "rolling", i, taken);
       const std::string what = fmt::format("rolling contact '{}'", r.name);
       r.body = BodyIndexAt(report_.Require(at, "body", what), scene);
+      if (at.Has("on")) {
+        r.on = ParentIndexAt(at.Child("on"), scene);
+        if (r.on == r.body) {
+          report_.Fail(at.Child("on"), "a body cannot roll on itself; name the body under it");
+        }
+      }
       const SceneBody& body = scene.bodies[static_cast<size_t>(r.body)];
       const At shape_at = report_.Require(at, "shape", what);
       const std::string shape = report_.Text(shape_at, "sphere, cylinder or disk");
@@ -220,6 +228,97 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
                      "the (constant) acceleration");
       }
       c.drivers.push_back(d);
+    }
+  }
+
+  if (root.Has("gears")) {
+    const At list = root.Child("gears");
+    report_.CheckSequence(list, "a list of gear meshes");
+    for (size_t i = 0; i < list.node.size(); ++i) {
+      const At at = list.Item(i);
+      report_.CheckMap(
+          at, {"name", "type", "parent", "child", "parent_circle", "child_circle", "keep_contact"},
+          "a gear mesh");
+      SceneGear g;
+      g.name = ConstraintName(at, "gear", i, taken);
+      const std::string what = fmt::format("gear mesh '{}'", g.name);
+      const At type_at = report_.Require(at, "type", what);
+      const std::string type = report_.Text(type_at, "external, internal or face");
+      if (type == "external") {
+        g.kind = GearKind::kExternal;
+      } else if (type == "internal") {
+        g.kind = GearKind::kInternal;
+      } else if (type == "face") {
+        g.kind = GearKind::kFace;
+      } else {
+        report_.Fail(type_at,
+                     fmt::format("unknown gear type '{}'{}; types: external, internal, face", type,
+                                 DidYouMean(type, {"external", "internal", "face"})));
+      }
+      g.parent = ParentIndexAt(report_.Require(at, "parent", what), scene);
+      g.child = BodyIndexAt(report_.Require(at, "child", what), scene);
+      if (g.parent == g.child) {
+        report_.Fail(at.Child("child"), "a gear mesh's parent and child must differ");
+      }
+      const auto circle = [&](const char* key, bool with_radius) {
+        const At c_at = report_.Require(at, key, what);
+        report_.CheckMap(c_at, {"center", "axis", "radius"},
+                         "a pitch circle ({center, axis, radius})");
+        ScenePitchCircle pc;
+        pc.center_W = Vector(report_.Require(c_at, "center", "a pitch circle"), kLength,
+                             "the centre (world)");
+        pc.axis_W = AxisAt(report_.Require(c_at, "axis", "a pitch circle"), "the gear's axis");
+        if (with_radius) {
+          pc.radius = PositiveValue(report_.Require(c_at, "radius", "a pitch circle"), kLength,
+                                    "the pitch radius");
+        } else if (c_at.Has("radius")) {
+          report_.Fail(c_at.Child("radius"),
+                       "a face gear's pitch surface is the plane through its centre normal to "
+                       "its axis; remove 'radius'");
+        }
+        return pc;
+      };
+      g.parent_circle = circle("parent_circle", g.kind != GearKind::kFace);
+      g.child_circle = circle("child_circle", true);
+      if (at.Has("keep_contact")) {
+        const At k = at.Child("keep_contact");
+        if (!k.node.IsScalar() || !YAML::convert<bool>::decode(k.node, g.keep_contact)) {
+          report_.Fail(k, fmt::format("expected true or false, got {}", KindOf(k.node)));
+        }
+      }
+      // The pitch circles must touch at the initial configuration (the mesh row alone does not
+      // pull them together): the same distance the constraint's contact row holds.
+      const ScenePitchCircle& pc = g.parent_circle;
+      const ScenePitchCircle& cc = g.child_circle;
+      const double ra = cc.radius;
+      const Vec3 d = pc.center_W - cc.center_W;
+      double gap = 0.0;
+      std::string rule;
+      if (g.kind == GearKind::kFace) {
+        const double sigma = pc.axis_W.dot(cc.axis_W);
+        gap = d.dot(-pc.axis_W) - ra * std::sqrt(std::max(0.0, 1.0 - sigma * sigma));
+        rule =
+            "the lowest point of the child's pitch circle lies on the parent's pitch plane "
+            "(the parent's axis points towards the child)";
+      } else {
+        const double ell = (d - d.dot(cc.axis_W) * cc.axis_W).norm();
+        if (g.kind == GearKind::kInternal && !(ra < pc.radius)) {
+          report_.Fail(at.Child("child_circle"),
+                       fmt::format("an internal mesh needs the child's pitch radius ({:.6g} m) "
+                                   "smaller than the ring's ({:.6g} m)",
+                                   ra, pc.radius));
+        }
+        gap = g.kind == GearKind::kExternal ? ell - (ra + pc.radius) : (pc.radius - ra) - ell;
+        rule = fmt::format("the centre distance in the child's plane is {:.9g} m, {} {:.9g} m", ell,
+                           g.kind == GearKind::kExternal ? "the radii's sum" : "their difference",
+                           g.kind == GearKind::kExternal ? ra + pc.radius : pc.radius - ra);
+      }
+      if (std::abs(gap) > 1e-6 * std::max(ra, 1e-3)) {
+        report_.Fail(at, fmt::format("the pitch circles of gear mesh '{}' do not touch (gap "
+                                     "{:.6g} m): {}; move a centre or change a radius",
+                                     g.name, gap, rule));
+      }
+      c.gears.push_back(g);
     }
   }
 }

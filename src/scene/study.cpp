@@ -136,9 +136,10 @@ VectorFunction MakeVectorFunction(std::shared_ptr<const Model*> model_ref,
 
 State InitialState(const Scene& scene, const Model& model);
 
-/// Adds the scene's joints, rolling contacts and drivers to `model` (bodies already added, one
-/// per scene body). A scene gives joint points and axes in W at the initial configuration;
-/// each side's attachment frame is the one that coincides with that world pose there.
+/// Adds the scene's joints, rolling contacts, drivers and gear meshes to `model` (bodies already
+/// added, one per scene body). A scene gives joint points and axes in W at the initial
+/// configuration; each side's attachment frame is the one that coincides with that world pose
+/// there.
 void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
   const SceneConstraints& c = scene.dynamics.constraints;
   if (c.empty()) return;
@@ -162,15 +163,27 @@ void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
                                                 frame(j.child, j.p_WJ, R_WJ)));
   }
   for (const SceneRolling& r : c.rolling) {
-    model.AddConstraint(std::make_shared<RollingContact>(r.name, r.shape, model_body(r.body),
-                                                         r.p_BoC_B, r.axis_B, r.radius,
-                                                         r.plane_point_W, r.plane_normal_W));
+    // The plane is given in W at the initial configuration; on a body it is fixed in that
+    // body's frame from there on.
+    const AttachmentFrame X = frame(r.on, r.plane_point_W, FrameWithZAxis(r.plane_normal_W));
+    model.AddConstraint(std::make_shared<RollingContact>(
+        r.name, r.shape, model_body(r.on), X.p_BoJ_B, Vec3(X.R_BJ.col(2)), model_body(r.body),
+        r.p_BoC_B, r.axis_B, r.radius));
   }
   for (const SceneDriver& d : c.drivers) {
     const Mat3 R_WJ = FrameWithZAxis(d.axis_W);
     model.AddConstraint(std::make_shared<PrescribedMotion>(
         d.name, d.kind, model_body(d.parent), frame(d.parent, d.p_WJ, R_WJ), model_body(d.child),
         frame(d.child, d.p_WJ, R_WJ), TimeFunction::Quadratic(d.f0, d.f1, d.f2)));
+  }
+  for (const SceneGear& g : c.gears) {
+    const auto circle = [&](int b, const ScenePitchCircle& pc) {
+      const AttachmentFrame X = frame(b, pc.center_W, FrameWithZAxis(pc.axis_W));
+      return PitchCircle{X.p_BoJ_B, Vec3(X.R_BJ.col(2)), pc.radius};
+    };
+    model.AddConstraint(std::make_shared<GearMesh>(
+        g.name, g.kind, model_body(g.parent), circle(g.parent, g.parent_circle),
+        model_body(g.child), circle(g.child, g.child_circle), g.keep_contact));
   }
 }
 
@@ -505,15 +518,16 @@ struct SlipWatch {
     Data data = MakeData(model);
     CalcAccelerations(model, s, data);
     for (Entry& e : entries) {
-      // N = F·n, friction = F - N n, with F the plane's force on the body at the contact.
-      const Vec3& F = data.constraints[static_cast<size_t>(e.constraint)].F_Jc_W;
-      const Vec3& n = e.rolling->plane_normal_W;
-      const double N = F.dot(n);
+      // The multipliers are N (row 0) and the friction components along the plane's
+      // tangents t1, t2 (rows 1, 2); the plane may turn with its body.
+      const ConstraintEval::Column& lambda =
+          data.constraints[static_cast<size_t>(e.constraint)].lambda;
+      const double N = lambda[0];
       if (!(N > 0)) {
         if (!e.lifts) e.lifts = true, e.t_lift = s.t;
         continue;
       }
-      const double ratio = (F - N * n).norm() / N;
+      const double ratio = std::hypot(lambda[1], lambda[2]) / N;
       if (ratio > e.worst) e.worst = ratio, e.t_worst = s.t;
     }
   }

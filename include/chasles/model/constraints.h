@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// The constraint kinds: ideal joints between two bodies (or a body and the world), rolling
-/// without slipping of a round body on a world plane, and prescribed-motion drivers. Every
+/// without slipping of a round body on a plane of the world or of another body, gears in mesh
+/// (pitch circles rolling on each other), and prescribed-motion drivers. Every
 /// constructor validates its input (InputError naming the constraint). The joint frame J is
 /// given on both bodies; its z axis is the joint axis (or the plane's normal, or the line).
 
@@ -55,33 +56,97 @@ enum class RollingShape {
   kDisk,      ///< thin disk or wheel rim, may tilt: touches at the rim's lowest point
 };
 
-/// Rolling without slipping of a round body on a fixed world plane (nonholonomic). Rows:
-/// normal n·v_C = 0 (holonomic: the height of the lowest point), tangential t1·v_C = t2·v_C = 0
-/// (nonholonomic) where v_C is the velocity of the body's material point at the contact C,
-/// and for a cylinder its axis e stays parallel to the plane, e·n = 0. Multipliers: the
-/// normal force N (row 0) and the friction force components along t1, t2 (rows 1, 2).
+/// Rolling without slipping of a round body (the child) on a plane: a fixed world plane, or a
+/// plane attached to another body (the parent, e.g. a turntable or a conveyor), which may
+/// move. Rows on the RELATIVE velocity Δv_C = v_C(child) - v_C(parent) of the two bodies'
+/// material points at the contact C: normal n·Δv_C = 0 (holonomic: the height of the lowest
+/// point above the plane), tangential t1·Δv_C = t2·Δv_C = 0 (nonholonomic), with n, t1, t2
+/// turning with the parent; for a cylinder its axis e stays parallel to the plane, e·n = 0.
+/// Multipliers: the normal force N (row 0) and the friction force components along t1, t2
+/// (rows 1, 2), on the child at C; the parent receives the opposite force at C.
 class RollingContact final : public Constraint {
  public:
-  /// `p_BoC_B` the centre of the sphere / cylinder / disk from Bo in B [m]; `axis_B` its
-  /// symmetry axis in B (ignored for a sphere); `radius` R > 0 [m]; the plane passes through
-  /// `p_WO` [m] with upward unit normal `n_W` (normalised here).
+  /// On a fixed world plane: `p_BoC_B` the centre of the sphere / cylinder / disk from Bo in
+  /// B [m]; `axis_B` its symmetry axis in B (ignored for a sphere); `radius` R > 0 [m]; the
+  /// plane passes through `p_WO` [m] with upward unit normal `n_W` (normalised here).
   RollingContact(std::string name, RollingShape shape, BodyIndex body, const Vec3& p_BoC_B,
                  const Vec3& axis_B, double radius, const Vec3& p_WO, const Vec3& n_W);
+  /// On a plane of body `parent` (kWorld: the constructor above): the plane passes through
+  /// `p_PoO_P` (from the parent's Po, in P) [m] with upward normal `n_P` (in P).
+  RollingContact(std::string name, RollingShape shape, BodyIndex parent, const Vec3& p_PoO_P,
+                 const Vec3& n_P, BodyIndex body, const Vec3& p_BoC_B, const Vec3& axis_B,
+                 double radius);
   int num_rows() const override { return shape_ == RollingShape::kCylinder ? 4 : 3; }
   std::string kind() const override;
   void Evaluate(const Model& model, const State& state, const Data& data,
                 ConstraintEval& eval) const override;
-  /// Upward unit normal of the plane, in W.
-  const Vec3& n_W() const { return n_W_; }
-  /// First and second tangent directions of the plane (t1 × t2 = n), in W.
-  const Vec3& t1_W() const { return t1_W_; }
-  const Vec3& t2_W() const { return t2_W_; }
+  /// The plane's axes [t1 t2 n] in W at the kinematics stage in `data` (t1 × t2 = n, n the
+  /// upward normal; constant for a world plane, turning with the parent otherwise).
+  Mat3 CalcPlaneFrame(const Data& data) const;
 
  private:
   RollingShape shape_;
   Vec3 p_BoC_B_, axis_B_;
   double radius_;
-  Vec3 p_WO_, n_W_, t1_W_, t2_W_;
+  /// The plane's point (from Po, in P; in W for the world) and axes [t1 t2 n] in P.
+  Vec3 p_PoO_P_;
+  Mat3 R_PT_;
+};
+
+/// How two pitch circles mesh (GearMesh).
+enum class GearKind {
+  kExternal,  ///< spur gears side by side: the circles touch from outside
+  kInternal,  ///< the child inside the parent's ring gear: touching from inside
+  kFace,      ///< the child's pitch circle on the parent's pitch plane (a crown or face gear)
+};
+
+/// Name of a gear kind ("external", ...).
+const char* GearKindName(GearKind kind);
+
+/// A pitch circle on a body: centre, axis and radius (the parent's of a face gear has no
+/// radius: its pitch surface is the plane through the centre normal to the axis).
+struct PitchCircle {
+  /// Centre from Bo, in B (in W for kWorld) [m].
+  Vec3 p_BoO_B = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  /// Unit axis in B (in W for kWorld).
+  Vec3 axis_B = Vec3::UnitZ();
+  /// Pitch radius [m] (unused for the parent of a face gear).
+  double radius = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Two gears in mesh, modelled by their pitch circles rolling on each other without slipping
+/// at the pitch point P (the point of the child's pitch circle that touches the parent's).
+/// Frictionless teeth carry only the force along the common tangent t of the pitch circles at
+/// P (the mesh force: what transmits torque) and, when the pitch surfaces are pressed
+/// together, a separating (normal) force; sliding along the third direction (across the tooth
+/// face) is free. Rows, with Δv_P = v_P(child) - v_P(parent) of the material points at P:
+///   row 0 (mesh):   t·Δv_P = 0, nonholonomic in general (the angles of two gears on fixed
+///                   axles obey it integrated, r_A θ_A ± r_B θ_B = const, but with moving
+///                   axles not).
+///   row 1 (only with `keep_contact`): the pitch surfaces stay touching (holonomic):
+///     external: centre distance ℓ = r_A + r_B,  internal: ℓ = r_B - r_A (ℓ measured in the
+///     child's plane), face: the lowest point of the child's pitch circle on the parent's
+///     plane. Leave it out when bearings already fix the centre distance (two gears on
+///     axles): it would be redundant; keep it when nothing else does (a gear on a clevis).
+/// The multipliers: the mesh force along t (row 0) and the separating force (row 1) [N].
+class GearMesh final : public Constraint {
+ public:
+  /// `parent_circle` on `parent` (may be kWorld), `child_circle` on `child`. Throws
+  /// InputError for non-positive radii, zero axes, or an internal mesh whose child is not
+  /// smaller than the ring.
+  GearMesh(std::string name, GearKind kind, BodyIndex parent, const PitchCircle& parent_circle,
+           BodyIndex child, const PitchCircle& child_circle, bool keep_contact);
+  int num_rows() const override { return keep_contact_ ? 2 : 1; }
+  std::string kind() const override;
+  void Evaluate(const Model& model, const State& state, const Data& data,
+                ConstraintEval& eval) const override;
+  /// Which mesh this is.
+  GearKind gear_kind() const { return kind_; }
+
+ private:
+  GearKind kind_;
+  PitchCircle parent_circle_, child_circle_;
+  bool keep_contact_;
 };
 
 /// A prescribed function of time f(t) with its first two derivatives (for drivers).

@@ -29,19 +29,22 @@ struct SceneJoint {
   Vec3 axis_W = Vec3::UnitZ();
 };
 
-/// One entry of `rolling`: a round body rolling without slipping on a fixed world plane.
+/// One entry of `rolling`: a round body rolling without slipping on a plane of the world or of
+/// another body (key `on`).
 struct SceneRolling {
   std::string name;
   RollingShape shape = RollingShape::kSphere;
   /// The rolling body (scene index).
   int body = -1;
+  /// The body the plane belongs to (scene index), or kWorld (key `on`, default world).
+  int on = kWorld;
   /// Centre of the sphere / cylinder / disk from Bo in B [m] (the centre of mass by default).
   Vec3 p_BoC_B = Vec3::Zero();
   /// Symmetry axis in B (cylinder, disk).
   Vec3 axis_B = Vec3::UnitZ();
   /// Radius [m].
   double radius = 0.0;
-  /// A point of the plane [m] and its upward unit normal, in W.
+  /// A point of the plane [m] and its upward unit normal, in W at the initial configuration.
   Vec3 plane_point_W = Vec3::Zero();
   Vec3 plane_normal_W = Vec3::UnitZ();
   /// Coefficient of static friction (key `mu_s`), for `chasles solve` to compare the friction
@@ -62,14 +65,38 @@ struct SceneDriver {
   double f0 = 0.0, f1 = 0.0, f2 = 0.0;
 };
 
-/// Keys `joints`, `rolling`, `drivers`.
+/// A pitch circle of one entry of `gears`, in W at the initial configuration.
+struct ScenePitchCircle {
+  /// Centre [m] and unit axis, in W.
+  Vec3 center_W = Vec3::Zero();
+  Vec3 axis_W = Vec3::UnitZ();
+  /// Pitch radius [m] (NaN for the parent of a face gear: its pitch surface is a plane).
+  double radius = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// One entry of `gears`: two gears in mesh, their pitch circles rolling on each other.
+struct SceneGear {
+  std::string name;
+  GearKind kind = GearKind::kExternal;
+  /// Parent body (scene index) or kWorld; child body (scene index).
+  int parent = kWorld;
+  int child = -1;
+  ScenePitchCircle parent_circle, child_circle;
+  /// Also hold the pitch surfaces together (the normal-force row; key `keep_contact`).
+  bool keep_contact = false;
+};
+
+/// Keys `joints`, `rolling`, `drivers`, `gears`.
 struct SceneConstraints {
   std::vector<SceneJoint> joints;
   std::vector<SceneRolling> rolling;
   std::vector<SceneDriver> drivers;
+  std::vector<SceneGear> gears;
   /// True when the scene has none.
-  bool empty() const { return joints.empty() && rolling.empty() && drivers.empty(); }
-  /// Names in Model order (joints, then rolling, then drivers).
+  bool empty() const {
+    return joints.empty() && rolling.empty() && drivers.empty() && gears.empty();
+  }
+  /// Names in Model order (joints, rolling, drivers, then gears).
   std::vector<std::string> names() const;
 };
 

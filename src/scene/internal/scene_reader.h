@@ -115,7 +115,7 @@ class SceneReader {
   VectorFrame FrameAt(const At& at);
 
   // Constraints (scene_constraints.cpp) ---------------------------------------------------
-  /// Reads `joints`, `rolling` and `drivers` into scene.dynamics.constraints.
+  /// Reads `joints`, `rolling`, `drivers` and `gears` into scene.dynamics.constraints.
   void ReadConstraints(const At& root, Scene& scene);
   /// A body name or `world` (kWorld).
   int ParentIndexAt(const At& at, const Scene& scene);

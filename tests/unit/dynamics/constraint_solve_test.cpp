@@ -144,6 +144,40 @@ TEST(ConstraintRows, RollingShapesMatchFiniteDifferences) {
   }
 }
 
+// On a plane of a moving body (body a, turning and translating): the rows are on the relative
+// velocity of the two material points at the contact, and the plane's axes turn with a.
+TEST(ConstraintRows, RollingOnAMovingBodyMatchesFiniteDifferences) {
+  for (RollingShape shape : {RollingShape::kSphere, RollingShape::kCylinder, RollingShape::kDisk}) {
+    TwoBodies tb;
+    const int id = tb.model.AddConstraint(std::make_shared<RollingContact>(
+        "roll", shape, 0, Vec3(0.1, 0.0, -0.2), Vec3(0.1, 0.2, 1.0), 1, Vec3(0.05, -0.02, 0.01),
+        Vec3(0.2, 0.3, 1.0), 0.4));
+    tb.Init();
+    CheckRows(tb.model, tb.model.constraint(id), tb.state);
+  }
+}
+
+// Every gear kind, with and without the contact row, on the world and on a moving body, in a
+// general configuration (axes not parallel, circles not touching): the rows and their
+// velocity-product terms are defined there too.
+TEST(ConstraintRows, GearMeshesMatchFiniteDifferences) {
+  for (GearKind kind : {GearKind::kExternal, GearKind::kInternal, GearKind::kFace}) {
+    for (bool keep_contact : {false, true}) {
+      for (BodyIndex parent : {kWorld, BodyIndex{0}}) {
+        TwoBodies tb;
+        const PitchCircle pc{Vec3(0.2, -0.1, 0.3), Vec3(0.1, -0.2, 1.0), 0.7};
+        const PitchCircle cc{Vec3(-0.1, 0.15, 0.05), Vec3(0.3, 0.1, 0.9), 0.25};
+        const int id = tb.model.AddConstraint(
+            std::make_shared<GearMesh>("mesh", kind, parent, pc, 1, cc, keep_contact));
+        tb.Init();
+        SCOPED_TRACE(std::string(GearKindName(kind)) + (keep_contact ? " held" : "") +
+                     (parent == kWorld ? " on world" : " on body"));
+        CheckRows(tb.model, tb.model.constraint(id), tb.state);
+      }
+    }
+  }
+}
+
 TEST(ConstraintRows, DriversMatchFiniteDifferences) {
   const TimeFunction f = TimeFunction::Quadratic(0.2, -0.5, 1.7);
   {

@@ -93,5 +93,33 @@ TEST(Constraints, InputIsValidated) {
   EXPECT_EQ(model.num_constraint_rows(), 3);
 }
 
+TEST(GearMesh, InputIsValidated) {
+  const PitchCircle sun{Vec3::Zero(), Vec3::UnitZ(), 0.1};
+  EXPECT_THAT(
+      [&] {
+        GearMesh("m", GearKind::kExternal, kWorld, sun, 0,
+                 PitchCircle{Vec3(0.14, 0, 0), Vec3::UnitZ(), 0.0}, false);
+      },
+      ::testing::ThrowsMessage<InputError>(
+          HasSubstr("gear mesh 'm': the child pitch radius is 0 m; it must be a positive length")));
+  EXPECT_THAT(
+      [&] {
+        GearMesh("m", GearKind::kInternal, kWorld, sun, 0,
+                 PitchCircle{Vec3(0.14, 0, 0), Vec3::UnitZ(), 0.2}, false);
+      },
+      ::testing::ThrowsMessage<InputError>(HasSubstr("smaller than the ring's")));
+  EXPECT_THAT(
+      [&] {
+        GearMesh("m", GearKind::kExternal, kWorld, sun, 0,
+                 PitchCircle{Vec3(0.14, 0, 0), Vec3::Zero(), 0.04}, false);
+      },
+      ::testing::ThrowsMessage<InputError>(HasSubstr("the child gear's axis is zero")));
+  // A face gear's parent needs no radius; the rows count the contact row.
+  const GearMesh face("f", GearKind::kFace, kWorld, PitchCircle{Vec3::Zero(), Vec3::UnitZ()}, 0,
+                      PitchCircle{Vec3(0.3, 0, 0.1), Vec3::UnitX(), 0.1}, true);
+  EXPECT_EQ(face.num_rows(), 2);
+  EXPECT_EQ(face.kind(), "face gear mesh");
+}
+
 }  // namespace
 }  // namespace chasles
