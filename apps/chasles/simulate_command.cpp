@@ -93,6 +93,8 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                          {"point", VecJson(x.p_WJ)},
                          {"force", VecJson(x.F_Jc_W)},
                          {"moment", VecJson(x.M_Jc_W)},
+                         {"force_body", VecJson(x.F_Jc_B)},
+                         {"moment_body", VecJson(x.M_Jc_B)},
                          {"power", x.power}});
   }
   j["final"] = {{"t", r.t_end}, {"bodies", bodies}, {"reactions", reactions}};

@@ -13,9 +13,11 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/analysis/instantaneous.h"
+#include "chasles/analysis/momentum.h"
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/error.h"
 #include "chasles/model/data.h"
+#include "chasles/model/model.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/study.h"
@@ -31,23 +33,71 @@ nlohmann::json VecJson(const Vec3& v) {
   return {v.x(), v.y(), v.z()};
 }
 
+/// Kinetic energy and momenta of one body (or, with name "", of all of them) at the solved
+/// state, in W: T = ½ m v² + ½ ωᵀ I ω (eqs. 8.115, 8.116), p = m v, H about the centre of mass
+/// I ω and about the world origin H_O = H + p_cm × m v.
+struct Motion {
+  std::string name;
+  double T_trans = 0.0, T_rot = 0.0;
+  Vec3 P = Vec3::Zero();
+  /// About the body's own centre of mass; for the total, about the system's centre of mass.
+  Vec3 H_cm = Vec3::Zero();
+  Vec3 H_O = Vec3::Zero();
+};
+
 struct Solved {
   InstantaneousSolution solution;
   /// mu_s of each constraint (NaN when not a rolling contact with `mu_s`), Model order.
   std::vector<double> mu_s;
+  /// Per body (Model order), then the total.
+  std::vector<Motion> motion;
+  Motion total;
 };
 
-Solved SolveScene(const Scene& scene) {
-  // The end time plays no part in an instantaneous solve.
-  Study study = BuildStudy(scene, 1.0);
-  State state = study.initial;
-  Data data = MakeData(*study.model);
-  ProjectOntoConstraints(*study.model, state, data);
-  Solved s{SolveInstantaneous(*study.model, state), {}};
+void FillMuS(const Scene& scene, Solved& s) {
   const SceneConstraints& c = scene.dynamics.constraints;
   s.mu_s.assign(s.solution.reactions.size(), std::numeric_limits<double>::quiet_NaN());
   for (size_t i = 0; i < c.rolling.size(); ++i) s.mu_s[c.joints.size() + i] = c.rolling[i].mu_s;
-  return s;
+}
+
+std::vector<Motion> CalcMotion(const Model& model, const State& state, Motion* total) {
+  std::vector<Motion> out;
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyState& x = state.bodies[static_cast<size_t>(b)];
+    const Body& body = model.body(b);
+    Motion m;
+    m.name = body.name();
+    m.T_trans = 0.5 * body.mass() * x.v_WBcm_W.squaredNorm();
+    m.T_rot = 0.5 * x.w_WB_B.dot(body.I_BBcm_B() * x.w_WB_B);
+    m.P = body.mass() * x.v_WBcm_W;
+    m.H_cm = x.q_WB * Vec3(body.I_BBcm_B() * x.w_WB_B);
+    m.H_O = m.H_cm + x.p_WBcm.cross(m.P);
+    out.push_back(m);
+  }
+  total->T_trans = CalcTranslationalKineticEnergy(model, state);
+  total->T_rot = CalcRotationalKineticEnergy(model, state);
+  total->P = CalcLinearMomentum(model, state);
+  total->H_cm = CalcAngularMomentum(model, state, CalcSystemCenterOfMass(model, state));
+  total->H_O = CalcAngularMomentum(model, state, Vec3::Zero());
+  return out;
+}
+
+Solved SolveScene(const Scene& scene) {
+  try {
+    // The end time plays no part in an instantaneous solve.
+    Study study = BuildStudy(scene, 1.0);
+    State state = study.initial;
+    Data data = MakeData(*study.model);
+    ProjectOntoConstraints(*study.model, state, data);
+    Solved s{SolveInstantaneous(*study.model, state), {}, {}, {}};
+    s.motion = CalcMotion(*study.model, state, &s.total);
+    FillMuS(scene, s);
+    return s;
+  } catch (const SceneError&) {
+    throw;
+  } catch (const InputError& e) {
+    ThrowAtConstraintEntry(scene, e);
+  }
 }
 
 nlohmann::json Json(const Solved& s) {
@@ -83,6 +133,18 @@ nlohmann::json Json(const Solved& s) {
       }
     }
     j["reactions"].push_back(x);
+  }
+  const auto motion = [](const Motion& m) {
+    return nlohmann::json{
+        {"kinetic_energy", m.T_trans + m.T_rot},  {"kinetic_translational", m.T_trans},
+        {"kinetic_rotational", m.T_rot},          {"linear_momentum", VecJson(m.P)},
+        {"angular_momentum_cm", VecJson(m.H_cm)}, {"angular_momentum_origin", VecJson(m.H_O)}};
+  };
+  j["energy_momentum"] = {{"bodies", nlohmann::json::array()}, {"total", motion(s.total)}};
+  for (const Motion& m : s.motion) {
+    nlohmann::json b = motion(m);
+    b["name"] = m.name;
+    j["energy_momentum"]["bodies"].push_back(b);
   }
   j["rank"] = s.solution.rank;
   j["rows"] = s.solution.num_rows;
@@ -125,6 +187,22 @@ std::string Text(const Scene& scene, const Solved& s) {
       out += "\n";
     }
   }
+  out += "\nKinetic energy and momenta (H about each centre of mass, H_O about the origin)\n";
+  const auto motion = [&out](const Motion& m, const char* cm) {
+    out += fmt::format("    T {:.9g} J (translational {:.9g} J, rotational {:.9g} J)\n",
+                       m.T_trans + m.T_rot, m.T_trans, m.T_rot);
+    out += fmt::format("    p   {} kg*m/s\n", V(m.P));
+    out += fmt::format("    H   {} kg*m^2/s (about {})\n", V(m.H_cm), cm);
+    out += fmt::format("    H_O {} kg*m^2/s\n", V(m.H_O));
+  };
+  for (const Motion& m : s.motion) {
+    out += fmt::format("  {}\n", m.name);
+    motion(m, "its centre of mass");
+  }
+  if (s.motion.size() > 1) {
+    out += "  all bodies\n";
+    motion(s.total, "the system's centre of mass");
+  }
   for (const auto& w : s.solution.warnings) out += fmt::format("warning: {}\n", w);
   return out;
 }
@@ -141,6 +219,19 @@ void TableColumns(const Solved& s, std::vector<std::string>* names, std::vector<
     for (int k = 0; k < 3; ++k) add(b.name + "_a" + xyz[k], b.a_WBcm_W[k]);
     for (int k = 0; k < 3; ++k) add(b.name + "_al" + xyz[k], b.alpha_WB_W[k]);
   }
+  // Energy and momenta as the simulation's ledger columns names them: per body with the body's
+  // name first, H about its centre of mass, HO about the origin; then the totals (H about the
+  // system's centre of mass).
+  const auto motion = [&](const std::string& prefix, const Motion& m) {
+    add(prefix + "T_trans", m.T_trans);
+    add(prefix + "T_rot", m.T_rot);
+    add(prefix + "T", m.T_trans + m.T_rot);
+    for (int k = 0; k < 3; ++k) add(prefix + "P" + xyz[k], m.P[k]);
+    for (int k = 0; k < 3; ++k) add(prefix + "H" + xyz[k], m.H_cm[k]);
+    for (int k = 0; k < 3; ++k) add(prefix + "HO" + xyz[k], m.H_O[k]);
+  };
+  for (const Motion& m : s.motion) motion(m.name + "_", m);
+  motion("", s.total);
   for (const auto& r : s.solution.reactions) {
     for (int k = 0; k < 3; ++k) add(r.name + "_F" + xyz[k], r.F_Jc_W[k]);
     for (int k = 0; k < 3; ++k) add(r.name + "_M" + xyz[k], r.M_Jc_W[k]);

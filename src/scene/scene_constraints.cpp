@@ -23,9 +23,28 @@ std::vector<std::string> SceneConstraints::names() const {
   return n;
 }
 
+const SceneSpot* SceneConstraints::Find(const std::string& name) const {
+  for (const auto& j : joints) {
+    if (j.name == name) return &j.where;
+  }
+  for (const auto& r : rolling) {
+    if (r.name == name) return &r.where;
+  }
+  for (const auto& d : drivers) {
+    if (d.name == name) return &d.where;
+  }
+  return nullptr;
+}
+
 namespace scene_internal {
 
 namespace {
+
+// The entry's position in the file (yaml-cpp marks are 0-based).
+SceneSpot Spot(const At& at) {
+  const YAML::Mark mark = at.node.Mark();
+  return {mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0, at.path};
+}
 
 constexpr Dimension kVelocity{1, 0, -1};
 constexpr Dimension kAcceleration{1, 0, -2};
@@ -101,6 +120,7 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
       report_.CheckMap(at, {"name", "type", "parent", "child", "at", "axis"}, "a joint");
       SceneJoint j;
       j.name = ConstraintName(at, "joint", i, taken);
+      j.where = Spot(at);
       const std::string what = fmt::format("joint '{}'", j.name);
       const At type_at = report_.Require(at, "type", what);
       const std::string type = report_.Text(type_at, "a joint type");
@@ -140,6 +160,7 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
                        "a rolling contact");
       SceneRolling r;
       r.name = ConstraintName(at, "rolling", i, taken);
+      r.where = Spot(at);
       const std::string what = fmt::format("rolling contact '{}'", r.name);
       r.body = BodyIndexAt(report_.Require(at, "body", what), scene);
       if (at.Has("on")) {
@@ -192,6 +213,7 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
       report_.CheckMap(at, {"name", "type", "parent", "child", "at", "axis", "value"}, "a driver");
       SceneDriver d;
       d.name = ConstraintName(at, "driver", i, taken);
+      d.where = Spot(at);
       const std::string what = fmt::format("driver '{}'", d.name);
       const At type_at = report_.Require(at, "type", what);
       const std::string type = report_.Text(type_at, "translation or rotation");

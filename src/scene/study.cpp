@@ -19,6 +19,7 @@
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
+#include "chasles/scene/scene_error.h"
 #include "internal/study_columns.h"
 
 namespace chasles {
@@ -445,10 +446,13 @@ struct RowMaker {
       }
       const std::string& q = c.quantity;
       if (c.group == "reactions") {
-        // Force (F) or moment about J (M) the parent exerts on the child, in W.
+        // Force (F) or moment about J (M) the parent exerts on the child, in W ("Fx") or in
+        // the child's frame B ("Fx_B").
         const ConstraintOutput& r =
             data.constraints[static_cast<size_t>(model.FindConstraint(c.force))];
-        row.push_back((q[0] == 'F' ? r.F_Jc_W : r.M_Jc_W)[q[1] - 'x']);
+        const bool in_B = q.size() > 2;
+        const Vec3& v = q[0] == 'F' ? (in_B ? r.F_Jc_B : r.F_Jc_W) : (in_B ? r.M_Jc_B : r.M_Jc_W);
+        row.push_back(v[q[1] - 'x']);
         continue;
       }
       double v = 0.0;
@@ -563,7 +567,38 @@ Study BuildStudy(const Scene& scene, double until) {
   return study;
 }
 
+namespace {
+StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options);
+}  // namespace
+
+void ThrowAtConstraintEntry(const Scene& scene, const InputError& error) {
+  // The first quoted name in the message that is a constraint of the scene.
+  const std::string what = error.what();
+  const SceneSpot* spot = nullptr;
+  size_t at = 0;
+  while (!spot && (at = what.find('\'', at)) != std::string::npos) {
+    const size_t end = what.find('\'', at + 1);
+    if (end == std::string::npos) break;
+    spot = scene.dynamics.constraints.Find(what.substr(at + 1, end - at - 1));
+    at = end + 1;
+  }
+  if (!spot) throw error;
+  throw SceneError(scene.file, spot->line, spot->column, spot->key, what);
+}
+
 StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
+  try {
+    return RunStudyUnlocated(scene, options);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const InputError& e) {
+    ThrowAtConstraintEntry(scene, e);
+  }
+}
+
+namespace {
+
+StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
   const double t_end = EndTime(scene, options.until);
   const SceneDynamics& d = scene.dynamics;
   StudyResult result;
@@ -832,6 +867,8 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
       r.p_WJ = o.p_WJ;
       r.F_Jc_W = o.F_Jc_W;
       r.M_Jc_W = o.M_Jc_W;
+      r.F_Jc_B = o.F_Jc_B;
+      r.M_Jc_B = o.M_Jc_B;
       r.power = o.power;
       result.final_reactions.push_back(r);
     }
@@ -858,5 +895,7 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
   result.stopped_by_event = stopped;
   return result;
 }
+
+}  // namespace
 
 }  // namespace chasles

@@ -75,9 +75,13 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
   for (const char* s : {"HOx", "HOy", "HOz"}) {
     cols.push_back({s, "angular_momentum_origin", -1, s, ""});
   }
-  // Reaction on the child at the joint point, in W (Data::constraints).
+  // Reaction on the child at the joint point, in W, then in the child's frame B
+  // (Data::constraints).
   for (const auto& n : scene.dynamics.constraints.names()) {
     for (const char* s : {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}) {
+      cols.push_back({n + "_" + s, "reactions", -1, s, n});
+    }
+    for (const char* s : {"Fx_B", "Fy_B", "Fz_B", "Mx_B", "My_B", "Mz_B"}) {
       cols.push_back({n + "_" + s, "reactions", -1, s, n});
     }
   }

@@ -3,6 +3,7 @@
 //   # expect: <text the error message must contain>
 //   # line: <the line the message must point at>        (optional)
 //   # args: <extra command-line arguments>                (optional)
+//   # command: <the subcommand to run, default mass>       (optional; e.g. solve, simulate)
 // chasles must exit with 2, name the file and line, and say the expected text; never crash.
 
 #include <filesystem>
@@ -21,19 +22,21 @@ struct Expectation {
   std::string expect;
   std::string line;
   std::string args;
+  std::string command = "mass";
 };
 
 Expectation ReadHeader(const std::filesystem::path& file) {
   Expectation e;
   std::ifstream in(file);
   std::string text;
-  const std::regex header("^# (expect|line|args): (.*)$");
+  const std::regex header("^# (expect|line|args|command): (.*)$");
   while (std::getline(in, text)) {
     std::smatch m;
     if (!std::regex_match(text, m, header)) break;
     if (m[1] == "expect") e.expect = m[2];
     if (m[1] == "line") e.line = m[2];
     if (m[1] == "args") e.args = m[2];
+    if (m[1] == "command") e.command = m[2];
   }
   return e;
 }
@@ -44,7 +47,7 @@ TEST_P(BadInput, GivesAClearErrorAndExitCode2) {
   const std::filesystem::path file = GetParam();
   const Expectation e = ReadHeader(file);
   ASSERT_FALSE(e.expect.empty()) << file << " has no '# expect:' line";
-  const CliResult r = RunCli("mass '" + file.string() + "' " + e.args);
+  const CliResult r = RunCli(e.command + " '" + file.string() + "' " + e.args);
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_THAT(r.err, ::testing::HasSubstr(e.expect));
   EXPECT_THAT(r.err, ::testing::HasSubstr("chasles: error: "));

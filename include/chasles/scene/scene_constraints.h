@@ -15,10 +15,19 @@
 
 namespace chasles {
 
+/// Where an entry stands in the scene file, for errors found only when the constraints are
+/// assembled or solved (line and column 1-based, 0 unknown; key path "joints[1]").
+struct SceneSpot {
+  int line = 0;
+  int column = 0;
+  std::string key;
+};
+
 /// One entry of `joints`.
 struct SceneJoint {
   /// Unique name (reports, CSV columns "<name>_Fx" ...).
   std::string name;
+  SceneSpot where;
   JointKind kind = JointKind::kWeld;
   /// Parent body (scene index) or kWorld; child body (scene index).
   int parent = kWorld;
@@ -33,6 +42,7 @@ struct SceneJoint {
 /// another body (key `on`).
 struct SceneRolling {
   std::string name;
+  SceneSpot where;
   RollingShape shape = RollingShape::kSphere;
   /// The rolling body (scene index).
   int body = -1;
@@ -55,6 +65,7 @@ struct SceneRolling {
 /// One entry of `drivers`: a prescribed translation or rotation f(t) = f0 + f1 t + ½ f2 t².
 struct SceneDriver {
   std::string name;
+  SceneSpot where;
   DriverKind kind = DriverKind::kTranslation;
   int parent = kWorld;
   int child = -1;
@@ -98,6 +109,8 @@ struct SceneConstraints {
   }
   /// Names in Model order (joints, rolling, drivers, then gears).
   std::vector<std::string> names() const;
+  /// Where the entry named `name` stands in the file; null when there is none.
+  const SceneSpot* Find(const std::string& name) const;
 };
 
 }  // namespace chasles

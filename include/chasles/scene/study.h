@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "chasles/error.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
@@ -129,6 +130,9 @@ struct StudyReaction {
   /// Force and moment about J the parent (or the world) exerts on the child, in W [N, N·m].
   Vec3 F_Jc_W = Vec3::Zero();
   Vec3 M_Jc_W = Vec3::Zero();
+  /// The same force and moment in the child's frame B [N, N·m].
+  Vec3 F_Jc_B = Vec3::Zero();
+  Vec3 M_Jc_B = Vec3::Zero();
   /// Power of its forces [W] (0 for ideal joints and rolling).
   double power = 0.0;
 };
@@ -155,7 +159,14 @@ struct StudyResult {
 
 /// Runs the scene's study. Throws InputError for bad settings, or when the motion of a body
 /// becomes non-finite (the body and the time are named; nothing non-finite is ever returned).
+/// Constraints that cannot be assembled or contradict each other are a SceneError at the
+/// first entry the error names (ThrowAtConstraintEntry).
 StudyResult RunStudy(const Scene& scene, const StudyOptions& options = {});
+
+/// Rethrows an InputError of the constraint stage (an assembly that fails, inconsistent
+/// constraints) as a SceneError at the line of the first scene constraint it names ('name');
+/// as it is when it names none.
+[[noreturn]] void ThrowAtConstraintEntry(const Scene& scene, const InputError& error);
 
 /// The CSV columns named on the command line (groups or single columns, as in the scene's
 /// `output.columns`), with `t` first. Throws SceneError naming --columns for an unknown name.
