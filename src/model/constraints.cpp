@@ -181,6 +181,14 @@ const char* JointKindName(JointKind kind) {
       return "point-on-plane";
     case JointKind::kPointOnLine:
       return "point-on-line";
+    case JointKind::kRevoluteInPlane:
+      return "planar revolute";
+    case JointKind::kPrismaticInPlane:
+      return "planar prismatic";
+    case JointKind::kWeldInPlane:
+      return "planar weld";
+    case JointKind::kPointOnLineInPlane:
+      return "planar point-on-line";
   }
   return "joint";
 }
@@ -205,9 +213,14 @@ int Joint::num_rows() const {
     case JointKind::kPlanar:
       return 3;
     case JointKind::kPointOnLine:
+    case JointKind::kRevoluteInPlane:
+    case JointKind::kPrismaticInPlane:
       return 2;
     case JointKind::kPointOnPlane:
+    case JointKind::kPointOnLineInPlane:
       return 1;
+    case JointKind::kWeldInPlane:
+      return 3;
   }
   return 0;
 }
@@ -264,6 +277,25 @@ void Joint::Evaluate(const Model& model, const State& state, const Data& data,
       DistanceRow(e, 0, P, Jp, C, Jc, ax);
       DistanceRow(e, 1, P, Jp, C, Jc, ay);
       break;
+    // In-plane rows (a_z the plane's normal): their gradients span the in-plane motions
+    // (v_x, v_y, w_z) of the two bodies; the out-of-plane ones (v_z, w_x, w_y) belong to each
+    // body's kPlanar joint with the world, so no row repeats another.
+    case JointKind::kRevoluteInPlane:
+      DistanceRow(e, 0, P, Jp, C, Jc, ax);
+      DistanceRow(e, 1, P, Jp, C, Jc, ay);
+      break;
+    case JointKind::kPrismaticInPlane:
+      DistanceRow(e, 0, P, Jp, C, Jc, ay);
+      PerpendicularRow(e, 1, P, C, ax, by);
+      break;
+    case JointKind::kWeldInPlane:
+      DistanceRow(e, 0, P, Jp, C, Jc, ax);
+      DistanceRow(e, 1, P, Jp, C, Jc, ay);
+      PerpendicularRow(e, 2, P, C, ax, by);
+      break;
+    case JointKind::kPointOnLineInPlane:
+      DistanceRow(e, 0, P, Jp, C, Jc, ay);
+      break;
   }
 }
 
@@ -292,6 +324,20 @@ RollingContact::RollingContact(std::string name, RollingShape shape, BodyIndex b
   }
   const Mat3 T = FrameWithZAxis(n_W);
   t1_W_ = T.col(0), t2_W_ = T.col(1), n_W_ = T.col(2);
+  if (shape == RollingShape::kWheelInPlane) {
+    // The plane of motion is W's x-y plane: the rolling surface's normal lies in it, and
+    // friction acts along the line t1 = z × n.
+    if (std::abs(n_W_.z()) > 1e-12) {
+      throw InputError(fmt::format(
+          "constraint '{}': a wheel moving in the x-y plane rolls on a line of that plane; the "
+          "normal [{:.6g}, {:.6g}, {:.6g}] has a z component",
+          this->name(), n_W_.x(), n_W_.y(), n_W_.z()));
+    }
+    n_W_.z() = 0.0;
+    n_W_.normalize();
+    t1_W_ = Vec3::UnitZ().cross(n_W_);
+    t2_W_ = Vec3::UnitZ();
+  }
   if (shape != RollingShape::kSphere) {
     if (!(axis_B.norm() > 0.0) || !axis_B.allFinite()) {
       throw InputError(fmt::format(
@@ -313,6 +359,8 @@ std::string RollingContact::kind() const {
       return "rolling cylinder";
     case RollingShape::kDisk:
       return "rolling disk";
+    case RollingShape::kWheelInPlane:
+      return "rolling wheel (planar)";
   }
   return "rolling";
 }
@@ -357,7 +405,9 @@ void RollingContact::Evaluate(const Model& model, const State& state, const Data
   const Vec3 r_dot = B.w.cross(r_c) - radius_ * m_dot;
   const Vec3 w_x_rdot = B.w.cross(r_dot);
   const Vec3 dirs[3] = {n, t1_W_, t2_W_};
-  for (int k = 0; k < 3; ++k) {
+  // A wheel in the plane has no row along t2 = z: the body's planar joint holds that motion.
+  const int tangent_rows = shape_ == RollingShape::kWheelInPlane ? 2 : 3;
+  for (int k = 0; k < tangent_rows; ++k) {
     SetRow(e, k, dirs[k], r.cross(dirs[k]), Vec3::Zero(), Vec3::Zero());
     e.acceleration_rhs[k] = -dirs[k].dot(w_x_rdot);
   }

@@ -22,6 +22,13 @@ enum class JointKind {
   kPlanar,        ///< child's x-y plane slides on parent's x-y plane (3 rows)
   kPointOnPlane,  ///< child's J origin stays on parent's x-y plane (1 row, frictionless)
   kPointOnLine,   ///< child's J origin stays on parent's z line (2 rows, frictionless)
+  // The in-plane rows of a joint whose J z axis is the normal of the plane of motion, for
+  // planar mechanisms: each body's out-of-plane motion is held once, by a kPlanar joint with
+  // the world, so these leave out the rows that would repeat it (docs/constraints.md).
+  kRevoluteInPlane,     ///< J origins coincide in the x-y plane (2 rows: a pin)
+  kPrismaticInPlane,    ///< slides along x in the x-y plane, no turn about z (2 rows)
+  kWeldInPlane,         ///< no relative motion in the x-y plane (3 rows)
+  kPointOnLineInPlane,  ///< child's J origin on parent's x line, in the x-y plane (1 row)
 };
 
 /// Name of a joint kind ("revolute", ...).
@@ -53,6 +60,10 @@ enum class RollingShape {
   kSphere,    ///< touches at centre - R n
   kCylinder,  ///< axis stays parallel to the plane; touches along a line (its mid point used)
   kDisk,      ///< thin disk or wheel rim, may tilt: touches at the rim's lowest point
+  /// A wheel (or cylinder) moving in W's x-y plane on the line where the plane (normal in
+  /// x-y) cuts it: the normal and the in-plane friction rows only (2 rows); its axis is kept
+  /// along z by the body's kPlanar joint with the world (planar scenes).
+  kWheelInPlane,
 };
 
 /// Rolling without slipping of a round body on a fixed world plane (nonholonomic). Rows:
@@ -67,13 +78,16 @@ class RollingContact final : public Constraint {
   /// `p_WO` [m] with upward unit normal `n_W` (normalised here).
   RollingContact(std::string name, RollingShape shape, BodyIndex body, const Vec3& p_BoC_B,
                  const Vec3& axis_B, double radius, const Vec3& p_WO, const Vec3& n_W);
-  int num_rows() const override { return shape_ == RollingShape::kCylinder ? 4 : 3; }
+  int num_rows() const override {
+    return shape_ == RollingShape::kCylinder ? 4 : shape_ == RollingShape::kWheelInPlane ? 2 : 3;
+  }
   std::string kind() const override;
   void Evaluate(const Model& model, const State& state, const Data& data,
                 ConstraintEval& eval) const override;
   /// Upward unit normal of the plane, in W.
   const Vec3& n_W() const { return n_W_; }
-  /// First and second tangent directions of the plane (t1 × t2 = n), in W.
+  /// First and second tangent directions of the plane (t1 × t2 = n), in W; for
+  /// kWheelInPlane t1 = z × n (the rolling direction) and t2 = z.
   const Vec3& t1_W() const { return t1_W_; }
   const Vec3& t2_W() const { return t2_W_; }
 
