@@ -55,6 +55,7 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
   j["scene"] = scene.file;
   j["title"] = scene.title;
   j["units"] = "SI";
+  j["planar"] = scene.planar;
   j["csv"] = csv_path;
   j["columns"] = r.columns;
   j["t_end"] = r.t_end;
@@ -85,6 +86,12 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                       {"velocity", VecJson(b.v_WBcm_W)},
                       {"angular_velocity", VecJson(b.w_WB_W)},
                       {"angular_velocity_body", VecJson(b.w_WB_B)}});
+    if (scene.planar) {
+      // The planar state (x, y of the centre of mass, θ continuous from the initial one).
+      bodies.back()["planar"] = {{"x", b.p_WBcm.x()},    {"y", b.p_WBcm.y()},
+                                 {"theta", b.theta},     {"vx", b.v_WBcm_W.x()},
+                                 {"vy", b.v_WBcm_W.y()}, {"omega", b.w_WB_W.z()}};
+    }
   }
   nlohmann::json reactions = nlohmann::json::array();
   for (const auto& x : r.final_reactions) {
@@ -96,6 +103,10 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                          {"force_body", VecJson(x.F_Jc_B)},
                          {"moment_body", VecJson(x.M_Jc_B)},
                          {"power", x.power}});
+    if (scene.planar) {
+      reactions.back()["planar"] = {
+          {"Fx", x.F_Jc_W.x()}, {"Fy", x.F_Jc_W.y()}, {"Mz", x.M_Jc_W.z()}};
+    }
   }
   j["final"] = {{"t", r.t_end}, {"bodies", bodies}, {"reactions", reactions}};
   const StudyLedger& L = r.ledger;
@@ -191,8 +202,20 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
                          show(x.w_after_W, kRateDim, Angular::kYes));
     }
   }
-  out += "\nFinal state (centre of mass, velocity and angular velocity in the world frame)\n";
+  out += scene.planar
+             ? "\nFinal state (planar, x-y plane: centre of mass, angle and rates about z)\n"
+             : "\nFinal state (centre of mass, velocity and angular velocity in the world "
+               "frame)\n";
   for (const auto& b : r.final_bodies) {
+    if (scene.planar) {
+      // Chapter eqs. 8.41-8.43: x, y, θ and their rates.
+      out += fmt::format("  {}\n    position [{}, {}], theta {}\n    velocity [{}, {}], omega {}\n",
+                         b.name, show(b.p_WBcm.x(), kLength), show(b.p_WBcm.y(), kLength),
+                         show(b.theta, kDimensionless, Angular::kYes),
+                         show(b.v_WBcm_W.x(), kVelocityDim), show(b.v_WBcm_W.y(), kVelocityDim),
+                         show(b.w_WB_W.z(), kRateDim, Angular::kYes));
+      continue;
+    }
     const Eigen::Vector4d q = QuatToWxyz(b.q_WB);
     out += fmt::format(
         "  {}\n    position {}\n    quaternion [{:.9g}, {:.9g}, {:.9g}, {:.9g}]\n"
@@ -205,6 +228,13 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
     constexpr Dimension kForceDim{1, 1, -2};
     constexpr Dimension kMomentDim{2, 1, -2};
     for (const auto& x : r.final_reactions) {
+      if (scene.planar) {
+        out += fmt::format("  {} ({}) at [{}, {}]\n    force [{}, {}]\n    moment {}\n", x.name,
+                           x.kind, show(x.p_WJ.x(), kLength), show(x.p_WJ.y(), kLength),
+                           show(x.F_Jc_W.x(), kForceDim), show(x.F_Jc_W.y(), kForceDim),
+                           show(x.M_Jc_W.z(), kMomentDim));
+        continue;
+      }
       out +=
           fmt::format("  {} ({}) at {}\n    force {}\n    moment {}\n", x.name, x.kind,
                       show(x.p_WJ, kLength), show(x.F_Jc_W, kForceDim), show(x.M_Jc_W, kMomentDim));

@@ -52,10 +52,15 @@ struct Solved {
   /// Per body (Model order), then the total.
   std::vector<Motion> motion;
   Motion total;
+  /// A planar scene: reports in x, y and about z (a_x, a_y, alpha; Fx, Fy, Mz).
+  bool planar = false;
 };
 
 void FillMuS(const Scene& scene, Solved& s) {
   const SceneConstraints& c = scene.dynamics.constraints;
+  // A planar scene's plane constraints follow its own in Model order; their out-of-plane
+  // reactions are not physical for a planar body and are not reported.
+  s.solution.reactions.resize(c.names().size());
   s.mu_s.assign(s.solution.reactions.size(), std::numeric_limits<double>::quiet_NaN());
   for (size_t i = 0; i < c.rolling.size(); ++i) s.mu_s[c.joints.size() + i] = c.rolling[i].mu_s;
 }
@@ -89,7 +94,7 @@ Solved SolveScene(const Scene& scene) {
     State state = study.initial;
     Data data = MakeData(*study.model);
     ProjectOntoConstraints(*study.model, state, data);
-    Solved s{SolveInstantaneous(*study.model, state), {}, {}, {}};
+    Solved s{SolveInstantaneous(*study.model, state), {}, {}, {}, scene.planar};
     s.motion = CalcMotion(*study.model, state, &s.total);
     FillMuS(scene, s);
     return s;
@@ -109,6 +114,11 @@ nlohmann::json Json(const Solved& s) {
                            {"acceleration", VecJson(b.a_WBcm_W)},
                            {"angular_acceleration", VecJson(b.alpha_WB_W)},
                            {"angular_acceleration_body", VecJson(b.alpha_WB_B)}});
+    if (s.planar) {
+      // Chapter eqs. 8.41-8.43: a_x, a_y of the centre of mass and alpha about z.
+      j["bodies"].back()["planar"] = {
+          {"a_x", b.a_WBcm_W.x()}, {"a_y", b.a_WBcm_W.y()}, {"alpha", b.alpha_WB_W.z()}};
+    }
   }
   j["reactions"] = nlohmann::json::array();
   for (size_t i = 0; i < s.solution.reactions.size(); ++i) {
@@ -122,6 +132,9 @@ nlohmann::json Json(const Solved& s) {
                         {"moment_body", VecJson(r.M_Jc_B)},
                         {"multipliers", r.lambda},
                         {"power", r.power}};
+    if (s.planar) {
+      x["planar"] = {{"Fx", r.F_Jc_W.x()}, {"Fy", r.F_Jc_W.y()}, {"Mz", r.M_Jc_W.z()}};
+    }
     if (r.is_rolling) {
       x["normal_force"] = r.normal_force;
       x["friction"] = VecJson(r.friction_W);
@@ -146,6 +159,7 @@ nlohmann::json Json(const Solved& s) {
     b["name"] = m.name;
     j["energy_momentum"]["bodies"].push_back(b);
   }
+  j["planar"] = s.planar;
   j["rank"] = s.solution.rank;
   j["rows"] = s.solution.num_rows;
   j["warnings"] = s.solution.warnings;
@@ -163,8 +177,15 @@ std::string V(const Vec3& v) {
 std::string Text(const Scene& scene, const Solved& s) {
   std::string out = fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
                                 scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
-  out += "Instantaneous solution at the initial state (SI, world frame)\n\nAccelerations\n";
+  out += fmt::format("Instantaneous solution at the initial state (SI, {})\n\nAccelerations\n",
+                     s.planar ? "planar: x-y plane, moments about z" : "world frame");
   for (const auto& b : s.solution.bodies) {
+    if (s.planar) {
+      out += fmt::format("  {}\n    a_x   {:.9g} m/s^2\n    a_y   {:.9g} m/s^2\n", b.name,
+                         b.a_WBcm_W.x(), b.a_WBcm_W.y());
+      out += fmt::format("    alpha {:.9g} rad/s^2\n", b.alpha_WB_W.z());
+      continue;
+    }
     out += fmt::format("  {}\n    a_cm  {} m/s^2\n", b.name, V(b.a_WBcm_W));
     out += fmt::format("    alpha {} rad/s^2\n", V(b.alpha_WB_W));
   }
@@ -173,10 +194,20 @@ std::string Text(const Scene& scene, const Solved& s) {
   }
   for (size_t i = 0; i < s.solution.reactions.size(); ++i) {
     const ReactionReport& r = s.solution.reactions[i];
-    out += fmt::format("  {} ({}) at {} m\n", r.name, r.kind, V(r.p_WJ));
-    out += fmt::format("    force  {} N\n", V(r.F_Jc_W));
-    out += fmt::format("    moment [{:.9g}, {:.9g}, {:.9g}] N*m\n", r.M_Jc_W.x(), r.M_Jc_W.y(),
-                       r.M_Jc_W.z());
+    if (s.planar) {
+      out +=
+          fmt::format("  {} ({}) at [{:.9g}, {:.9g}] m\n", r.name, r.kind, r.p_WJ.x(), r.p_WJ.y());
+      // Round-off against the force's size shows as 0, as in V().
+      const double floor = 1e-12 * r.F_Jc_W.norm();
+      const auto c = [floor](double x) { return std::abs(x) <= floor ? 0.0 : x; };
+      out += fmt::format("    Fx {:.9g} N, Fy {:.9g} N, Mz {:.9g} N*m\n", c(r.F_Jc_W.x()),
+                         c(r.F_Jc_W.y()), r.M_Jc_W.z());
+    } else {
+      out += fmt::format("  {} ({}) at {} m\n", r.name, r.kind, V(r.p_WJ));
+      out += fmt::format("    force  {} N\n", V(r.F_Jc_W));
+      out += fmt::format("    moment [{:.9g}, {:.9g}, {:.9g}] N*m\n", r.M_Jc_W.x(), r.M_Jc_W.y(),
+                         r.M_Jc_W.z());
+    }
     if (r.is_rolling) {
       out += fmt::format("    normal force {:.9g} N, friction {:.9g} N, f/N = {:.9g}",
                          r.normal_force, r.friction_W.norm(), r.friction_needed);
@@ -215,7 +246,15 @@ void TableColumns(const Solved& s, std::vector<std::string>* names, std::vector<
     if (values) values->push_back(v);
   };
   const char* xyz[] = {"x", "y", "z"};
+  if (s.planar) {
+    for (const auto& b : s.solution.bodies) {
+      add(b.name + "_ax", b.a_WBcm_W.x());
+      add(b.name + "_ay", b.a_WBcm_W.y());
+      add(b.name + "_alpha", b.alpha_WB_W.z());
+    }
+  }
   for (const auto& b : s.solution.bodies) {
+    if (s.planar) break;
     for (int k = 0; k < 3; ++k) add(b.name + "_a" + xyz[k], b.a_WBcm_W[k]);
     for (int k = 0; k < 3; ++k) add(b.name + "_al" + xyz[k], b.alpha_WB_W[k]);
   }
@@ -233,8 +272,13 @@ void TableColumns(const Solved& s, std::vector<std::string>* names, std::vector<
   for (const Motion& m : s.motion) motion(m.name + "_", m);
   motion("", s.total);
   for (const auto& r : s.solution.reactions) {
-    for (int k = 0; k < 3; ++k) add(r.name + "_F" + xyz[k], r.F_Jc_W[k]);
-    for (int k = 0; k < 3; ++k) add(r.name + "_M" + xyz[k], r.M_Jc_W[k]);
+    if (s.planar) {
+      add(r.name + "_Fx", r.F_Jc_W.x());
+      add(r.name + "_Fy", r.F_Jc_W.y());
+      add(r.name + "_Mz", r.M_Jc_W.z());
+    }
+    for (int k = 0; k < 3 && !s.planar; ++k) add(r.name + "_F" + xyz[k], r.F_Jc_W[k]);
+    for (int k = 0; k < 3 && !s.planar; ++k) add(r.name + "_M" + xyz[k], r.M_Jc_W[k]);
     if (r.is_rolling) {
       add(r.name + "_N", r.normal_force);
       add(r.name + "_f", r.friction_W.norm());

@@ -243,6 +243,14 @@ const char* JointKindName(JointKind kind) {
       return "point-on-plane";
     case JointKind::kPointOnLine:
       return "point-on-line";
+    case JointKind::kRevoluteInPlane:
+      return "planar revolute";
+    case JointKind::kPrismaticInPlane:
+      return "planar prismatic";
+    case JointKind::kWeldInPlane:
+      return "planar weld";
+    case JointKind::kPointOnLineInPlane:
+      return "planar point-on-line";
   }
   return "joint";
 }
@@ -267,9 +275,14 @@ int Joint::num_rows() const {
     case JointKind::kPlanar:
       return 3;
     case JointKind::kPointOnLine:
+    case JointKind::kRevoluteInPlane:
+    case JointKind::kPrismaticInPlane:
       return 2;
     case JointKind::kPointOnPlane:
+    case JointKind::kPointOnLineInPlane:
       return 1;
+    case JointKind::kWeldInPlane:
+      return 3;
   }
   return 0;
 }
@@ -326,6 +339,25 @@ void Joint::Evaluate(const Model& model, const State& state, const Data& data,
       DistanceRow(e, 0, P, Jp, C, Jc, ax);
       DistanceRow(e, 1, P, Jp, C, Jc, ay);
       break;
+    // In-plane rows (a_z the plane's normal): their gradients span the in-plane motions
+    // (v_x, v_y, w_z) of the two bodies; the out-of-plane ones (v_z, w_x, w_y) belong to each
+    // body's kPlanar joint with the world, so no row repeats another.
+    case JointKind::kRevoluteInPlane:
+      DistanceRow(e, 0, P, Jp, C, Jc, ax);
+      DistanceRow(e, 1, P, Jp, C, Jc, ay);
+      break;
+    case JointKind::kPrismaticInPlane:
+      DistanceRow(e, 0, P, Jp, C, Jc, ay);
+      PerpendicularRow(e, 1, P, C, ax, by);
+      break;
+    case JointKind::kWeldInPlane:
+      DistanceRow(e, 0, P, Jp, C, Jc, ax);
+      DistanceRow(e, 1, P, Jp, C, Jc, ay);
+      PerpendicularRow(e, 2, P, C, ax, by);
+      break;
+    case JointKind::kPointOnLineInPlane:
+      DistanceRow(e, 0, P, Jp, C, Jc, ay);
+      break;
   }
 }
 
@@ -358,6 +390,21 @@ RollingContact::RollingContact(std::string name, RollingShape shape, BodyIndex p
         this->name()));
   }
   R_PT_ = FrameWithZAxis(n_P);
+  if (shape == RollingShape::kWheelInPlane) {
+    // The plane of motion is the x-y plane (of W, and of a parent that turns about z only):
+    // the rolling surface's normal lies in it, and friction acts along the line t1 = z × n.
+    const Vec3 n = n_P.normalized();
+    if (std::abs(n.z()) > 1e-12) {
+      throw InputError(fmt::format(
+          "constraint '{}': a wheel moving in the x-y plane rolls on a line of that plane; the "
+          "normal [{:.6g}, {:.6g}, {:.6g}] has a z component",
+          this->name(), n.x(), n.y(), n.z()));
+    }
+    const Vec3 n_xy = Vec3(n.x(), n.y(), 0.0).normalized();
+    R_PT_.col(0) = Vec3::UnitZ().cross(n_xy);
+    R_PT_.col(1) = Vec3::UnitZ();
+    R_PT_.col(2) = n_xy;
+  }
   if (shape != RollingShape::kSphere) {
     if (!(axis_B.norm() > 0.0) || !axis_B.allFinite()) {
       throw InputError(fmt::format(
@@ -379,6 +426,8 @@ std::string RollingContact::kind() const {
       return "rolling cylinder";
     case RollingShape::kDisk:
       return "rolling disk";
+    case RollingShape::kWheelInPlane:
+      return "rolling wheel (planar)";
   }
   return "rolling";
 }
@@ -405,7 +454,9 @@ void RollingContact::Evaluate(const Model& model, const State& state, const Data
   const Vec3 p_C_dot = c.v - radius_ * rc.m_dot;
   e.p_WJ = p_C;
   const Vec3 dirs[3] = {n, t1, t2};
-  for (int k = 0; k < 3; ++k) {
+  // A wheel in the plane has no row along t2 = z: the body's planar joint holds that motion.
+  const int rows = shape_ == RollingShape::kWheelInPlane ? 2 : 3;
+  for (int k = 0; k < rows; ++k) {
     RelativePointRow(e, k, P, B, p_C, p_C_dot, dirs[k], P.w.cross(dirs[k]));
   }
   e.position_error[0] = (c.p - O.p).dot(n) - radius_ * rc.s;

@@ -86,10 +86,11 @@ int SceneReader::ParentIndexAt(const At& at, const Scene& scene) {
 }
 
 Vec3 SceneReader::AxisAt(const At& at, std::string_view what) {
-  const Vec3 a = Vector(at, kDimensionless, what);
+  const Vec3 a = WorldVector(at, kDimensionless, what);
   // Only the direction matters; a zero (or non-finite) vector has none.
   if (!(a.norm() > 0) || !a.allFinite()) {
-    report_.Fail(at, fmt::format("{} has zero length; give a direction such as [0, 0, 1]", what));
+    report_.Fail(at, fmt::format("{} has zero length; give a direction such as {}", what,
+                                 planar_ ? "[1, 0]" : "[0, 0, 1]"));
   }
   return a.normalized();
 }
@@ -135,13 +136,16 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
                                           DidYouMean(type, types), fmt::join(types, ", ")));
       }
       j.kind = jt->kind;
+      if (planar_) ReadPlanarJointType(at, what, j);
       j.parent = ParentIndexAt(report_.Require(at, "parent", what), scene);
       j.child = BodyIndexAt(report_.Require(at, "child", what), scene);
       if (j.parent == j.child) {
         report_.Fail(at.Child("child"), "a joint's parent and child must differ");
       }
-      j.p_WJ = Vector(report_.Require(at, "at", what), kLength, "the joint point (world)");
-      if (jt->needs_axis) {
+      j.p_WJ = WorldVector(report_.Require(at, "at", what), kLength, "the joint point (world)");
+      if (planar_) {
+        // ReadPlanarJointType read the axis.
+      } else if (jt->needs_axis) {
         j.axis_W = AxisAt(report_.Require(at, "axis", what), "the joint axis");
       } else if (at.Has("axis")) {
         j.axis_W = AxisAt(at.Child("axis"), "the joint axis");
@@ -170,6 +174,11 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
         }
       }
       const SceneBody& body = scene.bodies[static_cast<size_t>(r.body)];
+      if (planar_) {
+        ReadPlanarRolling(at, body, what, r);
+        c.rolling.push_back(r);
+        continue;
+      }
       const At shape_at = report_.Require(at, "shape", what);
       const std::string shape = report_.Text(shape_at, "sphere, cylinder or disk");
       if (shape == "sphere") {
@@ -232,8 +241,17 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
       if (d.parent == d.child) {
         report_.Fail(at.Child("child"), "a driver's parent and child must differ");
       }
-      d.p_WJ = Vector(report_.Require(at, "at", what), kLength, "the driver point (world)");
-      d.axis_W = AxisAt(report_.Require(at, "axis", what), "the driver axis");
+      d.p_WJ = WorldVector(report_.Require(at, "at", what), kLength, "the driver point (world)");
+      if (planar_ && rot) {
+        // A rotation in the plane is about z.
+        if (at.Has("axis")) {
+          report_.Fail(at.Child("axis"),
+                       "in a planar scene a rotation driver turns about z; remove 'axis'");
+        }
+        d.axis_W = Vec3::UnitZ();
+      } else {
+        d.axis_W = AxisAt(report_.Require(at, "axis", what), "the driver axis");
+      }
       const At value = report_.Require(at, "value", what);
       report_.CheckMap(value, {"position", "velocity", "acceleration"},
                        "a driver's value ({position, velocity, acceleration})");

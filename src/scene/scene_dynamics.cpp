@@ -139,7 +139,7 @@ int SceneReader::BodyIndexAt(const At& at, const Scene& scene) {
 }
 
 Vec3 SceneReader::BodyPointAt(const At& at, const SceneBody& body) {
-  if (at.node.IsSequence()) return Vector(at, kLength, "a point in the body frame");
+  if (at.node.IsSequence()) return BodyVector(at, kLength, "a point in the body frame");
   const std::string name = report_.Text(at, "a point name or a position [x, y, z]");
   std::vector<std::string> names;
   for (const ScenePoint& p : body.points) {
@@ -163,6 +163,7 @@ VectorFrame SceneReader::FrameAt(const At& at) {
 }
 
 void SceneReader::ReadInitial(const At& at, const SceneBody& body, SceneInitialState& initial) {
+  if (planar_) return ReadPlanarInitial(at, body, initial);
   report_.CheckMap(at,
                    {"position", "rotation", "euler", "quaternion", "velocity", "velocity_point",
                     "angular_velocity", "angular_velocity_frame"},
@@ -209,8 +210,11 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
     const SceneBody& body = scene.bodies[static_cast<size_t>(f.body)];
     f.p_BoP_B =
         at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
-    f.value = StateVector(report_.Require(at, "value", what), force ? kForce : kTorque,
-                          force ? "a force" : "a moment");
+    f.value = planar_
+                  ? PlanarStateVector(report_.Require(at, "value", what), force ? kForce : kTorque,
+                                      force ? "a force" : "a moment", !force)
+                  : StateVector(report_.Require(at, "value", what), force ? kForce : kTorque,
+                                force ? "a force" : "a moment");
     if (at.Has("frame")) f.frame = FrameAt(at.Child("frame"));
   } else if (type == "spring") {
     report_.CheckMap(at, {"type", "name", "from", "to", "rest_length", "stiffness", "damping"},
@@ -220,7 +224,7 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
       if (e.Has("world")) {
         report_.CheckMap(e, {"world"}, "a world point");
         body = kWorld;
-        point = Vector(e.Child("world"), kLength, "a world point");
+        point = WorldVector(e.Child("world"), kLength, "a world point");
         return;
       }
       report_.CheckMap(e, {"body", "point"}, "a spring end ({body, point} or {world: [x, y, z]})");
@@ -254,7 +258,7 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
     report_.CheckMap(at, {"type", "name", "mu", "centre"}, "a central_gravity element");
     f.type = SceneForce::Type::kCentralGravity;
     f.mu = PositiveValue(report_.Require(at, "mu", what), kGravitationalParameter, "mu (= G M)");
-    if (at.Has("centre")) f.centre_W = Vector(at.Child("centre"), kLength, "the centre");
+    if (at.Has("centre")) f.centre_W = WorldVector(at.Child("centre"), kLength, "the centre");
   } else {
     report_.Fail(at.Child("type"), fmt::format("unknown force type '{}'{}; types: {}", type,
                                                DidYouMean(type, types), fmt::join(types, ", ")));
@@ -420,9 +424,10 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
     const At g = root.Child("gravity");
     d.has_gravity = true;
     if (g.node.IsScalar() && g.node.Scalar() == "standard") {
-      d.g_W = Vec3(0, 0, -kStandardGravity);
+      // A planar scene's plane is x-y, so "down" is -y there.
+      d.g_W = planar_ ? Vec3(0, -kStandardGravity, 0) : Vec3(0, 0, -kStandardGravity);
     } else if (g.node.IsSequence()) {
-      d.g_W = Vector(g, kAcceleration, "the gravitational acceleration");
+      d.g_W = WorldVector(g, kAcceleration, "the gravitational acceleration");
     } else {
       report_.Fail(g, fmt::format("expected 'standard' (9.80665 m/s^2 along -z) or a vector "
                                   "such as [0, 0, -9.81 m/s^2], got {}",
@@ -486,7 +491,7 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
       const SceneBody& body = scene.bodies[static_cast<size_t>(imp.body)];
       imp.p_BoP_B =
           at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
-      imp.J = Vector(report_.Require(at, "value", "an impulse"), kImpulse, "an impulse");
+      imp.J = WorldVector(report_.Require(at, "value", "an impulse"), kImpulse, "an impulse");
       if (at.Has("frame")) imp.frame = FrameAt(at.Child("frame"));
       d.impulses.push_back(imp);
     }

@@ -41,7 +41,8 @@ const Dimension kInertia{2, 1, 0};
 const std::vector<std::string> kRootKeys = {
     "chasles",    "title",   "description", "units",   "parameters", "materials",
     "bodies",     "gravity", "forces",      "events",  "impulses",   "impacts",
-    "simulation", "output",  "joints",      "rolling", "drivers",    "gears"};
+    "simulation", "output",  "joints",      "rolling", "drivers",    "gears",
+    "planar"};
 const std::vector<std::string> kBodyKeys = {"name",   "material", "density",
                                             "points", "parts",    "initial"};
 // Keys every part may have; each shape adds its dimensions (see shape_table.cpp).
@@ -279,6 +280,7 @@ Scene SceneReader::Read(const YAML::Node& document) {
   // Every parameter is evaluated, used or not, so that a mistake in one never hides.
   for (const auto& kv : parameters_) EvaluateParameter(kv.first);
   ReadMaterials(root);
+  ReadPlanar(root, scene);
 
   const At bodies = report_.Require(root, "bodies", "a scene");
   report_.CheckSequence(bodies, "a list of bodies");
@@ -318,7 +320,7 @@ SceneBody SceneReader::ReadBody(const At& at, size_t index) {
     for (const auto& kv : pts.node) {
       const std::string name = kv.first.Scalar();
       body.points.push_back(
-          {name, Vector(At{kv.second, pts.path + "." + name}, kLength, "a point's position")});
+          {name, BodyVector(At{kv.second, pts.path + "." + name}, kLength, "a point's position")});
     }
   }
   const At parts = report_.Require(at, "parts", fmt::format("body '{}'", body.name));
@@ -338,6 +340,16 @@ SceneBody SceneReader::ReadBody(const At& at, size_t index) {
     sum.Validate(fmt::format("body '{}'", body.name));
   } catch (const InputError& e) {
     report_.Fail(at, e.what());
+  }
+  if (planar_) {
+    // A planar body turns about z (eq. 8.43): it needs a moment about z.
+    const RotationalInertia& I = sum.I_BBcm_B();
+    if (!(I.Izz() > 1e-12 * (I.Ixx() + I.Iyy() + I.Izz()))) {
+      report_.Fail(at, fmt::format("body '{}' has no moment of inertia about z (the plane's "
+                                   "normal); a planar body needs one (a point mass or a rod "
+                                   "along z cannot turn in the plane)",
+                                   body.name));
+    }
   }
   body.mass_properties = sum;
   return body;
@@ -446,6 +458,8 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
       R_BP = ReadOrientation(at);
     }
     if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
+  } else if (part.shape == "planar") {
+    local = ReadPlanarPart(at, part, p_BoPo_B);
   } else if (part.shape == "mesh") {
     local = ReadMeshPart(at, body_at, fmt::format("part '{}' (mesh)", part.name), part);
     if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
@@ -457,6 +471,7 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
       names.emplace_back("point");
       names.emplace_back("custom");
       names.emplace_back("mesh");
+      names.emplace_back("planar");
       report_.Fail(shape_at, fmt::format("unknown shape '{}'{}; shapes: {}", part.shape,
                                          DidYouMean(part.shape, names), fmt::join(names, ", ")));
     }

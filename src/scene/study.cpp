@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -137,18 +138,37 @@ VectorFunction MakeVectorFunction(std::shared_ptr<const Model*> model_ref,
 
 State InitialState(const Scene& scene, const Model& model);
 
+/// Name of the constraint that holds scene body `b` of a planar scene in its plane (after the
+/// scene's own constraints in Model order; reports of planar scenes leave these out).
+std::string PlaneConstraintName(const Scene& scene, int b) {
+  return fmt::format("{} (in plane)", scene.bodies[static_cast<size_t>(b)].name);
+}
+
+/// The angle θ of B about z in a planar scene, continuous from `reference` (the previous
+/// sample's θ advanced by the trapezoidal ω Δt, or the initial θ): the branch of
+/// atan2(R(1,0), R(0,0)) + 2πk nearest to it. Output samples closer than half a turn of
+/// prediction error apart keep θ continuous however many turns the body makes.
+double UnwrapTheta(const Mat3& R_WB, double reference) {
+  const double wrapped = std::atan2(R_WB(1, 0), R_WB(0, 0));
+  const double two_pi = 2.0 * std::numbers::pi;
+  return wrapped + two_pi * std::round((reference - wrapped) / two_pi);
+}
+
 /// Adds the scene's joints, rolling contacts, drivers and gear meshes to `model` (bodies already
 /// added, one per scene body). A scene gives joint points and axes in W at the initial
 /// configuration; each side's attachment frame is the one that coincides with that world pose
 /// there.
 void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
   const SceneConstraints& c = scene.dynamics.constraints;
-  if (c.empty()) return;
+  if (c.empty() && !scene.planar) return;
   if (model.num_bodies() != static_cast<int>(scene.bodies.size())) {
     throw InputError(
-        "an impact that embeds a projectile cannot be combined with joints, rolling contacts "
-        "or drivers (the constrained bodies would change); use exit_fraction > 0 or remove "
-        "the constraints");
+        scene.planar
+            ? "an impact that embeds a projectile cannot be used in a planar scene (its bodies "
+              "are held in the plane by constraints, which would change); use exit_fraction > 0"
+            : "an impact that embeds a projectile cannot be combined with joints, rolling "
+              "contacts or drivers (the constrained bodies would change); use exit_fraction > 0 "
+              "or remove the constraints");
   }
   const State s0 = InitialState(scene, model);
   auto model_body = [&](int b) {
@@ -158,7 +178,11 @@ void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
     return AttachmentFrameAtWorldPose(model, s0, model_body(b), p_WJ, R_WJ);
   };
   for (const SceneJoint& j : c.joints) {
-    const Mat3 R_WJ = FrameWithZAxis(j.axis_W);
+    Mat3 R_WJ = FrameWithZAxis(j.axis_W);
+    if (j.kind == JointKind::kPrismaticInPlane || j.kind == JointKind::kPointOnLineInPlane) {
+      // J's z is the plane's normal and x the sliding direction (the line).
+      R_WJ << j.axis_W, Vec3::UnitZ().cross(j.axis_W), Vec3::UnitZ();
+    }
     model.AddConstraint(std::make_shared<Joint>(j.name, j.kind, model_body(j.parent),
                                                 frame(j.parent, j.p_WJ, R_WJ), model_body(j.child),
                                                 frame(j.child, j.p_WJ, R_WJ)));
@@ -185,6 +209,20 @@ void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
     model.AddConstraint(std::make_shared<GearMesh>(
         g.name, g.kind, model_body(g.parent), circle(g.parent, g.parent_circle),
         model_body(g.child), circle(g.child, g.child_circle), g.keep_contact));
+  }
+  if (scene.planar) {
+    // Every body of a planar scene is held in its plane z = const by one kPlanar joint with
+    // the world at its centre of mass (3 rows: v_z, w_x, w_y). The scene's joints contribute
+    // only their in-plane rows (kRevoluteInPlane, ...), so no row repeats another and the
+    // solve never meets a redundant set (docs/constraints.md, "Planar mechanisms").
+    for (size_t b = 0; b < scene.bodies.size(); ++b) {
+      const int mb = model_body(static_cast<int>(b));
+      const Vec3 p_WBcm = s0.bodies[static_cast<size_t>(mb)].p_WBcm;
+      model.AddConstraint(std::make_shared<Joint>(
+          PlaneConstraintName(scene, static_cast<int>(b)), JointKind::kPlanar, kWorld,
+          AttachmentFrame{p_WBcm, Mat3::Identity()}, mb,
+          frame(static_cast<int>(b), p_WBcm, Mat3::Identity())));
+    }
   }
 }
 
@@ -342,7 +380,20 @@ Segment FirstSegment(const Scene& scene) {
   Segment seg;
   seg.map = std::make_shared<BodyMap>();
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
-    seg.bodies.emplace_back(scene.bodies[b].name, scene.bodies[b].mass_properties);
+    const MassProperties& mp = scene.bodies[b].mass_properties;
+    if (scene.planar) {
+      // In plane motion (w = w_z e_z, held by the plane constraint) only I_zz about Bcm acts:
+      // eq. 8.36-8.38, H_z = I_zz w_z. The other entries only change the out-of-plane
+      // reactions, which a planar scene does not report, so the Model takes a lamina's,
+      // I_xx = I_yy = I_zz / 2 and no products: valid, and invertible for any body with
+      // I_zz > 0 (a slender rod in the plane has I_xx = 0 about its own axis).
+      const double Izz = mp.I_BBcm_B().Izz();
+      seg.bodies.emplace_back(
+          scene.bodies[b].name,
+          MassProperties(mp.mass(), mp.p_BoBcm_B(), RotationalInertia(0.5 * Izz, 0.5 * Izz, Izz)));
+    } else {
+      seg.bodies.emplace_back(scene.bodies[b].name, mp);
+    }
     seg.map->place.push_back(Placement{static_cast<int>(b), Mat3::Identity(), Vec3::Zero()});
     seg.map->p_BoBcm_B.push_back(scene.bodies[b].mass_properties.p_BoBcm_B());
   }
@@ -386,6 +437,22 @@ struct RowMaker {
   const Scene& scene;
   std::vector<ColumnInfo> columns;
   bool needs_accelerations = false;
+  /// Planar scenes: each body's last reported θ [rad], ω [rad/s] and time [s], for unwrapping.
+  struct ThetaTrack {
+    bool started = false;
+    double theta = 0.0, omega = 0.0, t = 0.0;
+  };
+  mutable std::vector<ThetaTrack> theta_track;
+
+  /// θ of scene body `b` at time t, continuous with the previous call (calls in time order).
+  double Theta(int b, const Mat3& R_WB, double omega, double t) const {
+    theta_track.resize(scene.bodies.size());
+    ThetaTrack& k = theta_track[static_cast<size_t>(b)];
+    const double reference = k.started ? k.theta + 0.5 * (k.omega + omega) * (t - k.t)
+                                       : scene.dynamics.initial[static_cast<size_t>(b)].theta;
+    k = {true, UnwrapTheta(R_WB, reference), omega, t};
+    return k.theta;
+  }
 
   std::vector<double> Row(const Model& model, const BodyMap& map, const State& s,
                           const LedgerCarry& carry) const {
@@ -397,6 +464,13 @@ struct RowMaker {
     }
     std::vector<double> row;
     row.reserve(columns.size());
+    if (scene.planar) {
+      // θ of every body at every sample, so that it stays continuous whatever is printed.
+      for (size_t b = 0; b < map.place.size(); ++b) {
+        const SceneBodyMotion m = CalcSceneBodyMotion(model, s, map, static_cast<int>(b));
+        Theta(static_cast<int>(b), m.R_WB, m.w_WB_W.z(), s.t);
+      }
+    }
     for (const ColumnInfo& c : columns) {
       if (c.body >= 0) {
         const SceneBodyMotion m = CalcSceneBodyMotion(model, s, map, c.body);
@@ -415,32 +489,34 @@ struct RowMaker {
         const Vec3 ypr = CalcYawPitchRoll(m.R_WB);
         const Vec3 al_B = m.R_WB.transpose() * al_W;
         static const std::map<std::string, int> index = {
-            {"x", 0},     {"y", 1},     {"z", 2},    {"ox", 3},   {"oy", 4},   {"oz", 5},
-            {"qw", 6},    {"qx", 7},    {"qy", 8},   {"qz", 9},   {"yaw", 10}, {"pitch", 11},
-            {"roll", 12}, {"tilt", 13}, {"vx", 14},  {"vy", 15},  {"vz", 16},  {"speed", 17},
-            {"wx", 18},   {"wy", 19},   {"wz", 20},  {"wbx", 21}, {"wby", 22}, {"wbz", 23},
-            {"ax", 24},   {"ay", 25},   {"az", 26},  {"alx", 27}, {"aly", 28}, {"alz", 29},
-            {"albx", 30}, {"alby", 31}, {"albz", 32}};
+            {"x", 0},     {"y", 1},     {"z", 2},     {"ox", 3},     {"oy", 4},     {"oz", 5},
+            {"qw", 6},    {"qx", 7},    {"qy", 8},    {"qz", 9},     {"yaw", 10},   {"pitch", 11},
+            {"roll", 12}, {"tilt", 13}, {"vx", 14},   {"vy", 15},    {"vz", 16},    {"speed", 17},
+            {"wx", 18},   {"wy", 19},   {"wz", 20},   {"wbx", 21},   {"wby", 22},   {"wbz", 23},
+            {"ax", 24},   {"ay", 25},   {"az", 26},   {"alx", 27},   {"aly", 28},   {"alz", 29},
+            {"albx", 30}, {"alby", 31}, {"albz", 32}, {"theta", 33}, {"omega", 34}, {"alpha", 35}};
         // Quaternion sign: keep w >= 0 so that the printed components are continuous where
         // they can be and the same rotation always prints the same.
         const double sign = q_WB.w() < 0 ? -1.0 : 1.0;
-        const double values[] = {m.p_WBcm.x(),    m.p_WBcm.y(),
-                                 m.p_WBcm.z(),    m.p_WBo.x(),
-                                 m.p_WBo.y(),     m.p_WBo.z(),
-                                 sign * q_WB.w(), sign * q_WB.x(),
-                                 sign * q_WB.y(), sign * q_WB.z(),
-                                 ypr.x(),         ypr.y(),
-                                 ypr.z(),         std::acos(std::clamp(m.R_WB(2, 2), -1.0, 1.0)),
-                                 m.v_WBcm_W.x(),  m.v_WBcm_W.y(),
-                                 m.v_WBcm_W.z(),  m.v_WBcm_W.norm(),
-                                 m.w_WB_W.x(),    m.w_WB_W.y(),
-                                 m.w_WB_W.z(),    w_B.x(),
-                                 w_B.y(),         w_B.z(),
-                                 a_W.x(),         a_W.y(),
-                                 a_W.z(),         al_W.x(),
-                                 al_W.y(),        al_W.z(),
-                                 al_B.x(),        al_B.y(),
-                                 al_B.z()};
+        const double values[] = {
+            m.p_WBcm.x(),    m.p_WBcm.y(),
+            m.p_WBcm.z(),    m.p_WBo.x(),
+            m.p_WBo.y(),     m.p_WBo.z(),
+            sign * q_WB.w(), sign * q_WB.x(),
+            sign * q_WB.y(), sign * q_WB.z(),
+            ypr.x(),         ypr.y(),
+            ypr.z(),         std::acos(std::clamp(m.R_WB(2, 2), -1.0, 1.0)),
+            m.v_WBcm_W.x(),  m.v_WBcm_W.y(),
+            m.v_WBcm_W.z(),  m.v_WBcm_W.norm(),
+            m.w_WB_W.x(),    m.w_WB_W.y(),
+            m.w_WB_W.z(),    w_B.x(),
+            w_B.y(),         w_B.z(),
+            a_W.x(),         a_W.y(),
+            a_W.z(),         al_W.x(),
+            al_W.y(),        al_W.z(),
+            al_B.x(),        al_B.y(),
+            al_B.z(),        q == "theta" ? theta_track[static_cast<size_t>(c.body)].theta : 0.0,
+            m.w_WB_W.z(),    al_W.z()};
         row.push_back(values[index.at(q)]);
         continue;
       }
@@ -604,7 +680,7 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
   StudyResult result;
   result.integrator = IntegratorName(d.simulation.integrator);
 
-  RowMaker rows{scene, {}, false};
+  RowMaker rows{scene, {}, false, {}};
   const std::vector<ColumnInfo> all = AllColumns(scene);
   for (const std::string& name : d.columns) {
     for (const ColumnInfo& c : all) {
@@ -849,7 +925,11 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     }
     out.work_by_force.emplace_back(f.name, w);
   }
+  // The plane constraints of a planar scene come after the scene's own; they are left out of
+  // its reports (their reactions are out of plane, not physical for a planar body).
+  const size_t num_scene_constraints = d.constraints.names().size();
   for (const ConstraintLedger& cl : L.constraints) {
+    if (out.work_by_constraint.size() == num_scene_constraints) break;
     const double w =
         (carry.work_by_force.count(cl.name) ? carry.work_by_force.at(cl.name) : 0.0) + cl.work;
     out.work_by_constraint.emplace_back(cl.name, w);
@@ -858,7 +938,7 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     // The reactions at the final state (the constraint stage of CalcAccelerations).
     Data data = MakeData(model);
     CalcAccelerations(model, state, data);
-    for (int i = 0; i < model.num_constraints(); ++i) {
+    for (int i = 0; i < static_cast<int>(num_scene_constraints); ++i) {
       const Constraint& con = model.constraint(i);
       const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
       StudyReaction r;
@@ -888,6 +968,10 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     f.v_WBcm_W = s.v_WBcm_W;
     f.w_WB_B = s.w_WB_B;
     f.w_WB_W = s.q_WB * s.w_WB_B;
+    if (scene.planar) {
+      // Planar bodies map one to one onto Model bodies (no embedding in a planar scene).
+      f.theta = rows.Theta(b, s.q_WB.toRotationMatrix(), f.w_WB_W.z(), state.t);
+    }
     result.final_bodies.push_back(f);
   }
   slip.Report(result.notes);

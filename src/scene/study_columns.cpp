@@ -44,12 +44,23 @@ std::vector<std::string> ColumnGroups() {
                         "angular_momentum_origin", "ledger", "reactions"}) {
     g.emplace_back(s);
   }
+  g.emplace_back("planar");
+  g.emplace_back("reactions_3d");
   return g;
 }
 
 std::vector<ColumnInfo> AllColumns(const Scene& scene) {
   std::vector<ColumnInfo> cols;
   cols.push_back({"t", "t", -1, "t", ""});
+  if (scene.planar) {
+    // Planar scenes: x, y of the centre of mass, θ (continuous), vx, vy, ω and α about z
+    // (chapter eqs. 8.41-8.43). x, y, vx, vy are the same columns as in the 3-D groups.
+    for (size_t b = 0; b < scene.bodies.size(); ++b) {
+      for (const char* s : {"x", "y", "theta", "vx", "vy", "omega", "alpha"}) {
+        cols.push_back({scene.bodies[b].name + "_" + s, "planar", static_cast<int>(b), s, ""});
+      }
+    }
+  }
   for (const auto& g : BodyGroups()) {
     for (size_t b = 0; b < scene.bodies.size(); ++b) {
       for (const char* s : g.suffixes) {
@@ -76,13 +87,21 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
     cols.push_back({s, "angular_momentum_origin", -1, s, ""});
   }
   // Reaction on the child at the joint point, in W, then in the child's frame B
-  // (Data::constraints).
+  // (Data::constraints). A planar scene's reactions are Fx, Fy and Mz; the out-of-plane
+  // components (held by the bodies' plane constraints, not physical for a planar body) stay
+  // selectable one by one or as the group reactions_3d.
   for (const auto& n : scene.dynamics.constraints.names()) {
     for (const char* s : {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}) {
-      cols.push_back({n + "_" + s, "reactions", -1, s, n});
+      const std::string q = s;
+      const bool in_plane = q == "Fx" || q == "Fy" || q == "Mz";
+      cols.push_back(
+          {n + "_" + s, scene.planar && !in_plane ? "reactions_3d" : "reactions", -1, s, n});
     }
     for (const char* s : {"Fx_B", "Fy_B", "Fz_B", "Mx_B", "My_B", "Mz_B"}) {
-      cols.push_back({n + "_" + s, "reactions", -1, s, n});
+      const std::string q = s;
+      const bool in_plane = q == "Fx_B" || q == "Fy_B" || q == "Mz_B";
+      cols.push_back(
+          {n + "_" + s, scene.planar && !in_plane ? "reactions_3d" : "reactions", -1, s, n});
     }
   }
   return cols;
@@ -97,7 +116,9 @@ std::vector<std::string> ExpandColumn(const Scene& scene, const std::string& nam
   for (const auto& c : all) {
     const bool in_ledger =
         name == "ledger" && std::find(ledger.begin(), ledger.end(), c.group) != ledger.end();
-    if (c.group == name || c.name == name || in_ledger) out.push_back(c.name);
+    const bool all_reactions = name == "reactions_3d" && c.group == "reactions";
+    const bool match = c.group == name || c.name == name || in_ledger || all_reactions;
+    if (match && std::find(out.begin(), out.end(), c.name) == out.end()) out.push_back(c.name);
   }
   if (out.empty() && why) {
     std::vector<std::string> known = ColumnGroups();
@@ -111,6 +132,12 @@ std::vector<std::string> ExpandColumn(const Scene& scene, const std::string& nam
 
 std::vector<std::string> DefaultColumns(const Scene& scene) {
   std::vector<std::string> cols;
+  if (scene.planar) {
+    for (const char* g : {"t", "planar", "reactions", "energy", "W_nc", "residual"}) {
+      for (auto& c : ExpandColumn(scene, g, nullptr)) cols.push_back(std::move(c));
+    }
+    return cols;
+  }
   for (const char* g : {"t", "position", "quaternion", "velocity", "angular_velocity", "energy",
                         "W_nc", "residual"}) {
     for (auto& c : ExpandColumn(scene, g, nullptr)) cols.push_back(std::move(c));

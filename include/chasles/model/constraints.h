@@ -23,6 +23,13 @@ enum class JointKind {
   kPlanar,        ///< child's x-y plane slides on parent's x-y plane (3 rows)
   kPointOnPlane,  ///< child's J origin stays on parent's x-y plane (1 row, frictionless)
   kPointOnLine,   ///< child's J origin stays on parent's z line (2 rows, frictionless)
+  // The in-plane rows of a joint whose J z axis is the normal of the plane of motion, for
+  // planar mechanisms: each body's out-of-plane motion is held once, by a kPlanar joint with
+  // the world, so these leave out the rows that would repeat it (docs/constraints.md).
+  kRevoluteInPlane,     ///< J origins coincide in the x-y plane (2 rows: a pin)
+  kPrismaticInPlane,    ///< slides along x in the x-y plane, no turn about z (2 rows)
+  kWeldInPlane,         ///< no relative motion in the x-y plane (3 rows)
+  kPointOnLineInPlane,  ///< child's J origin on parent's x line, in the x-y plane (1 row)
 };
 
 /// Name of a joint kind ("revolute", ...).
@@ -54,6 +61,10 @@ enum class RollingShape {
   kSphere,    ///< touches at centre - R n
   kCylinder,  ///< axis stays parallel to the plane; touches along a line (its mid point used)
   kDisk,      ///< thin disk or wheel rim, may tilt: touches at the rim's lowest point
+  /// A wheel (or cylinder) moving in W's x-y plane on the line where the plane (normal in
+  /// x-y) cuts it: the normal and the in-plane friction rows only (2 rows); its axis is kept
+  /// along z by the body's kPlanar joint with the world (planar scenes).
+  kWheelInPlane,
 };
 
 /// Rolling without slipping of a round body (the child) on a plane: a fixed world plane, or a
@@ -76,12 +87,15 @@ class RollingContact final : public Constraint {
   RollingContact(std::string name, RollingShape shape, BodyIndex parent, const Vec3& p_PoO_P,
                  const Vec3& n_P, BodyIndex body, const Vec3& p_BoC_B, const Vec3& axis_B,
                  double radius);
-  int num_rows() const override { return shape_ == RollingShape::kCylinder ? 4 : 3; }
+  int num_rows() const override {
+    return shape_ == RollingShape::kCylinder ? 4 : shape_ == RollingShape::kWheelInPlane ? 2 : 3;
+  }
   std::string kind() const override;
   void Evaluate(const Model& model, const State& state, const Data& data,
                 ConstraintEval& eval) const override;
   /// The plane's axes [t1 t2 n] in W at the kinematics stage in `data` (t1 × t2 = n, n the
-  /// upward normal; constant for a world plane, turning with the parent otherwise).
+  /// upward normal; constant for a world plane, turning with the parent otherwise). For
+  /// kWheelInPlane t1 = z × n (the rolling direction) and t2 = z.
   Mat3 CalcPlaneFrame(const Data& data) const;
 
  private:

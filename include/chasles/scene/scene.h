@@ -61,6 +61,9 @@ struct Scene {
   /// The scene's unit choice (key `units`), e.g. "SI" or "in, lb": bare numbers in the file are
   /// read in these units and reports use them unless the user asks for others.
   std::string units = "SI";
+  /// Key `planar: true`: every body moves in W's x-y plane; inputs and reports use x, y, θ
+  /// (docs/scene-format.md, "Planar scenes").
+  bool planar = false;
   std::vector<SceneBody> bodies;
   /// The scene's parameters with their values (SI), in the order of the file.
   std::vector<std::pair<std::string, Quantity>> parameters;

@@ -34,7 +34,9 @@ struct SceneJoint {
   int child = -1;
   /// The joint point in W at the initial configuration [m].
   Vec3 p_WJ = Vec3::Zero();
-  /// Unit joint axis in W at the initial configuration (plane normal, line direction).
+  /// Unit joint axis in W at the initial configuration (plane normal, line direction); for a
+  /// kPrismaticInPlane or kPointOnLineInPlane joint the direction of the slide or
+  /// line in the x-y plane.
   Vec3 axis_W = Vec3::UnitZ();
 };
 

@@ -47,6 +47,8 @@ struct SceneInitialState {
   Vec3 p_BoP_B = Vec3::Zero();
   /// Angular velocity of B in W, expressed in W [rad/s].
   Vec3 w_WB_W = Vec3::Zero();
+  /// Planar scenes: the angle θ of B about z as given (the reported θ continues from it) [rad].
+  double theta = 0.0;
 };
 
 /// A vector of three expressions of t and the state (a force [N] or a moment [N·m]).

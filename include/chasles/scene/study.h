@@ -88,6 +88,8 @@ struct StudyBodyState {
   Vec3 v_WBcm_W = Vec3::Zero();
   Vec3 w_WB_W = Vec3::Zero();
   Vec3 w_WB_B = Vec3::Zero();
+  /// Planar scenes: angle of B about z, continuous from the initial one [rad] (NaN otherwise).
+  double theta = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The ledger at the end of the run, relative to the initial state, across all segments.

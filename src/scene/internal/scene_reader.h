@@ -125,8 +125,30 @@ class SceneReader {
   std::string ConstraintName(const At& at, const char* kind, size_t index,
                              std::vector<std::string>& taken);
 
+  // Planar scenes (scene_planar.cpp) -------------------------------------------------------
+  /// Reads `planar` (before the bodies).
+  void ReadPlanar(const At& root, Scene& scene);
+  /// A world-frame vector: [x, y] in a planar scene (z = 0; three values are an error),
+  /// [x, y, z] otherwise.
+  Vec3 WorldVector(const At& at, const Dimension& expected, std::string_view what);
+  /// A body-frame vector: [x, y] or [x, y, z] in a planar scene, [x, y, z] otherwise.
+  Vec3 BodyVector(const At& at, const Dimension& expected, std::string_view what);
+  /// A force [Fx, Fy] or a moment Mz (a scalar about z) of t and the state, as a 3-vector.
+  SceneVectorExpression PlanarStateVector(const At& at, const Dimension& expected,
+                                          std::string_view what, bool moment);
+  /// `initial` of a body in a planar scene: position [x, y], theta, velocity [vx, vy], omega.
+  void ReadPlanarInitial(const At& at, const SceneBody& body, SceneInitialState& initial);
+  /// A `shape: planar` part (mass, inertia_z or radius_of_gyration, center_of_mass [x, y]).
+  MassProperties ReadPlanarPart(const At& at, ScenePart& part, Vec3& p_BoPo_B);
+  /// A joint's type and axis in a planar scene (in-plane joint kinds).
+  void ReadPlanarJointType(const At& at, const std::string& what, SceneJoint& joint);
+  /// A rolling contact in a planar scene: a wheel on a line of the plane.
+  void ReadPlanarRolling(const At& at, const SceneBody& body, const std::string& what,
+                         SceneRolling& rolling);
+
   Reporter report_;
   SceneOptions options_;
+  bool planar_ = false;
   std::unique_ptr<UnitSystem> units_;
   std::string units_text_ = "SI";
   std::map<std::string, Parameter, std::less<>> parameters_;
