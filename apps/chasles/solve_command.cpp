@@ -168,10 +168,44 @@ nlohmann::json Json(const Solved& s) {
 
 // A vector for the report: components that are round-off against the vector's own size
 // (1e-12 of it) show as 0, so a student reads [2.83, 0, -1.63], not [2.83, -2.5e-32, -1.63].
-std::string V(const Vec3& v) {
-  const double floor = 1e-12 * v.norm();
-  const auto c = [floor](double x) { return std::abs(x) <= floor ? 0.0 : x; };
-  return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", c(v.x()), c(v.y()), c(v.z()));
+/// `x` with round-off against `scale` shown as 0: a component below 1e-12 of the scale is the
+/// solve's rounding, not a physical value (the JSON keeps every digit).
+double Clean(double x, double scale) {
+  return std::abs(x) <= 1e-12 * scale ? 0.0 : x;
+}
+
+/// A vector for the text report; `scale` is the size of the largest quantity of its kind in
+/// the report (e.g. the largest acceleration of any body), so that 1e-15 m/s² next to 2 m/s²
+/// prints as 0.
+std::string V(const Vec3& v, double scale = 0.0) {
+  const double s = std::max(v.norm(), scale);
+  return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", Clean(v.x(), s), Clean(v.y(), s), Clean(v.z(), s));
+}
+
+/// The scales of the report's quantities: the largest of each kind over bodies and reactions.
+struct ReportScales {
+  double a = 0.0, alpha = 0.0, force = 0.0, moment = 0.0, p = 0.0, h = 0.0;
+};
+
+ReportScales CalcScales(const Solved& s) {
+  ReportScales k;
+  for (const auto& b : s.solution.bodies) {
+    k.a = std::max(k.a, b.a_WBcm_W.norm());
+    k.alpha = std::max(k.alpha, b.alpha_WB_W.norm());
+  }
+  double arm = 0.0;
+  for (const auto& r : s.solution.reactions) {
+    k.force = std::max(k.force, r.F_Jc_W.norm());
+    k.moment = std::max(k.moment, r.M_Jc_W.norm());
+    arm = std::max(arm, r.p_WJ.norm());
+  }
+  // A moment's round-off comes from forces times lever arms as well as from other moments.
+  k.moment = std::max(k.moment, k.force * arm);
+  for (const Motion& m : s.motion) {
+    k.p = std::max(k.p, m.P.norm());
+    k.h = std::max({k.h, m.H_cm.norm(), m.H_O.norm()});
+  }
+  return k;
 }
 
 std::string Text(const Scene& scene, const Solved& s) {
@@ -179,15 +213,16 @@ std::string Text(const Scene& scene, const Solved& s) {
                                 scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
   out += fmt::format("Instantaneous solution at the initial state (SI, {})\n\nAccelerations\n",
                      s.planar ? "planar: x-y plane, moments about z" : "world frame");
+  const ReportScales k = CalcScales(s);
   for (const auto& b : s.solution.bodies) {
     if (s.planar) {
       out += fmt::format("  {}\n    a_x   {:.9g} m/s^2\n    a_y   {:.9g} m/s^2\n", b.name,
-                         b.a_WBcm_W.x(), b.a_WBcm_W.y());
-      out += fmt::format("    alpha {:.9g} rad/s^2\n", b.alpha_WB_W.z());
+                         Clean(b.a_WBcm_W.x(), k.a), Clean(b.a_WBcm_W.y(), k.a));
+      out += fmt::format("    alpha {:.9g} rad/s^2\n", Clean(b.alpha_WB_W.z(), k.alpha));
       continue;
     }
-    out += fmt::format("  {}\n    a_cm  {} m/s^2\n", b.name, V(b.a_WBcm_W));
-    out += fmt::format("    alpha {} rad/s^2\n", V(b.alpha_WB_W));
+    out += fmt::format("  {}\n    a_cm  {} m/s^2\n", b.name, V(b.a_WBcm_W, k.a));
+    out += fmt::format("    alpha {} rad/s^2\n", V(b.alpha_WB_W, k.alpha));
   }
   if (!s.solution.reactions.empty()) {
     out += "\nReactions (on the child at the joint point)\n";
@@ -197,16 +232,13 @@ std::string Text(const Scene& scene, const Solved& s) {
     if (s.planar) {
       out +=
           fmt::format("  {} ({}) at [{:.9g}, {:.9g}] m\n", r.name, r.kind, r.p_WJ.x(), r.p_WJ.y());
-      // Round-off against the force's size shows as 0, as in V().
-      const double floor = 1e-12 * r.F_Jc_W.norm();
-      const auto c = [floor](double x) { return std::abs(x) <= floor ? 0.0 : x; };
-      out += fmt::format("    Fx {:.9g} N, Fy {:.9g} N, Mz {:.9g} N*m\n", c(r.F_Jc_W.x()),
-                         c(r.F_Jc_W.y()), r.M_Jc_W.z());
+      out +=
+          fmt::format("    Fx {:.9g} N, Fy {:.9g} N, Mz {:.9g} N*m\n", Clean(r.F_Jc_W.x(), k.force),
+                      Clean(r.F_Jc_W.y(), k.force), Clean(r.M_Jc_W.z(), k.moment));
     } else {
       out += fmt::format("  {} ({}) at {} m\n", r.name, r.kind, V(r.p_WJ));
-      out += fmt::format("    force  {} N\n", V(r.F_Jc_W));
-      out += fmt::format("    moment [{:.9g}, {:.9g}, {:.9g}] N*m\n", r.M_Jc_W.x(), r.M_Jc_W.y(),
-                         r.M_Jc_W.z());
+      out += fmt::format("    force  {} N\n", V(r.F_Jc_W, k.force));
+      out += fmt::format("    moment {} N*m\n", V(r.M_Jc_W, k.moment));
     }
     if (r.is_rolling) {
       out += fmt::format("    normal force {:.9g} N, friction {:.9g} N, f/N = {:.9g}",
@@ -219,12 +251,20 @@ std::string Text(const Scene& scene, const Solved& s) {
     }
   }
   out += "\nKinetic energy and momenta (H about each centre of mass, H_O about the origin)\n";
-  const auto motion = [&out](const Motion& m, const char* cm) {
+  const auto motion = [&out, &k, &s](const Motion& m, const char* cm) {
     out += fmt::format("    T {:.9g} J (translational {:.9g} J, rotational {:.9g} J)\n",
                        m.T_trans + m.T_rot, m.T_trans, m.T_rot);
-    out += fmt::format("    p   {} kg*m/s\n", V(m.P));
-    out += fmt::format("    H   {} kg*m^2/s (about {})\n", V(m.H_cm), cm);
-    out += fmt::format("    H_O {} kg*m^2/s\n", V(m.H_O));
+    if (s.planar) {
+      // In the plane: p = (p_x, p_y), H about z (eq. 8.40).
+      out += fmt::format("    p   [{:.9g}, {:.9g}] kg*m/s\n", Clean(m.P.x(), k.p),
+                         Clean(m.P.y(), k.p));
+      out += fmt::format("    H_z {:.9g} kg*m^2/s (about {})\n", Clean(m.H_cm.z(), k.h), cm);
+      out += fmt::format("    H_Oz {:.9g} kg*m^2/s\n", Clean(m.H_O.z(), k.h));
+      return;
+    }
+    out += fmt::format("    p   {} kg*m/s\n", V(m.P, k.p));
+    out += fmt::format("    H   {} kg*m^2/s (about {})\n", V(m.H_cm, k.h), cm);
+    out += fmt::format("    H_O {} kg*m^2/s\n", V(m.H_O, k.h));
   };
   for (const Motion& m : s.motion) {
     out += fmt::format("  {}\n", m.name);
