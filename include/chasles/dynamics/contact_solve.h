@@ -102,4 +102,9 @@ struct ImpactResult {
 /// normal impulse share).
 ImpactResult ResolveImpacts(const Model& model, State& state, const ContactTolerances& tol = {});
 
+/// ResolveImpacts with restitution 0 at contact point `point` (the others keep theirs): ends a
+/// bounce sequence at once, as its accumulation limit does (docs/contact.md, Zeno).
+ImpactResult ResolvePlasticImpact(const Model& model, State& state, int point,
+                                  const ContactTolerances& tol = {});
+
 }  // namespace chasles

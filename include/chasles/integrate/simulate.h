@@ -12,6 +12,7 @@
 /// Fixed-step integrators shorten `fixed_step` so that it divides the output interval evenly.
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -91,8 +92,11 @@ struct ImpactRecord {
   Vec3 impulse_W = Vec3::Zero();
   /// Kinetic energy lost by the whole system in this impact [J] (>= 0).
   double energy_lost = 0.0;
-  /// True for the jump to the accumulation time of a geometric bounce sequence.
+  /// True for the impact that ends a geometric bounce sequence (restitution 0 there).
   bool accumulation = false;
+  /// For that impact: the analytic time the bounces accumulate to rest,
+  /// t + t_flight e / (1 - e) [s] (NaN otherwise).
+  double accumulation_time = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// An interval of constant mode of one contact point.
