@@ -67,6 +67,7 @@ void DormandPrince5Integrator::Initialize(const State& state) {
   ValidateState(ode_->model(), state);
   state_ = state;
   Work& w = *work_;
+  ode_->SetDiscreteState(state_);
   ode_->Pack(state_, w.y0);
   ode_->NormalizeQuaternions(w.y0, nullptr);
   ode_->Unpack(state_.t, w.y0, state_);

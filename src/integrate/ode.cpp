@@ -11,8 +11,10 @@ namespace chasles::internal {
 OdeSystem::OdeSystem(const Model& model)
     : model_(model),
       size_(kBodySize * model.num_bodies() + kForceSize * model.num_force_elements() +
-            model.num_constraints()),
+            model.num_constraints() + 2 * model.num_contact_points()),
       body_offset_end_(kBodySize * model.num_bodies()),
+      contact_offset_(kBodySize * model.num_bodies() + kForceSize * model.num_force_elements() +
+                      model.num_constraints()),
       state_(MakeRestState(model)),
       data_(MakeData(model)) {}
 
@@ -39,6 +41,17 @@ void OdeSystem::Pack(const State& s, Vector& y) const {
     const auto i = static_cast<size_t>(c);
     y[c0 + c] = i < s.constraint_work.size() ? s.constraint_work[i] : 0.0;
   }
+  for (int p = 0; p < model_.num_contact_points(); ++p) {
+    const auto i = static_cast<size_t>(p);
+    const bool has = i < s.contacts.size();
+    y[contact_offset_ + 2 * p] = has ? s.contacts[i].friction_work : 0.0;
+    y[contact_offset_ + 2 * p + 1] = has ? s.contacts[i].rolling_work : 0.0;
+  }
+}
+
+void OdeSystem::SetDiscreteState(const State& state) {
+  state_.contacts = state.contacts;
+  state_.contacts.resize(static_cast<size_t>(model_.num_contact_points()));
 }
 
 void OdeSystem::Unpack(double t, const Vector& y, State& s) const {
@@ -63,6 +76,14 @@ void OdeSystem::Unpack(double t, const Vector& y, State& s) const {
   s.constraint_work.resize(static_cast<size_t>(model_.num_constraints()));
   for (int c = 0; c < model_.num_constraints(); ++c) {
     s.constraint_work[static_cast<size_t>(c)] = y[c0 + c];
+  }
+  if (model_.num_contact_points() > 0) {
+    if (&s != &state_) s.contacts = state_.contacts;
+    for (int p = 0; p < model_.num_contact_points(); ++p) {
+      ContactPointState& cs = s.contacts[static_cast<size_t>(p)];
+      cs.friction_work = y[contact_offset_ + 2 * p];
+      cs.rolling_work = y[contact_offset_ + 2 * p + 1];
+    }
   }
 }
 
@@ -94,6 +115,11 @@ void OdeSystem::Derivative(double t, const Vector& y, Vector& ydot) {
   const int c0 = body_offset_end_ + kForceSize * model_.num_force_elements();
   for (int c = 0; c < model_.num_constraints(); ++c) {
     ydot[c0 + c] = data_.constraints[static_cast<size_t>(c)].power;
+  }
+  for (int p = 0; p < model_.num_contact_points(); ++p) {
+    const ContactPointOutput& out = data_.contact_points[static_cast<size_t>(p)];
+    ydot[contact_offset_ + 2 * p] = out.friction_power;
+    ydot[contact_offset_ + 2 * p + 1] = out.rolling_power;
   }
 }
 

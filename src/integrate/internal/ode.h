@@ -3,7 +3,9 @@
 /// The equations of motion as a first-order ODE y' = f(t, y) over a flat vector, for the
 /// Runge–Kutta integrators. Layout per body: p_WBcm (3), q_WB (w, x, y, z) (4), v_WBcm_W (3),
 /// w_WB_B (3); then per force element the integrals of its power, non-conservative power,
-/// force (3) and moment about Wo (3); then per constraint the work of its forces.
+/// force (3) and moment about Wo (3); then per constraint the work of its forces; then per
+/// contact point the work of sliding friction and of rolling resistance. The contact modes
+/// and reference directions are discrete: set with SetDiscreteState, copied by Unpack.
 
 #include <Eigen/Core>
 
@@ -26,6 +28,9 @@ class OdeSystem {
   const Model& model() const { return model_; }
 
   void Pack(const State& state, Vector& y) const;
+  /// Takes the discrete contact state (modes, reference directions, impact work) of `state`;
+  /// the derivative and Unpack use it until the next call.
+  void SetDiscreteState(const State& state);
   /// Copies y into `state` (already sized); quaternions as they stand.
   void Unpack(double t, const Vector& y, State& state) const;
   /// ydot = f(t, y). Uses an internal State and Data (no allocation).
@@ -45,6 +50,7 @@ class OdeSystem {
   const Model& model_;
   int size_;
   int body_offset_end_;
+  int contact_offset_;
   State state_;
   Data data_;
   long long evaluations_ = 0;

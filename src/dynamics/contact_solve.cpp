@@ -1,0 +1,804 @@
+#include "chasles/dynamics/contact_solve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+#include <Eigen/QR>
+
+#include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/lcp.h"
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/error.h"
+#include "chasles/model/constraints.h"
+#include "dynamics/internal/contact_geometry.h"
+
+namespace chasles {
+namespace internal {
+
+// ---------------------------------------------------------------------------------------
+// Geometry of one contact point (see contact_geometry.h for the derivations).
+ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& state,
+                                              const Data& data, int point) {
+  const int ci = model.contact_of_point(point);
+  const Contact& con = model.contact(ci);
+  const ContactFeature& f = con.feature(point - model.contact_point_offset(ci));
+  ContactPointGeometry g;
+  g.body = con.body();
+  g.other = con.other_body();
+  g.radius = f.radius;
+  g.round = f.kind != ContactFeatureKind::kPoint;
+  const auto a = static_cast<size_t>(g.body);
+  const Mat3& R = data.R_WB[a];
+  const Vec3& w = data.w_WB_W[a];
+  const Vec3 p_cm = state.bodies[a].p_WBcm;
+  const Vec3 v_cm = state.bodies[a].v_WBcm_W;
+  const Vec3 r_c = R * f.p_BcmF_B;  // Bcm to the feature's centre (or the point)
+  Vec3 r_c_dot = w.cross(r_c);
+  if (g.other == kWorld) {
+    const Vec3& n = con.n_W();
+    const Vec3& p_O = con.spec().plane_point_W;
+    g.n = n, g.t1 = con.t1_W(), g.t2 = con.t2_W();
+    // Unit vector m from C to the feature's centre, C = centre - R m:
+    //   point: R = 0; sphere: m = n; rim (plane ⊥ e): m = u/|u|, u = n - (n·e) e, the rim's
+    //   lowest point (as RollingContact's disk, whose derivation of ṁ this repeats).
+    Vec3 m = n, m_dot = Vec3::Zero();
+    double s = 1.0;
+    if (f.kind == ContactFeatureKind::kRim) {
+      const Vec3 e = R * f.axis_B;
+      const double sigma = n.dot(e);
+      const Vec3 u = n - sigma * e;
+      s = u.norm();
+      const Vec3 e_dot = w.cross(e);
+      if (s > 1e-12) {
+        m = u / s;
+        const double sigma_dot = n.dot(e_dot);
+        const Vec3 u_dot = -sigma_dot * e - sigma * e_dot;
+        const double s_dot = -sigma * sigma_dot / s;
+        m_dot = u_dot / s - u * (s_dot / (s * s));
+      } else {
+        // Rim flat on the plane: every rim point is equally low; take a fixed one (a rim
+        // lying flat should be modelled as a disk face).
+        m = R * FrameWithZAxis(f.axis_B).col(0);
+        m_dot = w.cross(m);
+        s = 0.0;
+      }
+    }
+    const double Rf = f.kind == ContactFeatureKind::kPoint ? 0.0 : f.radius;
+    g.r = r_c - Rf * m;
+    g.p_WC = p_cm + g.r;
+    // Height of the lowest point: h = (centre - p_O)·n - R s (envelope: ḣ = n·v_C).
+    g.gap = (p_cm + r_c - p_O).dot(n) - (f.kind == ContactFeatureKind::kRim ? Rf * s : Rf);
+    const Vec3 r_dot = r_c_dot - Rf * m_dot;
+    g.v_rel = v_cm + w.cross(g.r);
+    g.w_rel = w;
+    // Rows k·v_C, k fixed in W: d/dt k·(v + w × r) = k·(a + ẇ × r) + k·(w × ṙ), so the
+    // acceleration right-hand side is c_k = -k·(w × ṙ).
+    g.w_x_rdot = w.cross(r_dot);
+    g.w_x_rdot_other = Vec3::Zero();
+  } else {
+    // Sphere on body A against sphere on body O: d = c_A - c_O, n = d/|d|, gap |d| - R_A - R_O;
+    // C_A = c_A - R_A n, C_O = c_O + R_O n. ṅ = (ḋ - n (n·ḋ))/|d|.
+    const auto o = static_cast<size_t>(g.other);
+    const Mat3& RO = data.R_WB[o];
+    const Vec3& wO = data.w_WB_W[o];
+    const Vec3 r_cO = RO * con.p_OcmC_O();
+    const Vec3 d = (p_cm + r_c) - (state.bodies[o].p_WBcm + r_cO);
+    const double dn = d.norm();
+    if (!(dn > 0.0)) {
+      throw InputError(fmt::format(
+          "contact '{}': the two sphere centres coincide; the contact normal is undefined",
+          con.name()));
+    }
+    const double RO_rad = con.spec().other_radius;
+    g.n = d / dn;
+    const Mat3 T = FrameWithZAxis(g.n);
+    g.t1 = T.col(0), g.t2 = T.col(1);
+    g.gap = dn - f.radius - RO_rad;
+    const Vec3 d_dot = v_cm + r_c_dot - state.bodies[o].v_WBcm_W - wO.cross(r_cO);
+    const Vec3 n_dot = (d_dot - g.n * g.n.dot(d_dot)) / dn;
+    g.r = r_c - f.radius * g.n;
+    g.r_other = r_cO + RO_rad * g.n;
+    g.p_WC = p_cm + g.r;
+    g.v_rel = (v_cm + w.cross(g.r)) - (state.bodies[o].v_WBcm_W + wO.cross(g.r_other));
+    g.w_rel = w - wO;
+    g.w_x_rdot = w.cross(r_c_dot - f.radius * n_dot);
+    g.w_x_rdot_other = wO.cross(wO.cross(r_cO) + RO_rad * n_dot);
+    g.n_dot = n_dot;
+  }
+  g.v_n = g.n.dot(g.v_rel);
+  g.v_t = g.v_rel - g.v_n * g.n;
+  return g;
+}
+
+double ContactPointGeometry::AccelerationBias(const Vec3& k) const {
+  // c_k = -[k̇·v_rel + k·(w_A × ṙ_A - w_O × ṙ_O)]. The normal rotates only between two
+  // spheres (k̇ = ṅ); the tangents' k̇·v_rel vanishes on the sticking manifold (v_rel = 0), the
+  // only mode with tangential rows, and is left out.
+  const double kdot_v = (k == n) ? n_dot.dot(v_rel) : 0.0;
+  return -(kdot_v + k.dot(w_x_rdot - w_x_rdot_other));
+}
+
+void ContactPointGeometry::SetRow(const Vec3& k, RowRef row) const {
+  // k·v_C = k·v + (r × k)·w on the body; minus the same on the other body.
+  row.segment<3>(6 * body) += k.transpose();
+  row.segment<3>(6 * body + 3) += r.cross(k).transpose();
+  if (other != kWorld) {
+    row.segment<3>(6 * other) -= k.transpose();
+    row.segment<3>(6 * other + 3) -= r_other.cross(k).transpose();
+  }
+}
+
+void ContactPointGeometry::AddMoment(const Vec3& M, RowRef row) const {
+  row.segment<3>(6 * body + 3) += M.transpose();
+  if (other != kWorld) row.segment<3>(6 * other + 3) -= M.transpose();
+}
+
+Vec3 ContactPointGeometry::SlipDirection(const Vec3& s_ref) const {
+  // Unit slip direction, its sign taken relative to the mode's reference direction so that
+  // the friction force stays smooth while the slip passes through zero along s_ref.
+  const double vt = v_t.norm();
+  const bool has_ref = s_ref.squaredNorm() > 0.0;
+  if (!(vt > 0.0) || (has_ref && vt < 1e-300)) return has_ref ? s_ref : Vec3::Zero();
+  Vec3 s = v_t / vt;
+  if (has_ref && s.dot(s_ref) < 0.0) s = -s;
+  return s;
+}
+
+Vec3 ContactPointGeometry::RollingVelocity() const {
+  return w_rel - w_rel.dot(n) * n;
+}
+
+Vec3 ContactPointGeometry::RollingDirection(const Vec3& r_ref) const {
+  const Vec3 wr = RollingVelocity();
+  const double m = wr.norm();
+  if (r_ref.squaredNorm() == 0.0) return Vec3::Zero();
+  if (!(m > 0.0)) return r_ref;
+  Vec3 d = wr / m;
+  if (d.dot(r_ref) < 0.0) d = -d;
+  return d;
+}
+
+// ---------------------------------------------------------------------------------------
+// Mass-matrix helpers over the 6-per-body generalised velocity u_b = [v_WBcm_W; w_WB_W].
+void TimesMassInverse(const Model& model, const Data& data, const Eigen::MatrixXd& X,
+                      Eigen::MatrixXd& Y) {
+  Y.resize(X.rows(), X.cols());
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    const Body& body = model.body(b);
+    const Mat3 I_inv_W = data.R_WB[i] * body.I_BBcm_B_inverse() * data.R_WB[i].transpose();
+    Y.middleCols<3>(6 * b) = X.middleCols<3>(6 * b) / body.mass();
+    Y.middleCols<3>(6 * b + 3).noalias() = X.middleCols<3>(6 * b + 3) * I_inv_W;
+  }
+}
+
+void GetVelocity(const Model& model, const State& state, const Data& data, Eigen::VectorXd& u) {
+  u.resize(6 * model.num_bodies());
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    u.segment<3>(6 * b) = state.bodies[i].v_WBcm_W;
+    u.segment<3>(6 * b + 3) = data.w_WB_W[i];
+  }
+}
+
+void SetVelocity(const Model& model, const Data& data, const Eigen::VectorXd& u, State& state) {
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    state.bodies[i].v_WBcm_W = u.segment<3>(6 * b);
+    state.bodies[i].w_WB_B = data.R_WB[i].transpose() * u.segment<3>(6 * b + 3);
+  }
+}
+
+double KineticEnergy(const Model& model, const State& state) {
+  double T = 0.0;
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyState& bs = state.bodies[static_cast<size_t>(b)];
+    const Body& body = model.body(b);
+    T += 0.5 * body.mass() * bs.v_WBcm_W.squaredNorm() +
+         0.5 * bs.w_WB_B.dot(body.I_BBcm_B() * bs.w_WB_B);
+  }
+  return T;
+}
+
+// Solves A x = r, LDLᵀ / LU when well conditioned, least-norm (COD) otherwise.
+void SolveSquare(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, bool symmetric,
+                 ContactWorkspace& ws, Eigen::VectorXd& x) {
+  const Eigen::Index n = A.rows();
+  if (n == 0) {
+    x.resize(0);
+    return;
+  }
+  const double a_max = A.cwiseAbs().maxCoeff();
+  if (a_max > 0.0) {
+    if (symmetric) {
+      ws.ldlt.compute(A);
+      if (ws.ldlt.info() == Eigen::Success && ws.ldlt.vectorD().minCoeff() > 1e-10 * a_max) {
+        x = ws.ldlt.solve(r);
+        return;
+      }
+    } else {
+      ws.lu.compute(A);
+      const Eigen::VectorXd d = ws.lu.matrixLU().diagonal().cwiseAbs();
+      if (d.minCoeff() > 1e-10 * a_max) {
+        x = ws.lu.solve(r);
+        return;
+      }
+    }
+  }
+  // Redundant rows (a box on four coplanar vertices): least-norm multipliers.
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
+  cod.setThreshold(1e-10);
+  x = cod.solve(r);
+}
+
+}  // namespace internal
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using internal::ContactPointGeometry;
+using internal::RowRef;
+
+namespace {
+
+// Free accelerations u̇_free = M⁻¹ f (Newton–Euler without constraints), from the force stage.
+void FreeAccelerations(const Model& model, const State& state, Data& data, VectorXd& u_dot) {
+  u_dot.resize(6 * model.num_bodies());
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    const Body& body = model.body(b);
+    u_dot.segment<3>(6 * b) = data.F_Bcm_W[i] / body.mass();
+    const Vec3 M_B = data.R_WB[i].transpose() * data.M_Bcm_W[i];
+    u_dot.segment<3>(6 * b + 3) =
+        data.R_WB[i] * CalcEulerAngularAcceleration(body.I_BBcm_B(), body.I_BBcm_B_inverse(),
+                                                    state.bodies[i].w_WB_B, M_B);
+  }
+}
+
+ContactMode ModeOf(const State& state, int p) {
+  return static_cast<size_t>(p) < state.contacts.size()
+             ? state.contacts[static_cast<size_t>(p)].mode
+             : ContactMode::kSeparated;
+}
+
+const ContactPointState& PointStateOf(const State& state, int p) {
+  static const ContactPointState none{};
+  return static_cast<size_t>(p) < state.contacts.size() ? state.contacts[static_cast<size_t>(p)]
+                                                        : none;
+}
+
+// The force direction of a pressing point's normal row: J_n, minus mu_k J_s when it slides
+// (friction -mu_k N s), minus mu_r R ŵ_r in the angular part when a round feature rolls with
+// rolling resistance (moment -mu_r N R ŵ_r).
+void NormalForceRow(const Contact& con, const ContactPointGeometry& g, ContactMode mode,
+                    const ContactPointState& ps, RowRef row, Vec3& s, Vec3& roll_dir) {
+  g.SetRow(g.n, row);
+  s.setZero();
+  roll_dir.setZero();
+  if (mode == ContactMode::kSliding) {
+    s = g.SlipDirection(ps.slip_direction_W);
+    if (s.squaredNorm() > 0.0 && con.mu_k() > 0.0) {
+      Eigen::RowVectorXd js = Eigen::RowVectorXd::Zero(row.size());
+      g.SetRow(s, js);
+      row -= con.mu_k() * js;
+    }
+  }
+  if (con.mu_r() > 0.0 && g.round && mode != ContactMode::kSeparated) {
+    roll_dir = g.RollingDirection(ps.rolling_direction_W);
+    if (roll_dir.squaredNorm() > 0.0) g.AddMoment(-con.mu_r() * g.radius * roll_dir, row);
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+void SolveContactForces(const Model& model, const State& state, Data& data) {
+  const int nb = model.num_bodies();
+  const int nc_rows = model.num_constraint_rows();
+  ContactWorkspace& ws = data.contact_work;
+  // Count the active rows of the current modes.
+  int rows = nc_rows;
+  bool symmetric = true;
+  for (int p = 0; p < model.num_contact_points(); ++p) {
+    const ContactMode m = ModeOf(state, p);
+    if (m == ContactMode::kSticking) rows += 3;
+    if (m == ContactMode::kSliding) rows += 1, symmetric = false;
+    if (m != ContactMode::kSeparated && model.contact(model.contact_of_point(p)).mu_r() > 0.0) {
+      symmetric = false;
+    }
+  }
+  if (ws.J.rows() != rows || ws.J.cols() != 6 * nb) {
+    ws.J.resize(rows, 6 * nb);
+    ws.W.resize(rows, 6 * nb);
+    ws.c.resize(rows);
+  }
+  ws.J.setZero();
+  ws.W.setZero();
+  if (nc_rows > 0) {
+    CalcConstraintRows(model, state, data);
+    ws.J.topRows(nc_rows) = data.J;
+    ws.W.topRows(nc_rows) = data.J;
+    ws.c.head(nc_rows) = data.acceleration_rhs;
+  }
+  // Contact rows.
+  int k = nc_rows;
+  for (int p = 0; p < model.num_contact_points(); ++p) {
+    const Contact& con = model.contact(model.contact_of_point(p));
+    const ContactMode mode = ModeOf(state, p);
+    const ContactPointGeometry g = internal::CalcContactPointGeometry(model, state, data, p);
+    ContactPointOutput& out = data.contact_points[static_cast<size_t>(p)];
+    out = ContactPointOutput{};
+    out.mode = mode;
+    out.gap = g.gap;
+    out.p_WC = g.p_WC;
+    out.n_W = g.n;
+    out.normal_velocity = g.v_n;
+    out.slip_velocity_W = g.v_t;
+    if (mode == ContactMode::kSeparated) continue;
+    Vec3 s, roll;
+    g.SetRow(g.n, ws.J.row(k));
+    NormalForceRow(con, g, mode, PointStateOf(state, p), ws.W.row(k), s, roll);
+    ws.c[k] = g.AccelerationBias(g.n);
+    ++k;
+    if (mode == ContactMode::kSticking) {
+      for (const Vec3* t : {&g.t1, &g.t2}) {
+        g.SetRow(*t, ws.J.row(k));
+        g.SetRow(*t, ws.W.row(k));
+        ws.c[k] = g.AccelerationBias(*t);
+        ++k;
+      }
+    }
+  }
+  // (J M⁻¹ Wᵀ) λ = c - J u̇_free; u̇ = u̇_free + M⁻¹ Wᵀ λ.
+  VectorXd& u_dot = data.u_dot;
+  u_dot.resize(6 * nb);
+  for (int b = 0; b < nb; ++b) {
+    const auto i = static_cast<size_t>(b);
+    u_dot.segment<3>(6 * b) = data.a_WBcm_W[i];
+    u_dot.segment<3>(6 * b + 3) = data.R_WB[i] * data.wdot_WB_B[i];
+  }
+  internal::TimesMassInverse(model, data, ws.W, ws.WMinv);
+  ws.A.noalias() = ws.J * ws.WMinv.transpose();
+  ws.rhs.noalias() = ws.c - ws.J * u_dot;
+  internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda);
+  u_dot.noalias() += ws.WMinv.transpose() * ws.lambda;
+  for (int b = 0; b < nb; ++b) {
+    const auto i = static_cast<size_t>(b);
+    data.a_WBcm_W[i] = u_dot.segment<3>(6 * b);
+    data.wdot_WB_B[i] = data.R_WB[i].transpose() * u_dot.segment<3>(6 * b + 3);
+  }
+  // Constraint reactions as in SolveConstraintForces (child's share of Jᵀλ, moved to J).
+  if (nc_rows > 0) {
+    data.lambda = ws.lambda.head(nc_rows);
+    internal::GetVelocity(model, state, data, data.u);
+    data.Ju.noalias() = data.J * data.u;
+    for (int c = 0; c < model.num_constraints(); ++c) {
+      const Constraint& con = model.constraint(c);
+      const auto ci = static_cast<size_t>(c);
+      const ConstraintEval& e = data.constraint_rows[ci];
+      ConstraintOutput& out = data.constraints[ci];
+      const int o = model.constraint_row_offset(c);
+      const int n = con.num_rows();
+      out.lambda.setZero();
+      out.lambda.head(n) = data.lambda.segment(o, n);
+      const Eigen::Matrix<double, 6, 1> Fc = e.J_child.topRows(n).transpose() * out.lambda.head(n);
+      const auto bi = static_cast<size_t>(con.child());
+      const Vec3 F = Fc.head<3>();
+      const Vec3 r_J = e.p_WJ - state.bodies[bi].p_WBcm;
+      out.p_WJ = e.p_WJ;
+      out.F_Jc_W = F;
+      out.M_Jc_W = Fc.tail<3>() - r_J.cross(F);
+      out.F_Jc_B = data.R_WB[bi].transpose() * out.F_Jc_W;
+      out.M_Jc_B = data.R_WB[bi].transpose() * out.M_Jc_W;
+      out.power = data.lambda.segment(o, n).dot(data.Ju.segment(o, n));
+    }
+  }
+  // Contact forces from the multipliers.
+  k = nc_rows;
+  for (int p = 0; p < model.num_contact_points(); ++p) {
+    ContactPointOutput& out = data.contact_points[static_cast<size_t>(p)];
+    if (out.mode == ContactMode::kSeparated) continue;
+    const Contact& con = model.contact(model.contact_of_point(p));
+    const ContactPointState& ps = PointStateOf(state, p);
+    const ContactPointGeometry g = internal::CalcContactPointGeometry(model, state, data, p);
+    const double N = ws.lambda[k++];
+    out.normal_force = N;
+    if (out.mode == ContactMode::kSticking) {
+      const double f1 = ws.lambda[k++], f2 = ws.lambda[k++];
+      out.friction_force_W = f1 * g.t1 + f2 * g.t2;
+      out.friction_needed = N > 0.0 ? out.friction_force_W.norm() / N : 0.0;
+    } else {
+      const Vec3 s = g.SlipDirection(ps.slip_direction_W);
+      out.friction_force_W = -con.mu_k() * N * s;
+      out.friction_power = out.friction_force_W.dot(g.v_t);
+    }
+    if (con.mu_r() > 0.0 && g.round) {
+      const Vec3 roll = g.RollingDirection(ps.rolling_direction_W);
+      out.rolling_moment_W = -con.mu_r() * N * g.radius * roll;
+      out.rolling_power = out.rolling_moment_W.dot(g.w_rel);
+    }
+  }
+}
+
+std::vector<ContactPointOutput> CalcContactOutputs(const Model& model, const State& state) {
+  Data data = MakeData(model);
+  CalcAccelerations(model, state, data);
+  return data.contact_points;
+}
+
+// ---------------------------------------------------------------------------------------
+// Mode selection and impacts share one problem: bilateral rows E (constraints, sticking
+// tangents) and complementary normal rows of the touching points, at acceleration level
+// (base = u̇_free, targets c) or velocity level (base = u⁻, targets the wanted velocities):
+//   u' = base + M⁻¹ (W_Eᵀ λ_E + W_nᵀ N),  J_E u' = c_E,  w = J_n u' - c_n >= 0 ⟂ N >= 0.
+// Eliminating λ_E = S⁺ (c_E - J_E base - J_E M⁻¹ W_nᵀ N) with S = J_E M⁻¹ W_Eᵀ leaves the
+// LCP w = (D - C S⁺ B) N + (J_n base - c_n + C S⁺ r_E), D = J_n M⁻¹ W_nᵀ, B = J_E M⁻¹ W_nᵀ,
+// C = J_n M⁻¹ W_Eᵀ, r_E = c_E - J_E base.
+namespace {
+
+struct PointPlan {
+  int point = -1;
+  ContactMode mode = ContactMode::kSticking;  // kSticking: tangential rows; kSliding: friction
+  Vec3 s = Vec3::Zero();                      // slip direction of a sliding point
+  double target_n = 0.0;                      // c_n
+  Vec3 target_t = Vec3::Zero();               // c_t1, c_t2 (first two entries)
+};
+
+struct PlanSolution {
+  VectorXd N;         // normal multipliers per plan entry
+  VectorXd lambda_E;  // bilateral multipliers: constraint rows, then 2 per sticking point
+  VectorXd w;         // complementary slacks
+  VectorXd u_new;     // base + M⁻¹ Wᵀ λ
+  bool solved = false;
+};
+
+PlanSolution SolvePlan(const Model& model, const Data& data,
+                       const std::vector<ContactPointGeometry>& geo,
+                       const std::vector<PointPlan>& plan, const VectorXd& base,
+                       const VectorXd& c_constraints, bool complementary) {
+  const int nb = model.num_bodies();
+  const int ncr = model.num_constraint_rows();
+  int n_stick = 0;
+  for (const PointPlan& pp : plan) n_stick += pp.mode == ContactMode::kSticking ? 1 : 0;
+  const auto nE = static_cast<Eigen::Index>(ncr + 2 * n_stick);
+  const auto nN = static_cast<Eigen::Index>(plan.size());
+  MatrixXd JE = MatrixXd::Zero(nE, 6 * nb), Jn = MatrixXd::Zero(nN, 6 * nb);
+  MatrixXd Wn = MatrixXd::Zero(nN, 6 * nb);
+  VectorXd cE(nE), cn(nN);
+  if (ncr > 0) JE.topRows(ncr) = data.J, cE.head(ncr) = c_constraints;
+  Eigen::Index e = ncr;
+  for (Eigen::Index i = 0; i < nN; ++i) {
+    const PointPlan& pp = plan[static_cast<size_t>(i)];
+    const ContactPointGeometry& g = geo[static_cast<size_t>(pp.point)];
+    const Contact& con = model.contact(model.contact_of_point(pp.point));
+    g.SetRow(g.n, Jn.row(i));
+    Wn.row(i) = Jn.row(i);
+    cn[i] = pp.target_n;
+    if (pp.mode == ContactMode::kSliding && con.mu_k() > 0.0) {
+      Eigen::RowVectorXd js = Eigen::RowVectorXd::Zero(6 * nb);
+      g.SetRow(pp.s, js);
+      Wn.row(i) -= con.mu_k() * js;
+    }
+    if (pp.mode == ContactMode::kSticking) {
+      g.SetRow(g.t1, JE.row(e));
+      cE[e++] = pp.target_t[0];
+      g.SetRow(g.t2, JE.row(e));
+      cE[e++] = pp.target_t[1];
+    }
+  }
+  MatrixXd JEMi, WnMi;
+  internal::TimesMassInverse(model, data, JE, JEMi);  // J_E M⁻¹ = (M⁻¹ W_Eᵀ)ᵀ, W_E = J_E
+  internal::TimesMassInverse(model, data, Wn, WnMi);
+  const MatrixXd S = JE * JEMi.transpose();
+  const MatrixXd B = JE * WnMi.transpose();
+  const MatrixXd C = Jn * JEMi.transpose();
+  const MatrixXd D = Jn * WnMi.transpose();
+  const VectorXd rE = cE - JE * base;
+  Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod;
+  MatrixXd SB = MatrixXd::Zero(nE, nN);
+  VectorXd Sr = VectorXd::Zero(nE);
+  if (nE > 0) {
+    cod.setThreshold(1e-10);
+    cod.compute(S);
+    SB = cod.solve(B);
+    Sr = cod.solve(rE);
+  }
+  const MatrixXd A = D - C * SB;
+  const VectorXd q = Jn * base - cn + C * Sr;
+  PlanSolution sol;
+  if (complementary) {
+    const LcpResult lcp = SolveLcp(A, q);
+    sol.N = lcp.z;
+    sol.solved = lcp.solved;
+  } else {
+    ContactWorkspace ws;
+    internal::SolveSquare(A, -q, false, ws, sol.N);
+    sol.solved = true;
+  }
+  sol.w = A * sol.N + q;
+  sol.lambda_E = Sr - SB * sol.N;
+  sol.u_new = base + JEMi.transpose() * sol.lambda_E + WnMi.transpose() * sol.N;
+  return sol;
+}
+
+}  // namespace
+
+std::vector<ContactModeChange> SelectContactModes(const Model& model, State& state,
+                                                  const ContactTolerances& tol) {
+  const int np = model.num_contact_points();
+  if (state.contacts.size() != static_cast<size_t>(np)) {
+    state.contacts.assign(static_cast<size_t>(np), ContactPointState{});
+  }
+  std::vector<ContactMode> before(static_cast<size_t>(np));
+  for (int p = 0; p < np; ++p)
+    before[static_cast<size_t>(p)] = state.contacts[static_cast<size_t>(p)].mode;
+  Data data = MakeData(model);
+  CalcKinematics(model, state, data);
+  CalcForces(model, state, data);
+  VectorXd u_free;
+  FreeAccelerations(model, state, data, u_free);
+  if (model.num_constraints() > 0) CalcConstraintRows(model, state, data);
+  std::vector<ContactPointGeometry> geo(static_cast<size_t>(np));
+  for (int p = 0; p < np; ++p) {
+    geo[static_cast<size_t>(p)] = internal::CalcContactPointGeometry(model, state, data, p);
+  }
+  // Velocity scale for the relative tests.
+  VectorXd u;
+  internal::GetVelocity(model, state, data, u);
+  // Candidates: touching and not moving apart.
+  std::vector<PointPlan> plan;
+  for (int p = 0; p < np; ++p) {
+    const ContactPointGeometry& g = geo[static_cast<size_t>(p)];
+    if (g.gap > tol.gap || g.v_n > tol.resting_speed) continue;
+    PointPlan pp;
+    pp.point = p;
+    const double vt = g.v_t.norm();
+    const Contact& con = model.contact(model.contact_of_point(p));
+    if (vt > tol.stick_speed) {
+      pp.mode = ContactMode::kSliding;
+      pp.s = g.v_t / vt;
+    } else if (con.mu_s() == 0.0) {
+      pp.mode = ContactMode::kSliding;  // frictionless: slides without a direction
+    }
+    pp.target_n = g.AccelerationBias(g.n);
+    pp.target_t = Vec3(g.AccelerationBias(g.t1), g.AccelerationBias(g.t2), 0.0);
+    plan.push_back(pp);
+  }
+  // Iterate: LCP for the normal forces, drop points that do not press, then the friction
+  // check, switching the worst over-loaded sticking point to sliding against the friction it
+  // needs. Each pass switches one point one way (stick -> slide) or drops one, so it ends.
+  const VectorXd c_con = model.num_constraints() > 0 ? VectorXd(data.acceleration_rhs) : VectorXd();
+  const double f_scale = [&] {
+    double s = 0.0;
+    for (int b = 0; b < model.num_bodies(); ++b) s = std::max(s, model.body(b).mass());
+    return s * std::max(1.0, u_free.cwiseAbs().maxCoeff());
+  }();
+  // Candidates stay in the list; each pass solves the LCP over all of them in their current
+  // friction modes, takes those that press (a_n = 0) as the active set, and checks it.
+  std::vector<PointPlan> active;
+  const double a_tol = tol.relative * std::max(1.0, u_free.cwiseAbs().maxCoeff());
+  for (int pass = 0; pass < 4 * np + 8 && !plan.empty(); ++pass) {
+    PlanSolution sol = SolvePlan(model, data, geo, plan, u_free, c_con, true);
+    if (!sol.solved) {
+      // Lemke found no solution (a Painlevé-type inconsistency of sliding friction): the
+      // sliding points are taken as sticking for the normal problem (docs/contact.md).
+      bool changed = false;
+      for (PointPlan& pp : plan) {
+        if (pp.mode == ContactMode::kSliding && pp.s.squaredNorm() > 0.0) {
+          pp.mode = ContactMode::kSticking, changed = true;
+        }
+      }
+      if (!changed) break;
+      continue;
+    }
+    // Points whose normal acceleration is positive leave (N = 0 there by complementarity).
+    active.clear();
+    for (size_t i = 0; i < plan.size(); ++i) {
+      if (sol.w[static_cast<Eigen::Index>(i)] <= a_tol) active.push_back(plan[i]);
+    }
+    if (active.empty()) break;
+    // Bilateral solve of the active set: least-norm forces (as the continuous stage computes).
+    sol = SolvePlan(model, data, geo, active, u_free, c_con, false);
+    // A least-norm split may pull at a redundant point: that point leaves for good.
+    Eigen::Index worst = -1;
+    double most_negative = -tol.relative * f_scale;
+    for (Eigen::Index i = 0; i < sol.N.size(); ++i) {
+      if (sol.N[i] < most_negative) most_negative = sol.N[i], worst = i;
+    }
+    if (worst >= 0) {
+      const int drop = active[static_cast<size_t>(worst)].point;
+      plan.erase(std::find_if(plan.begin(), plan.end(),
+                              [&](const PointPlan& pp) { return pp.point == drop; }));
+      active.clear();
+      continue;
+    }
+    // Friction check of the sticking points.
+    Eigen::Index e = model.num_constraint_rows();
+    double worst_excess = 0.0;
+    int worst_point = -1;
+    Vec3 worst_f = Vec3::Zero();
+    for (size_t i = 0; i < active.size(); ++i) {
+      if (active[i].mode != ContactMode::kSticking) continue;
+      const ContactPointGeometry& g = geo[static_cast<size_t>(active[i].point)];
+      const Contact& con = model.contact(model.contact_of_point(active[i].point));
+      const Vec3 f = sol.lambda_E[e] * g.t1 + sol.lambda_E[e + 1] * g.t2;
+      e += 2;
+      const double N = std::max(0.0, sol.N[static_cast<Eigen::Index>(i)]);
+      const double excess = f.norm() - con.mu_s() * N;
+      if (excess > tol.relative * std::max(f.norm(), f_scale * 1e-6) && excess > worst_excess) {
+        worst_excess = excess, worst_point = active[i].point, worst_f = f;
+      }
+    }
+    if (worst_point < 0) break;
+    for (PointPlan& pp : plan) {
+      if (pp.point != worst_point) continue;
+      pp.mode = ContactMode::kSliding;
+      pp.s = -worst_f.normalized();  // slip starts against the friction it needed
+    }
+  }
+  plan = active;
+  // Write the modes and reference directions.
+  for (int p = 0; p < np; ++p) {
+    ContactPointState& ps = state.contacts[static_cast<size_t>(p)];
+    ps.mode = ContactMode::kSeparated;
+    ps.slip_direction_W.setZero();
+    ps.rolling_direction_W.setZero();
+  }
+  for (const PointPlan& pp : plan) {
+    ContactPointState& ps = state.contacts[static_cast<size_t>(pp.point)];
+    ps.mode = pp.mode;
+    if (pp.mode == ContactMode::kSliding) ps.slip_direction_W = pp.s;
+    const ContactPointGeometry& g = geo[static_cast<size_t>(pp.point)];
+    const Contact& con = model.contact(model.contact_of_point(pp.point));
+    if (con.mu_r() > 0.0 && g.round) {
+      const Vec3 wr = g.RollingVelocity();
+      if (wr.norm() > tol.stick_speed / std::max(g.radius, 1e-300))
+        ps.rolling_direction_W = wr.normalized();
+    }
+  }
+  // Velocity projection onto the chosen rows: normal velocity zero at pressing points,
+  // tangential too at sticking ones, constraints J u = b.
+  if (!plan.empty()) {
+    const double T0 = internal::KineticEnergy(model, state);
+    std::vector<PointPlan> vplan = plan;
+    for (PointPlan& pp : vplan) pp.target_n = 0.0, pp.target_t.setZero();
+    // Sliding points keep their slip: only their normal row (no friction in this correction).
+    for (PointPlan& pp : vplan) {
+      if (pp.mode == ContactMode::kSliding) pp.s.setZero();
+    }
+    const VectorXd b_con = model.num_constraints() > 0 ? VectorXd(data.velocity_rhs) : VectorXd();
+    const PlanSolution sol = SolvePlan(model, data, geo, vplan, u, b_con, false);
+    internal::SetVelocity(model, data, sol.u_new, state);
+    const double dT = internal::KineticEnergy(model, state) - T0;
+    state.contacts[static_cast<size_t>(plan.front().point)].friction_work += dT;
+  }
+  std::vector<ContactModeChange> changes;
+  for (int p = 0; p < np; ++p) {
+    const ContactMode m = state.contacts[static_cast<size_t>(p)].mode;
+    if (m != before[static_cast<size_t>(p)])
+      changes.push_back({p, before[static_cast<size_t>(p)], m});
+  }
+  return changes;
+}
+
+namespace {
+
+ImpactResult ImpactsImpl(const Model& model, State& state, const ContactTolerances& tol,
+                         int plastic_point) {
+  ImpactResult res;
+  const int np = model.num_contact_points();
+  if (state.contacts.size() != static_cast<size_t>(np)) {
+    state.contacts.assign(static_cast<size_t>(np), ContactPointState{});
+  }
+  Data data = MakeData(model);
+  CalcKinematics(model, state, data);
+  if (model.num_constraints() > 0) CalcConstraintRows(model, state, data);
+  std::vector<ContactPointGeometry> geo(static_cast<size_t>(np));
+  bool any = false;
+  for (int p = 0; p < np; ++p) {
+    geo[static_cast<size_t>(p)] = internal::CalcContactPointGeometry(model, state, data, p);
+    const ContactPointGeometry& g = geo[static_cast<size_t>(p)];
+    if (g.gap <= tol.gap && g.v_n < -tol.resting_speed) any = true;
+  }
+  res.kinetic_energy_before = res.kinetic_energy_after = internal::KineticEnergy(model, state);
+  if (!any) return res;
+  VectorXd u;
+  internal::GetVelocity(model, state, data, u);
+  // Touching points take part: impacting ones with Newton's target v_n⁺ >= -e v_n⁻, resting
+  // ones with v_n⁺ >= 0; all start sticking (v_t⁺ = 0).
+  std::vector<PointPlan> plan;
+  for (int p = 0; p < np; ++p) {
+    const ContactPointGeometry& g = geo[static_cast<size_t>(p)];
+    if (g.gap > tol.gap || g.v_n > tol.resting_speed) continue;
+    const Contact& con = model.contact(model.contact_of_point(p));
+    PointPlan pp;
+    pp.point = p;
+    const double e = p == plastic_point ? 0.0 : con.restitution();
+    pp.target_n = g.v_n < -tol.resting_speed ? -e * g.v_n : 0.0;
+    plan.push_back(pp);
+  }
+  const VectorXd b_con = model.num_constraints() > 0 ? VectorXd(data.velocity_rhs) : VectorXd();
+  PlanSolution sol;
+  const double T0 = res.kinetic_energy_before;
+  for (int pass = 0; pass < 2 * static_cast<int>(plan.size()) + 2; ++pass) {
+    sol = SolvePlan(model, data, geo, plan, u, b_con, true);
+    // Friction check: |P_t| <= mu_s P_n at sticking points; else slide with mu_k P_n against
+    // the slip before the impact (or against the impulse it needed when there was none).
+    Eigen::Index e = model.num_constraint_rows();
+    bool changed = false;
+    for (size_t i = 0; i < plan.size(); ++i) {
+      if (plan[i].mode != ContactMode::kSticking) continue;
+      const ContactPointGeometry& g = geo[static_cast<size_t>(plan[i].point)];
+      const Contact& con = model.contact(model.contact_of_point(plan[i].point));
+      const Vec3 Pt = sol.lambda_E[e] * g.t1 + sol.lambda_E[e + 1] * g.t2;
+      e += 2;
+      const double Pn = std::max(0.0, sol.N[static_cast<Eigen::Index>(i)]);
+      if (Pt.norm() > con.mu_s() * Pn * (1.0 + tol.relative) + 1e-300) {
+        plan[i].mode = ContactMode::kSliding;
+        const double vt = g.v_t.norm();
+        plan[i].s = vt > tol.stick_speed ? Vec3(g.v_t / vt) : Vec3(-Pt.normalized());
+        changed = true;
+        break;
+      }
+    }
+    if (!changed && sol.solved) break;
+  }
+  // Energy check: Newton's law with friction can create energy in rare configurations (Kane's
+  // double pendulum); then the frictionless impulse, which never does, is used instead.
+  const auto energy_after = [&](const VectorXd& u_new) {
+    State s = state;
+    internal::SetVelocity(model, data, u_new, s);
+    return internal::KineticEnergy(model, s);
+  };
+  double T1 = energy_after(sol.u_new);
+  if (!sol.solved || T1 > T0 * (1.0 + 1e-12)) {
+    for (PointPlan& pp : plan) pp.mode = ContactMode::kSliding, pp.s.setZero();
+    sol = SolvePlan(model, data, geo, plan, u, b_con, true);
+    T1 = energy_after(sol.u_new);
+    res.frictionless_fallback = true;
+  }
+  internal::SetVelocity(model, data, sol.u_new, state);
+  res.kinetic_energy_after = internal::KineticEnergy(model, state);
+  // Impulses per point and the energy change, shared by normal impulse.
+  const double dT = res.kinetic_energy_after - res.kinetic_energy_before;
+  double Pn_sum = 0.0;
+  for (Eigen::Index i = 0; i < sol.N.size(); ++i) Pn_sum += std::max(0.0, sol.N[i]);
+  Eigen::Index e = model.num_constraint_rows();
+  for (size_t i = 0; i < plan.size(); ++i) {
+    const PointPlan& pp = plan[i];
+    const ContactPointGeometry& g = geo[static_cast<size_t>(pp.point)];
+    const Contact& con = model.contact(model.contact_of_point(pp.point));
+    const double Pn = sol.N[static_cast<Eigen::Index>(i)];
+    Vec3 P = Pn * g.n;
+    if (pp.mode == ContactMode::kSticking) {
+      P += sol.lambda_E[e] * g.t1 + sol.lambda_E[e + 1] * g.t2;
+      e += 2;
+    } else {
+      P -= con.mu_k() * Pn * pp.s;
+    }
+    if (Pn <= 0.0) continue;
+    ContactImpulse ci;
+    ci.point = pp.point;
+    ci.approach_speed = std::max(0.0, -g.v_n);
+    ci.normal_impulse = Pn;
+    ci.impulse_W = P;
+    ci.sticking = pp.mode == ContactMode::kSticking;
+    res.impulses.push_back(ci);
+    if (Pn_sum > 0.0) state.contacts[static_cast<size_t>(pp.point)].impact_work += dT * Pn / Pn_sum;
+  }
+  return res;
+}
+
+}  // namespace
+
+ImpactResult ResolveImpacts(const Model& model, State& state, const ContactTolerances& tol) {
+  return ImpactsImpl(model, state, tol, -1);
+}
+
+ImpactResult ResolvePlasticImpact(const Model& model, State& state, int point,
+                                  const ContactTolerances& tol) {
+  return ImpactsImpl(model, state, tol, point);
+}
+
+}  // namespace chasles

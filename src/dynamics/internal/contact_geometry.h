@@ -1,0 +1,74 @@
+#pragma once
+/// @file
+/// Geometry and kinematics of one contact point at one state, shared by the contact stage,
+/// mode selection, impacts and the event functions of the hybrid run.
+
+#include <Eigen/Core>
+
+#include "chasles/model/data.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+
+namespace chasles::internal {
+
+/// A row of a column-major matrix (strided) or a row vector.
+using RowRef = Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>>;
+
+struct ContactPointGeometry {
+  /// The body carrying the feature, and the other body (kWorld for a plane).
+  BodyIndex body = kWorld, other = kWorld;
+  /// Feature radius [m] and whether it is round (sphere, rim).
+  double radius = 0.0;
+  bool round = false;
+  /// Gap [m], contact point on the body in W [m].
+  double gap = 0.0;
+  Vec3 p_WC = Vec3::Zero();
+  /// Normal (towards the body) and tangents, in W.
+  Vec3 n = Vec3::UnitZ(), t1 = Vec3::UnitX(), t2 = Vec3::UnitY();
+  /// Rate of the normal (sphere-sphere only) [1/s].
+  Vec3 n_dot = Vec3::Zero();
+  /// Offsets from each body's centre of mass to the contact point, in W [m].
+  Vec3 r = Vec3::Zero(), r_other = Vec3::Zero();
+  /// Relative velocity of the material points at C (body minus other), in W [m/s]; its normal
+  /// and tangential parts.
+  Vec3 v_rel = Vec3::Zero();
+  double v_n = 0.0;
+  Vec3 v_t = Vec3::Zero();
+  /// Relative angular velocity (body minus other), in W [rad/s].
+  Vec3 w_rel = Vec3::Zero();
+  /// w × ṙ of each side (the velocity-product terms of the rows) [m/s²].
+  Vec3 w_x_rdot = Vec3::Zero(), w_x_rdot_other = Vec3::Zero();
+
+  /// Acceleration right-hand side c_k of the row k·v_rel (k = n, t1 or t2).
+  double AccelerationBias(const Vec3& k) const;
+  /// Adds the Jacobian row of k·v_rel to `row` (6 columns per body).
+  void SetRow(const Vec3& k, RowRef row) const;
+  /// Adds the generalised force of a moment M on the body (-M on the other) to `row`.
+  void AddMoment(const Vec3& M, RowRef row) const;
+  /// Unit slip direction, sign relative to the reference `s_ref` (see ContactPointState).
+  Vec3 SlipDirection(const Vec3& s_ref) const;
+  /// Rolling angular velocity: the relative angular velocity's part along the plane.
+  Vec3 RollingVelocity() const;
+  /// Unit rolling direction, sign relative to `r_ref`; zero when r_ref is zero.
+  Vec3 RollingDirection(const Vec3& r_ref) const;
+};
+
+/// Needs the kinematics stage (Data::R_WB, Data::w_WB_W).
+ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& state,
+                                              const Data& data, int point);
+
+/// Y = X M⁻¹ for 6 columns per body.
+void TimesMassInverse(const Model& model, const Data& data, const Eigen::MatrixXd& X,
+                      Eigen::MatrixXd& Y);
+/// Generalised velocity u = [v_WBcm_W; w_WB_W] per body.
+void GetVelocity(const Model& model, const State& state, const Data& data, Eigen::VectorXd& u);
+/// Writes u back into the state (angular velocity re-expressed in B).
+void SetVelocity(const Model& model, const Data& data, const Eigen::VectorXd& u, State& state);
+/// Total kinetic energy [J].
+double KineticEnergy(const Model& model, const State& state);
+/// A x = r: LDLᵀ (symmetric) or LU, least-norm by complete orthogonal decomposition when
+/// singular.
+void SolveSquare(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, bool symmetric,
+                 ContactWorkspace& ws, Eigen::VectorXd& x);
+
+}  // namespace chasles::internal

@@ -1,0 +1,356 @@
+#include "integrate/internal/hybrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/contact_solve.h"
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/error.h"
+
+namespace chasles::internal {
+namespace {
+
+// One scalar event function of one contact point in its current mode; each falls through
+// zero at its transition (docs/contact.md, "Events").
+enum class Fn { kGap, kNormalForce, kSlip, kFrictionMargin, kRolling };
+
+struct ContactFn {
+  int point;
+  Fn fn;
+  ContactEventReason reason;
+};
+
+std::vector<ContactFn> EventFunctions(const Model& model, const State& s) {
+  std::vector<ContactFn> fns;
+  for (int p = 0; p < model.num_contact_points(); ++p) {
+    const ContactPointState& ps = s.contacts[static_cast<size_t>(p)];
+    switch (ps.mode) {
+      case ContactMode::kSeparated:
+        fns.push_back({p, Fn::kGap, ContactEventReason::kTouchDown});
+        break;
+      case ContactMode::kSliding:
+        fns.push_back({p, Fn::kNormalForce, ContactEventReason::kLiftOff});
+        fns.push_back({p, Fn::kSlip, ContactEventReason::kSlipStopped});
+        break;
+      case ContactMode::kSticking:
+        fns.push_back({p, Fn::kNormalForce, ContactEventReason::kLiftOff});
+        fns.push_back({p, Fn::kFrictionMargin, ContactEventReason::kFrictionLimit});
+        if (ps.rolling_direction_W.squaredNorm() > 0.0) {
+          fns.push_back({p, Fn::kRolling, ContactEventReason::kRollingStopped});
+        }
+        break;
+    }
+  }
+  return fns;
+}
+
+// Values of the event functions at `s` (evaluates the contact forces in s's modes).
+void EvalFunctions(const Model& model, const State& s, const std::vector<ContactFn>& fns,
+                   Data& data, std::vector<double>& g) {
+  CalcAccelerations(model, s, data);
+  g.resize(fns.size());
+  for (size_t i = 0; i < fns.size(); ++i) {
+    const ContactFn& f = fns[i];
+    const ContactPointOutput& out = data.contact_points[static_cast<size_t>(f.point)];
+    const ContactPointState& ps = s.contacts[static_cast<size_t>(f.point)];
+    const Contact& con = model.contact(model.contact_of_point(f.point));
+    switch (f.fn) {
+      case Fn::kGap:
+        g[i] = out.gap;
+        break;
+      case Fn::kNormalForce:
+        g[i] = out.normal_force;
+        break;
+      case Fn::kSlip:
+        // Slip along the mode's reference direction: falls through zero when the slip stops
+        // (or has turned by more than 90°, which re-selection then takes as the new
+        // direction).
+        g[i] = out.slip_velocity_W.dot(ps.slip_direction_W);
+        break;
+      case Fn::kFrictionMargin:
+        g[i] = con.mu_s() * out.normal_force - out.friction_force_W.norm();
+        break;
+      case Fn::kRolling: {
+        const Vec3 w_rel = [&] {
+          const auto b = static_cast<size_t>(con.body());
+          Vec3 w = data.w_WB_W[b];
+          if (con.other_body() != kWorld) w -= data.w_WB_W[static_cast<size_t>(con.other_body())];
+          return w;
+        }();
+        g[i] = (w_rel - w_rel.dot(out.n_W) * out.n_W).dot(ps.rolling_direction_W);
+        break;
+      }
+    }
+  }
+}
+
+// Illinois regula falsi on the dense output (as Simulate's event location): keeps a bracket
+// and returns the first time at or after the crossing, within `tol`.
+double LocateRoot(const std::function<double(double)>& g, double a, double ga, double b, double gb,
+                  double tol) {
+  int side = 0;
+  for (int iter = 0; iter < 200 && b - a > tol; ++iter) {
+    double c = (a * gb - b * ga) / (gb - ga);
+    c = std::clamp(c, a + 0.5 * tol, b - 0.5 * tol);
+    const double gc = g(c);
+    if (gc == 0.0) return c;
+    if ((gc > 0.0) == (gb > 0.0)) {
+      b = c, gb = gc;
+      if (side == -1) ga *= 0.5;
+      side = -1;
+    } else {
+      a = c, ga = gc;
+      if (side == 1) gb *= 0.5;
+      side = 1;
+    }
+  }
+  return b;
+}
+
+bool Crosses(EventDirection d, double g0, double g1) {
+  const bool rising = g0 < 0.0 && g1 >= 0.0;
+  const bool falling = g0 > 0.0 && g1 <= 0.0;
+  switch (d) {
+    case EventDirection::kRising:
+      return rising;
+    case EventDirection::kFalling:
+      return falling;
+    default:
+      return rising || falling;
+  }
+}
+
+// Bounce history of one point for the accumulation (Zeno) test.
+struct BounceHistory {
+  double t[2] = {0.0, 0.0};  // times of the last two impacts (t[1] the latest)
+  double v[2] = {0.0, 0.0};  // their approach speeds
+  int count = 0;             // impacts since the point last rested
+};
+
+class HybridRun {
+ public:
+  HybridRun(const Model& model, const SimulationOptions& o)
+      : model_(model),
+        o_(o),
+        tol_(o.contact.tolerances),
+        data_(MakeData(model)),
+        bounces_(static_cast<size_t>(model.num_contact_points())) {}
+
+  SimulationResult Run(const State& initial) {
+    State s = initial;
+    if (s.contacts.size() != static_cast<size_t>(model_.num_contact_points())) {
+      s.contacts.assign(static_cast<size_t>(model_.num_contact_points()), ContactPointState{});
+    }
+    if (model_.num_constraints() > 0) ProjectOntoConstraints(model_, s, data_);
+    // Initial modes: impacts of points that start touching and approaching, then selection.
+    Transition(s, -1, ContactEventReason::kInitial);
+    for (int p = 0; p < model_.num_contact_points(); ++p) {
+      r_.contact_events.insert(
+          r_.contact_events.begin() + p,
+          {s.t, p, ContactMode::kSeparated, s.contacts[static_cast<size_t>(p)].mode,
+           ContactEventReason::kInitial});
+    }
+    // Keep only the kInitial records for the first instant (the Transition's own are the same
+    // changes).
+    r_.contact_events.resize(static_cast<size_t>(model_.num_contact_points()));
+    t0_ = s.t;
+    Emit(s);
+    DormandPrince5Integrator dp(model_, o_.adaptive);
+    const size_t ne = o_.events.size();
+    std::vector<double> ug_prev(ne), ug_new(ne);
+    for (size_t e = 0; e < ne; ++e) ug_prev[e] = o_.events[e].g(s.t, s);
+    State scratch = s;
+    while (s.t < o_.t_end) {
+      dp.Initialize(s);
+      const std::vector<ContactFn> fns = EventFunctions(model_, s);
+      std::vector<double> g0, g1;
+      EvalFunctions(model_, dp.state(), fns, data_, g0);
+      bool restart = false;
+      while (dp.t() < o_.t_end && !restart) {
+        dp.Step(o_.t_end);
+        const double ta = dp.t_previous(), tb = dp.t();
+        EvalFunctions(model_, dp.state(), fns, data_, g1);
+        // Earliest contact event in the step.
+        double t_c = std::numeric_limits<double>::infinity();
+        int which = -1;
+        for (size_t i = 0; i < fns.size(); ++i) {
+          if (!Crosses(EventDirection::kFalling, g0[i], g1[i])) continue;
+          std::vector<double> gv;
+          auto g = [&](double t) {
+            dp.Interpolate(t, scratch);
+            EvalFunctions(model_, scratch, {fns[i]}, data_, gv);
+            return gv[0];
+          };
+          const double t = LocateRoot(g, ta, g0[i], tb, g1[i], o_.event_time_tolerance);
+          if (t < t_c) t_c = t, which = static_cast<int>(i);
+        }
+        // User events up to the contact event.
+        double t_stop = std::numeric_limits<double>::infinity();
+        for (size_t e = 0; e < ne; ++e) {
+          ug_new[e] = o_.events[e].g(tb, dp.state());
+          if (!Crosses(o_.events[e].direction, ug_prev[e], ug_new[e])) continue;
+          auto g = [&](double t) {
+            dp.Interpolate(t, scratch);
+            return o_.events[e].g(t, scratch);
+          };
+          const double t = LocateRoot(g, ta, ug_prev[e], tb, ug_new[e], o_.event_time_tolerance);
+          if (t > t_c) continue;
+          EventRecord rec;
+          rec.event = static_cast<int>(e);
+          rec.name = o_.events[e].name;
+          rec.t = t;
+          dp.Interpolate(t, rec.state);
+          r_.events.push_back(std::move(rec));
+          if (o_.events[e].action == EventAction::kStop) t_stop = std::min(t_stop, t);
+        }
+        std::sort(r_.events.begin(), r_.events.end(),
+                  [](const EventRecord& a, const EventRecord& b) { return a.t < b.t; });
+        const double t_out_end = std::min({tb, t_c, t_stop});
+        EmitUpTo(dp, t_out_end, scratch);
+        if (std::isfinite(t_stop)) {
+          // Drop records after the stop.
+          while (!r_.events.empty() && r_.events.back().t > t_stop) r_.events.pop_back();
+          r_.final_state = r_.events.back().state;
+          r_.stopped_by_event = true;
+          Emit(r_.final_state);
+          AddStats(dp);
+          return std::move(r_);
+        }
+        if (which >= 0) {
+          dp.Interpolate(t_c, s);
+          s.t = t_c;
+          Transition(s, fns[static_cast<size_t>(which)].point,
+                     fns[static_cast<size_t>(which)].reason);
+          for (size_t e = 0; e < ne; ++e) ug_prev[e] = o_.events[e].g(s.t, s);
+          restart = true;
+          if (++switches_ > o_.contact.max_mode_switches) {
+            throw InputError(fmt::format(
+                "contacts switched mode more than {} times (at t = {:.9g} s, point '{}'); the "
+                "motion chatters: check the friction coefficients and the tolerances, or raise "
+                "max_mode_switches",
+                o_.contact.max_mode_switches, s.t,
+                model_.contact_point_name(fns[static_cast<size_t>(which)].point)));
+          }
+        } else {
+          g0 = g1;
+          ug_prev = ug_new;
+          s = dp.state();
+        }
+      }
+      AddStats(dp);
+    }
+    r_.final_state = s;
+    Emit(s);
+    return std::move(r_);
+  }
+
+ private:
+  void Emit(const State& s) {
+    if (o_.on_sample) o_.on_sample(s);
+    if (o_.store_samples) r_.samples.push_back(s);
+  }
+
+  void EmitUpTo(DormandPrince5Integrator& dp, double t_end, State& scratch) {
+    if (!(o_.output_interval > 0.0)) return;
+    while (true) {
+      const double t = t0_ + static_cast<double>(k_) * o_.output_interval;
+      if (t > t_end || t >= o_.t_end) break;
+      dp.Interpolate(t, scratch);
+      Emit(scratch);
+      ++k_;
+    }
+  }
+
+  void AddStats(const DormandPrince5Integrator& dp) {
+    const IntegratorStats& st = dp.stats();
+    r_.stats.steps += st.steps - last_.steps;
+    r_.stats.rejected_steps += st.rejected_steps - last_.rejected_steps;
+    r_.stats.function_evaluations += st.function_evaluations - last_.function_evaluations;
+    last_ = st;
+  }
+
+  // Impacts, the accumulation test, mode selection and the records, at `s`.
+  void Transition(State& s, int trigger, ContactEventReason reason) {
+    std::vector<ContactMode> before(s.contacts.size());
+    for (size_t p = 0; p < s.contacts.size(); ++p) before[p] = s.contacts[p].mode;
+    // Approach speeds before the impulses, for the accumulation test.
+    const std::vector<ContactPointOutput> pre = CalcContactOutputs(model_, s);
+    int plastic = -1;
+    double accumulation_time = std::numeric_limits<double>::quiet_NaN();
+    if (reason == ContactEventReason::kTouchDown && o_.contact.accumulate_bounces) {
+      const auto p = static_cast<size_t>(trigger);
+      const Contact& con = model_.contact(model_.contact_of_point(trigger));
+      const double e = con.restitution();
+      const double v = -pre[p].normal_velocity;
+      BounceHistory& h = bounces_[p];
+      if (h.count >= 2 && e > 0.0 && e < 1.0 && v > 0.0) {
+        // Successive approach speeds v_i/v_{i-1} = e and flight times τ_i/τ_{i-1} = e, as
+        // ballistic flights between bounces give; the remaining flights sum to τ_i e/(1-e).
+        const double rtol = o_.contact.accumulation_ratio_tolerance;
+        const double r1 = v / h.v[1], r2 = h.v[1] / h.v[0];
+        const double tau1 = s.t - h.t[1], tau0 = h.t[1] - h.t[0];
+        if (std::abs(r1 - e) <= rtol * e && std::abs(r2 - e) <= rtol * e &&
+            std::abs(tau1 / tau0 - e) <= rtol * e + 2.0 * o_.event_time_tolerance / tau0) {
+          plastic = trigger;
+          accumulation_time = s.t + tau1 * e / (1.0 - e);
+        }
+      }
+      h.t[0] = h.t[1], h.v[0] = h.v[1];
+      h.t[1] = s.t, h.v[1] = v;
+      ++h.count;
+    }
+    const ImpactResult ir = plastic >= 0 ? ResolvePlasticImpact(model_, s, plastic, tol_)
+                                         : ResolveImpacts(model_, s, tol_);
+    const double lost = ir.kinetic_energy_before - ir.kinetic_energy_after;
+    double pn_sum = 0.0;
+    for (const ContactImpulse& ci : ir.impulses) pn_sum += ci.normal_impulse;
+    for (const ContactImpulse& ci : ir.impulses) {
+      ImpactRecord rec;
+      rec.t = s.t;
+      rec.point = ci.point;
+      rec.approach_speed = ci.approach_speed;
+      rec.normal_impulse = ci.normal_impulse;
+      rec.impulse_W = ci.impulse_W;
+      rec.energy_lost = pn_sum > 0.0 ? lost * ci.normal_impulse / pn_sum : 0.0;
+      rec.accumulation = ci.point == plastic;
+      if (rec.accumulation) rec.accumulation_time = accumulation_time;
+      r_.impacts.push_back(rec);
+    }
+    SelectContactModes(model_, s, tol_);
+    for (size_t p = 0; p < s.contacts.size(); ++p) {
+      const ContactMode to = s.contacts[p].mode;
+      if (to != ContactMode::kSeparated) bounces_[p].count = 0;  // resting: a new sequence later
+      // The triggering point is recorded even when its mode stays (a bounce, rolling that
+      // stopped, slip that turned); the others only when their mode changes.
+      if (to == before[p] && static_cast<int>(p) != trigger) continue;
+      ContactEventReason why = static_cast<int>(p) == trigger ? reason : ContactEventReason::kOther;
+      if (static_cast<int>(p) == plastic) why = ContactEventReason::kAccumulation;
+      r_.contact_events.push_back({s.t, static_cast<int>(p), before[p], to, why});
+    }
+  }
+
+  const Model& model_;
+  const SimulationOptions& o_;
+  const ContactTolerances tol_;
+  Data data_;
+  std::vector<BounceHistory> bounces_;
+  SimulationResult r_;
+  IntegratorStats last_;
+  double t0_ = 0.0;
+  long long k_ = 1;
+  int switches_ = 0;
+};
+
+}  // namespace
+
+SimulationResult RunHybrid(const Model& model, const State& initial, const SimulationOptions& o) {
+  HybridRun run(model, o);
+  return run.Run(initial);
+}
+
+}  // namespace chasles::internal
