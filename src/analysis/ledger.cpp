@@ -53,6 +53,28 @@ LedgerSample CalcLedgerSample(const Model& model, const State& s, const State& s
     abs_work += std::abs(cl.work);
   }
   L.work_nonconservative += L.constraint_work;
+  // Contacts: sliding friction, rolling resistance and impacts only take energy out; a state
+  // without contact entries (a model without contacts) reads as zeros.
+  L.contacts.resize(static_cast<size_t>(model.num_contact_points()));
+  for (int p = 0; p < model.num_contact_points(); ++p) {
+    const auto i = static_cast<size_t>(p);
+    ContactLedger& cl = L.contacts[i];
+    cl.name = model.contact_point_name(p);
+    const ContactPointState none{};
+    const ContactPointState& a = i < s.contacts.size() ? s.contacts[i] : none;
+    const ContactPointState& a0 = i < s0.contacts.size() ? s0.contacts[i] : none;
+    cl.friction_work = a.friction_work - a0.friction_work;
+    cl.rolling_work = a.rolling_work - a0.rolling_work;
+    cl.impact_work = a.impact_work - a0.impact_work;
+    L.contact_friction_work += cl.friction_work;
+    L.contact_rolling_work += cl.rolling_work;
+    L.contact_impact_work += cl.impact_work;
+  }
+  const double contact_work =
+      L.contact_friction_work + L.contact_rolling_work + L.contact_impact_work;
+  L.work_nonconservative += contact_work;
+  L.dissipated -= contact_work;
+  abs_work += std::abs(contact_work);
   L.mechanical_energy = L.kinetic_translational + L.kinetic_rotational + L.potential;
   L.energy_residual = (L.mechanical_energy - (T0 + V0)) - L.work_nonconservative;
   L.energy_scale =

@@ -1,6 +1,7 @@
 #include "chasles/dynamics/newton_euler.h"
 
 #include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/contact_solve.h"
 
 namespace chasles {
 
@@ -46,8 +47,13 @@ void CalcAccelerations(const Model& model, const State& state, Data& data) {
     data.wdot_WB_B[i] = CalcEulerAngularAcceleration(body.I_BBcm_B(), body.I_BBcm_B_inverse(),
                                                      state.bodies[i].w_WB_B, M_B);
   }
-  // One branch: unconstrained models pay nothing for the constraint stage.
-  if (model.num_constraints() > 0) SolveConstraintForces(model, state, data);
+  // One branch: unconstrained models pay nothing for the constraint stage. The contact stage
+  // solves constraints and active contact rows together.
+  if (model.num_contacts() > 0) {
+    SolveContactForces(model, state, data);
+  } else if (model.num_constraints() > 0) {
+    SolveConstraintForces(model, state, data);
+  }
 }
 
 }  // namespace chasles

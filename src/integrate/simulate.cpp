@@ -10,6 +10,7 @@
 #include "chasles/error.h"
 #include "chasles/integrate/energy_momentum.h"
 #include "chasles/integrate/rk4.h"
+#include "integrate/internal/hybrid.h"
 
 namespace chasles {
 namespace {
@@ -198,9 +199,53 @@ SimulationResult RunFixed(const Model& model, const State& initial, const Simula
 
 }  // namespace
 
+const char* ContactEventReasonName(ContactEventReason reason) {
+  switch (reason) {
+    case ContactEventReason::kInitial:
+      return "initial";
+    case ContactEventReason::kTouchDown:
+      return "touch-down";
+    case ContactEventReason::kLiftOff:
+      return "lift-off";
+    case ContactEventReason::kSlipStopped:
+      return "slip stopped";
+    case ContactEventReason::kFrictionLimit:
+      return "friction limit";
+    case ContactEventReason::kRollingStopped:
+      return "rolling stopped";
+    case ContactEventReason::kAccumulation:
+      return "bounces accumulated";
+    case ContactEventReason::kOther:
+      return "re-selection";
+  }
+  return "unknown";
+}
+
+std::vector<ContactModeInterval> CalcModeTimeline(const SimulationResult& result, int point) {
+  std::vector<ContactModeInterval> out;
+  const double t_first = result.samples.empty() ? result.final_state.t : result.samples.front().t;
+  for (const ContactEvent& e : result.contact_events) {
+    if (e.point != point) continue;
+    if (!out.empty()) {
+      if (out.back().mode == e.to) continue;  // a re-selection that kept the mode
+      out.back().t_end = e.t;
+    }
+    out.push_back({out.empty() ? t_first : e.t, result.final_state.t, e.to, e.reason});
+  }
+  return out;
+}
+
 SimulationResult Simulate(const Model& model, const State& initial,
                           const SimulationOptions& options) {
   Validate(model, initial, options);
+  if (model.num_contacts() > 0) {
+    if (options.integrator != IntegratorKind::kDormandPrince5) {
+      throw InputError(
+          "contacts switch modes at events located on the adaptive integrator's dense output; "
+          "choose the Dormand-Prince integrator for a model with contacts");
+    }
+    return internal::RunHybrid(model, initial, options);
+  }
   // A constrained model starts on its constraints: the initial state is projected (positions,
   // then velocities), so the first sample is the state actually integrated.
   State start = initial;

@@ -30,6 +30,7 @@ Data MakeData(const Model& model) {
   d.u_dot = Eigen::VectorXd::Zero(6 * model.num_bodies());
   d.Ju = Eigen::VectorXd::Zero(rows);
   d.schur_rhs = Eigen::VectorXd::Zero(rows);
+  d.contact_points.assign(static_cast<size_t>(model.num_contact_points()), ContactPointOutput{});
   return d;
 }
 

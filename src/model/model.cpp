@@ -96,4 +96,34 @@ int Model::FindForceElement(std::string_view name) const {
                                known.empty() ? "(none)" : known));
 }
 
+int Model::AddContact(const ContactSpec& spec) {
+  for (const Contact& c : contacts_) {
+    if (c.name() == spec.name) {
+      throw InputError(
+          fmt::format("contact '{}' is defined twice; give each contact its own name", spec.name));
+    }
+  }
+  contacts_.emplace_back(*this, spec);
+  contact_offsets_.push_back(num_contact_points_);
+  const int n = contacts_.back().num_points();
+  for (int k = 0; k < n; ++k) point_owner_.push_back(num_contacts() - 1);
+  num_contact_points_ += n;
+  return num_contacts() - 1;
+}
+
+std::string Model::contact_point_name(int p) const {
+  const int c = contact_of_point(p);
+  return contact(c).point_name(p - contact_point_offset(c));
+}
+
+int Model::FindContact(std::string_view name) const {
+  std::string known;
+  for (int i = 0; i < num_contacts(); ++i) {
+    if (contact(i).name() == name) return i;
+    known += (i ? ", " : "") + contact(i).name();
+  }
+  throw InputError(fmt::format("no contact named '{}'; the contacts are: {}", name,
+                               known.empty() ? "(none)" : known));
+}
+
 }  // namespace chasles

@@ -20,6 +20,7 @@ State MakeRestState(const Model& model) {
   s.bodies.assign(static_cast<size_t>(model.num_bodies()), rest);
   s.force_integrals.assign(static_cast<size_t>(model.num_force_elements()), ForceIntegrals{});
   s.constraint_work.assign(static_cast<size_t>(model.num_constraints()), 0.0);
+  s.contacts.assign(static_cast<size_t>(model.num_contact_points()), ContactPointState{});
   return s;
 }
 
@@ -60,6 +61,13 @@ void ValidateState(const Model& model, const State& state) {
         "MakeRestState(model)",
         state.bodies.size(), state.force_integrals.size(), state.constraint_work.size(),
         model.num_bodies(), model.num_force_elements(), model.num_constraints()));
+  }
+  if (!state.contacts.empty() &&
+      state.contacts.size() != static_cast<size_t>(model.num_contact_points())) {
+    throw InputError(fmt::format(
+        "state has {} contact point entries but the model has {} contact points; make the "
+        "state with MakeRestState(model) or leave its contacts empty",
+        state.contacts.size(), model.num_contact_points()));
   }
   if (!std::isfinite(state.t)) throw InputError("state time is not a finite number");
   for (int b = 0; b < model.num_bodies(); ++b) {

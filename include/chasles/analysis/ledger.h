@@ -43,6 +43,17 @@ struct ConstraintLedger {
   double work = 0.0;
 };
 
+struct ContactLedger {
+  /// Name of the contact point.
+  std::string name;
+  /// Work of sliding friction since the initial state [J] (<= 0).
+  double friction_work = 0.0;
+  /// Work of the rolling-resistance moment since the initial state [J] (<= 0).
+  double rolling_work = 0.0;
+  /// Kinetic-energy change at impacts since the initial state [J] (<= 0).
+  double impact_work = 0.0;
+};
+
 struct LedgerSample {
   /// Time [s].
   double t = 0.0;
@@ -79,6 +90,15 @@ struct LedgerSample {
   double constraint_work = 0.0;
   /// Per constraint, in Model order.
   std::vector<ConstraintLedger> constraints;
+  /// Work of sliding friction at all contacts since the initial state [J] (<= 0; part of
+  /// work_nonconservative, and its negative part of dissipated).
+  double contact_friction_work = 0.0;
+  /// Work of rolling resistance at all contacts [J] (<= 0; likewise).
+  double contact_rolling_work = 0.0;
+  /// Kinetic energy lost in impacts, as work [J] (<= 0; likewise).
+  double contact_impact_work = 0.0;
+  /// Per contact point, in Model order.
+  std::vector<ContactLedger> contacts;
 };
 
 /// The ledger at `state` relative to `initial` (the run's first state; its force integrals

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "chasles/dynamics/contact_solve.h"
 #include "chasles/integrate/dormand_prince.h"
 #include "chasles/integrate/stats.h"
 #include "chasles/model/model.h"
@@ -50,6 +51,71 @@ struct EventRecord {
   State state;
 };
 
+/// Why a contact point changed mode.
+enum class ContactEventReason {
+  kInitial,         ///< mode chosen at the start of the run
+  kTouchDown,       ///< gap reached zero (an impact or a gentle landing)
+  kLiftOff,         ///< normal force reached zero
+  kSlipStopped,     ///< slip speed reached zero (then stick, or slide the other way)
+  kFrictionLimit,   ///< sticking needed more friction than mu_s N
+  kRollingStopped,  ///< rolling angular velocity reached zero (rolling resistance)
+  kAccumulation,    ///< bounces shrinking geometrically summed to rest (Zeno limit)
+  kOther,           ///< re-selection after another point's event changed the forces
+};
+
+/// Name of a reason ("touch-down", "lift-off", ...).
+const char* ContactEventReasonName(ContactEventReason reason);
+
+/// One mode change of one contact point.
+struct ContactEvent {
+  /// Time [s] (located to event_time_tolerance).
+  double t = 0.0;
+  /// Contact point index (Model::contact_point_name gives its name).
+  int point = -1;
+  ContactMode from = ContactMode::kSeparated;
+  ContactMode to = ContactMode::kSeparated;
+  ContactEventReason reason = ContactEventReason::kOther;
+};
+
+/// One impact (or accumulated bounce sequence) at one contact point.
+struct ImpactRecord {
+  /// Time [s].
+  double t = 0.0;
+  /// Contact point index.
+  int point = -1;
+  /// Normal approach speed before [m/s] (> 0).
+  double approach_speed = 0.0;
+  /// Normal impulse [N·s].
+  double normal_impulse = 0.0;
+  /// Total impulse on the body, in W [N·s].
+  Vec3 impulse_W = Vec3::Zero();
+  /// Kinetic energy lost by the whole system in this impact [J] (>= 0).
+  double energy_lost = 0.0;
+  /// True for the jump to the accumulation time of a geometric bounce sequence.
+  bool accumulation = false;
+};
+
+/// An interval of constant mode of one contact point.
+struct ContactModeInterval {
+  double t_begin = 0.0, t_end = 0.0;  ///< [s]
+  ContactMode mode = ContactMode::kSeparated;
+  /// Why the interval began.
+  ContactEventReason reason = ContactEventReason::kInitial;
+};
+
+/// Settings of contact handling in Simulate (models with contacts; Dormand-Prince only).
+struct ContactOptions {
+  /// Tolerances of mode selection and impacts.
+  ContactTolerances tolerances;
+  /// Sum a bounce sequence whose approach speeds shrink by the restitution coefficient to
+  /// its accumulation time (t_flight e / (1 - e)) instead of integrating every bounce.
+  bool accumulate_bounces = true;
+  /// Relative agreement of two successive bounce ratios with e needed to accumulate.
+  double accumulation_ratio_tolerance = 1e-6;
+  /// The run stops with an InputError after this many mode switches (chattering guard).
+  int max_mode_switches = 100000;
+};
+
 struct SimulationOptions {
   IntegratorKind integrator = IntegratorKind::kDormandPrince5;
   /// End time [s] (> initial t).
@@ -68,6 +134,8 @@ struct SimulationOptions {
   bool store_samples = true;
   /// Called with every output sample, in time order (optional).
   std::function<void(const State&)> on_sample;
+  /// Contact handling (models with contacts).
+  ContactOptions contact;
 };
 
 struct SimulationResult {
@@ -80,12 +148,22 @@ struct SimulationResult {
   /// True when a kStop event ended the run.
   bool stopped_by_event = false;
   IntegratorStats stats;
+  /// Contact mode changes in time order, with the initial modes (reason kInitial) first.
+  std::vector<ContactEvent> contact_events;
+  /// Impacts in time order.
+  std::vector<ImpactRecord> impacts;
 };
 
+/// The mode timeline of contact point `point` from a run's contact events, from the first
+/// sample's time to the final state's.
+std::vector<ContactModeInterval> CalcModeTimeline(const SimulationResult& result, int point);
+
 /// Runs the simulation. Throws InputError for an invalid initial state or options (the message
-/// names the option and the fix). For a model with constraints the initial state is first
-/// projected onto them (ProjectOntoConstraints), and so are the output samples and event
-/// states taken from the dense output.
+/// names the option and the fix). A model with contacts runs as a hybrid system (adaptive
+/// integrator only): the contact modes switch at events located on the dense output, with
+/// impacts at touch-down, and the integrator restarts after each switch (docs/contact.md). For a
+/// model with constraints the initial state is first projected onto them (ProjectOntoConstraints),
+/// and so are the output samples and event states taken from the dense output.
 SimulationResult Simulate(const Model& model, const State& initial,
                           const SimulationOptions& options);
 

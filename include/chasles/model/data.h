@@ -6,9 +6,12 @@
 #include <vector>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/QR>
 
 #include "chasles/math/types.h"
 #include "chasles/model/constraint.h"
+#include "chasles/model/contact.h"
 
 namespace chasles {
 
@@ -59,6 +62,51 @@ struct SchurFactorization {
   SchurFactorization& operator=(const SchurFactorization&) { return *this; }
 };
 
+/// What one contact point does at the evaluated state (filled by the contact stage of
+/// CalcAccelerations for models with contacts, in the modes the State carries).
+struct ContactPointOutput {
+  /// Mode the point was evaluated in.
+  ContactMode mode = ContactMode::kSeparated;
+  /// Gap between the shape and the plane (or the other sphere) [m] (< 0: penetration).
+  double gap = 0.0;
+  /// Contact point on the body, in W [m].
+  Vec3 p_WC = Vec3::Zero();
+  /// Contact normal (from the plane or other sphere towards the body), in W.
+  Vec3 n_W = Vec3::UnitZ();
+  /// Normal force on the body, N >= 0 in a consistent mode [N].
+  double normal_force = 0.0;
+  /// Friction force on the body (tangential), in W [N].
+  Vec3 friction_force_W = Vec3::Zero();
+  /// Normal velocity of the body's material point at C relative to the plane (other body)
+  /// [m/s] (< 0 approaching).
+  double normal_velocity = 0.0;
+  /// Tangential (slip) velocity of the body's material point at C relative to the plane
+  /// (other body), in W [m/s].
+  Vec3 slip_velocity_W = Vec3::Zero();
+  /// Rolling-resistance moment on the body, in W [N·m].
+  Vec3 rolling_moment_W = Vec3::Zero();
+  /// Power of sliding friction, f·v_slip [W] (<= 0).
+  double friction_power = 0.0;
+  /// Power of the rolling-resistance moment [W] (<= 0).
+  double rolling_power = 0.0;
+  /// |f| / N of a sticking point (compare with mu_s); 0 otherwise.
+  double friction_needed = 0.0;
+};
+
+/// Workspace of the contact stage: the stacked active rows of constraints and contacts, the
+/// force directions W (equal to J except for sliding rows, where W = J_n - mu_k J_s), and the
+/// factorisations. Copies start empty (see SchurFactorization); each solve refactorises.
+struct ContactWorkspace {
+  /// Active rows J, their force directions W, right-hand sides c, multipliers λ.
+  Eigen::MatrixXd J, W, WMinv, A;
+  Eigen::VectorXd c, rhs, lambda;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  ContactWorkspace() = default;
+  ContactWorkspace(const ContactWorkspace&) {}
+  ContactWorkspace& operator=(const ContactWorkspace&) { return *this; }
+};
+
 struct Data {
   // --- Position and velocity stage: CalcKinematics(model, state, data) ---
   /// Rotation matrix of each body, R_WB (from the normalised quaternion).
@@ -101,6 +149,13 @@ struct Data {
   Eigen::MatrixXd JMinv, schur;
   SchurFactorization schur_ldlt;
   Eigen::VectorXd u, u_dot, Ju, schur_rhs;
+
+  // --- Contact stage: CalcAccelerations for models with contacts (includes the constraint
+  //     stage: constraints and active contact rows are solved together) ---
+  /// Per contact point (Model::num_contact_points()): forces, velocities, gap.
+  std::vector<ContactPointOutput> contact_points;
+  /// Workspace of the contact stage.
+  ContactWorkspace contact_work;
 };
 
 /// A Data sized for `model`.

@@ -11,6 +11,7 @@
 
 #include "chasles/model/body.h"
 #include "chasles/model/constraint.h"
+#include "chasles/model/contact.h"
 #include "chasles/model/force_element.h"
 
 namespace chasles {
@@ -49,6 +50,23 @@ class Model {
   BodyIndex FindBody(std::string_view name) const;
   /// Index of the force element called `name`; InputError otherwise.
   int FindForceElement(std::string_view name) const;
+  /// Adds a unilateral contact (see contact.h); returns its index. Throws InputError for a
+  /// duplicate name or an invalid spec (see Contact).
+  int AddContact(const ContactSpec& spec);
+  /// Number of contacts.
+  int num_contacts() const { return static_cast<int>(contacts_.size()); }
+  /// Contact `i`.
+  const Contact& contact(int i) const { return contacts_[static_cast<size_t>(i)]; }
+  /// Total number of contact points over all contacts (State::contacts has one entry each).
+  int num_contact_points() const { return num_contact_points_; }
+  /// Index of contact `i`'s first point among all contact points.
+  int contact_point_offset(int i) const { return contact_offsets_[static_cast<size_t>(i)]; }
+  /// The contact owning contact point `p`.
+  int contact_of_point(int p) const { return point_owner_[static_cast<size_t>(p)]; }
+  /// Name of contact point `p` (see Contact::point_name).
+  std::string contact_point_name(int p) const;
+  /// Index of the contact called `name`; InputError listing the known names otherwise.
+  int FindContact(std::string_view name) const;
 
  private:
   std::vector<Body> bodies_;
@@ -56,6 +74,10 @@ class Model {
   std::vector<std::shared_ptr<const Constraint>> constraints_;
   std::vector<int> row_offsets_;
   int num_constraint_rows_ = 0;
+  std::vector<Contact> contacts_;
+  std::vector<int> contact_offsets_;
+  std::vector<int> point_owner_;
+  int num_contact_points_ = 0;
 };
 
 }  // namespace chasles

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "chasles/math/types.h"
+#include "chasles/model/contact.h"
 
 namespace chasles {
 
@@ -38,6 +39,26 @@ struct ForceIntegrals {
   Vec3 angular_impulse_Wo_W = Vec3::Zero();
 };
 
+/// Discrete state and running integrals of one contact point (Model::num_contact_points()
+/// entries). The mode is carried with the continuous state so samples and events show it.
+struct ContactPointState {
+  /// Current mode.
+  ContactMode mode = ContactMode::kSeparated;
+  /// Reference slip direction of a sliding point, in W (unit): the slip direction when the
+  /// mode began; friction is -mu_k N along the slip, whose sign is taken relative to this
+  /// direction so that the force stays smooth while the slip passes through zero.
+  Vec3 slip_direction_W = Vec3::Zero();
+  /// Reference rolling direction (unit angular velocity of rolling, in W) for rolling
+  /// resistance, fixed like slip_direction_W when the mode began; zero when not rolling.
+  Vec3 rolling_direction_W = Vec3::Zero();
+  /// Work done by sliding friction on the bodies since the start, ∫ f·v_slip dt [J] (<= 0).
+  double friction_work = 0.0;
+  /// Work done by the rolling-resistance moment since the start [J] (<= 0).
+  double rolling_work = 0.0;
+  /// Kinetic-energy change at impacts (and accumulated bounces) since the start [J] (<= 0).
+  double impact_work = 0.0;
+};
+
 struct State {
   /// Time [s].
   double t = 0.0;
@@ -51,6 +72,9 @@ struct State {
   /// May be left empty (read as zeros), e.g. for a state made before the constraints were
   /// added to the model.
   std::vector<double> constraint_work;
+  /// One entry per contact point (Model::num_contact_points()): mode and dissipated work.
+  /// May be left empty: Simulate then chooses the initial modes (SelectContactModes).
+  std::vector<ContactPointState> contacts;
 };
 
 /// A state for `model` at t = 0 with every body at rest at the world origin, identity

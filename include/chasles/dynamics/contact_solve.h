@@ -1,0 +1,105 @@
+#pragma once
+/// @file
+/// Contact dynamics in each mode (chapter 8.3 with Coulomb friction), mode selection and
+/// impacts. Per contact point C with normal n and tangents t1, t2, the rows are the velocity
+/// of the body's material point at C relative to the plane (or the other sphere), as for
+/// RollingContact:  k·v_C = J_k u  (k = n, t1, t2),  J_k u̇ = c_k at acceleration level.
+///   separated: no rows.
+///   sticking:  three rows n, t1, t2 (bilateral while the mode lasts) with multipliers
+///              N (normal force) and f1, f2 (friction); |f| <= mu_s N is checked by events.
+///   sliding:   the normal row only; friction -mu_k N s acts with it (s the unit slip
+///              direction), so the force direction of that row is W = J_n - mu_k J_s and the
+///              multiplier system (J M⁻¹ Wᵀ) λ = c - J u̇_free is not symmetric: it is solved
+///              by LU (LDLᵀ when no point slides).
+/// Rolling resistance: on a sticking round feature (sphere, rim) with rolling angular velocity
+/// w_r (the part of the relative angular velocity along the plane), a moment -mu_r N R ŵ_r
+/// joins the normal row's force direction.
+/// Mode selection solves the normal complementarity 0 <= N ⟂ a_n >= 0 as an LCP (lcp.h) and
+/// checks stick against mu_s. Impacts solve the same problem at velocity level with Newton's
+/// restitution. docs/contact.md has the derivations and the choices.
+
+#include <vector>
+
+#include "chasles/model/data.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+
+namespace chasles {
+
+/// The contact stage (called by CalcAccelerations for models with contacts, in place of the
+/// constraint stage): solves the constraints and the active contact rows of the modes in
+/// `state.contacts` together; overwrites the accelerations and fills Data::contact_points,
+/// Data::constraints, Data::lambda. A state without contact entries reads as all separated.
+void SolveContactForces(const Model& model, const State& state, Data& data);
+
+/// Per contact point outputs (normal and friction force, slip velocity, gap, ...) at `state`
+/// in the modes it carries: runs CalcAccelerations on a fresh Data. For reports.
+std::vector<ContactPointOutput> CalcContactOutputs(const Model& model, const State& state);
+
+/// Tolerances of mode selection and impacts.
+struct ContactTolerances {
+  /// A point with gap at or below this is touching [m].
+  double gap = 1e-9;
+  /// Normal approach speed at or below this is resting contact, not an impact [m/s].
+  double resting_speed = 1e-6;
+  /// Slip speed at or below this may stick [m/s].
+  double stick_speed = 1e-6;
+  /// Relative tolerance of the friction-cone and sign tests.
+  double relative = 1e-9;
+};
+
+/// What changed at one contact point in SelectContactModes or ResolveImpacts.
+struct ContactModeChange {
+  /// Contact point index (see Model::contact_point_name).
+  int point = -1;
+  ContactMode from = ContactMode::kSeparated;
+  ContactMode to = ContactMode::kSeparated;
+};
+
+/// Chooses a consistent mode for every contact point at `state` (positions and velocities
+/// fixed): points apart or moving apart are separated; among the touching ones an LCP on the
+/// normal forces decides which press (N > 0) and which lift off (N = 0, a_n >= 0); pressing
+/// points with slip slide, the others stick if the friction they need is within mu_s N, else
+/// slide against the needed friction (one point at a time, largest excess first, then the
+/// LCP again). Writes state.contacts (sizing it if empty), sets the slip and rolling
+/// reference directions, and removes the round-off normal (and sticking tangential)
+/// velocities of the touching points by a mass-weighted velocity projection (the kinetic
+/// energy it changes goes to ContactPointState::friction_work). Returns the changes.
+std::vector<ContactModeChange> SelectContactModes(const Model& model, State& state,
+                                                  const ContactTolerances& tol = {});
+
+/// One impact at one contact point.
+struct ContactImpulse {
+  /// Contact point index.
+  int point = -1;
+  /// Normal approach speed before, -v_n⁻ > 0 [m/s].
+  double approach_speed = 0.0;
+  /// Normal impulse P_n >= 0 [N·s].
+  double normal_impulse = 0.0;
+  /// Impulse on the body (normal + friction), in W [N·s].
+  Vec3 impulse_W = Vec3::Zero();
+  /// True when the tangential impulse stayed within mu_s P_n (no slip at the end).
+  bool sticking = false;
+};
+
+/// Result of ResolveImpacts.
+struct ImpactResult {
+  /// Impulses of the points that took part (empty: no impact).
+  std::vector<ContactImpulse> impulses;
+  /// Kinetic energy before and after [J] (after <= before).
+  double kinetic_energy_before = 0.0;
+  double kinetic_energy_after = 0.0;
+  /// True when friction with Newton's law would have created energy and the frictionless
+  /// impulse was used instead (docs/contact.md).
+  bool frictionless_fallback = false;
+};
+
+/// Impacts at `state`: every touching point (gap <= tol.gap) approaching faster than
+/// tol.resting_speed takes part. Newton's restitution v_n⁺ = -e v_n⁻ with Coulomb friction
+/// during the impulse (stick if the tangential impulse needed is within mu_s P_n, else slide
+/// with mu_k P_n against the slip), several points together by an LCP on the normal impulses.
+/// Updates the velocities and ContactPointState::impact_work of the points (ΔT split by
+/// normal impulse share).
+ImpactResult ResolveImpacts(const Model& model, State& state, const ContactTolerances& tol = {});
+
+}  // namespace chasles
