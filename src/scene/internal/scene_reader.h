@@ -125,6 +125,15 @@ class SceneReader {
   std::string ConstraintName(const At& at, const char* kind, size_t index,
                              std::vector<std::string>& taken);
 
+  // Contacts (scene_contacts.cpp) ---------------------------------------------------------
+  /// Reads `material_pairs` and `contacts` into scene.dynamics.contacts (after the
+  /// constraints, whose names contacts must not reuse).
+  void ReadContacts(const At& root, Scene& scene);
+  /// mu_s, mu_k, mu_r and restitution of a contact or material pair, validated; with
+  /// `have_defaults` the values passed in (a material pair's) are kept where a key is absent.
+  void ReadContactCoefficients(const At& at, double& mu_s, double& mu_k, double& mu_r,
+                               double& restitution, bool have_defaults);
+
   Reporter report_;
   SceneOptions options_;
   std::unique_ptr<UnitSystem> units_;
