@@ -108,7 +108,39 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
           {"Fx", x.F_Jc_W.x()}, {"Fy", x.F_Jc_W.y()}, {"Mz", x.M_Jc_W.z()}};
     }
   }
+  nlohmann::json contacts = nlohmann::json::array();
+  for (const auto& c : r.final_contacts) {
+    contacts.push_back({{"point", c.point},
+                        {"mode", c.mode},
+                        {"normal_force", c.normal_force},
+                        {"friction_force", VecJson(c.friction_force_W)},
+                        {"slip_velocity", VecJson(c.slip_velocity_W)},
+                        {"gap", c.gap},
+                        {"friction_work", c.friction_work},
+                        {"rolling_work", c.rolling_work},
+                        {"impact_work", c.impact_work}});
+  }
   j["final"] = {{"t", r.t_end}, {"bodies", bodies}, {"reactions", reactions}};
+  if (!r.final_contacts.empty()) j["final"]["contacts"] = contacts;
+  j["contact_events"] = nlohmann::json::array();
+  for (const auto& e : r.contact_events) {
+    j["contact_events"].push_back({{"t", e.t},
+                                   {"point", e.point},
+                                   {"contact", e.contact},
+                                   {"from", e.from},
+                                   {"to", e.to},
+                                   {"reason", e.reason}});
+  }
+  j["impacts"] = nlohmann::json::array();
+  for (const auto& x : r.impacts) {
+    j["impacts"].push_back({{"t", x.t},
+                            {"point", x.point},
+                            {"approach_speed", x.approach_speed},
+                            {"normal_impulse", x.normal_impulse},
+                            {"energy_lost", x.energy_lost},
+                            {"accumulation", x.accumulation}});
+    if (x.accumulation) j["impacts"].back()["rest_time"] = x.rest_time;
+  }
   const StudyLedger& L = r.ledger;
   nlohmann::json work = nlohmann::json::object();
   for (const auto& [name, w] : L.work_by_force) work[name] = w;
@@ -122,6 +154,9 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                  {"work_nonconservative", L.work_nonconservative},
                  {"work_by_force", work},
                  {"work_by_constraint", constraint_work},
+                 {"friction_work", L.friction_work},
+                 {"rolling_work", L.rolling_work},
+                 {"impact_work", L.impact_work},
                  {"dissipated", L.dissipated},
                  {"jumps", L.jumps},
                  {"residual", L.residual},
@@ -202,6 +237,48 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
                          show(x.w_after_W, kRateDim, Angular::kYes));
     }
   }
+  if (!r.contact_events.empty()) {
+    out += "\nContact modes (time, contact point: from -> to, why)\n";
+    constexpr size_t kHead = 20, kTail = 5;
+    const size_t n = r.contact_events.size();
+    for (size_t i = 0; i < n; ++i) {
+      if (n > kHead + kTail + 1 && i == kHead) {
+        out +=
+            fmt::format("  ... {} more (every change is in the JSON summary)\n", n - kHead - kTail);
+        i = n - kTail - 1;
+        continue;
+      }
+      const auto& e = r.contact_events[i];
+      if (e.from == e.to) {
+        out += fmt::format("  t = {}  {}: {} ({})\n", time(e.t), e.point, e.to, e.reason);
+      } else {
+        out += fmt::format("  t = {}  {}: {} -> {} ({})\n", time(e.t), e.point, e.from, e.to,
+                           e.reason);
+      }
+    }
+  }
+  if (!r.impacts.empty()) {
+    out += fmt::format("\nImpacts at contacts: {}\n", r.impacts.size());
+    constexpr size_t kHead = 10, kTail = 3;
+    const size_t n = r.impacts.size();
+    for (size_t i = 0; i < n; ++i) {
+      if (n > kHead + kTail + 1 && i == kHead) {
+        out +=
+            fmt::format("  ... {} more (every impact is in the JSON summary)\n", n - kHead - kTail);
+        i = n - kTail - 1;
+        continue;
+      }
+      const auto& x = r.impacts[i];
+      out += fmt::format("  t = {}  {}: approach speed {}, energy lost {}\n", time(x.t), x.point,
+                         show(x.approach_speed, kVelocityDim), energy(x.energy_lost));
+      if (x.accumulation) {
+        out += fmt::format(
+            "    the bounces shrink by the ratio e: this impact is made plastic; the remaining "
+            "bounces (their sum) end at t = {}\n",
+            time(x.rest_time));
+      }
+    }
+  }
   out += scene.planar
              ? "\nFinal state (planar, x-y plane: centre of mass, angle and rates about z)\n"
              : "\nFinal state (centre of mass, velocity and angular velocity in the world "
@@ -240,6 +317,15 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
                       show(x.p_WJ, kLength), show(x.F_Jc_W, kForceDim), show(x.M_Jc_W, kMomentDim));
     }
   }
+  if (!r.final_contacts.empty()) {
+    out += "\nContacts at the end (forces on the body, world frame)\n";
+    constexpr Dimension kForceDim{1, 1, -2};
+    for (const auto& c : r.final_contacts) {
+      out += fmt::format("  {}: {}, N = {}, friction {}, slip {}, gap {}\n", c.point, c.mode,
+                         show(c.normal_force, kForceDim), show(c.friction_force_W, kForceDim),
+                         show(c.slip_velocity_W, kVelocityDim), show(c.gap, kLength));
+    }
+  }
   const StudyLedger& L = r.ledger;
   out += "\nLedger (from t = 0)\n";
   out += fmt::format("  kinetic energy      {} (translation {}, rotation {})\n",
@@ -253,6 +339,13 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
     out += fmt::format("    {:<20} {}\n", name, energy(w));
   for (const auto& [name, w] : L.work_by_constraint)
     out += fmt::format("    {:<20} {} (constraint)\n", name, energy(w));
+  if (!r.final_contacts.empty()) {
+    out += fmt::format("    {:<20} {}\n", "friction (sliding)", energy(L.friction_work));
+    if (L.rolling_work != 0) {
+      out += fmt::format("    {:<20} {}\n", "rolling resistance", energy(L.rolling_work));
+    }
+    out += fmt::format("    {:<20} {}\n", "impacts", energy(L.impact_work));
+  }
   out += fmt::format("  dissipated          {}\n", energy(L.dissipated));
   if (!r.jumps.empty()) out += fmt::format("  impulses and impacts {}\n", energy(L.jumps));
   out += fmt::format(

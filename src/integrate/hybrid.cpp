@@ -11,6 +11,7 @@
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
+#include "integrate/internal/event_root.h"
 
 namespace chasles::internal {
 namespace {
@@ -89,29 +90,6 @@ void EvalFunctions(const Model& model, const State& s, const std::vector<Contact
   }
 }
 
-// Illinois regula falsi on the dense output (as Simulate's event location): keeps a bracket
-// and returns the first time at or after the crossing, within `tol`.
-double LocateRoot(const std::function<double(double)>& g, double a, double ga, double b, double gb,
-                  double tol) {
-  int side = 0;
-  for (int iter = 0; iter < 200 && b - a > tol; ++iter) {
-    double c = (a * gb - b * ga) / (gb - ga);
-    c = std::clamp(c, a + 0.5 * tol, b - 0.5 * tol);
-    const double gc = g(c);
-    if (gc == 0.0) return c;
-    if ((gc > 0.0) == (gb > 0.0)) {
-      b = c, gb = gc;
-      if (side == -1) ga *= 0.5;
-      side = -1;
-    } else {
-      a = c, ga = gc;
-      if (side == 1) gb *= 0.5;
-      side = 1;
-    }
-  }
-  return b;
-}
-
 bool Crosses(EventDirection d, double g0, double g1) {
   const bool rising = g0 < 0.0 && g1 >= 0.0;
   const bool falling = g0 > 0.0 && g1 <= 0.0;
@@ -186,7 +164,8 @@ class HybridRun {
             EvalFunctions(model_, scratch, {fns[i]}, data_, gv);
             return gv[0];
           };
-          const double t = LocateRoot(g, ta, g0[i], tb, g1[i], o_.event_time_tolerance);
+          const double t =
+              internal::LocateEventTime(g, ta, g0[i], tb, g1[i], o_.event_time_tolerance);
           if (t < t_c) t_c = t, which = static_cast<int>(i);
         }
         // User events up to the contact event.
@@ -198,7 +177,8 @@ class HybridRun {
             dp.Interpolate(t, scratch);
             return o_.events[e].g(t, scratch);
           };
-          const double t = LocateRoot(g, ta, ug_prev[e], tb, ug_new[e], o_.event_time_tolerance);
+          const double t =
+              internal::LocateEventTime(g, ta, ug_prev[e], tb, ug_new[e], o_.event_time_tolerance);
           if (t > t_c) continue;
           EventRecord rec;
           rec.event = static_cast<int>(e);

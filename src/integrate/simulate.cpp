@@ -10,6 +10,7 @@
 #include "chasles/error.h"
 #include "chasles/integrate/energy_momentum.h"
 #include "chasles/integrate/rk4.h"
+#include "integrate/internal/event_root.h"
 #include "integrate/internal/hybrid.h"
 
 namespace chasles {
@@ -43,7 +44,7 @@ void Validate(const Model& model, const State& initial, const SimulationOptions&
     if (!e.g) throw InputError(fmt::format("event '{}' has no event function", e.name));
   }
   if (!(o.event_time_tolerance > 0.0)) {
-    throw InputError("event time tolerance must be positive (e.g. 1e-10 s)");
+    throw InputError("event time tolerance must be positive (e.g. 1e-12 s)");
   }
 }
 
@@ -76,30 +77,6 @@ bool Crosses(EventDirection d, double g0, double g1) {
   }
 }
 
-// Illinois variant of regula falsi (Dowell & Jarratt, BIT 11, 1971) on the dense output:
-// superlinear, and it keeps a bracket, so it stops when the bracket is narrower than `tol`.
-double LocateRoot(const std::function<double(double)>& g, double a, double ga, double b, double gb,
-                  double tol) {
-  int side = 0;
-  for (int iter = 0; iter < 200 && b - a > tol; ++iter) {
-    double c = (a * gb - b * ga) / (gb - ga);
-    // Keep c strictly inside and at least tol/2 from the ends so the bracket always shrinks.
-    c = std::clamp(c, a + 0.5 * tol, b - 0.5 * tol);
-    const double gc = g(c);
-    if (gc == 0.0) return c;
-    if ((gc > 0.0) == (gb > 0.0)) {
-      b = c, gb = gc;
-      if (side == -1) ga *= 0.5;
-      side = -1;
-    } else {
-      a = c, ga = gc;
-      if (side == 1) gb *= 0.5;
-      side = 1;
-    }
-  }
-  return b;  // the first time at or after the crossing (within tol)
-}
-
 SimulationResult RunAdaptive(const Model& model, const State& initial, const SimulationOptions& o) {
   SimulationResult r;
   Sampler sampler(o, r, initial.t);
@@ -128,7 +105,8 @@ SimulationResult RunAdaptive(const Model& model, const State& initial, const Sim
         dp.Interpolate(t, scratch);
         return o.events[e].g(t, scratch);
       };
-      hits.push_back({LocateRoot(g, t0, g_prev[e], t1, g_new[e], o.event_time_tolerance), e});
+      hits.push_back(
+          {internal::LocateEventTime(g, t0, g_prev[e], t1, g_new[e], o.event_time_tolerance), e});
     }
     std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.t < b.t; });
     double t_stop = std::numeric_limits<double>::infinity();

@@ -41,7 +41,7 @@ const Dimension kInertia{2, 1, 0};
 const std::vector<std::string> kRootKeys = {
     "chasles", "title",   "description", "units",    "parameters", "materials",  "bodies",
     "gravity", "forces",  "events",      "impulses", "impacts",    "simulation", "output",
-    "joints",  "rolling", "drivers",     "gears",    "planar"};
+    "joints",  "rolling", "drivers",     "gears",    "planar",     "contacts",   "material_pairs"};
 const std::vector<std::string> kBodyKeys = {"name",   "material", "density",
                                             "points", "parts",    "initial"};
 // Keys every part may have; each shape adds its dimensions (see shape_table.cpp).
@@ -295,6 +295,7 @@ Scene SceneReader::Read(const YAML::Node& document) {
     }
   }
   ReadConstraints(root, scene);
+  ReadContacts(root, scene);
   ReadDynamics(root, scene);
   for (const auto& kv : parameters_) scene.parameters.emplace_back(kv.first, kv.second.value);
   scene.warnings = std::move(warnings_);

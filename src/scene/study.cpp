@@ -14,6 +14,7 @@
 #include "chasles/analysis/ledger.h"
 #include "chasles/analysis/momentum.h"
 #include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/impulse.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
@@ -226,6 +227,65 @@ void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
   }
 }
 
+/// The engine's shape for a scene contact shape.
+ContactShape ModelContactShape(const SceneContact& c) {
+  if (!c.with_plane) return ContactShape::kSphereSphere;
+  switch (c.shape) {
+    case SceneContactShape::kSphere:
+      return ContactShape::kSphere;
+    case SceneContactShape::kDisk:
+      return ContactShape::kDiskRim;
+    case SceneContactShape::kDiskFace:
+      return ContactShape::kDiskFace;
+    case SceneContactShape::kCylinder:
+      return ContactShape::kCylinder;
+    case SceneContactShape::kBox:
+      return ContactShape::kBox;
+    case SceneContactShape::kPoints:
+      return ContactShape::kPointSet;
+    case SceneContactShape::kCapsule:
+      return ContactShape::kCapsule;
+  }
+  return ContactShape::kSphere;
+}
+
+/// Adds the scene's contacts to `model`, in scene order (so contact points follow
+/// SceneContacts::point_labels()). Geometry is in each body's own frame.
+void AddSceneContacts(const Scene& scene, const BodyMap& map, Model& model) {
+  const SceneContacts& sc = scene.dynamics.contacts;
+  if (sc.empty()) return;
+  if (model.num_bodies() != static_cast<int>(scene.bodies.size())) {
+    throw InputError(
+        "an impact that embeds a projectile cannot be combined with contacts (the touching "
+        "bodies would change); use exit_fraction > 0 or remove the contacts");
+  }
+  for (const SceneContact& c : sc.contacts) {
+    ContactSpec spec;
+    spec.name = c.name;
+    spec.shape = ModelContactShape(c);
+    spec.body = map.place[static_cast<size_t>(c.body)].model_body;
+    spec.p_BoC_B = c.p_BoC_B;
+    spec.axis_B = c.axis_B;
+    spec.radius = c.radius;
+    spec.length = c.length;
+    spec.half_extents = c.size / 2;
+    spec.points_B = c.points_B;
+    spec.face_points = kDiskFacePoints;
+    if (!c.with_plane) {
+      spec.other_body = map.place[static_cast<size_t>(c.other_body)].model_body;
+      spec.p_OoC_O = c.p_OoD_O;
+      spec.other_radius = c.other_radius;
+    }
+    spec.plane_point_W = c.plane_point_W;
+    spec.plane_normal_W = c.plane_normal_W;
+    spec.mu_s = c.mu_s;
+    spec.mu_k = c.mu_k;
+    spec.mu_r = c.mu_r;
+    spec.restitution = c.restitution;
+    model.AddContact(spec);
+  }
+}
+
 /// The Model of one segment: bodies (name, mass properties) and the scene's force elements
 /// placed through `map`. `model_ref` is set to the Model's final address by the caller.
 Model BuildModel(const Scene& scene,
@@ -290,6 +350,7 @@ Model BuildModel(const Scene& scene,
     }
   }
   AddSceneConstraints(scene, *map, model);
+  AddSceneContacts(scene, *map, model);
   return model;
 }
 
@@ -521,6 +582,25 @@ struct RowMaker {
         continue;
       }
       const std::string& q = c.quantity;
+      if (c.group == "contacts") {
+        const ContactPointOutput& o = data.contact_points[static_cast<size_t>(c.point)];
+        const double values[] = {static_cast<double>(o.mode), o.normal_force,
+                                 o.friction_force_W.norm(), o.slip_velocity_W.norm(), o.gap};
+        static const std::map<std::string, int> index = {
+            {"mode", 0}, {"N", 1}, {"f", 2}, {"slip", 3}, {"gap", 4}};
+        row.push_back(values[index.at(q)]);
+        continue;
+      }
+      if (q == "W_friction" || q == "W_rolling" || q == "W_impacts") {
+        // Running integrals the State carries since t = 0 (across every segment).
+        double w = 0.0;
+        for (const ContactPointState& p : s.contacts) {
+          w += q == "W_friction" ? p.friction_work
+                                 : (q == "W_rolling" ? p.rolling_work : p.impact_work);
+        }
+        row.push_back(w);
+        continue;
+      }
       if (c.group == "reactions") {
         // Force (F) or moment about J (M) the parent exerts on the child, in W ("Fx") or in
         // the child's frame B ("Fx_B").
@@ -686,7 +766,8 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     for (const ColumnInfo& c : all) {
       if (c.name == name) {
         rows.columns.push_back(c);
-        if ((c.quantity[0] == 'a' && c.body >= 0) || c.group == "reactions") {
+        if ((c.quantity[0] == 'a' && c.body >= 0) || c.group == "reactions" ||
+            c.group == "contacts") {
           rows.needs_accelerations = true;
         }
         break;
@@ -698,6 +779,50 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
   Segment seg = FirstSegment(scene);
   State state = InitialState(scene, *seg.model);
   CheckFinite(*seg.model, state);
+  const std::vector<std::string> point_labels = d.contacts.point_labels();
+  auto record_impacts = [&](const ImpactResult& r, double t) {
+    for (const ContactImpulse& imp : r.impulses) {
+      result.impacts.push_back({t, point_labels[static_cast<size_t>(imp.point)], imp.approach_speed,
+                                imp.normal_impulse,
+                                r.kinetic_energy_before - r.kinetic_energy_after, false});
+    }
+  };
+  auto record_changes = [&](const std::vector<ContactModeChange>& changes, double t,
+                            const char* reason) {
+    for (const ContactModeChange& c : changes) {
+      const Model& m = *seg.model;
+      result.contact_events.push_back({t, point_labels[static_cast<size_t>(c.point)],
+                                       m.contact(m.contact_of_point(c.point)).name(),
+                                       ContactModeName(c.from), ContactModeName(c.to), reason});
+    }
+  };
+  // Contacts that approach at t = 0 take their impact first; then every contact point gets a
+  // consistent initial mode, so that the first output row already shows it.
+  auto settle_contacts = [&](const char* reason) {
+    if (seg.model->num_contacts() == 0) return;
+    const ContactTolerances tol;
+    const ImpactResult impacts = ResolveImpacts(*seg.model, state, tol);
+    record_impacts(impacts, state.t);
+    record_changes(SelectContactModes(*seg.model, state, tol), state.t, reason);
+  };
+  if (seg.model->num_contacts() > 0) {
+    state.contacts.assign(static_cast<size_t>(seg.model->num_contact_points()),
+                          ContactPointState{});
+    settle_contacts("initial");
+    // Every point's initial mode is part of the timeline, changed or not.
+    for (int p = 0; p < seg.model->num_contact_points(); ++p) {
+      const bool listed = std::any_of(result.contact_events.begin(), result.contact_events.end(),
+                                      [&](const StudyContactEvent& e) {
+                                        return e.point == point_labels[static_cast<size_t>(p)];
+                                      });
+      if (!listed) {
+        const ContactMode m = state.contacts[static_cast<size_t>(p)].mode;
+        result.contact_events.push_back({state.t, point_labels[static_cast<size_t>(p)],
+                                         seg.model->contact(seg.model->contact_of_point(p)).name(),
+                                         ContactModeName(m), ContactModeName(m), "initial"});
+      }
+    }
+  }
   LedgerCarry carry;
   carry.segment_initial = state;
   const double E0 = MechanicalEnergy(*seg.model, state);
@@ -758,6 +883,20 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
       for (const EventRecord& e : r.events) {
         const bool stop = d.events[static_cast<size_t>(e.event)].action == EventAction::kStop;
         result.events.push_back({e.name, e.t, stop});
+      }
+      for (const ContactEvent& e : r.contact_events) {
+        // The modes carried into this run are already in the timeline.
+        if (e.reason == ContactEventReason::kInitial && e.from == e.to) continue;
+        const Model& m = *seg.model;
+        result.contact_events.push_back({e.t, point_labels[static_cast<size_t>(e.point)],
+                                         m.contact(m.contact_of_point(e.point)).name(),
+                                         ContactModeName(e.from), ContactModeName(e.to),
+                                         ContactEventReasonName(e.reason)});
+      }
+      for (const ImpactRecord& imp : r.impacts) {
+        result.impacts.push_back({imp.t, point_labels[static_cast<size_t>(imp.point)],
+                                  imp.approach_speed, imp.normal_impulse, imp.energy_lost,
+                                  imp.accumulation, imp.accumulation_time});
       }
       state = r.final_state;
       if (r.stopped_by_event) stopped = true;
@@ -890,6 +1029,9 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
       Data data = MakeData(*seg.model);
       ProjectOntoConstraints(*seg.model, state, data);
     }
+    // A contact the jump drives into its plane takes an impact; then the modes are chosen
+    // again for the new velocities (a sticking point may now slip).
+    settle_contacts("impulse");
     CheckFinite(*seg.model, state);
     rec.energy_before = E_before;
     rec.energy_after = MechanicalEnergy(*seg.model, state);
@@ -915,6 +1057,11 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
   out.energy_initial = E0;
   out.work_nonconservative = carry.work_nc + L.work_nonconservative;
   out.dissipated = carry.dissipated + L.dissipated;
+  for (const ContactPointState& p : state.contacts) {
+    out.friction_work += p.friction_work;
+    out.rolling_work += p.rolling_work;
+    out.impact_work += p.impact_work;
+  }
   out.jumps = carry.jumps;
   out.residual = carry.residual + L.energy_residual;
   out.energy_scale = std::max(carry.scale, L.energy_scale);
@@ -951,6 +1098,17 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
       r.M_Jc_B = o.M_Jc_B;
       r.power = o.power;
       result.final_reactions.push_back(r);
+    }
+  }
+  if (model.num_contacts() > 0) {
+    const std::vector<ContactPointOutput> outputs = CalcContactOutputs(model, state);
+    for (int p = 0; p < model.num_contact_points(); ++p) {
+      const ContactPointOutput& o = outputs[static_cast<size_t>(p)];
+      const ContactPointState& ps = state.contacts[static_cast<size_t>(p)];
+      result.final_contacts.push_back({point_labels[static_cast<size_t>(p)],
+                                       ContactModeName(ps.mode), o.normal_force, o.friction_force_W,
+                                       o.slip_velocity_W, o.gap, ps.friction_work, ps.rolling_work,
+                                       ps.impact_work});
     }
   }
   out.linear_momentum_W = L.linear_momentum_W;

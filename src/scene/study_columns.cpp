@@ -41,7 +41,7 @@ std::vector<std::string> ColumnGroups() {
   std::vector<std::string> g;
   for (const auto& b : BodyGroups()) g.emplace_back(b.group);
   for (const char* s : {"energy", "work", "residual", "momentum", "angular_momentum",
-                        "angular_momentum_origin", "ledger", "reactions"}) {
+                        "angular_momentum_origin", "ledger", "reactions", "contacts"}) {
     g.emplace_back(s);
   }
   g.emplace_back("planar");
@@ -78,6 +78,13 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
   for (const auto& n : scene.dynamics.constraints.names()) {
     cols.push_back({"W_" + n, "work", -1, "W", n});
   }
+  if (!scene.dynamics.contacts.empty()) {
+    // Work of sliding friction, of rolling resistance and the kinetic energy lost in impacts
+    // at all contacts since t = 0 (each <= 0; part of W_nc).
+    for (const char* s : {"W_friction", "W_rolling", "W_impacts"}) {
+      cols.push_back({s, "work", -1, s, ""});
+    }
+  }
   cols.push_back({"dissipated", "work", -1, "dissipated", ""});
   cols.push_back({"jumps", "work", -1, "jumps", ""});
   cols.push_back({"residual", "residual", -1, "residual", ""});
@@ -102,6 +109,16 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
       const bool in_plane = q == "Fx_B" || q == "Fy_B" || q == "Mz_B";
       cols.push_back(
           {n + "_" + s, scene.planar && !in_plane ? "reactions_3d" : "reactions", -1, s, n});
+    }
+  }
+  // Per contact point: mode (0 separated, 1 sliding, 2 sticking), normal force N, friction
+  // force size f, slip speed, gap (Data::contact_points).
+  const std::vector<std::string> labels = scene.dynamics.contacts.point_labels();
+  for (size_t p = 0; p < labels.size(); ++p) {
+    for (const char* s : {"mode", "N", "f", "slip", "gap"}) {
+      ColumnInfo c{labels[p] + "_" + s, "contacts", -1, s, ""};
+      c.point = static_cast<int>(p);
+      cols.push_back(c);
     }
   }
   return cols;

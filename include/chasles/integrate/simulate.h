@@ -133,7 +133,7 @@ struct SimulationOptions {
   /// Events to locate (adaptive integrator only).
   std::vector<EventSpec> events;
   /// Width of the final bracket around an event time [s].
-  double event_time_tolerance = 1e-10;
+  double event_time_tolerance = 1e-12;
   /// Keep every sample in SimulationResult::samples (turn off when streaming via on_sample).
   bool store_samples = true;
   /// Called with every output sample, in time order (optional).

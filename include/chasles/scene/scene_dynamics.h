@@ -15,6 +15,7 @@
 #include "chasles/model/force_element.h"
 #include "chasles/scene/expression.h"
 #include "chasles/scene/scene_constraints.h"
+#include "chasles/scene/scene_contacts.h"
 
 namespace chasles {
 
@@ -151,6 +152,9 @@ struct SceneDynamics {
   SceneSimulation simulation;
   /// Joints, rolling contacts and drivers (keys `joints`, `rolling`, `drivers`).
   SceneConstraints constraints;
+  /// Unilateral contacts with friction and the material-pair table (keys `contacts`,
+  /// `material_pairs`).
+  SceneContacts contacts;
   /// Output column names (after expanding groups), in order.
   std::vector<std::string> columns;
 };

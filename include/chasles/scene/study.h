@@ -73,6 +73,47 @@ struct StudyJump {
   Vec3 w_after_W = Vec3::Zero();
 };
 
+/// A mode change of one contact point (the mode timeline; the initial modes come first, with
+/// reason "initial").
+struct StudyContactEvent {
+  /// Time [s] (located to 1e-12 s).
+  double t = 0.0;
+  /// Contact point label (ContactPointLabels) and its contact's name.
+  std::string point;
+  std::string contact;
+  /// Modes before and after ("separated", "sliding", "sticking") and why ("slip stopped", ...).
+  std::string from, to, reason;
+};
+
+/// One impact (or accumulated bounce sequence) at a contact point.
+struct StudyImpact {
+  double t = 0.0;
+  std::string point;
+  /// Normal approach speed before [m/s]; normal impulse [N·s]; kinetic energy lost [J].
+  double approach_speed = 0.0;
+  double normal_impulse = 0.0;
+  double energy_lost = 0.0;
+  /// True for the impact that ends a geometric bounce sequence: it is made plastic, and the
+  /// bounces it stands for would end at `rest_time` (docs/contact.md, bouncing to rest).
+  bool accumulation = false;
+  /// Limit of the bounce sequence, t + t_flight e / (1 - e) [s] (NaN unless `accumulation`).
+  double rest_time = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// One contact point at the end of the run.
+struct StudyContactPoint {
+  std::string point;
+  std::string mode;
+  /// Normal force [N], friction force in W [N], slip velocity in W [m/s], gap [m].
+  double normal_force = 0.0;
+  Vec3 friction_force_W = Vec3::Zero();
+  Vec3 slip_velocity_W = Vec3::Zero();
+  double gap = 0.0;
+  /// Work of sliding friction, of rolling resistance, and energy lost in impacts at this point
+  /// since t = 0 [J] (each <= 0).
+  double friction_work = 0.0, rolling_work = 0.0, impact_work = 0.0;
+};
+
 /// Motion of one body of the final Model.
 struct StudyBodyState {
   /// Name ("target+projectile" for a composite).
@@ -107,7 +148,12 @@ struct StudyLedger {
   /// Work of each joint, rolling contact and driver (Model order) [J]: zero for the ideal
   /// ones up to the integration error, a driver's input otherwise (part of W_nc).
   std::vector<std::pair<std::string, double>> work_by_constraint;
-  /// Energy removed by dampers and drag [J] >= 0.
+  /// Work of sliding friction, of rolling resistance, and the kinetic-energy change at
+  /// impacts, at all contacts since t = 0 [J] (each <= 0; part of W_nc).
+  double friction_work = 0.0;
+  double rolling_work = 0.0;
+  double impact_work = 0.0;
+  /// Energy removed by dampers, drag, friction and impacts [J] >= 0.
   double dissipated = 0.0;
   /// Sum of the energy jumps at impulses and impacts [J].
   double jumps = 0.0;
@@ -145,6 +191,11 @@ struct StudyResult {
   std::vector<std::vector<double>> rows;
   std::vector<StudyEvent> events;
   std::vector<StudyJump> jumps;
+  /// Contact mode changes and impacts in time order.
+  std::vector<StudyContactEvent> contact_events;
+  std::vector<StudyImpact> impacts;
+  /// Every contact point at the end (Model order).
+  std::vector<StudyContactPoint> final_contacts;
   /// Time the run ended [s] (the end time, or a stopping event's time).
   double t_end = 0.0;
   bool stopped_by_event = false;

@@ -145,6 +145,14 @@ class SceneReader {
   /// A rolling contact in a planar scene: a wheel on a line of the plane.
   void ReadPlanarRolling(const At& at, const SceneBody& body, const std::string& what,
                          SceneRolling& rolling);
+  // Contacts (scene_contacts.cpp) ---------------------------------------------------------
+  /// Reads `material_pairs` and `contacts` into scene.dynamics.contacts (after the
+  /// constraints, whose names contacts must not reuse).
+  void ReadContacts(const At& root, Scene& scene);
+  /// mu_s, mu_k, mu_r and restitution of a contact or material pair, validated; with
+  /// `have_defaults` the values passed in (a material pair's) are kept where a key is absent.
+  void ReadContactCoefficients(const At& at, double& mu_s, double& mu_k, double& mu_r,
+                               double& restitution, bool have_defaults);
 
   Reporter report_;
   SceneOptions options_;

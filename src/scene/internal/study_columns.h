@@ -23,6 +23,8 @@ struct ColumnInfo {
   std::string quantity;
   /// Force element name for per-force work columns.
   std::string force;
+  /// Contact point index (Model order) for the "contacts" group's columns; -1 otherwise.
+  int point = -1;
 };
 
 /// Every column the scene offers, in a stable order.
