@@ -174,17 +174,19 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
   return j;
 }
 
-// Values of the text report in the units asked for (the scene's own by default).
+// Values of the text report in the units asked for (the scene's own by default). Adding 0.0
+// turns a negative zero (a zero force times -1) into the 0 a reader expects.
 struct Show {
   const UnitSystem& u;
   std::string operator()(double v, const Dimension& d, Angular a = Angular::kNo) const {
     const std::string unit = u.FormatUnit(d, a);
-    return fmt::format("{:.9g}{}{}", u.FromSI(v, d, a), unit.empty() ? "" : " ", unit);
+    return fmt::format("{:.9g}{}{}", u.FromSI(v, d, a) + 0.0, unit.empty() ? "" : " ", unit);
   }
   std::string operator()(const Vec3& v, const Dimension& d, Angular a = Angular::kNo) const {
     const std::string unit = u.FormatUnit(d, a);
-    return fmt::format("[{:.9g}, {:.9g}, {:.9g}]{}{}", u.FromSI(v.x(), d, a), u.FromSI(v.y(), d, a),
-                       u.FromSI(v.z(), d, a), unit.empty() ? "" : " ", unit);
+    return fmt::format("[{:.9g}, {:.9g}, {:.9g}]{}{}", u.FromSI(v.x(), d, a) + 0.0,
+                       u.FromSI(v.y(), d, a) + 0.0, u.FromSI(v.z(), d, a) + 0.0,
+                       unit.empty() ? "" : " ", unit);
   }
 };
 

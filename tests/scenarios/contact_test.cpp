@@ -1,6 +1,7 @@
 // Contact with Coulomb friction, regime changes and impacts (chapter 8.3, Problems 8.18,
 // 8.26, 8.27): closed forms derived in the comments, compared with the hybrid simulation.
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -284,12 +285,20 @@ TEST(ContactScenario, BouncingBallHeightsAndTimeToRest) {
   const SimulationResult r = Simulate(sc.model, s0, TightOptions(t_rest + 1.0));
   ASSERT_GE(r.impacts.size(), 3u);
   const double v0 = std::sqrt(2 * kG * h0);
+  // Every touch-down is located to the event tolerance (1e-12 s), so an approach speed carries
+  // an absolute error of order g times the accumulated event errors: relative 1e-9 while the
+  // bounces are large, an absolute 1e-10 s × g for the small ones (about 25 bounces here).
+  const double dv = kG * 1e-10;
   for (size_t n = 0; n < r.impacts.size(); ++n) {
     const double v = r.impacts[n].approach_speed;
+    const double v_n = std::pow(e, n) * v0;
+    EXPECT_NEAR(v, v_n, std::max(kEventRel * v_n, dv)) << n;
     // Rebound height of bounce n: (e v)²/(2g) = e^(2(n+1)) h0.
-    EXPECT_TRUE(Near(e * e * v * v / (2 * kG), std::pow(e, 2.0 * (n + 1)) * h0, kEventRel)) << n;
-    EXPECT_TRUE(Near(v, std::pow(e, n) * v0, kEventRel)) << n;
+    EXPECT_NEAR(e * e * v * v / (2 * kG), std::pow(e, 2.0 * (n + 1)) * h0,
+                std::max(kEventRel, 2 * dv / v_n) * std::pow(e, 2.0 * (n + 1)) * h0)
+        << n;
   }
+  EXPECT_GE(r.impacts.size(), 20u);
   const ImpactRecord& last = r.impacts.back();
   ASSERT_TRUE(last.accumulation);
   EXPECT_TRUE(Near(last.accumulation_time, t_rest, kEventRel));
