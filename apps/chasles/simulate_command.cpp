@@ -182,13 +182,47 @@ struct Show {
     const std::string unit = u.FormatUnit(d, a);
     return fmt::format("{:.9g}{}{}", u.FromSI(v, d, a) + 0.0, unit.empty() ? "" : " ", unit);
   }
-  std::string operator()(const Vec3& v, const Dimension& d, Angular a = Angular::kNo) const {
+  /// A vector; components below 1e-12 of max(|v|, scale) are round-off and print as 0
+  /// (`scale`: the size of that kind of quantity in the run, e.g. a speed from the energy).
+  std::string operator()(const Vec3& v, const Dimension& d, Angular a = Angular::kNo,
+                         double scale = 0.0) const {
     const std::string unit = u.FormatUnit(d, a);
-    return fmt::format("[{:.9g}, {:.9g}, {:.9g}]{}{}", u.FromSI(v.x(), d, a) + 0.0,
-                       u.FromSI(v.y(), d, a) + 0.0, u.FromSI(v.z(), d, a) + 0.0,
+    const double floor = 1e-12 * std::max(v.norm(), scale);
+    const auto c = [&](double x) { return u.FromSI(std::abs(x) <= floor ? 0.0 : x, d, a) + 0.0; };
+    return fmt::format("[{:.9g}, {:.9g}, {:.9g}]{}{}", c(v.x()), c(v.y()), c(v.z()),
                        unit.empty() ? "" : " ", unit);
   }
 };
+
+/// Sizes of the report's kinds of quantity, so that round-off next to them prints as 0: a
+/// speed and an angular speed per body from the run's energy scale (½ m v² = E, ½ I ω² = E),
+/// a force and a moment from the largest reaction or contact force and its lever arm.
+struct ReportScales {
+  double speed = 0.0, length = 0.0, force = 0.0, moment = 0.0;
+  std::vector<double> body_speed, body_rate;
+};
+
+ReportScales CalcReportScales(const StudyResult& r) {
+  ReportScales k;
+  const double E = r.ledger.energy_scale;
+  for (const auto& b : r.final_bodies) {
+    const double v = b.mass > 0.0 ? std::sqrt(2.0 * E / b.mass) : 0.0;
+    k.body_speed.push_back(v);
+    k.body_rate.push_back(b.inertia_max > 0.0 ? std::sqrt(2.0 * E / b.inertia_max) : 0.0);
+    k.speed = std::max(k.speed, v);
+    k.length = std::max(k.length, b.p_WBcm.norm());
+  }
+  for (const auto& x : r.final_reactions) {
+    k.force = std::max(k.force, x.F_Jc_W.norm());
+    k.moment = std::max(k.moment, x.M_Jc_W.norm());
+    k.length = std::max(k.length, x.p_WJ.norm());
+  }
+  for (const auto& c : r.final_contacts) {
+    k.force = std::max({k.force, std::abs(c.normal_force), c.friction_force_W.norm()});
+  }
+  k.moment = std::max(k.moment, k.force * k.length);
+  return k;
+}
 
 constexpr Dimension kTimeDim{0, 0, 1};
 constexpr Dimension kVelocityDim{1, 0, -1};
@@ -285,22 +319,33 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
              ? "\nFinal state (planar, x-y plane: centre of mass, angle and rates about z)\n"
              : "\nFinal state (centre of mass, velocity and angular velocity in the world "
                "frame)\n";
-  for (const auto& b : r.final_bodies) {
+  const ReportScales k = CalcReportScales(r);
+  for (size_t i = 0; i < r.final_bodies.size(); ++i) {
+    const auto& b = r.final_bodies[i];
+    const double v_s = k.body_speed[i], w_s = k.body_rate[i];
+    const auto clean = [](double x, double scale) {
+      return std::abs(x) <= 1e-12 * scale ? 0.0 : x;
+    };
     if (scene.planar) {
       // Chapter eqs. 8.41-8.43: x, y, θ and their rates.
       out += fmt::format("  {}\n    position [{}, {}], theta {}\n    velocity [{}, {}], omega {}\n",
-                         b.name, show(b.p_WBcm.x(), kLength), show(b.p_WBcm.y(), kLength),
+                         b.name, show(clean(b.p_WBcm.x(), k.length), kLength),
+                         show(clean(b.p_WBcm.y(), k.length), kLength),
                          show(b.theta, kDimensionless, Angular::kYes),
-                         show(b.v_WBcm_W.x(), kVelocityDim), show(b.v_WBcm_W.y(), kVelocityDim),
-                         show(b.w_WB_W.z(), kRateDim, Angular::kYes));
+                         show(clean(b.v_WBcm_W.x(), v_s), kVelocityDim),
+                         show(clean(b.v_WBcm_W.y(), v_s), kVelocityDim),
+                         show(clean(b.w_WB_W.z(), w_s), kRateDim, Angular::kYes));
       continue;
     }
     const Eigen::Vector4d q = QuatToWxyz(b.q_WB);
+    // A unit quaternion's components are known to round-off against 1.
     out += fmt::format(
         "  {}\n    position {}\n    quaternion [{:.9g}, {:.9g}, {:.9g}, {:.9g}]\n"
         "    velocity {}\n    angular velocity {} (body frame {})\n",
-        b.name, show(b.p_WBcm, kLength), q[0], q[1], q[2], q[3], show(b.v_WBcm_W, kVelocityDim),
-        show(b.w_WB_W, kRateDim, Angular::kYes), show(b.w_WB_B, kRateDim, Angular::kYes));
+        b.name, show(b.p_WBcm, kLength, Angular::kNo, k.length), clean(q[0], 1.0) + 0.0,
+        clean(q[1], 1.0) + 0.0, clean(q[2], 1.0) + 0.0, clean(q[3], 1.0) + 0.0,
+        show(b.v_WBcm_W, kVelocityDim, Angular::kNo, v_s),
+        show(b.w_WB_W, kRateDim, Angular::kYes, w_s), show(b.w_WB_B, kRateDim, Angular::kYes, w_s));
   }
   if (!r.final_reactions.empty()) {
     out += "\nReactions at the end (on the child at the joint point, world frame)\n";
@@ -314,9 +359,10 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
                            show(x.M_Jc_W.z(), kMomentDim));
         continue;
       }
-      out +=
-          fmt::format("  {} ({}) at {}\n    force {}\n    moment {}\n", x.name, x.kind,
-                      show(x.p_WJ, kLength), show(x.F_Jc_W, kForceDim), show(x.M_Jc_W, kMomentDim));
+      out += fmt::format("  {} ({}) at {}\n    force {}\n    moment {}\n", x.name, x.kind,
+                         show(x.p_WJ, kLength, Angular::kNo, k.length),
+                         show(x.F_Jc_W, kForceDim, Angular::kNo, k.force),
+                         show(x.M_Jc_W, kMomentDim, Angular::kNo, k.moment));
     }
   }
   if (!r.final_contacts.empty()) {
@@ -324,8 +370,10 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
     constexpr Dimension kForceDim{1, 1, -2};
     for (const auto& c : r.final_contacts) {
       out += fmt::format("  {}: {}, N = {}, friction {}, slip {}, gap {}\n", c.point, c.mode,
-                         show(c.normal_force, kForceDim), show(c.friction_force_W, kForceDim),
-                         show(c.slip_velocity_W, kVelocityDim), show(c.gap, kLength));
+                         show(c.normal_force, kForceDim),
+                         show(c.friction_force_W, kForceDim, Angular::kNo, k.force),
+                         show(c.slip_velocity_W, kVelocityDim, Angular::kNo, k.speed),
+                         show(std::abs(c.gap) <= 1e-12 * k.length ? 0.0 : c.gap, kLength));
     }
   }
   const StudyLedger& L = r.ledger;

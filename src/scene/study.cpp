@@ -885,12 +885,19 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
         result.events.push_back({e.name, e.t, stop});
       }
       for (const ContactEvent& e : r.contact_events) {
-        // The modes carried into this run are already in the timeline.
-        if (e.reason == ContactEventReason::kInitial && e.from == e.to) continue;
+        // The modes carried into this run are already in the timeline: Simulate lists every
+        // point's starting mode (as a change from separated); only a mode it chose
+        // differently from the one carried in is news.
+        ContactMode from = e.from;
+        if (e.reason == ContactEventReason::kInitial) {
+          from = state.contacts.empty() ? ContactMode::kSeparated
+                                        : state.contacts[static_cast<size_t>(e.point)].mode;
+          if (from == e.to) continue;
+        }
         const Model& m = *seg.model;
         result.contact_events.push_back({e.t, point_labels[static_cast<size_t>(e.point)],
                                          m.contact(m.contact_of_point(e.point)).name(),
-                                         ContactModeName(e.from), ContactModeName(e.to),
+                                         ContactModeName(from), ContactModeName(e.to),
                                          ContactEventReasonName(e.reason)});
       }
       for (const ImpactRecord& imp : r.impacts) {
@@ -1120,6 +1127,7 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     StudyBodyState f;
     f.name = model.body(b).name();
     f.mass = model.body(b).mass();
+    f.inertia_max = model.body(b).I_BBcm_B().diagonal().maxCoeff();
     f.p_WBcm = s.p_WBcm;
     f.p_WBo = CalcBodyOriginPosition(model, state, b);
     f.q_WB = s.q_WB.w() < 0 ? Quat(-s.q_WB.coeffs()) : s.q_WB;

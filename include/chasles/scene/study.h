@@ -120,6 +120,8 @@ struct StudyBodyState {
   std::string name;
   /// Mass [kg].
   double mass = 0.0;
+  /// Largest moment of inertia about the axes of B through the centre of mass [kg·m²].
+  double inertia_max = 0.0;
   /// Centre of mass and frame origin in W [m].
   Vec3 p_WBcm = Vec3::Zero();
   Vec3 p_WBo = Vec3::Zero();
