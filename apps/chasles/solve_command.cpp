@@ -1,7 +1,8 @@
 // chasles solve: the instantaneous problem of chapter 8.2-8.3 at a scene's initial state —
 // every body's acceleration and every constraint's reaction ("what force does the support
-// exert?"), and for rolling the friction it needs against mu_s. With --sweep, the same over a
-// range of one parameter, as a table.
+// exert?"), and for rolling the friction it needs against mu_s. Scenes with contacts get their
+// modes chosen first (SelectContactModes: which points press, stick or slide) and a report per
+// contact point. With --sweep, the same over a range of one parameter, as a table.
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/analysis/momentum.h"
 #include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/contact_solve.h"
 #include "chasles/error.h"
 #include "chasles/model/data.h"
 #include "chasles/model/model.h"
@@ -45,6 +47,37 @@ struct Motion {
   Vec3 H_O = Vec3::Zero();
 };
 
+/// One contact point at the solved state, in the mode SelectContactModes chose.
+struct ContactReport {
+  /// The scene's name of the point ("floor", "incline_0", "rear") and its contact's name.
+  std::string point, contact;
+  ContactPointOutput out;
+  double mu_s = 0.0, mu_k = 0.0;
+  /// A round feature (sphere, rim): a sticking one rolls without slipping.
+  bool round = false;
+  /// "rolls" or "sticks" (sticking), "slides", "separated".
+  std::string Regime() const {
+    switch (out.mode) {
+      case ContactMode::kSticking:
+        return round ? "rolls" : "sticks";
+      case ContactMode::kSliding:
+        return "slides";
+      case ContactMode::kSeparated:
+        break;
+    }
+    return "separated";
+  }
+  /// |f| / N: the friction a sticking point needs (compare with mu_s), mu_k when sliding, 0
+  /// when separated.
+  double FrictionRatio() const {
+    if (out.mode == ContactMode::kSticking) return out.friction_needed;
+    if (out.mode == ContactMode::kSliding && out.normal_force > 0) {
+      return out.friction_force_W.norm() / out.normal_force;
+    }
+    return 0.0;
+  }
+};
+
 struct Solved {
   InstantaneousSolution solution;
   /// mu_s of each constraint (NaN when not a rolling contact with `mu_s`), Model order.
@@ -54,6 +87,8 @@ struct Solved {
   Motion total;
   /// A planar scene: reports in x, y and about z (a_x, a_y, alpha; Fx, Fy, Mz).
   bool planar = false;
+  /// Contact points (scene order), in their chosen modes.
+  std::vector<ContactReport> contacts;
 };
 
 void FillMuS(const Scene& scene, Solved& s) {
@@ -92,11 +127,36 @@ Solved SolveScene(const Scene& scene) {
     // The end time plays no part in an instantaneous solve.
     Study study = BuildStudy(scene, 1.0);
     State state = study.initial;
-    Data data = MakeData(*study.model);
-    ProjectOntoConstraints(*study.model, state, data);
-    Solved s{SolveInstantaneous(*study.model, state), {}, {}, {}, scene.planar};
-    s.motion = CalcMotion(*study.model, state, &s.total);
+    const Model& model = *study.model;
+    Data data = MakeData(model);
+    ProjectOntoConstraints(model, state, data);
+    if (model.num_contacts() > 0) {
+      // The modes at the initial state, chosen as a simulation starts (docs/contact.md, "Mode
+      // selection"): the LCP on the normal forces decides which points press, the friction
+      // check which of those stick; the accelerations and reactions below are in those modes.
+      // Impacts are not applied: a solve reports the state as given.
+      state.contacts.assign(static_cast<size_t>(model.num_contact_points()), ContactPointState{});
+      SelectContactModes(model, state);
+    }
+    Solved s{SolveInstantaneous(model, state), {}, {}, {}, scene.planar, {}};
+    s.motion = CalcMotion(model, state, &s.total);
     FillMuS(scene, s);
+    if (model.num_contacts() > 0) {
+      const std::vector<ContactPointOutput> outputs = CalcContactOutputs(model, state);
+      const std::vector<std::string> labels = scene.dynamics.contacts.point_labels();
+      for (int p = 0; p < model.num_contact_points(); ++p) {
+        const int c = model.contact_of_point(p);
+        const Contact& con = model.contact(c);
+        ContactReport r;
+        r.point = labels[static_cast<size_t>(p)];
+        r.contact = con.name();
+        r.out = outputs[static_cast<size_t>(p)];
+        r.mu_s = con.mu_s();
+        r.mu_k = con.mu_k();
+        r.round = con.feature(p - model.contact_point_offset(c)).kind != ContactFeatureKind::kPoint;
+        s.contacts.push_back(std::move(r));
+      }
+    }
     return s;
   } catch (const SceneError&) {
     throw;
@@ -159,6 +219,23 @@ nlohmann::json Json(const Solved& s) {
     b["name"] = m.name;
     j["energy_momentum"]["bodies"].push_back(b);
   }
+  j["contacts"] = nlohmann::json::array();
+  for (const ContactReport& c : s.contacts) {
+    j["contacts"].push_back({{"point", c.point},
+                             {"contact", c.contact},
+                             {"mode", ContactModeName(c.out.mode)},
+                             {"regime", c.Regime()},
+                             {"normal_force", c.out.normal_force},
+                             {"friction", VecJson(c.out.friction_force_W)},
+                             {"friction_magnitude", c.out.friction_force_W.norm()},
+                             {"friction_needed", c.FrictionRatio()},
+                             {"mu_s", c.mu_s},
+                             {"mu_k", c.mu_k},
+                             {"slip_velocity", VecJson(c.out.slip_velocity_W)},
+                             {"gap", c.out.gap},
+                             {"point_W", VecJson(c.out.p_WC)},
+                             {"normal_W", VecJson(c.out.n_W)}});
+  }
   j["planar"] = s.planar;
   j["rank"] = s.solution.rank;
   j["rows"] = s.solution.num_rows;
@@ -194,6 +271,9 @@ ReportScales CalcScales(const Solved& s) {
     k.alpha = std::max(k.alpha, b.alpha_WB_W.norm());
   }
   double arm = 0.0;
+  for (const ContactReport& c : s.contacts) {
+    k.force = std::max({k.force, c.out.normal_force, c.out.friction_force_W.norm()});
+  }
   for (const auto& r : s.solution.reactions) {
     k.force = std::max(k.force, r.F_Jc_W.norm());
     k.moment = std::max(k.moment, r.M_Jc_W.norm());
@@ -248,6 +328,25 @@ std::string Text(const Scene& scene, const Solved& s) {
                            r.friction_needed <= s.mu_s[i] ? "rolls" : "slips");
       }
       out += "\n";
+    }
+  }
+  if (!s.contacts.empty()) {
+    out += "\nContacts (modes chosen at the initial state; friction on the body)\n";
+  }
+  for (const ContactReport& c : s.contacts) {
+    out += fmt::format("  {}: {} ({})\n", c.point, c.Regime(), ContactModeName(c.out.mode));
+    if (c.out.mode == ContactMode::kSeparated) {
+      out += fmt::format("    gap {:.9g} m\n", c.out.gap);
+      continue;
+    }
+    out +=
+        fmt::format("    normal force {:.9g} N, friction {} N (|f| {:.9g} N)\n", c.out.normal_force,
+                    V(c.out.friction_force_W, k.force), c.out.friction_force_W.norm());
+    if (c.out.mode == ContactMode::kSticking) {
+      out += fmt::format("    f/N = {:.9g} against mu_s = {:.6g}\n", c.FrictionRatio(), c.mu_s);
+    } else {
+      out += fmt::format("    slip velocity {} m/s, f/N = mu_k = {:.6g}\n",
+                         V(c.out.slip_velocity_W), c.mu_k);
     }
   }
   out += "\nKinetic energy and momenta (H about each centre of mass, H_O about the origin)\n";
@@ -325,6 +424,14 @@ void TableColumns(const Solved& s, std::vector<std::string>* names, std::vector<
       add(r.name + "_f_over_N", r.friction_needed);
     }
   }
+  // Contact points as the simulation's contact columns name them; mode 0 separated, 1 sliding,
+  // 2 sticking.
+  for (const ContactReport& c : s.contacts) {
+    add(c.point + "_mode", static_cast<double>(c.out.mode));
+    add(c.point + "_N", c.out.normal_force);
+    add(c.point + "_f", c.out.friction_force_W.norm());
+    add(c.point + "_f_over_N", c.FrictionRatio());
+  }
 }
 
 struct Sweep {
@@ -368,7 +475,8 @@ CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "solve",
       "Solve the instantaneous problem at a scene's initial state: every body's acceleration, "
-      "every joint's reaction, the friction rolling needs (chapter 8.2-8.3)");
+      "every joint's reaction, the friction rolling needs, each contact point's mode, normal "
+      "and friction force (chapter 8.2-8.3)");
   AddSceneArgs(*cmd, args.scene);
   cmd->add_option("--sweep", args.sweep,
                   "Repeat over a parameter range: NAME=START:STOP:COUNT (START and STOP are "

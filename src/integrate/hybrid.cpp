@@ -147,12 +147,22 @@ class HybridRun {
       dp.Initialize(s);
       const std::vector<ContactFn> fns = EventFunctions(model_, s);
       std::vector<double> g0, g1;
+      // Normal velocities of the points at the step's ends (closest approach, below).
+      std::vector<double> vn0, vn1;
+      auto normal_velocities = [&](std::vector<double>& vn) {
+        vn.resize(fns.size());
+        for (size_t i = 0; i < fns.size(); ++i) {
+          vn[i] = data_.contact_points[static_cast<size_t>(fns[i].point)].normal_velocity;
+        }
+      };
       EvalFunctions(model_, dp.state(), fns, data_, g0);
+      normal_velocities(vn0);
       bool restart = false;
       while (dp.t() < o_.t_end && !restart) {
         dp.Step(o_.t_end);
         const double ta = dp.t_previous(), tb = dp.t();
         EvalFunctions(model_, dp.state(), fns, data_, g1);
+        normal_velocities(vn1);
         // Earliest contact event in the step.
         double t_c = std::numeric_limits<double>::infinity();
         int which = -1;
@@ -164,6 +174,26 @@ class HybridRun {
             return gv[0];
           };
           double a = ta, ga = g0[i];
+          if (fns[i].fn == Fn::kGap && g0[i] > 0.0 && g1[i] > 0.0) {
+            // Apart at both ends, but approaching at the start and separating at the end: the
+            // closest approach (the zero of ġ) lies inside the step, and the gap may have
+            // dipped below zero there (two spheres passing through each other in one long
+            // free-flight step, a turning vertex). Then the touch-down is in [ta, closest].
+            if (!(vn0[i] < 0.0 && vn1[i] > 0.0)) continue;
+            const auto p = static_cast<size_t>(fns[i].point);
+            auto gdot = [&](double t) {
+              g(t);
+              return data_.contact_points[p].normal_velocity;
+            };
+            const double t_min =
+                internal::LocateEventTime(gdot, ta, vn0[i], tb, vn1[i], o_.event_time_tolerance);
+            const double g_min = g(t_min);
+            if (!(g_min < 0.0)) continue;
+            const double t =
+                internal::LocateEventTime(g, ta, g0[i], t_min, g_min, o_.event_time_tolerance);
+            if (t < t_c) t_c = t, which = static_cast<int>(i);
+            continue;
+          }
           if (!Crosses(EventDirection::kFalling, g0[i], g1[i])) {
             // A point that separated at the step's start (gap at round-off, <= 0) and ends it
             // below the plane made a flight shorter than the step: the gap rose and fell
@@ -242,6 +272,7 @@ class HybridRun {
           }
         } else {
           g0 = g1;
+          vn0 = vn1;
           ug_prev = ug_new;
           s = dp.state();
         }

@@ -74,6 +74,20 @@ std::optional<Symbol> SceneReader::ResolveStateSymbol(const At& at, std::string_
                                    name));
     }
     const int slot = it->second;
+    if (slot >= contact_slot_begin_) {
+      // A contact point's force, slip or mode: known only after the contact solve in the
+      // point's current mode, so (like a reaction) only an event may read it.
+      if (!allow_reactions_) {
+        report_.Fail(at, fmt::format("'{}' is a contact quantity; contact quantities may appear "
+                                     "only in an event's 'when'",
+                                     name));
+      }
+      static constexpr std::array<Dimension, StateVariableLayout::kPerContactPoint> kDims = {
+          kDimensionless, kForce, kForce, kVelocity, kLength};
+      return Symbol::Variable(slot,
+                              kDims[static_cast<size_t>((slot - contact_slot_begin_) %
+                                                        StateVariableLayout::kPerContactPoint)]);
+    }
     if (slot >= reaction_slot_begin_) {
       // A constraint's reaction: known only after the constraint solve, so only an event may
       // read it (a force that read it would feed back into the solve).
@@ -416,6 +430,21 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
     for (int k = 0; k < 6; ++k) {
       const std::string name = constraint_names[i] + "_" + suffixes[k];
       state_variables_.emplace(name, reaction_slot_begin_ + 6 * static_cast<int>(i) + k);
+      state_variable_names_.push_back(name);
+    }
+  }
+  // Contact points after the reactions: "<point>_mode", "<point>_N", ... (the columns' names).
+  contact_slot_begin_ = reaction_slot_begin_ + StateVariableLayout::kPerConstraint *
+                                                   static_cast<int>(constraint_names.size());
+  const std::vector<std::string> point_labels = d.contacts.point_labels();
+  for (size_t p = 0; p < point_labels.size(); ++p) {
+    if (!IsIdentifier(point_labels[p])) continue;
+    for (int k = 0; k < StateVariableLayout::kPerContactPoint; ++k) {
+      const std::string name =
+          point_labels[p] + "_" + StateVariableLayout::kContactSuffixes[static_cast<size_t>(k)];
+      state_variables_.emplace(
+          name,
+          contact_slot_begin_ + StateVariableLayout::kPerContactPoint * static_cast<int>(p) + k);
       state_variable_names_.push_back(name);
     }
   }

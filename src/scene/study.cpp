@@ -43,6 +43,9 @@ struct Placement {
 struct BodyMap {
   std::vector<Placement> place;
   std::vector<Vec3> p_BoBcm_B;
+  /// Number of the scene's own constraints (a planar Model adds its plane constraints after
+  /// them; those have no state variables).
+  int num_scene_constraints = 0;
 };
 
 /// Kinematics of one scene body at a state (exact for a part of a composite too).
@@ -109,17 +112,33 @@ void FillVariables(const Model& model, const State& state, const BodyMap& map, i
       if (slot < count) v[static_cast<size_t>(slot)] = block[j];
     }
   }
-  // Reactions (events only): six slots per constraint after the scene bodies' blocks.
+  // Reactions (events only): six slots per scene constraint after the scene bodies' blocks,
+  // then the contact points' values (StateVariableLayout).
   const int first = StateVariableLayout::Slot(num_scene_bodies, 0);
-  if (count > first && model.num_constraints() > 0) {
-    Data data = MakeData(model);
-    CalcAccelerations(model, state, data);
-    for (int i = 0; i < model.num_constraints(); ++i) {
-      const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
-      for (int k = 0; k < 6; ++k) {
-        const int slot = first + 6 * i + k;
-        if (slot < count) v[static_cast<size_t>(slot)] = k < 3 ? o.F_Jc_W[k] : o.M_Jc_W[k - 3];
-      }
+  const int num_constraints = std::min(map.num_scene_constraints, model.num_constraints());
+  const int first_contact = first + StateVariableLayout::kPerConstraint * map.num_scene_constraints;
+  const bool reactions = count > first && num_constraints > 0;
+  const bool contacts = count > first_contact && model.num_contact_points() > 0;
+  if (!reactions && !contacts) return;
+  Data data = MakeData(model);
+  CalcAccelerations(model, state, data);
+  for (int i = 0; i < num_constraints; ++i) {
+    const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
+    for (int k = 0; k < 6; ++k) {
+      const int slot = first + 6 * i + k;
+      if (slot < count) v[static_cast<size_t>(slot)] = k < 3 ? o.F_Jc_W[k] : o.M_Jc_W[k - 3];
+    }
+  }
+  if (!contacts) return;
+  // Contact points in the modes `state` carries (the values of the output columns).
+  for (int p = 0; p < model.num_contact_points(); ++p) {
+    const ContactPointOutput& o = data.contact_points[static_cast<size_t>(p)];
+    const double values[StateVariableLayout::kPerContactPoint] = {
+        static_cast<double>(o.mode), o.normal_force, o.friction_force_W.norm(),
+        o.slip_velocity_W.norm(), o.gap};
+    for (int k = 0; k < StateVariableLayout::kPerContactPoint; ++k) {
+      const int slot = first_contact + StateVariableLayout::kPerContactPoint * p + k;
+      if (slot < count) v[static_cast<size_t>(slot)] = values[k];
     }
   }
 }
@@ -440,6 +459,7 @@ struct Segment {
 Segment FirstSegment(const Scene& scene) {
   Segment seg;
   seg.map = std::make_shared<BodyMap>();
+  seg.map->num_scene_constraints = static_cast<int>(scene.dynamics.constraints.names().size());
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     const MassProperties& mp = scene.bodies[b].mass_properties;
     if (scene.planar) {
@@ -870,6 +890,9 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
       };
       SimulationResult r;
       const double t_from = state.t;
+      // Modes carried into this run: its "initial" records that only restate them are dropped.
+      std::vector<ContactMode> carried(state.contacts.size());
+      for (size_t p = 0; p < carried.size(); ++p) carried[p] = state.contacts[p].mode;
       try {
         r = Simulate(*seg.model, state, o);
       } catch (const InputError& e) {
@@ -890,8 +913,8 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
         // differently from the one carried in is news.
         ContactMode from = e.from;
         if (e.reason == ContactEventReason::kInitial) {
-          from = state.contacts.empty() ? ContactMode::kSeparated
-                                        : state.contacts[static_cast<size_t>(e.point)].mode;
+          const auto p = static_cast<size_t>(e.point);
+          from = p < carried.size() ? carried[p] : ContactMode::kSeparated;
           if (from == e.to) continue;
         }
         const Model& m = *seg.model;

@@ -34,6 +34,14 @@ struct StateVariableLayout {
   static constexpr int Slot(int body, int suffix_index) {
     return 1 + body * kPerBody + suffix_index;
   }
+  /// Slots after the bodies' blocks (events only): six reaction values per scene constraint
+  /// ("<name>_Fx" ... "<name>_Mz", in W [N, N·m]), then kContactSuffixes for each contact
+  /// point ("<point>_mode" ...), in SceneContacts::point_labels() order.
+  static constexpr int kPerConstraint = 6;
+  /// Per contact point: mode (0 separated, 1 sliding, 2 sticking), normal force N [N],
+  /// friction force |f| [N], slip speed [m/s], gap [m] (the output columns of group contacts).
+  static constexpr std::array<const char*, 5> kContactSuffixes = {"mode", "N", "f", "slip", "gap"};
+  static constexpr int kPerContactPoint = static_cast<int>(kContactSuffixes.size());
 };
 
 /// Initial motion of one body (key `initial`), resolved to the world frame.

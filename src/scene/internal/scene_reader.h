@@ -168,6 +168,8 @@ class SceneReader {
   // First slot of the constraints' reaction variables (after every body's block), and whether
   // the expression being read may use them (only events' `when`).
   int reaction_slot_begin_ = std::numeric_limits<int>::max();
+  // First slot of the contact points' variables (after the reactions; kContactSuffixes each).
+  int contact_slot_begin_ = std::numeric_limits<int>::max();
   bool allow_reactions_ = false;
 };
 
