@@ -20,12 +20,12 @@
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
+#include "chasles/integrate/rk4.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/model/contact.h"
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/model.h"
-#include "integrate/internal/ode.h"
 
 namespace chasles {
 namespace {
@@ -120,25 +120,6 @@ void SpinningBallEventDriven(benchmark::State& st) {
 }
 BENCHMARK(SpinningBallEventDriven)->Unit(benchmark::kMicrosecond);
 
-// One classical RK4 step of the engine's equations of motion in the modes `s` carries (the
-// same stages as Rk4Integrator::Step). Rk4Integrator itself is not used: its Step does not pass
-// the contact modes to the equations of motion and integrates every contact as separated.
-void Rk4Step(internal::OdeSystem& ode, State& s, double h, internal::Vector (&k)[4],
-             internal::Vector& y, internal::Vector& yt) {
-  const double t = s.t;
-  ode.Pack(s, y);
-  ode.Derivative(t, y, k[0]);
-  yt = y + (0.5 * h) * k[0];
-  ode.Derivative(t + 0.5 * h, yt, k[1]);
-  yt = y + (0.5 * h) * k[1];
-  ode.Derivative(t + 0.5 * h, yt, k[2]);
-  yt = y + h * k[2];
-  ode.Derivative(t + h, yt, k[3]);
-  y += (h / 6.0) * (k[0] + 2.0 * (k[1] + k[2]) + k[3]);
-  ode.NormalizeQuaternions(y, nullptr);
-  ode.Unpack(t + h, y, s);
-}
-
 // The same Model stepped by RK4 at h = 10^-k s. The sliding mode's friction keeps its
 // direction over the step (the mode's reference slip direction), so the slip runs past zero
 // inside the step; at the end of that step the ball is switched to rolling: the slip is
@@ -155,14 +136,12 @@ void SpinningBallFixedStepRk4(benchmark::State& st) {
   tol.stick_speed = 4.0 * kMuK * kG * h;  // > 7/2 mu_k g h, the largest overshoot
   State s0 = MakeSpinningBalls(m, 1, false);
   SelectContactModes(m, s0);  // sliding, against the initial slip
-  internal::OdeSystem ode(m);
-  internal::Vector k[4], y, yt;
+  Rk4Integrator rk4(m);
   double t_event = NAN, v_end = NAN;
   for (auto _ : st) {
     State s = s0;
-    ode.SetDiscreteState(s);
     for (long i = 0; i < n_steps; ++i) {
-      Rk4Step(ode, s, h, k, y, yt);
+      rk4.Step(s, h);
       ContactPointState& cs = s.contacts[0];
       if (cs.mode != ContactMode::kSliding) continue;
       const BodyState& b = s.bodies[0];
@@ -170,7 +149,6 @@ void SpinningBallFixedStepRk4(benchmark::State& st) {
       const Vec3 v_C = b.v_WBcm_W + w_W.cross(Vec3(0, 0, -kR));
       if (v_C.dot(cs.slip_direction_W) <= 0.0) {
         SelectContactModes(m, s, tol);
-        ode.SetDiscreteState(s);
         if (cs.mode == ContactMode::kSticking) t_event = s.t;
       }
     }

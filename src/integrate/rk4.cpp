@@ -24,6 +24,9 @@ void Rk4Integrator::Step(State& state, double h) {
   }
   Work& w = *work_;
   const double t = state.t;
+  // Contact modes are discrete: they hold over the step (a fixed-step run switches them
+  // itself, between steps).
+  ode_->SetDiscreteState(state);
   ode_->Pack(state, w.y);
   ode_->Derivative(t, w.y, w.k1);
   w.yt = w.y + (0.5 * h) * w.k1;

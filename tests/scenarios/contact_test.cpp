@@ -12,6 +12,7 @@
 #include "chasles/analysis/ledger.h"
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/newton_euler.h"
+#include "chasles/integrate/rk4.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/model.h"
@@ -381,4 +382,34 @@ TEST(ContactScenario, RollingResistanceStopsABall) {
 }
 
 }  // namespace
+// A fixed-step integrator steps the modes the state carries: a ball spinning on the floor
+// (sliding) keeps its height and gains speed at exactly mu_k g over RK4 steps (the friction is
+// constant in the mode, so RK4 is exact here), instead of falling through the floor.
+TEST(ContactScenario, Rk4StepsTheCarriedModes) {
+  const double m = 0.17, R = 0.028575, mu_k = 0.35;
+  FloorScene sc;
+  sc.model.AddBody("ball", MassProperties(m, Vec3::Zero(),
+                                          Diag(0.4 * m * R * R, 0.4 * m * R * R, 0.4 * m * R * R)));
+  sc.AddGravity();
+  ContactSpec spec;
+  spec.name = "floor";
+  spec.shape = ContactShape::kSphere;
+  spec.body = 0;
+  spec.radius = R;
+  spec.mu_s = 0.5;
+  spec.mu_k = mu_k;
+  sc.model.AddContact(spec);
+  State s = MakeRestState(sc.model);
+  SetBodyPose(sc.model, 0, Vec3(0, 0, R), Quat::Identity(), s);
+  SetBodyVelocity(sc.model, 0, Vec3::Zero(), Vec3(0, 100.0, 0), s);
+  SelectContactModes(sc.model, s);
+  ASSERT_EQ(s.contacts[0].mode, ContactMode::kSliding);
+  Rk4Integrator rk4(sc.model);
+  const double h = 1e-3;
+  for (int i = 0; i < 10; ++i) rk4.Step(s, h);
+  EXPECT_EQ(s.contacts[0].mode, ContactMode::kSliding);
+  EXPECT_NEAR(s.bodies[0].p_WBcm.z(), R, 1e-12);
+  EXPECT_TRUE(Near(s.bodies[0].v_WBcm_W.x(), mu_k * kG * 10 * h, 1e-12));
+}
+
 }  // namespace chasles
