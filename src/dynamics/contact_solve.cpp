@@ -130,6 +130,16 @@ void ContactPointGeometry::SetRow(const Vec3& k, RowRef row) const {
   }
 }
 
+void ContactPointGeometry::AddRow(const Vec3& k, double scale, RowRef row) const {
+  // scale × (SetRow of k), term by term as SetRow forms it.
+  row.segment<3>(6 * body) += scale * k.transpose();
+  row.segment<3>(6 * body + 3) += scale * r.cross(k).transpose();
+  if (other != kWorld) {
+    row.segment<3>(6 * other) -= scale * k.transpose();
+    row.segment<3>(6 * other + 3) -= scale * r_other.cross(k).transpose();
+  }
+}
+
 void ContactPointGeometry::AddMoment(const Vec3& M, RowRef row) const {
   row.segment<3>(6 * body + 3) += M.transpose();
   if (other != kWorld) row.segment<3>(6 * other + 3) -= M.transpose();
@@ -220,17 +230,51 @@ void SolveSquare(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, bool symmet
       }
     } else {
       ws.lu.compute(A);
-      const Eigen::VectorXd d = ws.lu.matrixLU().diagonal().cwiseAbs();
-      if (d.minCoeff() > 1e-10 * a_max) {
+      if (ws.lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-10 * a_max) {
         x = ws.lu.solve(r);
         return;
       }
     }
   }
-  // Redundant rows (a box on four coplanar vertices): least-norm multipliers.
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
+  // Redundant rows (a box on four coplanar vertices): least-norm multipliers. The steps of
+  // Eigen's CompleteOrthogonalDecomposition::solve, A P = Q [T 0] Z: c = Qᵀ r, T z = c(1:k),
+  // y = Zᵀ [z; 0], x = P y, done in the workspace's vectors because Eigen's solve allocates
+  // its temporaries on every call (the same operations in the same order: the unit test
+  // checks the result is Eigen's bit for bit).
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>& cod = ws.cod;
   cod.setThreshold(1e-10);
-  x = cod.solve(r);
+  cod.compute(A);
+  const Eigen::Index rank = cod.rank();
+  x.resize(n);
+  if (rank == 0) {
+    x.setZero();
+    return;
+  }
+  // c = Qᵀ r = H_{k-1} ... H_0 r, one reflector at a time on a column segment (Eigen's
+  // HouseholderSequence applies them to a dynamic-size block, whose product allocates).
+  ws.cod_c = r;
+  ws.cod_temp.resize(n);
+  for (Eigen::Index j = 0; j < rank; ++j) {
+    ws.cod_c.segment(j, n - j).applyHouseholderOnTheLeft(cod.matrixQTZ().col(j).tail(n - j - 1),
+                                                         cod.hCoeffs()(j), ws.cod_temp.data());
+  }
+  Eigen::VectorXd& y = ws.cod_x;
+  y.resize(n);
+  y.head(rank) = cod.matrixT()
+                     .topLeftCorner(rank, rank)
+                     .triangularView<Eigen::Upper>()
+                     .solve(ws.cod_c.head(rank));
+  if (rank < n) {
+    y.tail(n - rank).setZero();
+    for (Eigen::Index k = 0; k < rank; ++k) {
+      if (k != rank - 1) std::swap(y[k], y[rank - 1]);
+      y.segment(rank - 1, n - rank + 1)
+          .applyHouseholderOnTheLeft(cod.matrixQTZ().row(k).tail(n - rank).adjoint(),
+                                     cod.zCoeffs()(k), ws.cod_temp.data());
+      if (k != rank - 1) std::swap(y[k], y[rank - 1]);
+    }
+  }
+  x.noalias() = cod.colsPermutation() * y;
 }
 
 }  // namespace internal
@@ -278,11 +322,7 @@ void NormalForceRow(const Contact& con, const ContactPointGeometry& g, ContactMo
   roll_dir.setZero();
   if (mode == ContactMode::kSliding) {
     s = g.SlipDirection(ps.slip_direction_W);
-    if (s.squaredNorm() > 0.0 && con.mu_k() > 0.0) {
-      Eigen::RowVectorXd js = Eigen::RowVectorXd::Zero(row.size());
-      g.SetRow(s, js);
-      row -= con.mu_k() * js;
-    }
+    if (s.squaredNorm() > 0.0 && con.mu_k() > 0.0) g.AddRow(s, -con.mu_k(), row);
   }
   if (con.mu_r() > 0.0 && g.round && mode != ContactMode::kSeparated) {
     roll_dir = g.RollingDirection(ps.rolling_direction_W);
@@ -475,11 +515,8 @@ PlanSolution SolvePlan(const Model& model, const Data& data,
     g.SetRow(g.n, Jn.row(i));
     Wn.row(i) = Jn.row(i);
     cn[i] = pp.target_n;
-    if (pp.mode == ContactMode::kSliding && con.mu_k() > 0.0) {
-      Eigen::RowVectorXd js = Eigen::RowVectorXd::Zero(6 * nb);
-      g.SetRow(pp.s, js);
-      Wn.row(i) -= con.mu_k() * js;
-    }
+    if (pp.mode == ContactMode::kSliding && con.mu_k() > 0.0)
+      g.AddRow(pp.s, -con.mu_k(), Wn.row(i));
     if (pp.mode == ContactMode::kSticking) {
       g.SetRow(g.t1, JE.row(e));
       cE[e++] = pp.target_t[0];

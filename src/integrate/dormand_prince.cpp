@@ -71,8 +71,8 @@ void DormandPrince5Integrator::Initialize(const State& state) {
   ode_->Pack(state_, w.y0);
   ode_->NormalizeQuaternions(w.y0, nullptr);
   ode_->Unpack(state_.t, w.y0, state_);
-  if (ode_->has_constraints()) {
-    ode_->Project(state_);
+  if (ode_->projects(options_.project_contacts)) {
+    ode_->Project(state_, options_.project_contacts);
     ode_->Pack(state_, w.y0);
   }
   ode_->Derivative(state_.t, w.y0, w.k1);
@@ -173,11 +173,12 @@ void DormandPrince5Integrator::Step(double t_limit) {
 }
 
 void DormandPrince5Integrator::ProjectAfterStep() {
-  if (!ode_->has_constraints()) return;
-  // Project the accepted end state onto the constraint manifold; the FSAL derivative is then
-  // re-evaluated there (one evaluation per step). The dense output keeps its end points.
+  if (!ode_->projects(options_.project_contacts)) return;
+  // Project the accepted end state onto the constraint manifold and the active contact rows;
+  // the FSAL derivative is then re-evaluated there (one evaluation per step). The dense output
+  // is built after this, between the projected ends of the step.
   Work& w = *work_;
-  ode_->Project(state_);
+  ode_->Project(state_, options_.project_contacts);
   ode_->Pack(state_, w.y0);
   ode_->Derivative(state_.t, w.y0, w.k1);
   ++stats_.function_evaluations;
@@ -227,8 +228,9 @@ void DormandPrince5Integrator::Interpolate(double t, State& out) {
   w.yt = w.r1 + theta * (w.r2 + theta1 * (w.r3 + theta * (w.r4 + theta1 * w.r5)));
   ode_->NormalizeQuaternions(w.yt, nullptr);
   ode_->Unpack(t, w.yt, out);
-  // The interpolant meets the constraints only to its own error; put the output back on them.
-  if (ode_->has_constraints()) ode_->Project(out);
+  // The interpolant meets the constraints (and contact rows) only to its own error; put the
+  // output back on them.
+  if (ode_->projects(options_.project_contacts)) ode_->Project(out, options_.project_contacts);
 }
 
 }  // namespace chasles

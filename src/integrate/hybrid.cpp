@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/contact_projection.h"
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
@@ -136,6 +137,11 @@ class HybridRun {
     // Keep only the kInitial records for the first instant (the Transition's own are the same
     // changes).
     r_.contact_events.resize(static_cast<size_t>(model_.num_contact_points()));
+    // The first sample is the state integrated: on the rows of the chosen modes (the
+    // integrator projects again after every step; docs/contact.md, "Drift").
+    if (o_.adaptive.project_contacts && HasActiveContactRows(model_, s)) {
+      ProjectOntoContactModes(model_, s, data_);
+    }
     t0_ = s.t;
     Emit(s);
     DormandPrince5Integrator dp(model_, o_.adaptive);

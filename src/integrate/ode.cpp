@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/contact_projection.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/math/quaternion.h"
 
@@ -123,8 +124,16 @@ void OdeSystem::Derivative(double t, const Vector& y, Vector& ydot) {
   }
 }
 
-void OdeSystem::Project(State& state) {
-  ProjectOntoConstraints(model_, state, data_);
+bool OdeSystem::projects(bool contacts) const {
+  return has_constraints() || (contacts && HasActiveContactRows(model_, state_));
+}
+
+void OdeSystem::Project(State& state, bool contacts) {
+  if (contacts) {
+    ProjectOntoContactModes(model_, state, data_);  // the constraints alone when none touch
+  } else {
+    ProjectOntoConstraints(model_, state, data_);
+  }
 }
 
 void OdeSystem::NormalizeQuaternions(Vector& y, Vector* ydot) const {

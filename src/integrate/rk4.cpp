@@ -39,7 +39,7 @@ void Rk4Integrator::Step(State& state, double h) {
   ode_->NormalizeQuaternions(w.y, nullptr);
   ode_->Unpack(t + h, w.y, state);
   // Constrained models: back onto the constraint manifold (removes the drift of g and J u).
-  if (ode_->has_constraints()) ode_->Project(state);
+  if (ode_->has_constraints()) ode_->Project(state, false);
   ++stats_.steps;
   stats_.function_evaluations += 4;
 }

@@ -9,8 +9,10 @@
 /// reads), accept when err <= 1, next step h·min(5, max(0.2, 0.9 err^(-1/5))).
 /// Quaternions are renormalised after each accepted step; the FSAL derivative is rescaled with
 /// them (q̇ is linear in q), so the projection costs no evaluation.
-/// Models with constraints: the state is projected onto the constraint manifold after each
-/// accepted step (ProjectOntoConstraints) and the FSAL derivative re-evaluated there.
+/// Models with constraints, or with contact points in contact in the current modes: the state
+/// is projected onto the constraints and the active contact rows after each accepted step
+/// (ProjectOntoConstraints, ProjectOntoContactModes) and the FSAL derivative re-evaluated
+/// there.
 /// This is the default integrator: use it for accuracy and whenever events are located.
 
 #include <limits>
@@ -37,6 +39,10 @@ struct AdaptiveOptions {
   double max_step = std::numeric_limits<double>::infinity();
   /// Throws when control asks for a step smaller than this [s] (a stiff or singular problem).
   double min_step = 1e-14;
+  /// Project onto the active contact rows of the current modes after each step (false: they
+  /// are projected only at mode switches and drift with the integration error in between;
+  /// for drift studies).
+  bool project_contacts = true;
 };
 
 class DormandPrince5Integrator {
@@ -62,7 +68,8 @@ class DormandPrince5Integrator {
   /// Time at the end of the last step [s].
   double t() const { return state_.t; }
   /// Dense output: the state at `t` in [t_previous(), t()] (quaternions normalised; projected
-  /// onto the constraints of a constrained model), written into `out` (resized to the model).
+  /// onto the constraints and the active contact rows, as the step ends are), written into
+  /// `out` (resized to the model).
   void Interpolate(double t, State& out);
   /// Step size the controller proposes next [s].
   double next_step() const { return h_next_; }

@@ -102,9 +102,25 @@ struct ContactWorkspace {
   Eigen::VectorXd c, rhs, lambda;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  /// Least-norm solve of redundant rows and its vectors (sized with A: no allocation while
+  /// the modes stay).
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+  Eigen::VectorXd cod_c, cod_x, cod_temp;
   ContactWorkspace() = default;
   ContactWorkspace(const ContactWorkspace&) {}
   ContactWorkspace& operator=(const ContactWorkspace&) { return *this; }
+};
+
+/// Workspace of the projection onto the active contact rows (ProjectOntoContactModes): the
+/// position rows (holonomic constraint rows, gap rows) and the velocity rows (all active rows)
+/// each with its own factorisation, so that alternating between them does not reallocate.
+struct ContactProjectionWorkspace {
+  /// Position rows G, residual g in `c`; velocity rows J, residual J u - b in `c`.
+  ContactWorkspace position, velocity;
+  /// Holonomic constraint rows (indices into Data::J) and their constraints.
+  std::vector<int> holonomic_rows, holonomic_owner;
+  /// Correction of the positions [m, rad] or velocities [m/s, rad/s], 6 per body.
+  Eigen::VectorXd dx;
 };
 
 struct Data {
@@ -156,6 +172,8 @@ struct Data {
   std::vector<ContactPointOutput> contact_points;
   /// Workspace of the contact stage.
   ContactWorkspace contact_work;
+  /// Workspace of ProjectOntoContactModes (contact_projection.h).
+  ContactProjectionWorkspace contact_projection;
 };
 
 /// A Data sized for `model`.

@@ -43,6 +43,8 @@ struct ContactPointGeometry {
   double AccelerationBias(const Vec3& k) const;
   /// Adds the Jacobian row of k·v_rel to `row` (6 columns per body).
   void SetRow(const Vec3& k, RowRef row) const;
+  /// Adds `scale` times the Jacobian row of k·v_rel to `row` (no temporary row).
+  void AddRow(const Vec3& k, double scale, RowRef row) const;
   /// Adds the generalised force of a moment M on the body (-M on the other) to `row`.
   void AddMoment(const Vec3& M, RowRef row) const;
   /// Unit slip direction, sign relative to the reference `s_ref` (see ContactPointState).
@@ -67,7 +69,8 @@ void SetVelocity(const Model& model, const Data& data, const Eigen::VectorXd& u,
 /// Total kinetic energy [J].
 double KineticEnergy(const Model& model, const State& state);
 /// A x = r: LDLᵀ (symmetric) or LU, least-norm by complete orthogonal decomposition when
-/// singular.
+/// singular. Uses the factorisations and vectors of `ws`: no allocation once they have A's
+/// size.
 void SolveSquare(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, bool symmetric,
                  ContactWorkspace& ws, Eigen::VectorXd& x);
 

@@ -40,9 +40,13 @@ class OdeSystem {
   void NormalizeQuaternions(Vector& y, Vector* ydot) const;
   /// True when the model has constraints (then the state is projected after each step).
   bool has_constraints() const { return model_.num_constraints() > 0; }
-  /// Projects `state` onto the constraint manifold (positions, then velocities); see
-  /// ProjectOntoConstraints.
-  void Project(State& state);
+  /// True when the state is projected after each step: the model has constraints, or (with
+  /// `contacts`) a contact point is in contact in the discrete state (SetDiscreteState).
+  bool projects(bool contacts) const;
+  /// Projects `state` onto the constraint manifold and, with `contacts`, onto the active
+  /// contact rows of its modes (positions, then velocities); see ProjectOntoConstraints and
+  /// ProjectOntoContactModes.
+  void Project(State& state, bool contacts);
   /// Number of derivative evaluations so far.
   long long evaluations() const { return evaluations_; }
 

@@ -1,0 +1,159 @@
+// The contact stage in the integrator's hot path: once the workspace has the size of the
+// current modes, evaluating the accelerations allocates nothing (sliding rows, redundant rows
+// solved least-norm, rolling resistance), and the least-norm solve gives Eigen's numbers.
+//
+// Allocations are counted by interposing malloc in this test program (Eigen and operator new
+// both allocate through it). Not under AddressSanitizer, which owns malloc.
+
+#include <cstddef>
+#include <cstdlib>
+#include <memory>
+
+#include <gtest/gtest.h>
+#include <Eigen/QR>
+
+#include "chasles/dynamics/contact_projection.h"
+#include "chasles/dynamics/contact_solve.h"
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/model/forces.h"
+#include "chasles/model/model.h"
+#include "dynamics/internal/contact_geometry.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define CHASLES_COUNT_MALLOC 0
+#else
+#define CHASLES_COUNT_MALLOC 1
+#endif
+
+#if CHASLES_COUNT_MALLOC
+namespace {
+bool g_counting = false;
+long g_allocations = 0;
+}  // namespace
+extern "C" void* __libc_malloc(std::size_t size);
+extern "C" void* malloc(std::size_t size) {
+  if (g_counting) ++g_allocations;
+  return __libc_malloc(size);
+}
+#endif
+
+namespace chasles {
+namespace {
+
+constexpr double kG = 9.81;
+
+// Allocations made by `f`.
+template <typename F>
+long CountAllocations(F&& f) {
+#if CHASLES_COUNT_MALLOC
+  g_allocations = 0;
+  g_counting = true;
+  f();
+  g_counting = false;
+  return g_allocations;
+#else
+  f();
+  return 0;
+#endif
+}
+
+RotationalInertia Diag(double a, double b, double c) {
+  return RotationalInertia::FromMatrix(Vec3(a, b, c).asDiagonal());
+}
+
+// A box on the floor on its four bottom vertices, in `mode`, moving with `v` (slip along x
+// when sliding), with rolling resistance on an extra sphere when `mu_r` > 0.
+struct BoxScene {
+  Model model;
+  State state;
+  BoxScene(ContactMode mode, const Vec3& v) {
+    const double m = 3.0, a = 0.2, b = 0.1, c = 0.05;
+    model.AddBody("box", MassProperties(m, Vec3::Zero(),
+                                        Diag(m * (4 * b * b + 4 * c * c) / 12,
+                                             m * (4 * a * a + 4 * c * c) / 12,
+                                             m * (4 * a * a + 4 * b * b) / 12)));
+    model.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -kG)));
+    ContactSpec spec;
+    spec.name = "floor";
+    spec.shape = ContactShape::kBox;
+    spec.body = 0;
+    spec.half_extents = Vec3(a, b, c);
+    spec.mu_s = 0.5;
+    spec.mu_k = 0.4;
+    model.AddContact(spec);
+    state = MakeRestState(model);
+    SetBodyPose(model, 0, Vec3(0, 0, c), Quat::Identity(), state);
+    SetBodyVelocity(model, 0, v, Vec3::Zero(), state);
+    state.contacts.assign(8, ContactPointState{});
+    for (int k = 0; k < 4; ++k) {
+      state.contacts[static_cast<size_t>(k)].mode = mode;
+      if (mode == ContactMode::kSliding)
+        state.contacts[static_cast<size_t>(k)].slip_direction_W = Vec3::UnitX();
+    }
+  }
+};
+
+TEST(ContactSolve, SlidingOnRedundantRowsDoesNotAllocate) {
+  BoxScene sc(ContactMode::kSliding, Vec3(1.0, 0, 0));
+  Data data = MakeData(sc.model);
+  CalcAccelerations(sc.model, sc.state, data);  // sizes the workspace for these modes
+  const Vec3 a0 = data.a_WBcm_W[0];
+  const long n = CountAllocations([&] {
+    for (int i = 0; i < 10; ++i) CalcAccelerations(sc.model, sc.state, data);
+  });
+  EXPECT_EQ(n, 0);
+  // Four sliding points share m g (least-norm) and friction mu_k m g decelerates the box.
+  EXPECT_NEAR(a0.x(), -0.4 * kG, 1e-12 * kG);
+  EXPECT_NEAR(a0.z(), 0.0, 1e-12 * kG);
+}
+
+TEST(ContactSolve, StickingOnRedundantRowsDoesNotAllocate) {
+  BoxScene sc(ContactMode::kSticking, Vec3::Zero());
+  Data data = MakeData(sc.model);
+  CalcAccelerations(sc.model, sc.state, data);
+  const long n = CountAllocations([&] {
+    for (int i = 0; i < 10; ++i) CalcAccelerations(sc.model, sc.state, data);
+  });
+  EXPECT_EQ(n, 0);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(data.contact_points[static_cast<size_t>(k)].normal_force, 3.0 * kG / 4,
+                1e-12 * 3.0 * kG);
+  }
+}
+
+TEST(ContactSolve, ProjectionDoesNotAllocateOnceSized) {
+  BoxScene sc(ContactMode::kSticking, Vec3::Zero());
+  sc.state.bodies[0].p_WBcm.z() += 1e-10;  // off the rows a little
+  sc.state.bodies[0].v_WBcm_W = Vec3(1e-10, 0, -1e-10);
+  Data data = MakeData(sc.model);
+  State s = sc.state;
+  ProjectOntoContactModes(sc.model, s, data);  // sizes the projection workspace
+  const ContactViolation v = CalcContactViolation(sc.model, s, data);
+  EXPECT_LT(v.gap, 1e-15);
+  EXPECT_LT(v.normal_velocity, 1e-15);
+  EXPECT_LT(v.slip, 1e-15);
+  s = sc.state;
+  const long n = CountAllocations([&] { ProjectOntoContactModes(sc.model, s, data); });
+  EXPECT_EQ(n, 0);
+}
+
+// The least-norm path repeats Eigen's CompleteOrthogonalDecomposition::solve step by step in
+// the workspace: the same numbers, bit for bit.
+TEST(ContactSolve, LeastNormSolveMatchesEigen) {
+  Eigen::MatrixXd B = Eigen::MatrixXd::Random(7, 4);
+  const Eigen::MatrixXd A = B * B.transpose();  // 7 x 7 of rank 4
+  const Eigen::VectorXd r = A * Eigen::VectorXd::Random(7);
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+  cod.setThreshold(1e-10);  // before compute: the Z reflectors are built for this rank
+  cod.compute(A);
+  const Eigen::VectorXd expected = cod.solve(r);
+  ContactWorkspace ws;
+  Eigen::VectorXd x;
+  internal::SolveSquare(A, r, true, ws, x);
+  ASSERT_EQ(x.size(), 7);
+  for (int i = 0; i < 7; ++i) EXPECT_EQ(x[i], expected[i]) << i;
+  ASSERT_EQ(cod.rank(), 4);
+}
+
+}  // namespace
+}  // namespace chasles
