@@ -12,26 +12,13 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
 #include "chasles/math/quaternion.h"
+#include "dynamics/internal/generalized.h"
 
 namespace chasles {
 namespace {
 
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
-
-// Y = X M⁻¹ for a matrix X with 6 columns per body: linear block / m, angular block times
-// I_W⁻¹ = R I_B⁻¹ Rᵀ (symmetric, so right and left products agree). Y is resized only when
-// its shape differs.
-void TimesMassInverse(const Model& model, const Data& data, const MatrixXd& X, MatrixXd& Y) {
-  Y.resize(X.rows(), X.cols());
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const auto i = static_cast<size_t>(b);
-    const Body& body = model.body(b);
-    const Mat3 I_inv_W = data.R_WB[i] * body.I_BBcm_B_inverse() * data.R_WB[i].transpose();
-    Y.middleCols<3>(6 * b) = X.middleCols<3>(6 * b) / body.mass();
-    Y.middleCols<3>(6 * b + 3).noalias() = X.middleCols<3>(6 * b + 3) * I_inv_W;
-  }
-}
 
 std::vector<int> RowOwners(const Model& model);
 
@@ -91,15 +78,6 @@ std::vector<int> RowOwners(const Model& model) {
   return owner;
 }
 
-void GeneralizedVelocity(const Model& model, const State& state, const Data& data, VectorXd& u) {
-  u.resize(6 * model.num_bodies());
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const auto i = static_cast<size_t>(b);
-    u.segment<3>(6 * b) = state.bodies[i].v_WBcm_W;
-    u.segment<3>(6 * b + 3) = data.w_WB_W[i];
-  }
-}
-
 }  // namespace
 
 void CalcConstraintRows(const Model& model, const State& state, Data& data) {
@@ -129,7 +107,7 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
     u_dot.segment<3>(6 * b) = data.a_WBcm_W[i];
     u_dot.segment<3>(6 * b + 3) = data.R_WB[i] * data.wdot_WB_B[i];
   }
-  TimesMassInverse(model, data, data.J, data.JMinv);
+  internal::TimesMassInverse(model, data, data.J, data.JMinv);
   data.schur.noalias() = data.JMinv * data.J.transpose();
   data.Ju.noalias() = data.J * u_dot;  // J u̇_free here; J u below
   data.schur_rhs = data.acceleration_rhs - data.Ju;
@@ -143,31 +121,8 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
     data.a_WBcm_W[i] = u_dot.segment<3>(6 * b);
     data.wdot_WB_B[i] = data.R_WB[i].transpose() * u_dot.segment<3>(6 * b + 3);
   }
-  // Reactions: the child's share of Jᵀλ is a force at Bcm and a moment about Bcm (in W);
-  // moved to the joint point J: M_J = M_Bcm - (p_WJ - p_WBcm) × F.
-  GeneralizedVelocity(model, state, data, data.u);
-  data.Ju.noalias() = data.J * data.u;
-  const VectorXd& Ju = data.Ju;
-  for (int c = 0; c < model.num_constraints(); ++c) {
-    const Constraint& con = model.constraint(c);
-    const auto ci = static_cast<size_t>(c);
-    const ConstraintEval& e = data.constraint_rows[ci];
-    ConstraintOutput& out = data.constraints[ci];
-    const int o = model.constraint_row_offset(c);
-    const int n = con.num_rows();
-    out.lambda.setZero();
-    out.lambda.head(n) = data.lambda.segment(o, n);
-    const Eigen::Matrix<double, 6, 1> Fc = e.J_child.topRows(n).transpose() * out.lambda.head(n);
-    const auto bi = static_cast<size_t>(con.child());
-    const Vec3 F = Fc.head<3>();
-    const Vec3 r_J = e.p_WJ - state.bodies[bi].p_WBcm;
-    out.p_WJ = e.p_WJ;
-    out.F_Jc_W = F;
-    out.M_Jc_W = Fc.tail<3>() - r_J.cross(F);
-    out.F_Jc_B = data.R_WB[bi].transpose() * out.F_Jc_W;
-    out.M_Jc_B = data.R_WB[bi].transpose() * out.M_Jc_W;
-    out.power = data.lambda.segment(o, n).dot(Ju.segment(o, n));
-  }
+  // Reactions: the child's share of Jᵀλ moved to the joint point J.
+  internal::FillConstraintReactions(model, state, data);
 }
 
 ConstraintViolation CalcConstraintViolation(const Model& model, const State& state, Data& data) {
@@ -175,7 +130,7 @@ ConstraintViolation CalcConstraintViolation(const Model& model, const State& sta
   if (model.num_constraints() == 0) return v;
   CalcKinematics(model, state, data);
   CalcConstraintRows(model, state, data);
-  GeneralizedVelocity(model, state, data, data.u);
+  internal::GetVelocity(model, state, data, data.u);
   const VectorXd res = data.J * data.u - data.velocity_rhs;
   double worst = -1.0;
   for (int c = 0; c < model.num_constraints(); ++c) {
@@ -240,7 +195,7 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
       }
       break;
     }
-    TimesMassInverse(model, data, G, GMinv);
+    internal::TimesMassInverse(model, data, G, GMinv);
     // Least squares without the consistency check: an inconsistent set is reported by the
     // acceleration solve, and here the right-hand side is only the drift.
     SolveSchur(model, &hol_owner, GMinv * G.transpose(), ldlt, g, mu, nullptr, 0.0);
@@ -255,10 +210,10 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
   // Velocities: J u = b at the projected configuration.
   CalcKinematics(model, state, data);
   CalcConstraintRows(model, state, data);
-  GeneralizedVelocity(model, state, data, data.u);
+  internal::GetVelocity(model, state, data, data.u);
   const VectorXd res = data.J * data.u - data.velocity_rhs;
   if (res.size() == 0 || res.cwiseAbs().maxCoeff() == 0.0) return;
-  TimesMassInverse(model, data, data.J, data.JMinv);
+  internal::TimesMassInverse(model, data, data.J, data.JMinv);
   data.schur.noalias() = data.JMinv * data.J.transpose();
   SolveSchur(model, nullptr, data.schur, data.schur_ldlt.ldlt, res, mu, nullptr, 0.0);
   const VectorXd du = -data.JMinv.transpose() * mu;

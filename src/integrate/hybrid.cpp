@@ -91,19 +91,6 @@ void EvalFunctions(const Model& model, const State& s, const std::vector<Contact
   }
 }
 
-bool Crosses(EventDirection d, double g0, double g1) {
-  const bool rising = g0 < 0.0 && g1 >= 0.0;
-  const bool falling = g0 > 0.0 && g1 <= 0.0;
-  switch (d) {
-    case EventDirection::kRising:
-      return rising;
-    case EventDirection::kFalling:
-      return falling;
-    default:
-      return rising || falling;
-  }
-}
-
 // Bounce history of one point for the accumulation (Zeno) test.
 struct BounceHistory {
   double t[2] = {0.0, 0.0};  // times of the last two impacts (t[1] the latest)
@@ -200,7 +187,7 @@ class HybridRun {
             if (t < t_c) t_c = t, which = static_cast<int>(i);
             continue;
           }
-          if (!Crosses(EventDirection::kFalling, g0[i], g1[i])) {
+          if (!internal::Crosses(EventDirection::kFalling, g0[i], g1[i])) {
             // A point that separated at the step's start (gap at round-off, <= 0) and ends it
             // below the plane made a flight shorter than the step: the gap rose and fell
             // inside it, which the end values do not show. The top of that flight is the zero
@@ -232,7 +219,7 @@ class HybridRun {
         double t_stop = std::numeric_limits<double>::infinity();
         for (size_t e = 0; e < ne; ++e) {
           ug_new[e] = o_.events[e].g(tb, dp.state());
-          if (!Crosses(o_.events[e].direction, ug_prev[e], ug_new[e])) continue;
+          if (!internal::Crosses(o_.events[e].direction, ug_prev[e], ug_new[e])) continue;
           auto g = [&](double t) {
             dp.Interpolate(t, scratch);
             return o_.events[e].g(t, scratch);

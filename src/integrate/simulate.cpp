@@ -64,19 +64,6 @@ class Sampler {
   double t0_;
 };
 
-bool Crosses(EventDirection d, double g0, double g1) {
-  const bool rising = g0 < 0.0 && g1 >= 0.0;
-  const bool falling = g0 > 0.0 && g1 <= 0.0;
-  switch (d) {
-    case EventDirection::kRising:
-      return rising;
-    case EventDirection::kFalling:
-      return falling;
-    default:
-      return rising || falling;
-  }
-}
-
 SimulationResult RunAdaptive(const Model& model, const State& initial, const SimulationOptions& o) {
   SimulationResult r;
   Sampler sampler(o, r, initial.t);
@@ -100,7 +87,7 @@ SimulationResult RunAdaptive(const Model& model, const State& initial, const Sim
     std::vector<double> g_new(ne);
     for (size_t e = 0; e < ne; ++e) {
       g_new[e] = o.events[e].g(t1, dp.state());
-      if (!Crosses(o.events[e].direction, g_prev[e], g_new[e])) continue;
+      if (!internal::Crosses(o.events[e].direction, g_prev[e], g_new[e])) continue;
       auto g = [&](double t) {
         dp.Interpolate(t, scratch);
         return o.events[e].g(t, scratch);

@@ -8,6 +8,7 @@
 #include "chasles/model/data.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
+#include "dynamics/internal/generalized.h"
 
 namespace chasles::internal {
 
@@ -59,15 +60,6 @@ struct ContactPointGeometry {
 ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& state,
                                               const Data& data, int point);
 
-/// Y = X M⁻¹ for 6 columns per body.
-void TimesMassInverse(const Model& model, const Data& data, const Eigen::MatrixXd& X,
-                      Eigen::MatrixXd& Y);
-/// Generalised velocity u = [v_WBcm_W; w_WB_W] per body.
-void GetVelocity(const Model& model, const State& state, const Data& data, Eigen::VectorXd& u);
-/// Writes u back into the state (angular velocity re-expressed in B).
-void SetVelocity(const Model& model, const Data& data, const Eigen::VectorXd& u, State& state);
-/// Total kinetic energy [J].
-double KineticEnergy(const Model& model, const State& state);
 /// A x = r: LDLᵀ (symmetric) or LU, least-norm by complete orthogonal decomposition when
 /// singular. Uses the factorisations and vectors of `ws`: no allocation once they have A's
 /// size.

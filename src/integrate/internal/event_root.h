@@ -7,6 +7,8 @@
 #include <functional>
 #include <limits>
 
+#include "chasles/integrate/simulate.h"
+
 namespace chasles::internal {
 
 /// The first time at or after the sign change of g in [a, b] (g(a) = ga, g(b) = gb of
@@ -15,6 +17,21 @@ namespace chasles::internal {
 /// and it is superlinear, so a tight tolerance costs only a few more evaluations of the dense
 /// output. The bracket cannot shrink below a few ulps of t: the effective tolerance is at
 /// least 8 ε |b|, so late events (t ~ 1e5 s) still terminate.
+/// Whether g going from g0 to g1 over a step is a zero crossing in direction `d`: from < 0 to
+/// >= 0 (rising), from > 0 to <= 0 (falling).
+inline bool Crosses(EventDirection d, double g0, double g1) {
+  const bool rising = g0 < 0.0 && g1 >= 0.0;
+  const bool falling = g0 > 0.0 && g1 <= 0.0;
+  switch (d) {
+    case EventDirection::kRising:
+      return rising;
+    case EventDirection::kFalling:
+      return falling;
+    default:
+      return rising || falling;
+  }
+}
+
 inline double LocateEventTime(const std::function<double(double)>& g, double a, double ga, double b,
                               double gb, double tol) {
   tol = std::max(tol, 8.0 * std::numeric_limits<double>::epsilon() * std::abs(b));

@@ -1,0 +1,73 @@
+#include "dynamics/internal/generalized.h"
+
+namespace chasles::internal {
+
+// Mass-matrix helpers over the 6-per-body generalised velocity u_b = [v_WBcm_W; w_WB_W].
+// Linear block / m, angular block times I_W⁻¹ = R I_B⁻¹ Rᵀ (symmetric, so right and left
+// products agree). Y is resized only when its shape differs.
+void TimesMassInverse(const Model& model, const Data& data, const Eigen::MatrixXd& X,
+                      Eigen::MatrixXd& Y) {
+  Y.resize(X.rows(), X.cols());
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    const Body& body = model.body(b);
+    const Mat3 I_inv_W = data.R_WB[i] * body.I_BBcm_B_inverse() * data.R_WB[i].transpose();
+    Y.middleCols<3>(6 * b) = X.middleCols<3>(6 * b) / body.mass();
+    Y.middleCols<3>(6 * b + 3).noalias() = X.middleCols<3>(6 * b + 3) * I_inv_W;
+  }
+}
+
+void GetVelocity(const Model& model, const State& state, const Data& data, Eigen::VectorXd& u) {
+  u.resize(6 * model.num_bodies());
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    u.segment<3>(6 * b) = state.bodies[i].v_WBcm_W;
+    u.segment<3>(6 * b + 3) = data.w_WB_W[i];
+  }
+}
+
+void SetVelocity(const Model& model, const Data& data, const Eigen::VectorXd& u, State& state) {
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    state.bodies[i].v_WBcm_W = u.segment<3>(6 * b);
+    state.bodies[i].w_WB_B = data.R_WB[i].transpose() * u.segment<3>(6 * b + 3);
+  }
+}
+
+double KineticEnergy(const Model& model, const State& state) {
+  double T = 0.0;
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyState& bs = state.bodies[static_cast<size_t>(b)];
+    const Body& body = model.body(b);
+    T += 0.5 * body.mass() * bs.v_WBcm_W.squaredNorm() +
+         0.5 * bs.w_WB_B.dot(body.I_BBcm_B() * bs.w_WB_B);
+  }
+  return T;
+}
+
+void FillConstraintReactions(const Model& model, const State& state, Data& data) {
+  GetVelocity(model, state, data, data.u);
+  data.Ju.noalias() = data.J * data.u;
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const Constraint& con = model.constraint(c);
+    const auto ci = static_cast<size_t>(c);
+    const ConstraintEval& e = data.constraint_rows[ci];
+    ConstraintOutput& out = data.constraints[ci];
+    const int o = model.constraint_row_offset(c);
+    const int n = con.num_rows();
+    out.lambda.setZero();
+    out.lambda.head(n) = data.lambda.segment(o, n);
+    const Eigen::Matrix<double, 6, 1> Fc = e.J_child.topRows(n).transpose() * out.lambda.head(n);
+    const auto bi = static_cast<size_t>(con.child());
+    const Vec3 F = Fc.head<3>();
+    const Vec3 r_J = e.p_WJ - state.bodies[bi].p_WBcm;
+    out.p_WJ = e.p_WJ;
+    out.F_Jc_W = F;
+    out.M_Jc_W = Fc.tail<3>() - r_J.cross(F);
+    out.F_Jc_B = data.R_WB[bi].transpose() * out.F_Jc_W;
+    out.M_Jc_B = data.R_WB[bi].transpose() * out.M_Jc_W;
+    out.power = data.lambda.segment(o, n).dot(data.Ju.segment(o, n));
+  }
+}
+
+}  // namespace chasles::internal

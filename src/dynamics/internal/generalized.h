@@ -1,0 +1,29 @@
+#pragma once
+/// @file
+/// Helpers over the generalised velocity u_b = [v_WBcm_W; w_WB_W] (6 per body) shared by the
+/// constraint solve, the contact solve and the contact projection.
+
+#include <Eigen/Core>
+
+#include "chasles/model/data.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+
+namespace chasles::internal {
+
+/// Y = X M⁻¹ for 6 columns per body.
+void TimesMassInverse(const Model& model, const Data& data, const Eigen::MatrixXd& X,
+                      Eigen::MatrixXd& Y);
+/// Generalised velocity u = [v_WBcm_W; w_WB_W] per body.
+void GetVelocity(const Model& model, const State& state, const Data& data, Eigen::VectorXd& u);
+/// Writes u back into the state (angular velocity re-expressed in B).
+void SetVelocity(const Model& model, const Data& data, const Eigen::VectorXd& u, State& state);
+/// Total kinetic energy [J].
+double KineticEnergy(const Model& model, const State& state);
+/// Data::constraints from the constraint multipliers in Data::lambda and the rows in
+/// Data::constraint_rows: the child's share of Jᵀλ is a force at Bcm and a moment about Bcm
+/// (in W), moved to the joint point J: M_J = M_Bcm - (p_WJ - p_WBcm) × F; also in the
+/// child's frame B, and each constraint's power λᵀ J u. Fills Data::u and Data::Ju.
+void FillConstraintReactions(const Model& model, const State& state, Data& data);
+
+}  // namespace chasles::internal
