@@ -6,6 +6,7 @@
 #include <memory>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -53,6 +54,19 @@ struct FloorScene {
   void AddGravity() {
     model.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -kG)));
   }
+  // A uniform ball (I = 2/5 m R²) as body 0 under gravity, and the spec of its sphere contact
+  // with the floor (the caller sets the coefficients and adds it).
+  ContactSpec AddBall(double m, double R, const std::string& contact) {
+    const double I = 0.4 * m * R * R;
+    model.AddBody("ball", MassProperties(m, Vec3::Zero(), Diag(I, I, I)));
+    AddGravity();
+    ContactSpec spec;
+    spec.name = contact;
+    spec.shape = ContactShape::kSphere;
+    spec.body = 0;
+    spec.radius = R;
+    return spec;
+  }
 };
 
 // ---------------------------------------------------------------------------------------
@@ -63,14 +77,7 @@ struct FloorScene {
 TEST(ContactScenario, SpinningBallStopsSlidingAtTStar) {
   const double m = 0.17, R = 0.028575, w0 = 40.0, mu_k = 0.2, mu_s = 0.25;
   FloorScene sc;
-  sc.model.AddBody("ball", MassProperties(m, Vec3::Zero(),
-                                          Diag(0.4 * m * R * R, 0.4 * m * R * R, 0.4 * m * R * R)));
-  sc.AddGravity();
-  ContactSpec spec;
-  spec.name = "table";
-  spec.shape = ContactShape::kSphere;
-  spec.body = 0;
-  spec.radius = R;
+  ContactSpec spec = sc.AddBall(m, R, "table");
   spec.mu_s = mu_s;
   spec.mu_k = mu_k;
   sc.model.AddContact(spec);
@@ -267,14 +274,7 @@ TEST(ContactScenario, RodOnFloorAndWall) {
 TEST(ContactScenario, BouncingBallHeightsAndTimeToRest) {
   const double m = 0.05, R = 0.02, h0 = 1.0, e = 0.6;
   FloorScene sc;
-  sc.model.AddBody("ball", MassProperties(m, Vec3::Zero(),
-                                          Diag(0.4 * m * R * R, 0.4 * m * R * R, 0.4 * m * R * R)));
-  sc.AddGravity();
-  ContactSpec spec;
-  spec.name = "floor";
-  spec.shape = ContactShape::kSphere;
-  spec.body = 0;
-  spec.radius = R;
+  ContactSpec spec = sc.AddBall(m, R, "floor");
   spec.mu_s = 0.3;
   spec.mu_k = 0.3;
   spec.restitution = e;
@@ -354,14 +354,7 @@ TEST(ContactScenario, ImpactsNeverCreateEnergy) {
 TEST(ContactScenario, RollingResistanceStopsABall) {
   const double m = 0.2, R = 0.03, v0 = 0.5, mu_r = 0.01;
   FloorScene sc;
-  sc.model.AddBody("ball", MassProperties(m, Vec3::Zero(),
-                                          Diag(0.4 * m * R * R, 0.4 * m * R * R, 0.4 * m * R * R)));
-  sc.AddGravity();
-  ContactSpec spec;
-  spec.name = "floor";
-  spec.shape = ContactShape::kSphere;
-  spec.body = 0;
-  spec.radius = R;
+  ContactSpec spec = sc.AddBall(m, R, "floor");
   spec.mu_s = 0.5;
   spec.mu_k = 0.4;
   spec.mu_r = mu_r;
@@ -388,14 +381,7 @@ TEST(ContactScenario, RollingResistanceStopsABall) {
 TEST(ContactScenario, Rk4StepsTheCarriedModes) {
   const double m = 0.17, R = 0.028575, mu_k = 0.35;
   FloorScene sc;
-  sc.model.AddBody("ball", MassProperties(m, Vec3::Zero(),
-                                          Diag(0.4 * m * R * R, 0.4 * m * R * R, 0.4 * m * R * R)));
-  sc.AddGravity();
-  ContactSpec spec;
-  spec.name = "floor";
-  spec.shape = ContactShape::kSphere;
-  spec.body = 0;
-  spec.radius = R;
+  ContactSpec spec = sc.AddBall(m, R, "floor");
   spec.mu_s = 0.5;
   spec.mu_k = mu_k;
   sc.model.AddContact(spec);
