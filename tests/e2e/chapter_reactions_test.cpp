@@ -30,10 +30,7 @@ constexpr double kG = 9.80665;
 constexpr double kPi = 3.14159265358979323846;
 
 std::filesystem::path OutDir() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("chasles_reactions_e2e_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  return test::OutDir("reactions");
 }
 
 // Runs `chasles simulate` and reads its CSV.

@@ -3,12 +3,14 @@
 /// Runs the chasles program as a user would and captures what it prints.
 
 #include <sys/wait.h>
+#include <unistd.h>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -100,6 +102,28 @@ inline nlohmann::json MassJson(const std::string& example, const std::string& ex
   if (r.exit_code != 0) {
     throw std::runtime_error("chasles mass " + example + " failed (" + std::to_string(r.exit_code) +
                              "): " + r.err);
+  }
+  return nlohmann::json::parse(r.out);
+}
+
+/// A scratch folder for one test program's output files: the system's temporary folder,
+/// named by `tag` and the process id so parallel test programs do not share it.
+inline std::filesystem::path OutDir(const std::string& tag) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("chasles_" + tag + "_e2e_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+/// Runs `chasles simulate SCENE --format json --out DIR EXTRA` (SCENE a path) and parses the
+/// JSON summary; a failed run throws, which fails the test.
+inline nlohmann::json SimulateJson(const std::string& scene, const std::filesystem::path& out,
+                                   const std::string& extra = "") {
+  const CliResult r =
+      RunCli("simulate '" + scene + "' --format json --out '" + out.string() + "' " + extra);
+  if (r.exit_code != 0) {
+    throw std::runtime_error("chasles simulate " + scene + " failed (" +
+                             std::to_string(r.exit_code) + "): " + r.err);
   }
   return nlohmann::json::parse(r.out);
 }

@@ -26,10 +26,7 @@ constexpr double kG = 9.80665;  // `gravity: standard` [m/s²]
 constexpr double kPi = 3.14159265358979323846;
 
 std::filesystem::path OutDir() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("chasles_contact_extras_e2e_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  return test::OutDir("contact_extras");
 }
 
 struct RunResult {
@@ -38,11 +35,8 @@ struct RunResult {
 };
 
 RunResult Simulate(const std::string& scene_path, const std::string& extra = "") {
-  const CliResult r = RunCli("simulate '" + scene_path + "' --format json --out '" +
-                             OutDir().string() + "' " + extra);
-  if (r.exit_code != 0) throw std::runtime_error("chasles simulate failed: " + r.err);
   RunResult run;
-  run.json = nlohmann::json::parse(r.out);
+  run.json = SimulateJson(scene_path, OutDir(), extra);
   run.csv = ReadCsv(run.json.at("csv").get<std::string>());
   return run;
 }

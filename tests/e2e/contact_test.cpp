@@ -33,21 +33,13 @@ struct RunResult {
 };
 
 std::filesystem::path OutDir() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("chasles_contact_e2e_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  return test::OutDir("contact");
 }
 
 // Runs an example with `chasles simulate --format json`; a failed run fails the test.
 RunResult Simulate(const std::string& example, const std::string& extra) {
-  const CliResult r = RunCli("simulate '" + SourcePath(example) + "' --format json --out '" +
-                             OutDir().string() + "' " + extra);
-  if (r.exit_code != 0) {
-    throw std::runtime_error("chasles simulate " + example + " failed: " + r.err);
-  }
   RunResult run;
-  run.json = nlohmann::json::parse(r.out);
+  run.json = SimulateJson(SourcePath(example), OutDir(), extra);
   run.csv = ReadCsv(run.json.at("csv").get<std::string>());
   return run;
 }

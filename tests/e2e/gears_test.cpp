@@ -24,10 +24,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kM = 2.0, kR = 0.1, kL = 0.3, kOmega = 3.0;
 
 std::filesystem::path OutDir() {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("chasles_gears_e2e_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  return test::OutDir("gears");
 }
 
 const nlohmann::json& Named(const nlohmann::json& list, const std::string& name) {

@@ -25,20 +25,11 @@ constexpr double kStandardGravity = 9.80665;
 constexpr double kPi = 3.14159265358979323846;
 
 std::filesystem::path OutDir() {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("chasles_joints_e2e_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  return test::OutDir("joints");
 }
 
 nlohmann::json Simulate(const std::string& example, const std::string& extra = "") {
-  const CliResult r = RunCli("simulate '" + SourcePath(example) + "' --format json --out '" +
-                             OutDir().string() + "' " + extra);
-  if (r.exit_code != 0) {
-    throw std::runtime_error("chasles simulate " + example + " failed (" +
-                             std::to_string(r.exit_code) + "): " + r.err);
-  }
-  return nlohmann::json::parse(r.out);
+  return SimulateJson(SourcePath(example), OutDir(), extra);
 }
 
 const nlohmann::json& Named(const nlohmann::json& list, const std::string& name) {

@@ -26,20 +26,11 @@ constexpr double kJump = 1e-12;
 constexpr double kStandardGravity = 9.80665;
 
 std::filesystem::path OutDir() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("chasles_simulate_e2e_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  return test::OutDir("simulate");
 }
 
 nlohmann::json Simulate(const std::string& example, const std::string& extra = "") {
-  const CliResult r = RunCli("simulate '" + SourcePath(example) + "' --format json --out '" +
-                             OutDir().string() + "' " + extra);
-  if (r.exit_code != 0) {
-    throw std::runtime_error("chasles simulate " + example + " failed (" +
-                             std::to_string(r.exit_code) + "): " + r.err);
-  }
-  return nlohmann::json::parse(r.out);
+  return SimulateJson(SourcePath(example), OutDir(), extra);
 }
 
 const nlohmann::json& FinalBody(const nlohmann::json& j, size_t i = 0) {
