@@ -138,7 +138,8 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                             {"approach_speed", x.approach_speed},
                             {"normal_impulse", x.normal_impulse},
                             {"energy_lost", x.energy_lost},
-                            {"accumulation", x.accumulation}});
+                            {"accumulation", x.accumulation},
+                            {"jam", x.jam}});
     if (x.accumulation) j["impacts"].back()["rest_time"] = x.rest_time;
   }
   const StudyLedger& L = r.ledger;
@@ -170,7 +171,9 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                      {"rejected_steps", r.stats.rejected_steps},
                      {"function_evaluations", r.stats.function_evaluations}};
   j["notes"] = r.notes;
-  j["warnings"] = scene.warnings;
+  std::vector<std::string> warnings = scene.warnings;
+  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+  j["warnings"] = warnings;
   return j;
 }
 
@@ -307,6 +310,11 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
       const auto& x = r.impacts[i];
       out += fmt::format("  t = {}  {}: approach speed {}, energy lost {}\n", time(x.t), x.point,
                          show(x.approach_speed, kVelocityDim), energy(x.energy_lost));
+      if (x.jam) {
+        out +=
+            "    a jam: the slip had no consistent contact forces (Painlevé) and was stopped "
+            "by this impulse (see the warnings)\n";
+      }
       if (x.accumulation) {
         out += fmt::format(
             "    the bounces shrink by the ratio e: this impact is made plastic; the remaining "
@@ -409,6 +417,7 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
                      r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
   for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);
   for (const auto& w : scene.warnings) out += fmt::format("warning: {}\n", w);
+  for (const auto& w : r.warnings) out += fmt::format("warning: {}\n", w);
   out += fmt::format("Wrote {} ({} rows) and {}\n", csv_path, r.rows.size(), json_path);
   return out;
 }

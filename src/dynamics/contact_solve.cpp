@@ -109,6 +109,11 @@ ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& s
   }
   g.v_n = g.n.dot(g.v_rel);
   g.v_t = g.v_rel - g.v_n * g.n;
+  g.speed_scale = v_cm.norm() + w.norm() * g.r.norm();
+  if (g.other != kWorld) {
+    const auto o = static_cast<size_t>(g.other);
+    g.speed_scale += state.bodies[o].v_WBcm_W.norm() + data.w_WB_W[o].norm() * g.r_other.norm();
+  }
   return g;
 }
 
@@ -140,6 +145,14 @@ void ContactPointGeometry::AddRow(const Vec3& k, double scale, RowRef row) const
   }
 }
 
+double ContactPointGeometry::RowTimes(const Vec3& k, const Eigen::VectorXd& u_dot) const {
+  double a = k.dot(u_dot.segment<3>(6 * body)) + r.cross(k).dot(u_dot.segment<3>(6 * body + 3));
+  if (other != kWorld) {
+    a -= k.dot(u_dot.segment<3>(6 * other)) + r_other.cross(k).dot(u_dot.segment<3>(6 * other + 3));
+  }
+  return a;
+}
+
 void ContactPointGeometry::AddMoment(const Vec3& M, RowRef row) const {
   row.segment<3>(6 * body + 3) += M.transpose();
   if (other != kWorld) row.segment<3>(6 * other + 3) -= M.transpose();
@@ -148,9 +161,14 @@ void ContactPointGeometry::AddMoment(const Vec3& M, RowRef row) const {
 Vec3 ContactPointGeometry::SlipDirection(const Vec3& s_ref) const {
   // Unit slip direction, its sign taken relative to the mode's reference direction so that
   // the friction force stays smooth while the slip passes through zero along s_ref.
+  // A slip at round-off level (a slip that starts from zero, a state just projected) has no
+  // direction of its own: the reference holds until the slip stands out of the round-off of
+  // the material point's velocity: 1e-10 of speed_scale, and at least 1e-14 m/s (the
+  // round-off of a body at rest, whose own speed scale is round-off).
   const double vt = v_t.norm();
   const bool has_ref = s_ref.squaredNorm() > 0.0;
-  if (!(vt > 0.0) || (has_ref && vt < 1e-300)) return has_ref ? s_ref : Vec3::Zero();
+  if (!(vt > 0.0) || (has_ref && vt <= std::max(1e-10 * speed_scale, 1e-14)))
+    return has_ref ? s_ref : Vec3::Zero();
   Vec3 s = v_t / vt;
   if (has_ref && s.dot(s_ref) < 0.0) s = -s;
   return s;
@@ -170,35 +188,39 @@ Vec3 ContactPointGeometry::RollingDirection(const Vec3& r_ref) const {
   return d;
 }
 
-// Solves A x = r, LDLᵀ / LU when well conditioned, least-norm (COD) otherwise.
-void SolveSquare(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, bool symmetric,
-                 ContactWorkspace& ws, Eigen::VectorXd& x) {
-  const Eigen::Index n = A.rows();
+// Solves A x = r, LDLᵀ / LU when well conditioned, (weighted) least-norm (COD) otherwise.
+bool SolveSquare(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, bool symmetric,
+                 ContactWorkspace& ws, Eigen::VectorXd& x, const Eigen::VectorXd* column_scale) {
+  const Eigen::Index n = A_in.rows();
   if (n == 0) {
     x.resize(0);
-    return;
+    return false;
   }
-  const double a_max = A.cwiseAbs().maxCoeff();
-  if (a_max > 0.0) {
+  // With column scales the caller knows A is singular: straight to the least-norm branch.
+  const double a_max = A_in.cwiseAbs().maxCoeff();
+  if (a_max > 0.0 && column_scale == nullptr) {
     if (symmetric) {
-      ws.ldlt.compute(A);
+      ws.ldlt.compute(A_in);
       if (ws.ldlt.info() == Eigen::Success && ws.ldlt.vectorD().minCoeff() > 1e-10 * a_max) {
         x = ws.ldlt.solve(r);
-        return;
+        return false;
       }
     } else {
-      ws.lu.compute(A);
+      ws.lu.compute(A_in);
       if (ws.lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-10 * a_max) {
         x = ws.lu.solve(r);
-        return;
+        return false;
       }
     }
   }
-  // Redundant rows (a box on four coplanar vertices): least-norm multipliers. The steps of
-  // Eigen's CompleteOrthogonalDecomposition::solve, A P = Q [T 0] Z: c = Qᵀ r, T z = c(1:k),
-  // y = Zᵀ [z; 0], x = P y, done in the workspace's vectors because Eigen's solve allocates
-  // its temporaries on every call (the same operations in the same order: the unit test
-  // checks the result is Eigen's bit for bit).
+  // Weighted least norm: the same steps on A D (columns scaled), then x = D y.
+  const Eigen::MatrixXd* A_ptr = &A_in;
+  if (column_scale != nullptr) {
+    ws.AD = A_in;
+    for (Eigen::Index j = 0; j < n; ++j) ws.AD.col(j) *= (*column_scale)[j];
+    A_ptr = &ws.AD;
+  }
+  const Eigen::MatrixXd& A = *A_ptr;
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>& cod = ws.cod;
   cod.setThreshold(1e-10);
   cod.compute(A);
@@ -206,7 +228,7 @@ void SolveSquare(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, bool symmet
   x.resize(n);
   if (rank == 0) {
     x.setZero();
-    return;
+    return true;
   }
   // c = Qᵀ r = H_{k-1} ... H_0 r, one reflector at a time on a column segment (Eigen's
   // HouseholderSequence applies them to a dynamic-size block, whose product allocates).
@@ -233,6 +255,8 @@ void SolveSquare(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, bool symmet
     }
   }
   x.noalias() = cod.colsPermutation() * y;
+  if (column_scale != nullptr) x.array() *= column_scale->array();
+  return true;
 }
 
 }  // namespace internal
@@ -286,6 +310,52 @@ void NormalForceRow(const Contact& con, const ContactPointGeometry& g, ContactMo
     roll_dir = g.RollingDirection(ps.rolling_direction_W);
     if (roll_dir.squaredNorm() > 0.0) g.AddMoment(-con.mu_r() * g.radius * roll_dir, row);
   }
+}
+
+// Redundant sticking rows (a box on four vertices, a cylinder on both end rims) leave the
+// friction split among the points undetermined; only the resultant is fixed. The plain
+// least-norm split shares it equally, so the least loaded point reaches its cone first and
+// the body would start to slip early, in steps, one point at a time. Physically a rigid body
+// held at several points slips when the resultant exceeds what all of them can hold together.
+// So the split is the weighted least-norm one, min Σ |f_i|² / (mu_s N_i) over the tangential
+// multipliers (normal and constraint rows keep weight 1): friction shared in proportion to
+// each point's capacity mu_s N_i, so that under a pure translation every point reaches its
+// cone at the same instant, when |Σ f| = mu_s Σ N. The N_i come from the unweighted solve
+// (the weights act only inside the null space, which for coplanar points does not couple
+// normal and tangential rows). Called after a least-norm solve; re-solves in place.
+void ShareFrictionByCapacity(const Model& model, const State& state, int nc_rows,
+                             ContactWorkspace& ws) {
+  const auto rows = ws.A.rows();
+  ws.scale.resize(rows);
+  ws.scale.setOnes();
+  double n_ref = 0.0;
+  int k = nc_rows;
+  bool any = false;
+  for (int p = 0; p < model.num_contact_points(); ++p) {
+    const ContactMode m = ModeOf(state, p);
+    if (m == ContactMode::kSeparated) continue;
+    n_ref = std::max(n_ref, ws.lambda[k]);
+    k += m == ContactMode::kSticking ? 3 : 1;
+  }
+  if (!(n_ref > 0.0)) return;
+  k = nc_rows;
+  for (int p = 0; p < model.num_contact_points(); ++p) {
+    const ContactMode m = ModeOf(state, p);
+    if (m == ContactMode::kSeparated) continue;
+    if (m == ContactMode::kSticking) {
+      const double mu = model.contact(model.contact_of_point(p)).mu_s();
+      // A floor keeps the column alive (a point carrying nothing still closes the rows).
+      // Column scale D = √(capacity): the solve minimises Σ (f_i / D_i)² = Σ f_i² / c_i.
+      const double w = std::sqrt(std::max(mu * std::max(ws.lambda[k], 0.0) / n_ref, 1e-12));
+      ws.scale[k + 1] = ws.scale[k + 2] = w;
+      any = any || mu > 0.0;
+      k += 3;
+    } else {
+      k += 1;
+    }
+  }
+  if (!any) return;
+  internal::SolveSquare(ws.A, ws.rhs, false, ws, ws.lambda, &ws.scale);
 }
 
 }  // namespace
@@ -359,7 +429,8 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
   internal::TimesMassInverse(model, data, ws.W, ws.WMinv);
   ws.A.noalias() = ws.J * ws.WMinv.transpose();
   ws.rhs.noalias() = ws.c - ws.J * u_dot;
-  internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda);
+  const bool redundant = internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda);
+  if (redundant) ShareFrictionByCapacity(model, state, nc_rows, ws);
   u_dot.noalias() += ws.WMinv.transpose() * ws.lambda;
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
@@ -381,6 +452,8 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
     const ContactPointGeometry g = internal::CalcContactPointGeometry(model, state, data, p);
     const double N = ws.lambda[k++];
     out.normal_force = N;
+    out.slip_acceleration_W = (g.RowTimes(g.t1, u_dot) - g.AccelerationBias(g.t1)) * g.t1 +
+                              (g.RowTimes(g.t2, u_dot) - g.AccelerationBias(g.t2)) * g.t2;
     if (out.mode == ContactMode::kSticking) {
       const double f1 = ws.lambda[k++], f2 = ws.lambda[k++];
       out.friction_force_W = f1 * g.t1 + f2 * g.t2;
@@ -499,7 +572,9 @@ PlanSolution SolvePlan(const Model& model, const Data& data,
 }  // namespace
 
 std::vector<ContactModeChange> SelectContactModes(const Model& model, State& state,
-                                                  const ContactTolerances& tol) {
+                                                  const ContactTolerances& tol,
+                                                  const std::vector<int>& slip_starts,
+                                                  ModeSelectionNotes* notes) {
   const int np = model.num_contact_points();
   if (state.contacts.size() != static_cast<size_t>(np)) {
     state.contacts.assign(static_cast<size_t>(np), ContactPointState{});
@@ -517,7 +592,6 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
   for (int p = 0; p < np; ++p) {
     geo[static_cast<size_t>(p)] = internal::CalcContactPointGeometry(model, state, data, p);
   }
-  // Velocity scale for the relative tests.
   VectorXd u;
   internal::GetVelocity(model, state, data, u);
   // Candidates: touching and not moving apart.
@@ -539,28 +613,47 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
     pp.target_t = Vec3(g.AccelerationBias(g.t1), g.AccelerationBias(g.t2), 0.0);
     plan.push_back(pp);
   }
-  // Iterate: LCP for the normal forces, drop points that do not press, then the friction
-  // check, switching the worst over-loaded sticking point to sliding against the friction it
-  // needs. Each pass switches one point one way (stick -> slide) or drops one, so it ends.
   const VectorXd c_con = model.num_constraints() > 0 ? VectorXd(data.acceleration_rhs) : VectorXd();
+  const double a_scale = std::max(1.0, u_free.cwiseAbs().maxCoeff());
   const double f_scale = [&] {
     double s = 0.0;
     for (int b = 0; b < model.num_bodies(); ++b) s = std::max(s, model.body(b).mass());
-    return s * std::max(1.0, u_free.cwiseAbs().maxCoeff());
+    return s * a_scale;
   }();
-  // Candidates stay in the list; each pass solves the LCP over all of them in their current
-  // friction modes, takes those that press (a_n = 0) as the active set, and checks it.
+  const double a_tol = tol.relative * a_scale;
+  // The friction-cone test is at round-off level and symmetric: a point within
+  // tol.cone (relative) of its cone is "at the limit", and there the motion decides: it is
+  // tried as sliding in the direction of impending slip and slides if the slip then grows
+  // (slip acceleration along s above tol.cone · a_scale), else it sticks. So a threshold found
+  // by bisection on the regime is the exact one to round-off, from either side.
+  const double a_cone = tol.cone * a_scale;
+  auto in = [](const std::vector<int>& v, int p) {
+    return std::find(v.begin(), v.end(), p) != v.end();
+  };
+  // Per point: 0 untouched, 1 switched to sliding at zero slip (slip starting), 2 tried as
+  // starting to slip and found to stick (not tried again).
+  std::vector<int> starting(static_cast<size_t>(np), 0);
+  std::vector<int> turns(static_cast<size_t>(np), 0);  // direction updates of a starting slip
+  std::vector<int> jammed;
+  // Each pass evaluates the active set with the contact stage itself (the forces the
+  // integrator will use, friction shared as there), so what is checked is what is integrated.
+  State trial = state;
+  Data tdata = MakeData(model);
   std::vector<PointPlan> active;
-  const double a_tol = tol.relative * std::max(1.0, u_free.cwiseAbs().maxCoeff());
-  for (int pass = 0; pass < 4 * np + 8 && !plan.empty(); ++pass) {
+  for (int pass = 0; pass < 24 * np + 8 && !plan.empty(); ++pass) {
     PlanSolution sol = SolvePlan(model, data, geo, plan, u_free, c_con, true);
     if (!sol.solved) {
-      // Lemke found no solution (a Painlevé-type inconsistency of sliding friction): the
-      // sliding points are taken as sticking for the normal problem (docs/contact.md).
+      // No consistent normal forces with the sliding friction (a Painlevé-type
+      // inconsistency): the sliding points are taken as sticking, and their slip is removed
+      // by the impulsive velocity projection below (an impact without collision; reported
+      // in `notes`, docs/contact.md).
       bool changed = false;
       for (PointPlan& pp : plan) {
         if (pp.mode == ContactMode::kSliding && pp.s.squaredNorm() > 0.0) {
           pp.mode = ContactMode::kSticking, changed = true;
+          if (geo[static_cast<size_t>(pp.point)].v_t.norm() > tol.stick_speed) {
+            jammed.push_back(pp.point);
+          }
         }
       }
       if (!changed) break;
@@ -572,44 +665,104 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
       if (sol.w[static_cast<Eigen::Index>(i)] <= a_tol) active.push_back(plan[i]);
     }
     if (active.empty()) break;
-    // Bilateral solve of the active set: least-norm forces (as the continuous stage computes).
-    sol = SolvePlan(model, data, geo, active, u_free, c_con, false);
-    // A least-norm split may pull at a redundant point: that point leaves for good.
-    Eigen::Index worst = -1;
-    double most_negative = -tol.relative * f_scale;
-    for (Eigen::Index i = 0; i < sol.N.size(); ++i) {
-      if (sol.N[i] < most_negative) most_negative = sol.N[i], worst = i;
+    for (ContactPointState& ps : trial.contacts) {
+      ps.mode = ContactMode::kSeparated;
+      ps.slip_direction_W.setZero();
     }
-    if (worst >= 0) {
-      const int drop = active[static_cast<size_t>(worst)].point;
+    for (const PointPlan& pp : active) {
+      ContactPointState& ps = trial.contacts[static_cast<size_t>(pp.point)];
+      ps.mode = pp.mode;
+      ps.slip_direction_W = pp.s;
+    }
+    CalcAccelerations(model, trial, tdata);
+    const std::vector<ContactPointOutput>& out = tdata.contact_points;
+    // A least-norm split may pull at a redundant point: that point leaves for good.
+    int drop = -1;
+    double most_negative = -tol.relative * f_scale;
+    for (const PointPlan& pp : active) {
+      const double N = out[static_cast<size_t>(pp.point)].normal_force;
+      if (N < most_negative) most_negative = N, drop = pp.point;
+    }
+    if (drop >= 0) {
       plan.erase(std::find_if(plan.begin(), plan.end(),
                               [&](const PointPlan& pp) { return pp.point == drop; }));
       active.clear();
       continue;
     }
-    // Friction check of the sticking points.
-    Eigen::Index e = model.num_constraint_rows();
-    double worst_excess = 0.0;
-    int worst_point = -1;
-    Vec3 worst_f = Vec3::Zero();
-    for (size_t i = 0; i < active.size(); ++i) {
-      if (active[i].mode != ContactMode::kSticking) continue;
-      const ContactPointGeometry& g = geo[static_cast<size_t>(active[i].point)];
-      const Contact& con = model.contact(model.contact_of_point(active[i].point));
-      const Vec3 f = sol.lambda_E[e] * g.t1 + sol.lambda_E[e + 1] * g.t2;
-      e += 2;
-      const double N = std::max(0.0, sol.N[static_cast<Eigen::Index>(i)]);
-      const double excess = f.norm() - con.mu_s() * N;
-      if (excess > tol.relative * std::max(f.norm(), f_scale * 1e-6) && excess > worst_excess) {
-        worst_excess = excess, worst_point = active[i].point, worst_f = f;
+    // Friction check of the sticking points. Ranks: 3, its friction limit was just crossed
+    // (slip_starts); 2, over the cone by more than round-off; 1, at the limit (within it).
+    // The points to switch: every point over the cone is handled one at a time, largest
+    // excess first; otherwise the crossed and at-limit points start to slip together: points
+    // that share a load in proportion to their capacity (ShareFrictionByCapacity) reach their
+    // cones together, and a rigid body held at several points breaks loose at all of them at
+    // once (one by one would load the rest past their cones in skewed directions).
+    struct Ranked {
+      int point, rank;
+      double excess;
+      Vec3 f;
+    };
+    std::vector<Ranked> ranked;
+    for (const PointPlan& pp : active) {
+      if (pp.mode != ContactMode::kSticking) continue;
+      const auto ip = static_cast<size_t>(pp.point);
+      if (starting[ip] == 2) continue;
+      const Contact& con = model.contact(model.contact_of_point(pp.point));
+      const Vec3& f = out[ip].friction_force_W;
+      const double cap = con.mu_s() * std::max(0.0, out[ip].normal_force);
+      const double excess = f.norm() - cap;
+      const double band = tol.cone * std::max({f.norm(), cap, 1e-6 * f_scale});
+      int rank = 0;
+      if (in(slip_starts, pp.point) && f.norm() > band) {
+        rank = 3;
+      } else if (excess > band) {
+        rank = 2;
+      } else if (excess >= -band && f.norm() > band) {
+        rank = 1;
+      }
+      if (rank > 0) ranked.push_back({pp.point, rank, excess, f});
+    }
+    if (!ranked.empty()) {
+      const auto worst =
+          std::max_element(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) {
+            return a.rank == 2 && b.rank == 2 ? a.excess < b.excess : (a.rank == 2) < (b.rank == 2);
+          });
+      for (const Ranked& r : ranked) {
+        if (worst->rank == 2 ? r.point != worst->point : r.rank == 2) continue;
+        for (PointPlan& pp : plan) {
+          if (pp.point != r.point) continue;
+          pp.mode = ContactMode::kSliding;
+          pp.s = -r.f.normalized();  // slip starts against the friction it needed
+        }
+        starting[static_cast<size_t>(r.point)] = 1;
+      }
+      continue;
+    }
+    // Consistency of the slips that start: the slip acceleration a_t must point along s (a
+    // slip that starts grows along its own direction, and friction -mu_k N s opposes it:
+    // maximum dissipation). Where a_t has turned from s (an anisotropic body), s follows it
+    // (fixed point s = a_t/|a_t|); a point whose slip would not grow sticks after all.
+    int revert = -1;
+    bool turned = false;
+    for (PointPlan& pp : plan) {
+      const auto ip = static_cast<size_t>(pp.point);
+      if (starting[ip] != 1 || pp.mode != ContactMode::kSliding) continue;
+      const Vec3& a_t = out[ip].slip_acceleration_W;
+      const double a_s = a_t.dot(pp.s);
+      const bool forced = in(slip_starts, pp.point);
+      if (a_s < -a_cone || (!forced && a_s <= a_cone)) {
+        revert = pp.point;
+        pp.mode = ContactMode::kSticking;
+        pp.s.setZero();
+        starting[ip] = 2;
+        break;
+      }
+      if (a_t.norm() > a_cone && turns[ip] < 20 && (a_t.normalized() - pp.s).norm() > 1e-12) {
+        pp.s = a_t.normalized();
+        ++turns[ip];
+        turned = true;
       }
     }
-    if (worst_point < 0) break;
-    for (PointPlan& pp : plan) {
-      if (pp.point != worst_point) continue;
-      pp.mode = ContactMode::kSliding;
-      pp.s = -worst_f.normalized();  // slip starts against the friction it needed
-    }
+    if (revert < 0 && !turned) break;
   }
   plan = active;
   // Write the modes and reference directions.
@@ -632,7 +785,9 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
     }
   }
   // Velocity projection onto the chosen rows: normal velocity zero at pressing points,
-  // tangential too at sticking ones, constraints J u = b.
+  // tangential too at sticking ones, constraints J u = b. For the round-off velocities of
+  // touching points this is a tidy-up; for jammed points (above) it is the impulse that stops
+  // their slip, checked against the friction cone.
   if (!plan.empty()) {
     const double T0 = internal::KineticEnergy(model, state);
     std::vector<PointPlan> vplan = plan;
@@ -645,7 +800,48 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
     const PlanSolution sol = SolvePlan(model, data, geo, vplan, u, b_con, false);
     internal::SetVelocity(model, data, sol.u_new, state);
     const double dT = internal::KineticEnergy(model, state) - T0;
-    state.contacts[static_cast<size_t>(plan.front().point)].friction_work += dT;
+    if (jammed.empty()) {
+      state.contacts[static_cast<size_t>(plan.front().point)].friction_work += dT;
+    } else {
+      // The jam is an impulse: its energy goes to the impact ledger, shared by the jammed
+      // points' normal impulses (equally when they carry none).
+      Eigen::Index e = model.num_constraint_rows();
+      std::vector<JamImpulse> jams;
+      for (size_t i = 0; i < vplan.size(); ++i) {
+        const PointPlan& pp = vplan[i];
+        const ContactPointGeometry& g = geo[static_cast<size_t>(pp.point)];
+        double Pn = sol.N[static_cast<Eigen::Index>(i)];
+        Vec3 Pt = Vec3::Zero();
+        if (pp.mode == ContactMode::kSticking) {
+          Pt = sol.lambda_E[e] * g.t1 + sol.lambda_E[e + 1] * g.t2;
+          e += 2;
+        }
+        if (!in(jammed, pp.point)) continue;
+        jams.push_back({pp.point, Pn, Pn * g.n + Pt, g.v_t.norm()});
+      }
+      const double n = static_cast<double>(jams.size());
+      double pn_sum = 0.0;
+      for (const JamImpulse& j : jams) pn_sum += std::max(0.0, j.normal_impulse);
+      for (JamImpulse& j : jams) {
+        const double share = pn_sum > 0.0 ? std::max(0.0, j.normal_impulse) / pn_sum : 1.0 / n;
+        j.energy_lost = -dT * share;
+        state.contacts[static_cast<size_t>(j.point)].impact_work += dT * share;
+        const Contact& con = model.contact(model.contact_of_point(j.point));
+        const ContactPointGeometry& g = geo[static_cast<size_t>(j.point)];
+        const double Pn = j.normal_impulse;
+        const double Pt = (j.impulse_W - Pn * g.n).norm();
+        if (Pn < 0.0 || Pt > con.mu_s() * Pn * (1.0 + tol.cone) + tol.cone * j.impulse_W.norm()) {
+          throw InputError(fmt::format(
+              "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces "
+              "have no consistent solution (a Painlevé-type paradox of rigid bodies with "
+              "friction), and the impulse that would stop the slip ({:.6g} N·s tangential, "
+              "{:.6g} N·s normal) lies outside the friction cone mu_s = {}: the rigid model "
+              "has no answer here. Lower the friction coefficient or soften the model",
+              model.contact_point_name(j.point), state.t, j.slip_speed, Pt, Pn, con.mu_s()));
+        }
+      }
+      if (notes != nullptr) notes->jams = std::move(jams);
+    }
   }
   std::vector<ContactModeChange> changes;
   for (int p = 0; p < np; ++p) {

@@ -91,6 +91,24 @@ void EvalFunctions(const Model& model, const State& s, const std::vector<Contact
   }
 }
 
+// Round-off band of an event function at the current evaluation (data filled by
+// EvalFunctions): relative 1e-9 of the largest contact force, or of the largest slip or
+// rolling speed and 1 m/s, so a value inside it is zero for the event logic.
+double RoundOffBand(const ContactFn& f, const Data& data) {
+  double force = 0.0, speed = 1.0;
+  for (const ContactPointOutput& o : data.contact_points) {
+    force = std::max({force, std::abs(o.normal_force), o.friction_force_W.norm()});
+    speed = std::max(speed, o.slip_velocity_W.norm());
+  }
+  switch (f.fn) {
+    case Fn::kNormalForce:
+    case Fn::kFrictionMargin:
+      return 1e-9 * force;
+    default:
+      return 1e-9 * speed;
+  }
+}
+
 // Bounce history of one point for the accumulation (Zeno) test.
 struct BounceHistory {
   double t[2] = {0.0, 0.0};  // times of the last two impacts (t[1] the latest)
@@ -150,6 +168,18 @@ class HybridRun {
       };
       EvalFunctions(model_, dp.state(), fns, data_, g0);
       normal_velocities(vn0);
+      // A function that is zero (or round-off below) where the run restarts has its crossing
+      // there, not in a later step: a sticking point left exactly at its friction limit, a
+      // slip that started from zero, a normal force that is zero. It is armed: if it then
+      // falls below its round-off band before rising out of it, the event is at the restart
+      // (without this the crossing would never be seen, since it never was positive).
+      const double t_restart = dp.t();
+      std::vector<double> band(fns.size());
+      std::vector<char> armed(fns.size(), 0);
+      for (size_t i = 0; i < fns.size(); ++i) {
+        band[i] = RoundOffBand(fns[i], data_);
+        armed[i] = fns[i].fn != Fn::kGap && g0[i] <= band[i];
+      }
       bool restart = false;
       while (dp.t() < o_.t_end && !restart) {
         dp.Step(o_.t_end);
@@ -160,6 +190,14 @@ class HybridRun {
         double t_c = std::numeric_limits<double>::infinity();
         int which = -1;
         for (size_t i = 0; i < fns.size(); ++i) {
+          if (armed[i]) {
+            if (g1[i] < -band[i]) {
+              if (t_restart < t_c) t_c = t_restart, which = static_cast<int>(i);
+              continue;
+            }
+            if (g1[i] > band[i]) armed[i] = 0;
+            if (armed[i]) continue;
+          }
           std::vector<double> gv;
           auto g = [&](double t) {
             dp.Interpolate(t, scratch);
@@ -354,7 +392,29 @@ class HybridRun {
       if (rec.accumulation) rec.accumulation_time = accumulation_time;
       r_.impacts.push_back(rec);
     }
-    SelectContactModes(model_, s, tol_);
+    // A point whose friction limit was crossed starts to slip (SelectContactModes).
+    std::vector<int> slip_starts;
+    if (reason == ContactEventReason::kFrictionLimit && trigger >= 0)
+      slip_starts.push_back(trigger);
+    ModeSelectionNotes notes;
+    SelectContactModes(model_, s, tol_, slip_starts, &notes);
+    for (const JamImpulse& j : notes.jams) {
+      ImpactRecord rec;
+      rec.t = s.t;
+      rec.point = j.point;
+      rec.approach_speed = 0.0;
+      rec.normal_impulse = j.normal_impulse;
+      rec.impulse_W = j.impulse_W;
+      rec.energy_lost = j.energy_lost;
+      rec.jam = true;
+      r_.impacts.push_back(rec);
+      r_.warnings.push_back(fmt::format(
+          "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces had no "
+          "consistent solution (a Painlevé-type paradox); the slip was stopped by an impulsive "
+          "jam (an impact without collision) of {:.6g} N·s that took {:.6g} J",
+          model_.contact_point_name(j.point), s.t, j.slip_speed, j.impulse_W.norm(),
+          j.energy_lost));
+    }
     for (size_t p = 0; p < s.contacts.size(); ++p) {
       const ContactMode to = s.contacts[p].mode;
       if (to != ContactMode::kSeparated) bounces_[p].count = 0;  // resting: a new sequence later

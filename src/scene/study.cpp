@@ -823,7 +823,18 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     const ContactTolerances tol;
     const ImpactResult impacts = ResolveImpacts(*seg.model, state, tol);
     record_impacts(impacts, state.t);
-    record_changes(SelectContactModes(*seg.model, state, tol), state.t, reason);
+    ModeSelectionNotes notes;
+    record_changes(SelectContactModes(*seg.model, state, tol, {}, &notes), state.t, reason);
+    for (const JamImpulse& j : notes.jams) {
+      result.impacts.push_back({state.t, point_labels[static_cast<size_t>(j.point)], 0.0,
+                                j.normal_impulse, j.energy_lost, false,
+                                std::numeric_limits<double>::quiet_NaN(), true});
+      result.warnings.push_back(fmt::format(
+          "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces had "
+          "no consistent solution (a Painlevé-type paradox); the slip was stopped by an "
+          "impulsive jam (an impact without collision) that took {:.6g} J",
+          point_labels[static_cast<size_t>(j.point)], state.t, j.slip_speed, j.energy_lost));
+    }
   };
   if (seg.model->num_contacts() > 0) {
     state.contacts.assign(static_cast<size_t>(seg.model->num_contact_points()),
@@ -926,8 +937,9 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
       for (const ImpactRecord& imp : r.impacts) {
         result.impacts.push_back({imp.t, point_labels[static_cast<size_t>(imp.point)],
                                   imp.approach_speed, imp.normal_impulse, imp.energy_lost,
-                                  imp.accumulation, imp.accumulation_time});
+                                  imp.accumulation, imp.accumulation_time, imp.jam});
       }
+      result.warnings.insert(result.warnings.end(), r.warnings.begin(), r.warnings.end());
       state = r.final_state;
       if (r.stopped_by_event) stopped = true;
     }

@@ -44,8 +44,12 @@ struct ContactTolerances {
   double resting_speed = 1e-6;
   /// Slip speed at or below this may stick [m/s].
   double stick_speed = 1e-6;
-  /// Relative tolerance of the friction-cone and sign tests.
+  /// Relative tolerance of the sign tests (which points press, negative normal forces).
   double relative = 1e-9;
+  /// Relative tolerance of the friction-cone test (round-off level): |f| within
+  /// cone·max(|f|, mu_s N) of mu_s N is at the limit, decided by the motion (see
+  /// SelectContactModes).
+  double cone = 1e-12;
 };
 
 /// What changed at one contact point in SelectContactModes or ResolveImpacts.
@@ -56,17 +60,47 @@ struct ContactModeChange {
   ContactMode to = ContactMode::kSeparated;
 };
 
+/// A jam: sliding points whose contact forces had no consistent solution (a Painlevé-type
+/// paradox) are stopped by an impulse, an impact without collision (docs/contact.md).
+struct JamImpulse {
+  /// Contact point index.
+  int point = -1;
+  /// Normal impulse [N·s] (>= 0) and the whole impulse on the body, in W [N·s].
+  double normal_impulse = 0.0;
+  Vec3 impulse_W = Vec3::Zero();
+  /// Slip speed stopped [m/s].
+  double slip_speed = 0.0;
+  /// Kinetic energy the jam removed, this point's share [J] (>= 0).
+  double energy_lost = 0.0;
+};
+
+/// What SelectContactModes had to do beyond choosing modes.
+struct ModeSelectionNotes {
+  /// Jammed points (empty when the modes had consistent forces).
+  std::vector<JamImpulse> jams;
+};
+
 /// Chooses a consistent mode for every contact point at `state` (positions and velocities
 /// fixed): points apart or moving apart are separated; among the touching ones an LCP on the
 /// normal forces decides which press (N > 0) and which lift off (N = 0, a_n >= 0); pressing
-/// points with slip slide, the others stick if the friction they need is within mu_s N, else
-/// slide against the needed friction (one point at a time, largest excess first, then the
-/// LCP again). Writes state.contacts (sizing it if empty), sets the slip and rolling
-/// reference directions, and removes the round-off normal (and sticking tangential)
-/// velocities of the touching points by a mass-weighted velocity projection (the kinetic
-/// energy it changes goes to ContactPointState::friction_work). Returns the changes.
+/// points with slip slide; the others stick if the friction they need (computed as the
+/// contact stage computes it) is within mu_s N, and otherwise start to slide in the direction
+/// of impending slip (against the needed friction, then along the slip acceleration: maximum
+/// dissipation), one point at a time, largest excess first, then the LCP again. A point
+/// within tol.cone of its cone, or listed in `slip_starts` (its friction limit was just
+/// crossed), is tried as sliding and slides if its slip then grows (for `slip_starts`: does
+/// not shrink); otherwise it sticks. Writes state.contacts (sizing it if empty), sets the slip
+/// and rolling reference directions, and removes the round-off normal (and sticking
+/// tangential) velocities of the touching points by a mass-weighted velocity projection (the
+/// kinetic energy it changes goes to ContactPointState::friction_work). When the normal
+/// forces have no consistent solution with the sliding friction (Painlevé), the sliding
+/// points are jammed (stopped by the projection's impulse, energy to impact_work, listed in
+/// `notes`); an InputError says so when that impulse lies outside the friction cone.
+/// Returns the changes.
 std::vector<ContactModeChange> SelectContactModes(const Model& model, State& state,
-                                                  const ContactTolerances& tol = {});
+                                                  const ContactTolerances& tol = {},
+                                                  const std::vector<int>& slip_starts = {},
+                                                  ModeSelectionNotes* notes = nullptr);
 
 /// One impact at one contact point.
 struct ContactImpulse {

@@ -94,6 +94,9 @@ struct ImpactRecord {
   double energy_lost = 0.0;
   /// True for the impact that ends a geometric bounce sequence (restitution 0 there).
   bool accumulation = false;
+  /// True for a jam: sliding without consistent contact forces (Painlevé), stopped by an
+  /// impulse at zero approach speed (docs/contact.md).
+  bool jam = false;
   /// For that impact: the analytic time the bounces accumulate to rest,
   /// t + t_flight e / (1 - e) [s] (NaN otherwise).
   double accumulation_time = std::numeric_limits<double>::quiet_NaN();
@@ -160,6 +163,8 @@ struct SimulationResult {
   std::vector<ContactEvent> contact_events;
   /// Impacts in time order.
   std::vector<ImpactRecord> impacts;
+  /// What the run had to decide or change that the user should know (jams, ...).
+  std::vector<std::string> warnings;
 };
 
 /// The mode timeline of contact point `point` from a run's contact events, from the first

@@ -91,6 +91,10 @@ struct ContactPointOutput {
   double rolling_power = 0.0;
   /// |f| / N of a sticking point (compare with mu_s); 0 otherwise.
   double friction_needed = 0.0;
+  /// Tangential acceleration of the body's material point at C relative to the plane (other
+  /// body), in W [m/s²]: zero for a sticking point; for a sliding point whose slip is zero it
+  /// says where the slip goes (used to check that a slip that starts is consistent).
+  Vec3 slip_acceleration_W = Vec3::Zero();
 };
 
 /// Workspace of the contact stage: the stacked active rows of constraints and contacts, the
@@ -106,6 +110,10 @@ struct ContactWorkspace {
   /// the modes stay).
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
   Eigen::VectorXd cod_c, cod_x, cod_temp;
+  /// Column scales of a weighted least-norm solve (friction shared by capacity) and the
+  /// column-scaled matrix A D.
+  Eigen::VectorXd scale;
+  Eigen::MatrixXd AD;
   ContactWorkspace() = default;
   ContactWorkspace(const ContactWorkspace&) {}
   ContactWorkspace& operator=(const ContactWorkspace&) { return *this; }

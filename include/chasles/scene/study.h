@@ -98,6 +98,9 @@ struct StudyImpact {
   bool accumulation = false;
   /// Limit of the bounce sequence, t + t_flight e / (1 - e) [s] (NaN unless `accumulation`).
   double rest_time = std::numeric_limits<double>::quiet_NaN();
+  /// True for a jam: a slip without consistent contact forces (Painlevé) stopped by an
+  /// impulse at zero approach speed.
+  bool jam = false;
 };
 
 /// One contact point at the end of the run.
@@ -210,6 +213,8 @@ struct StudyResult {
   IntegratorStats stats;
   /// Things to tell the user (impulses after the end time, ...).
   std::vector<std::string> notes;
+  /// What the run had to decide or change in the user's model (jams, ...): shown as warnings.
+  std::vector<std::string> warnings;
 };
 
 /// Runs the scene's study. Throws InputError for bad settings, or when the motion of a body

@@ -35,6 +35,9 @@ struct ContactPointGeometry {
   Vec3 v_rel = Vec3::Zero();
   double v_n = 0.0;
   Vec3 v_t = Vec3::Zero();
+  /// Speed scale of the material points at C, |v_cm| + |w| |r| of each side [m/s]: slips
+  /// below its round-off have no direction (SlipDirection).
+  double speed_scale = 0.0;
   /// Relative angular velocity (body minus other), in W [rad/s].
   Vec3 w_rel = Vec3::Zero();
   /// w × ṙ of each side (the velocity-product terms of the rows) [m/s²].
@@ -46,6 +49,8 @@ struct ContactPointGeometry {
   void SetRow(const Vec3& k, RowRef row) const;
   /// Adds `scale` times the Jacobian row of k·v_rel to `row` (no temporary row).
   void AddRow(const Vec3& k, double scale, RowRef row) const;
+  /// J_k u̇ for the row k·v_rel and generalised accelerations u̇ (6 per body; no temporary row).
+  double RowTimes(const Vec3& k, const Eigen::VectorXd& u_dot) const;
   /// Adds the generalised force of a moment M on the body (-M on the other) to `row`.
   void AddMoment(const Vec3& M, RowRef row) const;
   /// Unit slip direction, sign relative to the reference `s_ref` (see ContactPointState).
@@ -61,9 +66,13 @@ ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& s
                                               const Data& data, int point);
 
 /// A x = r: LDLᵀ (symmetric) or LU, least-norm by complete orthogonal decomposition when
-/// singular. Uses the factorisations and vectors of `ws`: no allocation once they have A's
-/// size.
-void SolveSquare(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, bool symmetric,
-                 ContactWorkspace& ws, Eigen::VectorXd& x);
+/// singular; with `column_scale` D the singular case is the weighted least-norm solution
+/// x = D y, y the least-norm solution of (A D) y = r (it minimises Σ (x_i / D_i)²). Uses the
+/// factorisations and vectors of `ws`: no allocation once they have A's size. Returns true
+/// when the least-norm branch was taken (A singular, or `column_scale` given: the caller
+/// knows A is singular).
+bool SolveSquare(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, bool symmetric,
+                 ContactWorkspace& ws, Eigen::VectorXd& x,
+                 const Eigen::VectorXd* column_scale = nullptr);
 
 }  // namespace chasles::internal
