@@ -170,7 +170,9 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                      {"rejected_steps", r.stats.rejected_steps},
                      {"function_evaluations", r.stats.function_evaluations}};
   j["notes"] = r.notes;
-  j["warnings"] = scene.warnings;
+  std::vector<std::string> warnings = scene.warnings;
+  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+  j["warnings"] = warnings;
   return j;
 }
 
@@ -409,6 +411,7 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
                      r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
   for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);
   for (const auto& w : scene.warnings) out += fmt::format("warning: {}\n", w);
+  for (const auto& w : r.warnings) out += fmt::format("warning: {}\n", w);
   out += fmt::format("Wrote {} ({} rows) and {}\n", csv_path, r.rows.size(), json_path);
   return out;
 }
