@@ -139,6 +139,9 @@ Solved SolveScene(const Scene& scene) {
       SelectContactModes(model, state);
     }
     Solved s{SolveInstantaneous(model, state), {}, {}, {}, scene.planar, {}};
+    // Initial values the projection changed (`project_initial: true`) come first.
+    s.solution.warnings.insert(s.solution.warnings.begin(), study.warnings.begin(),
+                               study.warnings.end());
     s.motion = CalcMotion(model, state, &s.total);
     FillMuS(scene, s);
     if (model.num_contacts() > 0) {

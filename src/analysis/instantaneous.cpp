@@ -7,6 +7,7 @@
 
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/newton_euler.h"
+#include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
@@ -31,10 +32,10 @@ InstantaneousSolution SolveInstantaneous(const Model& model, const State& state,
   s.num_rows = model.num_constraint_rows();
   s.rank = model.num_constraints() > 0 ? data.constraint_rank : 0;
   if (s.rank < s.num_rows) {
-    s.warnings.push_back(fmt::format(
-        "the constraints are redundant ({} rows, rank {}): the reactions reported are the "
-        "least-norm ones; how a rigid structure shares them is statically indeterminate",
-        s.num_rows, s.rank));
+    // Which reaction components are indeterminate, and a determinate set of supports.
+    Data scratch = MakeData(model);
+    const Redundancy red = AnalyseRedundancy(model, state, scratch);
+    for (std::string& w : DescribeRedundancy(model, red)) s.warnings.push_back(std::move(w));
   }
   for (int b = 0; b < model.num_bodies(); ++b) {
     const auto i = static_cast<size_t>(b);

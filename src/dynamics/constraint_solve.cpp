@@ -10,6 +10,7 @@
 #include <Eigen/QR>
 
 #include "chasles/dynamics/newton_euler.h"
+#include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
 #include "chasles/math/quaternion.h"
 #include "dynamics/internal/generalized.h"
@@ -28,10 +29,14 @@ std::vector<int> RowOwners(const Model& model);
 // throws when the least-squares residual shows that the rows cannot all hold (inconsistent
 // constraints); `r_scale` is the size of the terms r was formed from, so that a right-hand
 // side that cancels to round-off is not mistaken for an inconsistency. `row_owner` maps rows
-// to constraints (all rows of the model when null).
+// to constraints (all rows of the model when null). With `weigh` (the Data whose rows A was
+// formed from) a singular system gets the weighted least-norm solution, min Σ (x_k / d_k)²
+// (docs/constraints.md, "Redundant constraints"): x = D y with y the least-norm solution of (D A D)
+// y = D r, since the solutions of A x = r are x₀ + null(A) and D⁻¹ maps them onto those of the
+// scaled system.
 int SolveSchur(const Model& model, const std::vector<int>* row_owner, const MatrixXd& A,
                Eigen::LDLT<MatrixXd>& ldlt, const VectorXd& r, VectorXd& x, const char* what,
-               double r_scale) {
+               double r_scale, const Data* weigh = nullptr) {
   const Eigen::Index n = A.rows();
   if (n == 0) {
     x.resize(0);
@@ -43,9 +48,13 @@ int SolveSchur(const Model& model, const std::vector<int>* row_owner, const Matr
     x = ldlt.solve(r);
     return static_cast<int>(n);
   }
-  Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(A);
+  // d_k from CalcReactionWeights (1 for force rows, ℓ for moment rows); only here, off the
+  // allocation-free path of well-posed systems.
+  const VectorXd d = weigh != nullptr ? CalcReactionWeights(model, *weigh) : VectorXd::Ones(n);
+  const auto D = d.asDiagonal();
+  Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(D * A * D);
   cod.setThreshold(1e-10);
-  x = cod.solve(r);
+  x = D * cod.solve(D * r);
   if (what == nullptr) return static_cast<int>(cod.rank());
   const VectorXd res = A * x - r;
   const double scale = std::max(r_scale, r.cwiseAbs().maxCoeff()) + a_max * x.cwiseAbs().maxCoeff();
@@ -113,8 +122,11 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
   data.schur_rhs = data.acceleration_rhs - data.Ju;
   const double r_scale =
       std::max(data.acceleration_rhs.cwiseAbs().maxCoeff(), data.Ju.cwiseAbs().maxCoeff());
-  data.constraint_rank = SolveSchur(model, nullptr, data.schur, data.schur_ldlt.ldlt,
-                                    data.schur_rhs, data.lambda, "set of reactions", r_scale);
+  // Redundant rows: the reactions least in the norm Σ F² + Σ (M / ℓ)² (moments over the
+  // mechanism's length ℓ, so that newtons are never traded against newton-metres).
+  data.constraint_rank =
+      SolveSchur(model, nullptr, data.schur, data.schur_ldlt.ldlt, data.schur_rhs, data.lambda,
+                 "set of reactions", r_scale, &data);
   u_dot.noalias() += data.JMinv.transpose() * data.lambda;  // M⁻¹ Jᵀ λ (M⁻¹ symmetric)
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);

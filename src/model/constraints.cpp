@@ -296,6 +296,7 @@ void Joint::Evaluate(const Model& model, const State& state, const Data& data,
   const Vec3 ax = Jp.R_WJ.col(0), ay = Jp.R_WJ.col(1), az = Jp.R_WJ.col(2);
   const Vec3 bx = Jc.R_WJ.col(0), by = Jc.R_WJ.col(1), bz = Jc.R_WJ.col(2);
   e.p_WJ = Jc.p;
+  e.R_WJ = Jp.R_WJ;
   // Rotation rows: a_x·b_z = a_y·b_z = 0 keep b_z along a_z (free spin about z); adding
   // a_x·b_y = 0 stops that spin too (near alignment the three are independent: their
   // gradients are a_z, a_x, a_y).

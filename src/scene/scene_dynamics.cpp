@@ -469,8 +469,18 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     d.initial[b].p_BoP_B = scene.bodies[b].mass_properties.p_BoBcm_B();
     const At body_at = bodies.Item(b);
+    const At spot_at = body_at.Has("initial") ? body_at.Child("initial") : body_at;
+    const YAML::Mark mark = spot_at.node.Mark();
+    d.initial[b].where = {mark.line >= 0 ? mark.line + 1 : 0,
+                          mark.column >= 0 ? mark.column + 1 : 0, spot_at.path};
     if (body_at.Has("initial"))
       ReadInitial(body_at.Child("initial"), scene.bodies[b], d.initial[b]);
+  }
+  if (root.Has("project_initial")) {
+    const At at = root.Child("project_initial");
+    if (!at.node.IsScalar() || !YAML::convert<bool>::decode(at.node, d.project_initial)) {
+      report_.Fail(at, fmt::format("expected true or false, got {}", KindOf(at.node)));
+    }
   }
 
   if (root.Has("forces")) {

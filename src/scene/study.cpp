@@ -17,11 +17,13 @@
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/impulse.h"
 #include "chasles/dynamics/newton_euler.h"
+#include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
 #include "chasles/scene/scene_error.h"
+#include "internal/initial_state.h"
 #include "internal/study_columns.h"
 
 namespace chasles {
@@ -738,7 +740,9 @@ Study BuildStudy(const Scene& scene, double until) {
   Study study;
   study.model = std::shared_ptr<const Model>(std::move(seg.model));  // same address
   study.options = BaseOptions(scene, t_end);
-  study.initial = InitialState(scene, *study.model);
+  // On the constraints, or an error, or projected with each change a warning.
+  study.initial = scene_internal::SettleInitialState(
+      scene, *study.model, InitialState(scene, *study.model), study.warnings);
   study.options.events = BuildEvents(scene, seg.model_ref, seg.map);
   return study;
 }
@@ -797,7 +801,8 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
   for (const ColumnInfo& c : rows.columns) result.columns.push_back(c.name);
 
   Segment seg = FirstSegment(scene);
-  State state = InitialState(scene, *seg.model);
+  State state = scene_internal::SettleInitialState(
+      scene, *seg.model, InitialState(scene, *seg.model), result.warnings);
   CheckFinite(*seg.model, state);
   const std::vector<std::string> point_labels = d.contacts.point_labels();
   auto record_impacts = [&](const ImpactResult& r, double t) {
@@ -1127,6 +1132,12 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     // The reactions at the final state (the constraint stage of CalcAccelerations).
     Data data = MakeData(model);
     CalcAccelerations(model, state, data);
+    if (data.constraint_rank < model.num_constraint_rows()) {
+      Data scratch = MakeData(model);
+      for (std::string& w : DescribeRedundancy(model, AnalyseRedundancy(model, state, scratch))) {
+        result.warnings.push_back(std::move(w));
+      }
+    }
     for (int i = 0; i < static_cast<int>(num_scene_constraints); ++i) {
       const Constraint& con = model.constraint(i);
       const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];

@@ -291,6 +291,7 @@ TEST(Planar, SliderAndWheelOnAnInclineMatchClosedForms) {
   // frictionless planar prismatic slides with a = g sin(th) along u and the support pushes
   // with N = m g cos(th); a solid cylinder (I = m R^2/2) rolling without slipping has
   // a = (2/3) g sin(th), alpha = -a/R (clockwise), N = m g cos(th), f = m g sin(th)/3.
+  // The wheel touches the plane: its point is the centre (0, 1 m) less R along the normal.
   const std::string scene = WriteScene("incline.yaml", R"(
 planar: true
 parameters:
@@ -306,8 +307,9 @@ joints:
   - {name: slide, type: prismatic, parent: world, child: block, at: [0, 0],
      axis: [cos(th), -sin(th)]}
 rolling:
-  - {name: roll, body: wheel, radius: 0.1 m, plane: {point: [0, 0.9 m],
-     normal: [sin(th), cos(th)]}, mu_s: 0.5}
+  - {name: roll, body: wheel, radius: 0.1 m,
+     plane: {point: [-sin(th) * 0.1 m, 1 m - cos(th) * 0.1 m], normal: [sin(th), cos(th)]},
+     mu_s: 0.5}
 )");
   const auto j = Solve(scene);
   const double g = kStandardGravity, th = kPi / 6.0, R = 0.1;

@@ -54,6 +54,9 @@ struct ConstraintEval {
   std::array<bool, kMaxConstraintRows> holonomic{};
   /// The point where the reaction on the child is reported (joint or contact point), in W [m].
   Vec3 p_WJ = Vec3::Zero();
+  /// Axes in which a joint's reaction components are named ("its z force": along the joint
+  /// axis): the parent's joint frame, in W (W itself for the other constraints).
+  Mat3 R_WJ = Mat3::Identity();
 };
 
 class Constraint {

@@ -58,6 +58,9 @@ struct SceneInitialState {
   Vec3 w_WB_W = Vec3::Zero();
   /// Planar scenes: the angle θ of B about z as given (the reported θ continues from it) [rad].
   double theta = 0.0;
+  /// The body's `initial` entry (its entry in `bodies` when it has none), for errors about
+  /// an initial state that violates the constraints.
+  SceneSpot where;
 };
 
 /// A vector of three expressions of t and the state (a force [N] or a moment [N·m]).
@@ -158,6 +161,9 @@ struct SceneDynamics {
   std::vector<SceneImpulse> impulses;
   std::vector<SceneImpact> impacts;
   SceneSimulation simulation;
+  /// Root key `project_initial: true`: an initial state that violates the constraints is
+  /// projected onto them (each changed value a warning) instead of being an error.
+  bool project_initial = false;
   /// Joints, rolling contacts and drivers (keys `joints`, `rolling`, `drivers`).
   SceneConstraints constraints;
   /// Unilateral contacts with friction and the material-pair table (keys `contacts`,

@@ -33,6 +33,8 @@ struct Study {
   State initial;
   /// Integrator, end time, output interval, tolerances and events from the scene.
   SimulationOptions options;
+  /// Initial values changed to satisfy the constraints (`project_initial: true`), one each.
+  std::vector<std::string> warnings;
 };
 
 /// Builds the Model (one body per scene body, gravity, the scene's force elements, and its
@@ -213,7 +215,9 @@ struct StudyResult {
   IntegratorStats stats;
   /// Things to tell the user (impulses after the end time, ...).
   std::vector<std::string> notes;
-  /// What the run had to decide or change in the user's model (jams, ...): shown as warnings.
+  /// Things the user must know: initial values changed to satisfy the constraints
+  /// (`project_initial: true`), statically indeterminate reactions (redundant constraints),
+  /// jams (sliding without consistent contact forces).
   std::vector<std::string> warnings;
 };
 

@@ -225,8 +225,10 @@ TEST(ConstraintSolve, RedundantHingesGiveLeastNormReactionsAndAWarning) {
   const InstantaneousSolution sol = SolveInstantaneous(model, s);
   EXPECT_EQ(sol.num_rows, 10);
   EXPECT_EQ(sol.rank, 5);
-  ASSERT_EQ(sol.warnings.size(), 1u);
+  // The redundancy, then its indeterminate components (redundancy_test.cpp has the details).
+  ASSERT_GE(sol.warnings.size(), 2u);
   EXPECT_THAT(sol.warnings[0], HasSubstr("redundant"));
+  EXPECT_THAT(sol.warnings[1], HasSubstr("'hinge left'"));
   // Compound pendulum about its end, angle 0.3 from the vertical: α = -(3g/2L) sin 0.3.
   const double alpha = -1.5 * g / L * std::sin(0.3);
   EXPECT_TRUE(Near(sol.bodies[0].alpha_WB_W.x(), alpha, 1e-12));
