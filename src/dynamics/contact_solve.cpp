@@ -10,6 +10,7 @@
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/lcp.h"
 #include "chasles/dynamics/newton_euler.h"
+#include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
 #include "chasles/model/constraints.h"
 #include "dynamics/internal/contact_geometry.h"
@@ -312,32 +313,39 @@ void NormalForceRow(const Contact& con, const ContactPointGeometry& g, ContactMo
   }
 }
 
-// Redundant sticking rows (a box on four vertices, a cylinder on both end rims) leave the
-// friction split among the points undetermined; only the resultant is fixed. The plain
-// least-norm split shares it equally, so the least loaded point reaches its cone first and
-// the body would start to slip early, in steps, one point at a time. Physically a rigid body
-// held at several points slips when the resultant exceeds what all of them can hold together.
-// So the split is the weighted least-norm one, min Σ |f_i|² / (mu_s N_i) over the tangential
-// multipliers (normal and constraint rows keep weight 1): friction shared in proportion to
-// each point's capacity mu_s N_i, so that under a pure translation every point reaches its
-// cone at the same instant, when |Σ f| = mu_s Σ N. The N_i come from the unweighted solve
-// (the weights act only inside the null space, which for coplanar points does not couple
-// normal and tangential rows). Called after a least-norm solve; re-solves in place.
-void ShareFrictionByCapacity(const Model& model, const State& state, int nc_rows,
-                             ContactWorkspace& ws) {
+// Redundant rows: weights for the least-norm split (called after a least-norm solve;
+// re-solves in place).
+// - Sticking rows of several points (a box on four vertices, a cylinder on both end rims)
+//   leave the friction split among the points undetermined; only the resultant is fixed. The
+//   plain least-norm split shares it equally, so the least loaded point would reach its cone
+//   first and the body would start to slip early, in steps. A rigid body held at several
+//   points slips when the resultant exceeds what all of them can hold together, so the split
+//   is the weighted least-norm one, min Σ |f_i|² / (mu_s N_i): friction in proportion to each
+//   point's capacity, every point reaching its cone at the same instant under a pure
+//   translation, when |Σ f| = mu_s Σ N. The N_i come from the unweighted solve (the weights
+//   act inside the null space, which for coplanar points does not couple normal and
+//   tangential rows). Normal rows keep weight 1.
+// - Constraint rows take the constraint stage's weights (CalcReactionWeights: a moment row
+//   weighs as a force at the mechanism's length), so no newton is traded against a
+//   newton-metre here either.
+void WeighRedundantRows(const Model& model, const State& state, const Data& data, int nc_rows,
+                        ContactWorkspace& ws) {
   const auto rows = ws.A.rows();
   ws.scale.resize(rows);
   ws.scale.setOnes();
+  bool any = false;
+  if (nc_rows > 0) {
+    ws.scale.head(nc_rows) = CalcReactionWeights(model, data);
+    any = (ws.scale.head(nc_rows).array() != 1.0).any();
+  }
   double n_ref = 0.0;
   int k = nc_rows;
-  bool any = false;
   for (int p = 0; p < model.num_contact_points(); ++p) {
     const ContactMode m = ModeOf(state, p);
     if (m == ContactMode::kSeparated) continue;
     n_ref = std::max(n_ref, ws.lambda[k]);
     k += m == ContactMode::kSticking ? 3 : 1;
   }
-  if (!(n_ref > 0.0)) return;
   k = nc_rows;
   for (int p = 0; p < model.num_contact_points(); ++p) {
     const ContactMode m = ModeOf(state, p);
@@ -346,9 +354,11 @@ void ShareFrictionByCapacity(const Model& model, const State& state, int nc_rows
       const double mu = model.contact(model.contact_of_point(p)).mu_s();
       // A floor keeps the column alive (a point carrying nothing still closes the rows).
       // Column scale D = √(capacity): the solve minimises Σ (f_i / D_i)² = Σ f_i² / c_i.
-      const double w = std::sqrt(std::max(mu * std::max(ws.lambda[k], 0.0) / n_ref, 1e-12));
-      ws.scale[k + 1] = ws.scale[k + 2] = w;
-      any = any || mu > 0.0;
+      if (n_ref > 0.0 && mu > 0.0) {
+        const double w = std::sqrt(std::max(mu * std::max(ws.lambda[k], 0.0) / n_ref, 1e-12));
+        ws.scale[k + 1] = ws.scale[k + 2] = w;
+        any = true;
+      }
       k += 3;
     } else {
       k += 1;
@@ -430,7 +440,7 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
   ws.A.noalias() = ws.J * ws.WMinv.transpose();
   ws.rhs.noalias() = ws.c - ws.J * u_dot;
   const bool redundant = internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda);
-  if (redundant) ShareFrictionByCapacity(model, state, nc_rows, ws);
+  if (redundant) WeighRedundantRows(model, state, data, nc_rows, ws);
   u_dot.noalias() += ws.WMinv.transpose() * ws.lambda;
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
@@ -693,7 +703,7 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
     // (slip_starts); 2, over the cone by more than round-off; 1, at the limit (within it).
     // The points to switch: every point over the cone is handled one at a time, largest
     // excess first; otherwise the crossed and at-limit points start to slip together: points
-    // that share a load in proportion to their capacity (ShareFrictionByCapacity) reach their
+    // that share a load in proportion to their capacity (WeighRedundantRows) reach their
     // cones together, and a rigid body held at several points breaks loose at all of them at
     // once (one by one would load the rest past their cones in skewed directions).
     struct Ranked {

@@ -841,9 +841,13 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
           point_labels[static_cast<size_t>(j.point)], state.t, j.slip_speed, j.energy_lost));
     }
   };
+  // The ledger starts from the state as given: an impact or a jam at t = 0 is part of it.
   if (seg.model->num_contacts() > 0) {
     state.contacts.assign(static_cast<size_t>(seg.model->num_contact_points()),
                           ContactPointState{});
+  }
+  const State as_given = state;
+  if (seg.model->num_contacts() > 0) {
     settle_contacts("initial");
     // Every point's initial mode is part of the timeline, changed or not.
     for (int p = 0; p < seg.model->num_contact_points(); ++p) {
@@ -860,8 +864,8 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     }
   }
   LedgerCarry carry;
-  carry.segment_initial = state;
-  const double E0 = MechanicalEnergy(*seg.model, state);
+  carry.segment_initial = as_given;
+  const double E0 = MechanicalEnergy(*seg.model, as_given);
   result.rows.push_back(rows.Row(*seg.model, *seg.map, state, carry));
   SlipWatch slip(scene);
   slip.Sample(*seg.model, state);
