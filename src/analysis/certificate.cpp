@@ -87,12 +87,13 @@ void CertificateBuilder::Add(int check, double value, Scale scale, double a, dou
                              double local_scale, std::string where, double t, CheckPhase phase) {
   ++counts_[static_cast<size_t>(check)];
   entries_.push_back({check, value, scale, a, b, local_scale, std::move(where), t, phase});
+  if (entries_.size() >= compact_at_) Compact();
 }
 
 void CertificateBuilder::CheckLedger(double t, double residual, double energy_scale,
                                      CheckPhase phase) {
   energy_ = std::max(energy_, std::abs(energy_scale));
-  Add(kLedger, std::abs(residual), Scale::kEnergy, 1.0, 0.0, 0.0, "the whole system", t, phase);
+  Add(kLedger, std::abs(residual), Scale::kEnergy, 1.0, 0.0, 0.0, "all bodies", t, phase);
 }
 
 void CertificateBuilder::CheckState(const Model& model, const State& state, CheckPhase phase) {
@@ -252,21 +253,85 @@ void CertificateBuilder::CheckState(const Model& model, const State& state, cons
   }
 }
 
-Certificate CertificateBuilder::Finish() const {
-  Certificate cert;
+CertificateBuilder::Scales CertificateBuilder::CurrentScales() const {
+  Scales k;
   // A moment scale at least the force scale times the largest radius of gyration, so that a
   // run whose moments happen to vanish still compares them with its forces' lever arms.
-  const double moment = std::max(moment_, force_ * radius_);
+  k.moment = std::max(moment_, force_ * radius_);
   // A velocity scale at least the speed the run's forces give its mass over its length,
   // v² = F L / m (e.g. √(g L) under gravity), and a rate scale that speed over the largest
   // radius of gyration: a run that starts and stays at rest still has a velocity scale.
   const double v_floor = mass_ > 0.0 ? std::sqrt(force_ * length_ / mass_) : 0.0;
-  const double velocity = std::max(velocity_, v_floor);
-  const double rate = std::max(rate_, radius_ > 0.0 ? v_floor / radius_ : 0.0);
+  k.velocity = std::max(velocity_, v_floor);
+  k.rate = std::max(rate_, radius_ > 0.0 ? v_floor / radius_ : 0.0);
+  return k;
+}
+
+double CertificateBuilder::Tolerance(const Entry& e, const Scales& k) const {
+  double rel = tol_.force, run = 0.0;
+  switch (e.scale) {
+    case Scale::kForce:
+      run = force_;
+      break;
+    case Scale::kMoment:
+      run = k.moment;
+      break;
+    case Scale::kLength:
+      rel = tol_.state;
+      run = e.a * length_ + e.b;  // b: the rotational part, per radian
+      break;
+    case Scale::kVelocity:
+      rel = tol_.state;
+      run = e.a * k.velocity + e.b * k.rate;
+      break;
+    case Scale::kEnergy:
+      rel = tol_.ledger;
+      run = energy_;
+      break;
+  }
+  return rel * std::max(run, e.local_scale);
+}
+
+// value / tolerance (a zero tolerance with a zero value is a pass; with a positive value an
+// infinite ratio).
+double CertificateBuilder::Ratio(const Entry& e, const Scales& k) const {
+  const double tolerance = Tolerance(e, k);
+  return tolerance > 0.0 ? e.value / tolerance : (e.value > 0.0 ? HUGE_VAL : 0.0);
+}
+
+void CertificateBuilder::Compact() {
+  // The scales only grow, so every ratio only shrinks from here on: an entry below
+  // kKeep times its check's largest ratio now stays far below any tolerance the check's worst
+  // value could fail (it passes whenever the worst does, by a factor 1/kKeep), and is dropped.
+  // This bounds the memory of long runs.
+  constexpr double kKeep = 1e-3;
+  const Scales k = CurrentScales();
+  std::vector<double> worst(kNumChecks, 0.0);
+  for (const Entry& e : entries_) {
+    worst[static_cast<size_t>(e.check)] =
+        std::max(worst[static_cast<size_t>(e.check)], Ratio(e, k));
+  }
+  std::vector<bool> kept_one(kNumChecks, false);
+  std::vector<Entry> kept;
+  for (Entry& e : entries_) {
+    const auto c = static_cast<size_t>(e.check);
+    const double r = Ratio(e, k);
+    if (r >= kKeep * worst[c] && (r > 0.0 || !kept_one[c])) {
+      kept_one[c] = true;
+      kept.push_back(std::move(e));
+    }
+  }
+  entries_ = std::move(kept);
+  compact_at_ = std::max(compact_at_, 2 * entries_.size());
+}
+
+Certificate CertificateBuilder::Finish() const {
+  Certificate cert;
+  const Scales k = CurrentScales();
   cert.force_scale = force_;
-  cert.moment_scale = moment;
+  cert.moment_scale = k.moment;
   cert.length_scale = length_;
-  cert.velocity_scale = velocity;
+  cert.velocity_scale = k.velocity;
   cert.energy_scale = energy_;
   for (int c = 0; c < kNumChecks; ++c) {
     CheckResult r;
@@ -278,31 +343,9 @@ Certificate CertificateBuilder::Finish() const {
   }
   std::vector<double> worst_ratio(kNumChecks, -1.0);
   for (const Entry& e : entries_) {
-    double rel = tol_.force, run = 0.0;
-    switch (e.scale) {
-      case Scale::kForce:
-        run = force_;
-        break;
-      case Scale::kMoment:
-        run = moment;
-        break;
-      case Scale::kLength:
-        rel = tol_.state;
-        run = e.a * length_ + e.b;  // b: the rotational part, per radian
-        break;
-      case Scale::kVelocity:
-        rel = tol_.state;
-        run = e.a * velocity + e.b * rate;
-        break;
-      case Scale::kEnergy:
-        rel = tol_.ledger;
-        run = energy_;
-        break;
-    }
-    const double tolerance = rel * std::max(run, e.local_scale);
-    // The worst value is the one with the largest value/tolerance (a zero tolerance with a
-    // zero value is a pass; with a positive value an infinite ratio).
-    const double ratio = tolerance > 0.0 ? e.value / tolerance : (e.value > 0.0 ? HUGE_VAL : 0.0);
+    // The worst value is the one with the largest value/tolerance.
+    const double ratio = Ratio(e, k);
+    const double tolerance = Tolerance(e, k);
     const auto c = static_cast<size_t>(e.check);
     if (ratio > worst_ratio[c]) {
       worst_ratio[c] = ratio;

@@ -105,10 +105,21 @@ class CertificateBuilder {
   };
   void Add(int check, double value, Scale scale, double a, double b, double local_scale,
            std::string where, double t, CheckPhase phase);
+  /// The moment, velocity and rate scales derived from the run's scales so far.
+  struct Scales {
+    double moment = 0.0, velocity = 0.0, rate = 0.0;
+  };
+  Scales CurrentScales() const;
+  double Tolerance(const Entry& e, const Scales& k) const;
+  double Ratio(const Entry& e, const Scales& k) const;
+  /// Drops the entries that can no longer matter (bounded memory on long runs).
+  void Compact();
 
   CertificateTolerances tol_;
   std::vector<long long> counts_;
   std::vector<Entry> entries_;
+  /// Compact when this many entries are held.
+  size_t compact_at_ = size_t{1} << 16;
   /// The run's scales so far: largest force [N], moment [N·m], position or size [m], speed
   /// [m/s], angular speed [rad/s], energy [J], radius of gyration [m].
   double force_ = 0.0, moment_ = 0.0, length_ = 0.0, velocity_ = 0.0, rate_ = 0.0, energy_ = 0.0,

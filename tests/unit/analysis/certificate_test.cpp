@@ -155,5 +155,21 @@ TEST(Certificate, LedgerResidualAgainstTheEnergyScale) {
   EXPECT_EQ(r.count, 3);
 }
 
+// A long run keeps bounded memory (entries far below the worst are dropped as it goes) and
+// still reports the worst value, where and when, and the count of every value checked.
+TEST(Certificate, LongRunsKeepTheWorstValue) {
+  CertificateBuilder builder;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const double residual = i == 123456 ? 1e-3 : 1e-13 * (i % 7);
+    builder.CheckLedger(static_cast<double>(i), residual, 10.0, CheckPhase::kSample);
+  }
+  const CheckResult& r = Find(builder.Finish(), "ledger");
+  EXPECT_EQ(r.count, n);
+  EXPECT_EQ(r.worst, 1e-3);
+  EXPECT_EQ(r.t, 123456.0);
+  EXPECT_FALSE(r.passed());
+}
+
 }  // namespace
 }  // namespace chasles
