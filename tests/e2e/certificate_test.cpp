@@ -87,6 +87,29 @@ TEST(Certificate, ContactModeEventStopsTheSpinningBallAtTStar) {
   EXPECT_GT(Check(j, "ledger").at("count").get<int>(), 0);
 }
 
+// A ball dropped from h0 (lowest point) with restitution e touches down at t0 = sqrt(2 h0 / g)
+// (free fall) and leaves at e g t0 upward; the next touch-down is a flight 2 e t0 later. A
+// recorded `touches` event fires at each, with the state just after the impact.
+TEST(Certificate, TouchesEventsAtTheBouncesOfADroppedBall) {
+  std::string text = ReadText(SourcePath("examples/contact-bouncing-ball.yaml"));
+  text += "events:\n  - {name: lands, contact: floor, change: touches, action: record}\n";
+  const auto path = Dir() / "bounces.yaml";
+  std::ofstream(path) << text;
+  const nlohmann::json j = SimulateJson(path.string(), Dir());
+  const double h0 = 1.0, e = 0.5;
+  const double t0 = std::sqrt(2 * h0 / kG);
+  const nlohmann::json& events = j.at("events");
+  ASSERT_GE(events.size(), 2u);
+  EXPECT_EQ(events.at(0).at("name"), "lands");
+  EXPECT_FALSE(events.at(0).at("stopped").get<bool>());
+  EXPECT_TRUE(Near(events.at(0).at("t").get<double>(), t0, kEventRel));
+  EXPECT_TRUE(Near(events.at(1).at("t").get<double>(), t0 * (1 + 2 * e), kEventRel));
+  const nlohmann::json& body = events.at(0).at("state").at("bodies").at(0);
+  EXPECT_TRUE(Near(ToVec(body.at("velocity")).z(), e * kG * t0, kEventRel));
+  EXPECT_EQ(events.at(0).at("state").at("contacts").at(0).at("mode"), "separated");
+  EXPECT_TRUE(j.at("checks").at("passed").get<bool>()) << j.at("checks").dump(2);
+}
+
 TEST(Certificate, RecordedModeEventsAndTheirStateInTheTextReport) {
   const std::string scene = SpinningBallWith(
       "events:\n  - {name: rolls, contact: floor, change: any, action: record}\n", "ball-any");
