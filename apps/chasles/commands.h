@@ -47,6 +47,7 @@ struct SimulateArgs {
   std::string format = "text";                              // text | json
   std::vector<std::string> columns;  // CSV columns or groups, replacing the scene's output
   std::string units;                 // text report units; "" = the scene's
+  bool strict = false;               // a failed check exits with kExitCheckFailed
 };
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args);
 int RunSimulate(const SimulateArgs& args);
@@ -55,6 +56,7 @@ struct SolveArgs {
   SceneArgs scene;
   std::string sweep;            // NAME=START:STOP:COUNT, or "" for one solve
   std::string format = "text";  // text | json
+  bool strict = false;          // a failed check exits with kExitCheckFailed
 };
 CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args);
 int RunSolve(const SolveArgs& args);

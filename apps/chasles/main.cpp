@@ -1,6 +1,6 @@
 // chasles: the command-line program. Thin by design: parse -> load scene -> compute -> report.
 // Exit codes: 0 success, 2 bad input (scene, options, physically impossible values),
-// 1 internal error.
+// 3 a failed check of the answer under --strict (simulate, solve), 1 internal error.
 
 #include <cstdio>
 #include <exception>
@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
       "  chasles check my-scene.yaml\n"
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
       "  chasles solve examples/example-8.3-cylinder-incline.yaml\n"
-      "Scene format: docs/scene-format.md. Exit codes: 0 ok, 2 bad input, 1 internal error.");
+      "Scene format: docs/scene-format.md. Exit codes: 0 ok, 2 bad input, 3 a failed check "
+      "with --strict (simulate, solve), 1 internal error.");
 
   MassArgs mass_args;
   CheckArgs check_args;

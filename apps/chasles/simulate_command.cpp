@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "certificate_report.h"
 #include "chasles/error.h"
 #include "chasles/io/atomic_file.h"
 #include "chasles/math/quaternion.h"
@@ -50,33 +51,10 @@ std::string Csv(const StudyResult& r) {
   return out;
 }
 
-nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string& csv_path) {
-  nlohmann::json j;
-  j["scene"] = scene.file;
-  j["title"] = scene.title;
-  j["units"] = "SI";
-  j["planar"] = scene.planar;
-  j["csv"] = csv_path;
-  j["columns"] = r.columns;
-  j["t_end"] = r.t_end;
-  j["stopped_by_event"] = r.stopped_by_event;
-  j["events"] = nlohmann::json::array();
-  for (const auto& e : r.events) {
-    j["events"].push_back({{"name", e.name}, {"t", e.t}, {"stopped", e.stopped}});
-  }
-  j["jumps"] = nlohmann::json::array();
-  for (const auto& x : r.jumps) {
-    j["jumps"].push_back({{"kind", x.kind},
-                          {"description", x.description},
-                          {"t", x.t},
-                          {"energy_before", x.energy_before},
-                          {"energy_after", x.energy_after},
-                          {"energy_change", x.energy_after - x.energy_before},
-                          {"velocity_after", VecJson(x.v_after_W)},
-                          {"angular_velocity_after", VecJson(x.w_after_W)}});
-  }
+/// Bodies, reactions and contact points at one instant (SI, world frame).
+nlohmann::json SnapshotJson(const Scene& scene, const StudySnapshot& snap) {
   nlohmann::json bodies = nlohmann::json::array();
-  for (const auto& b : r.final_bodies) {
+  for (const auto& b : snap.bodies) {
     const Eigen::Vector4d q = QuatToWxyz(b.q_WB);
     bodies.push_back({{"name", b.name},
                       {"mass", b.mass},
@@ -94,7 +72,7 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
     }
   }
   nlohmann::json reactions = nlohmann::json::array();
-  for (const auto& x : r.final_reactions) {
+  for (const auto& x : snap.reactions) {
     reactions.push_back({{"name", x.name},
                          {"kind", x.kind},
                          {"point", VecJson(x.p_WJ)},
@@ -109,7 +87,7 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
     }
   }
   nlohmann::json contacts = nlohmann::json::array();
-  for (const auto& c : r.final_contacts) {
+  for (const auto& c : snap.contacts) {
     contacts.push_back({{"point", c.point},
                         {"mode", c.mode},
                         {"normal_force", c.normal_force},
@@ -120,8 +98,41 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                         {"rolling_work", c.rolling_work},
                         {"impact_work", c.impact_work}});
   }
-  j["final"] = {{"t", r.t_end}, {"bodies", bodies}, {"reactions", reactions}};
-  if (!r.final_contacts.empty()) j["final"]["contacts"] = contacts;
+  nlohmann::json j = {{"bodies", bodies}, {"reactions", reactions}};
+  if (!snap.contacts.empty()) j["contacts"] = contacts;
+  return j;
+}
+
+nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string& csv_path) {
+  nlohmann::json j;
+  j["scene"] = scene.file;
+  j["title"] = scene.title;
+  j["units"] = "SI";
+  j["planar"] = scene.planar;
+  j["csv"] = csv_path;
+  j["columns"] = r.columns;
+  j["t_end"] = r.t_end;
+  j["stopped_by_event"] = r.stopped_by_event;
+  j["events"] = nlohmann::json::array();
+  for (const auto& e : r.events) {
+    j["events"].push_back({{"name", e.name},
+                           {"t", e.t},
+                           {"stopped", e.stopped},
+                           {"state", SnapshotJson(scene, e.snapshot)}});
+  }
+  j["jumps"] = nlohmann::json::array();
+  for (const auto& x : r.jumps) {
+    j["jumps"].push_back({{"kind", x.kind},
+                          {"description", x.description},
+                          {"t", x.t},
+                          {"energy_before", x.energy_before},
+                          {"energy_after", x.energy_after},
+                          {"energy_change", x.energy_after - x.energy_before},
+                          {"velocity_after", VecJson(x.v_after_W)},
+                          {"angular_velocity_after", VecJson(x.w_after_W)}});
+  }
+  j["final"] = SnapshotJson(scene, {r.final_bodies, r.final_reactions, r.final_contacts});
+  j["final"]["t"] = r.t_end;
   j["contact_events"] = nlohmann::json::array();
   for (const auto& e : r.contact_events) {
     j["contact_events"].push_back({{"t", e.t},
@@ -173,7 +184,9 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
   j["notes"] = r.notes;
   std::vector<std::string> warnings = scene.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+  for (const std::string& w : r.certificate.FailureMessages()) warnings.push_back(w);
   j["warnings"] = warnings;
+  j["checks"] = CertificateJson(r.certificate);
   return j;
 }
 
@@ -234,6 +247,43 @@ constexpr Dimension kEnergyDim{2, 1, -2};
 constexpr Dimension kMomentumDim{1, 1, -1};
 constexpr Dimension kAngularMomentumDim{2, 1, -1};
 
+/// The state at an event, concisely: per body position, velocity and angular velocity (world
+/// frame), per reaction force and moment, per contact point mode, N and friction.
+std::string SnapshotText(const Scene& scene, const StudySnapshot& snap, const Show& show,
+                         const ReportScales& k) {
+  constexpr Dimension kForceDim{1, 1, -2};
+  constexpr Dimension kMomentDim{2, 1, -2};
+  std::string out;
+  for (size_t i = 0; i < snap.bodies.size(); ++i) {
+    const auto& b = snap.bodies[i];
+    const double v_s = i < k.body_speed.size() ? k.body_speed[i] : k.speed;
+    const double w_s = i < k.body_rate.size() ? k.body_rate[i] : 0.0;
+    if (scene.planar) {
+      out += fmt::format("    {}: x, y [{}, {}], theta {}; v [{}, {}], omega {}\n", b.name,
+                         show(b.p_WBcm.x(), kLength), show(b.p_WBcm.y(), kLength),
+                         show(b.theta, kDimensionless, Angular::kYes),
+                         show(b.v_WBcm_W.x(), kVelocityDim), show(b.v_WBcm_W.y(), kVelocityDim),
+                         show(b.w_WB_W.z(), kRateDim, Angular::kYes));
+      continue;
+    }
+    out += fmt::format("    {}: position {}, velocity {}, angular velocity {}\n", b.name,
+                       show(b.p_WBcm, kLength, Angular::kNo, k.length),
+                       show(b.v_WBcm_W, kVelocityDim, Angular::kNo, v_s),
+                       show(b.w_WB_W, kRateDim, Angular::kYes, w_s));
+  }
+  for (const auto& x : snap.reactions) {
+    out += fmt::format("    {}: force {}, moment {}\n", x.name,
+                       show(x.F_Jc_W, kForceDim, Angular::kNo, k.force),
+                       show(x.M_Jc_W, kMomentDim, Angular::kNo, k.moment));
+  }
+  for (const auto& c : snap.contacts) {
+    out += fmt::format("    {}: {}, N = {}, friction {}\n", c.point, c.mode,
+                       show(c.normal_force, kForceDim),
+                       show(c.friction_force_W, kForceDim, Angular::kNo, k.force));
+  }
+  return out;
+}
+
 std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& units,
                  const std::string& csv_path, const std::string& json_path) {
   const Show show{units};
@@ -264,6 +314,7 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
       const auto& e = r.events[i];
       out += fmt::format("  {:<24} t = {}{}\n", e.name, show(e.t, kTimeDim),
                          e.stopped ? "  (stop)" : "");
+      out += SnapshotText(scene, e.snapshot, show, CalcReportScales(r));
     }
   }
   if (!r.jumps.empty()) {
@@ -418,6 +469,8 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
   for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);
   for (const auto& w : scene.warnings) out += fmt::format("warning: {}\n", w);
   for (const auto& w : r.warnings) out += fmt::format("warning: {}\n", w);
+  for (const auto& w : r.certificate.FailureMessages()) out += fmt::format("warning: {}\n", w);
+  out += CertificateText(r.certificate);
   out += fmt::format("Wrote {} ({} rows) and {}\n", csv_path, r.rows.size(), json_path);
   return out;
 }
@@ -439,6 +492,9 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "CSV columns or groups, replacing the scene's output.columns, e.g. "
                   "--columns position,euler,energy (groups: docs/scene-format.md, output)")
       ->delimiter(',');
+  cmd->add_flag("--strict", args.strict,
+                "Exit with code 3 when a check of the certificate fails (the report's Checks "
+                "section; otherwise a failed check is only a warning)");
   cmd->add_option("--units", args.units,
                   "Units of the text report: SI, US (in, lb, lbf), or a list such as 'ft,slug' "
                   "(default: the scene's own units; the CSV and JSON are always SI)");
@@ -448,7 +504,8 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
       "  chasles simulate examples/projectile-drag.yaml --set 'c=0.2 N*s/m' --format json\n"
       "  chasles simulate examples/spring-mass.yaml --until 20\n"
       "Progress is shown on a terminal for runs longer than a second. Scene keys: "
-      "docs/scene-format.md, section Dynamics.");
+      "docs/scene-format.md, section Dynamics.\n"
+      "Exit codes: 0 success, 2 bad input, 3 a check failed with --strict, 1 internal error.");
   return cmd;
 }
 
@@ -508,7 +565,7 @@ int RunSimulate(const SimulateArgs& args) {
   } else {
     Emit("", Text(scene, r, units, csv_path, json_path));
   }
-  return 0;
+  return args.strict && !r.certificate.passed() ? kExitCheckFailed : 0;
 }
 
 }  // namespace chasles::cli

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -13,6 +14,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "certificate_report.h"
+#include "chasles/analysis/certificate.h"
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/analysis/momentum.h"
 #include "chasles/dynamics/constraint_solve.h"
@@ -89,6 +92,8 @@ struct Solved {
   bool planar = false;
   /// Contact points (scene order), in their chosen modes.
   std::vector<ContactReport> contacts;
+  /// The solve's checks of its own answer (friction, N, gaps, residuals, Newton–Euler).
+  Certificate certificate;
 };
 
 void FillMuS(const Scene& scene, Solved& s) {
@@ -138,10 +143,13 @@ Solved SolveScene(const Scene& scene) {
       state.contacts.assign(static_cast<size_t>(model.num_contact_points()), ContactPointState{});
       SelectContactModes(model, state);
     }
-    Solved s{SolveInstantaneous(model, state), {}, {}, {}, scene.planar, {}};
+    Solved s{SolveInstantaneous(model, state), {}, {}, {}, scene.planar, {}, {}};
     // Initial values the projection changed (`project_initial: true`) come first.
     s.solution.warnings.insert(s.solution.warnings.begin(), study.warnings.begin(),
                                study.warnings.end());
+    CertificateBuilder certificate;
+    certificate.CheckState(model, state, CheckPhase::kSolve);
+    s.certificate = certificate.Finish();
     s.motion = CalcMotion(model, state, &s.total);
     FillMuS(scene, s);
     if (model.num_contacts() > 0) {
@@ -243,6 +251,8 @@ nlohmann::json Json(const Solved& s) {
   j["rank"] = s.solution.rank;
   j["rows"] = s.solution.num_rows;
   j["warnings"] = s.solution.warnings;
+  for (const std::string& w : s.certificate.FailureMessages()) j["warnings"].push_back(w);
+  j["checks"] = CertificateJson(s.certificate);
   return j;
 }
 
@@ -377,6 +387,8 @@ std::string Text(const Scene& scene, const Solved& s) {
     motion(s.total, "the system's centre of mass");
   }
   for (const auto& w : s.solution.warnings) out += fmt::format("warning: {}\n", w);
+  for (const auto& w : s.certificate.FailureMessages()) out += fmt::format("warning: {}\n", w);
+  out += CertificateText(s.certificate);
   return out;
 }
 
@@ -486,12 +498,16 @@ CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args) {
                   "expressions with units, e.g. 'theta=0 deg:60 deg:7'); prints a table");
   cmd->add_option("--format", args.format, "text (default) or json")
       ->check(CLI::IsMember({"text", "json"}));
+  cmd->add_flag("--strict", args.strict,
+                "Exit with code 3 when a check of the answer fails (the report's Checks section; "
+                "otherwise a failed check is only a warning)");
   cmd->footer(
       "Examples:\n"
       "  chasles solve examples/example-8.3-cylinder-incline.yaml\n"
       "  chasles solve examples/example-8.3-cylinder-incline.yaml --sweep 'theta=10 deg:50 "
       "deg:5'\n"
-      "Scene keys: docs/scene-format.md, section Joints, rolling and drivers.");
+      "Scene keys: docs/scene-format.md, section Joints, rolling and drivers.\n"
+      "Exit codes: 0 success, 2 bad input, 3 a check failed with --strict, 1 internal error.");
   return cmd;
 }
 
@@ -503,7 +519,7 @@ int RunSolve(const SolveArgs& args) {
     const Scene scene = LoadScene(args.scene);
     const Solved s = SolveScene(scene);
     Emit("", args.format == "json" ? Json(s).dump(2) + "\n" : Text(scene, s));
-    return 0;
+    return args.strict && !s.certificate.passed() ? kExitCheckFailed : 0;
   }
   const Sweep sweep = ParseSweep(args.sweep);
   {
@@ -518,6 +534,7 @@ int RunSolve(const SolveArgs& args) {
   }
   std::vector<std::string> names;
   std::vector<std::vector<double>> rows;
+  bool failed = false;
   for (int k = 0; k < sweep.count; ++k) {
     // The k-th value as an expression, so START and STOP keep their units.
     SceneArgs a = args.scene;
@@ -529,6 +546,11 @@ int RunSolve(const SolveArgs& args) {
       if (n == sweep.name) value = q.value;
     }
     const Solved s = SolveScene(scene);
+    // A failed check of one value: a warning on standard error (the table stays a table).
+    for (const std::string& w : s.certificate.FailureMessages()) {
+      std::fprintf(stderr, "warning: %s = %.12g: %s\n", sweep.name.c_str(), value, w.c_str());
+      failed = true;
+    }
     std::vector<double> row = {value};
     if (k == 0) {
       names.push_back(sweep.name);
@@ -541,7 +563,7 @@ int RunSolve(const SolveArgs& args) {
   if (args.format == "json") {
     nlohmann::json j = {{"parameter", sweep.name}, {"columns", names}, {"rows", rows}};
     Emit("", j.dump(2) + "\n");
-    return 0;
+    return args.strict && failed ? kExitCheckFailed : 0;
   }
   std::string out = fmt::format("# {} swept (SI values); one row per value\n", sweep.name);
   for (size_t c = 0; c < names.size(); ++c) out += fmt::format("{}{}", c ? "," : "", names[c]);
@@ -551,7 +573,7 @@ int RunSolve(const SolveArgs& args) {
     out += "\n";
   }
   Emit("", out);
-  return 0;
+  return args.strict && failed ? kExitCheckFailed : 0;
 }
 
 }  // namespace chasles::cli

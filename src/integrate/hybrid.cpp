@@ -152,7 +152,9 @@ class HybridRun {
     DormandPrince5Integrator dp(model_, o_.adaptive);
     const size_t ne = o_.events.size();
     std::vector<double> ug_prev(ne), ug_new(ne);
-    for (size_t e = 0; e < ne; ++e) ug_prev[e] = o_.events[e].g(s.t, s);
+    for (size_t e = 0; e < ne; ++e) {
+      if (o_.events[e].g) ug_prev[e] = o_.events[e].g(s.t, s);
+    }
     State scratch = s;
     while (s.t < o_.t_end) {
       dp.Initialize(s);
@@ -256,6 +258,7 @@ class HybridRun {
         // User events up to the contact event.
         double t_stop = std::numeric_limits<double>::infinity();
         for (size_t e = 0; e < ne; ++e) {
+          if (!o_.events[e].g) continue;  // a contact-mode event (RecordModeEvents)
           ug_new[e] = o_.events[e].g(tb, dp.state());
           if (!internal::Crosses(o_.events[e].direction, ug_prev[e], ug_new[e])) continue;
           auto g = [&](double t) {
@@ -289,9 +292,21 @@ class HybridRun {
         if (which >= 0) {
           dp.Interpolate(t_c, s);
           s.t = t_c;
+          const State before = o_.on_transition ? s : State{};
+          const size_t first_change = r_.contact_events.size();
           Transition(s, fns[static_cast<size_t>(which)].point,
                      fns[static_cast<size_t>(which)].reason);
-          for (size_t e = 0; e < ne; ++e) ug_prev[e] = o_.events[e].g(s.t, s);
+          if (o_.on_transition) o_.on_transition(before, s);
+          if (RecordModeEvents(first_change, s)) {
+            r_.final_state = s;
+            r_.stopped_by_event = true;
+            Emit(s);
+            AddStats(dp);
+            return std::move(r_);
+          }
+          for (size_t e = 0; e < ne; ++e) {
+            if (o_.events[e].g) ug_prev[e] = o_.events[e].g(s.t, s);
+          }
           restart = true;
           if (++switches_ > o_.contact.max_mode_switches) {
             throw InputError(fmt::format(
@@ -330,6 +345,23 @@ class HybridRun {
       Emit(scratch);
       ++k_;
     }
+  }
+
+  // Contact-mode events for the changes recorded from `first` on (one transition, at `s`);
+  // true when one of them stops the run.
+  bool RecordModeEvents(size_t first, const State& s) {
+    bool stop = false;
+    for (size_t e = 0; e < o_.events.size(); ++e) {
+      const EventSpec& spec = o_.events[e];
+      if (!spec.on_mode_change) continue;
+      const bool fires = std::any_of(r_.contact_events.begin() + static_cast<std::ptrdiff_t>(first),
+                                     r_.contact_events.end(),
+                                     [&](const ContactEvent& c) { return spec.on_mode_change(c); });
+      if (!fires) continue;
+      r_.events.push_back({static_cast<int>(e), spec.name, s.t, s});
+      stop = stop || spec.action == EventAction::kStop;
+    }
+    return stop;
   }
 
   void AddStats(const DormandPrince5Integrator& dp) {

@@ -41,7 +41,13 @@ void Validate(const Model& model, const State& initial, const SimulationOptions&
     }
   }
   for (const EventSpec& e : o.events) {
-    if (!e.g) throw InputError(fmt::format("event '{}' has no event function", e.name));
+    if (!e.g && !e.on_mode_change) {
+      throw InputError(fmt::format("event '{}' has no event function", e.name));
+    }
+    if (!e.g && model.num_contacts() == 0) {
+      throw InputError(
+          fmt::format("event '{}' watches contact modes, but the model has no contacts", e.name));
+    }
   }
   if (!(o.event_time_tolerance > 0.0)) {
     throw InputError("event time tolerance must be positive (e.g. 1e-12 s)");

@@ -280,11 +280,16 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
   return f;
 }
 
-SceneEvent SceneReader::ReadEvent(const At& at, size_t index) {
-  report_.CheckMap(at, {"name", "when", "crosses", "direction", "action"}, "an event");
+SceneEvent SceneReader::ReadEvent(const At& at, size_t index, const Scene& scene) {
+  report_.CheckMap(at, {"name", "when", "crosses", "direction", "action", "contact", "change"},
+                   "an event");
   SceneEvent e;
   e.name = at.Has("name") ? report_.Text(at.Child("name"), "a name")
                           : fmt::format("event {}", index + 1);
+  if (at.Has("contact") || at.Has("change")) {
+    ReadModeEvent(at, scene, e);
+    return e;
+  }
   const At when = report_.Require(at, "when", fmt::format("event '{}'", e.name));
   // The level crossed fixes the dimension: read `when` for its dimension first.
   const std::string text = report_.Text(when, "an expression of t and the state");
@@ -322,16 +327,7 @@ SceneEvent SceneReader::ReadEvent(const At& at, size_t index) {
                    fmt::format("direction must be rising, falling or both, got '{}'", d));
     }
   }
-  if (at.Has("action")) {
-    const std::string a = report_.Text(at.Child("action"), "stop or record");
-    if (a == "stop") {
-      e.action = EventAction::kStop;
-    } else if (a == "record") {
-      e.action = EventAction::kRecord;
-    } else {
-      report_.Fail(at.Child("action"), fmt::format("action must be stop or record, got '{}'", a));
-    }
-  }
+  ReadEventAction(at, e);
   return e;
 }
 
@@ -509,7 +505,7 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
     const At events = root.Child("events");
     report_.CheckSequence(events, "a list of events");
     for (size_t i = 0; i < events.node.size(); ++i)
-      d.events.push_back(ReadEvent(events.Item(i), i));
+      d.events.push_back(ReadEvent(events.Item(i), i, scene));
     if (!d.events.empty() && d.simulation.integrator != IntegratorKind::kDormandPrince5) {
       report_.Fail(root.Child("simulation").Child("integrator"),
                    "events are located only by the adaptive integrator (on its dense output); "

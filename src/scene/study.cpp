@@ -375,10 +375,62 @@ Model BuildModel(const Scene& scene,
   return model;
 }
 
+/// The certificate's tolerances for a scene's run. Force-level checks are round-off (the
+/// default); the state-level ones and the ledger carry the integration error, which the
+/// adaptive integrator's relative tolerance bounds per step: the defaults hold down to
+/// rtol = 1e-12 (every shipped example is at or below 1e-3 of them there) and grow in
+/// proportion above it. Fixed-step runs keep the defaults: their error is not controlled, so
+/// a step too coarse for the motion fails the ledger, as it should.
+CertificateTolerances CertificateTolerancesFor(const Scene& scene) {
+  CertificateTolerances t;
+  const SceneSimulation& sim = scene.dynamics.simulation;
+  if (sim.integrator == IntegratorKind::kDormandPrince5) {
+    const double loosening = std::max(1.0, sim.rtol / 1e-12);
+    t.state *= loosening;
+    t.ledger *= loosening;
+  }
+  return t;
+}
+
+/// Whether a contact point's mode change `c` is the `change` a contact-mode event watches.
+bool IsModeChange(SceneModeChange change, const ContactEvent& c) {
+  const bool touching_before = c.from != ContactMode::kSeparated;
+  const bool touching_after = c.to != ContactMode::kSeparated;
+  // A bounce is a touch-down whose impact sends the point off again (separated to separated).
+  const bool bounce = c.reason == ContactEventReason::kTouchDown;
+  switch (change) {
+    case SceneModeChange::kNone:
+      return false;
+    case SceneModeChange::kStartsSliding:
+      return c.to == ContactMode::kSliding && c.from != ContactMode::kSliding;
+    case SceneModeChange::kStopsSliding:
+      return c.from == ContactMode::kSliding && c.to == ContactMode::kSticking;
+    case SceneModeChange::kSeparates:
+      return touching_before && !touching_after;
+    case SceneModeChange::kTouches:
+      return (!touching_before && touching_after) || bounce;
+    case SceneModeChange::kAny:
+      return c.from != c.to || bounce;
+  }
+  return false;
+}
+
 std::vector<EventSpec> BuildEvents(const Scene& scene, std::shared_ptr<const Model*> model_ref,
                                    std::shared_ptr<const BodyMap> map) {
   std::vector<EventSpec> events;
   for (const SceneEvent& e : scene.dynamics.events) {
+    if (e.change != SceneModeChange::kNone) {
+      // Contact points are added to the Model in the scene's label order (AddSceneContacts).
+      EventSpec spec;
+      spec.name = e.name;
+      spec.action = e.action;
+      spec.on_mode_change = [points = e.points, change = e.change](const ContactEvent& c) {
+        return std::find(points.begin(), points.end(), c.point) != points.end() &&
+               IsModeChange(change, c);
+      };
+      events.push_back(std::move(spec));
+      continue;
+    }
     auto buffer = std::make_shared<std::vector<double>>();
     const Expression when = e.when;
     const double level = e.crosses;
@@ -535,6 +587,16 @@ struct RowMaker {
                                        : scene.dynamics.initial[static_cast<size_t>(b)].theta;
     k = {true, UnwrapTheta(R_WB, reference), omega, t};
     return k.theta;
+  }
+
+  /// θ of scene body `b` at time t from the last reported one, without advancing the track
+  /// (for an event's state, which may lie before the last sample).
+  double ThetaAt(int b, const Mat3& R_WB, double omega, double t) const {
+    theta_track.resize(scene.bodies.size());
+    const ThetaTrack& k = theta_track[static_cast<size_t>(b)];
+    const double reference = k.started ? k.theta + 0.5 * (k.omega + omega) * (t - k.t)
+                                       : scene.dynamics.initial[static_cast<size_t>(b)].theta;
+    return UnwrapTheta(R_WB, reference);
   }
 
   std::vector<double> Row(const Model& model, const BodyMap& map, const State& s,
@@ -732,6 +794,65 @@ struct SlipWatch {
   }
 };
 
+/// Bodies, reactions (the scene's own constraints) and contact points of `model` at `state`.
+/// Planar scenes: θ continuous with the rows' track, which `advance` moves on to `state`.
+StudySnapshot MakeSnapshot(const Scene& scene, const Model& model, const State& state,
+                           const RowMaker& rows, bool advance) {
+  StudySnapshot out;
+  const size_t num_scene_constraints = scene.dynamics.constraints.names().size();
+  if (model.num_constraints() > 0) {
+    // The reactions at `state` (the constraint stage of CalcAccelerations).
+    Data data = MakeData(model);
+    CalcAccelerations(model, state, data);
+    for (int i = 0; i < static_cast<int>(num_scene_constraints); ++i) {
+      const Constraint& con = model.constraint(i);
+      const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
+      StudyReaction r;
+      r.name = con.name();
+      r.kind = con.kind();
+      r.p_WJ = o.p_WJ;
+      r.F_Jc_W = o.F_Jc_W;
+      r.M_Jc_W = o.M_Jc_W;
+      r.F_Jc_B = o.F_Jc_B;
+      r.M_Jc_B = o.M_Jc_B;
+      r.power = o.power;
+      out.reactions.push_back(r);
+    }
+  }
+  if (model.num_contacts() > 0) {
+    const std::vector<std::string> point_labels = scene.dynamics.contacts.point_labels();
+    const std::vector<ContactPointOutput> outputs = CalcContactOutputs(model, state);
+    for (int p = 0; p < model.num_contact_points(); ++p) {
+      const ContactPointOutput& o = outputs[static_cast<size_t>(p)];
+      const ContactPointState& ps = state.contacts[static_cast<size_t>(p)];
+      out.contacts.push_back({point_labels[static_cast<size_t>(p)], ContactModeName(ps.mode),
+                              o.normal_force, o.friction_force_W, o.slip_velocity_W, o.gap,
+                              ps.friction_work, ps.rolling_work, ps.impact_work});
+    }
+  }
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyState& s = state.bodies[static_cast<size_t>(b)];
+    StudyBodyState f;
+    f.name = model.body(b).name();
+    f.mass = model.body(b).mass();
+    f.inertia_max = model.body(b).I_BBcm_B().diagonal().maxCoeff();
+    f.p_WBcm = s.p_WBcm;
+    f.p_WBo = CalcBodyOriginPosition(model, state, b);
+    f.q_WB = s.q_WB.w() < 0 ? Quat(-s.q_WB.coeffs()) : s.q_WB;
+    f.v_WBcm_W = s.v_WBcm_W;
+    f.w_WB_B = s.w_WB_B;
+    f.w_WB_W = s.q_WB * s.w_WB_B;
+    if (scene.planar) {
+      // Planar bodies map one to one onto Model bodies (no embedding in a planar scene).
+      const Mat3 R = s.q_WB.toRotationMatrix();
+      f.theta = advance ? rows.Theta(b, R, f.w_WB_W.z(), state.t)
+                        : rows.ThetaAt(b, R, f.w_WB_W.z(), state.t);
+    }
+    out.bodies.push_back(f);
+  }
+  return out;
+}
+
 }  // namespace
 
 Study BuildStudy(const Scene& scene, double until) {
@@ -867,6 +988,16 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
   carry.segment_initial = as_given;
   const double E0 = MechanicalEnergy(*seg.model, as_given);
   result.rows.push_back(rows.Row(*seg.model, *seg.map, state, carry));
+  // The certificate: every sample, event and contact transition is checked (the ledger with
+  // the residual carried across the segments).
+  CertificateBuilder certificate(CertificateTolerancesFor(scene));
+  auto certify = [&](const State& s, CheckPhase phase) {
+    certificate.CheckState(*seg.model, s, phase);
+    const LedgerSample L = CalcLedgerSample(*seg.model, s, carry.segment_initial);
+    certificate.CheckLedger(s.t, carry.residual + L.energy_residual,
+                            std::max(carry.scale, L.energy_scale), phase);
+  };
+  certify(state, CheckPhase::kSample);
   SlipWatch slip(scene);
   slip.Sample(*seg.model, state);
 
@@ -905,8 +1036,13 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
         }
         CheckFinite(*seg.model, s);
         result.rows.push_back(rows.Row(*seg.model, *seg.map, s, carry));
+        certify(s, CheckPhase::kSample);
         slip.Sample(*seg.model, s);
         if (options.progress) options.progress(s.t);
+      };
+      o.on_transition = [&](const State& before, const State& after) {
+        certify(before, CheckPhase::kBeforeTransition);
+        certify(after, CheckPhase::kAfterTransition);
       };
       SimulationResult r;
       const double t_from = state.t;
@@ -925,7 +1061,9 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
       result.stats.function_evaluations += r.stats.function_evaluations;
       for (const EventRecord& e : r.events) {
         const bool stop = d.events[static_cast<size_t>(e.event)].action == EventAction::kStop;
-        result.events.push_back({e.name, e.t, stop});
+        certify(e.state, CheckPhase::kEvent);
+        result.events.push_back(
+            {e.name, e.t, stop, MakeSnapshot(scene, *seg.model, e.state, rows, false)});
       }
       for (const ContactEvent& e : r.contact_events) {
         // The modes carried into this run are already in the timeline: Simulate lists every
@@ -1094,6 +1232,7 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     carry.segment_initial = state;
     result.jumps.push_back(rec);
     result.rows.push_back(rows.Row(*seg.model, *seg.map, state, carry));
+    certify(state, CheckPhase::kSample);
   }
   if (!stopped) run_to(t_end);
 
@@ -1133,7 +1272,6 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     out.work_by_constraint.emplace_back(cl.name, w);
   }
   if (model.num_constraints() > 0) {
-    // The reactions at the final state (the constraint stage of CalcAccelerations).
     Data data = MakeData(model);
     CalcAccelerations(model, state, data);
     if (data.constraint_rank < model.num_constraint_rows()) {
@@ -1142,55 +1280,17 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
         result.warnings.push_back(std::move(w));
       }
     }
-    for (int i = 0; i < static_cast<int>(num_scene_constraints); ++i) {
-      const Constraint& con = model.constraint(i);
-      const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
-      StudyReaction r;
-      r.name = con.name();
-      r.kind = con.kind();
-      r.p_WJ = o.p_WJ;
-      r.F_Jc_W = o.F_Jc_W;
-      r.M_Jc_W = o.M_Jc_W;
-      r.F_Jc_B = o.F_Jc_B;
-      r.M_Jc_B = o.M_Jc_B;
-      r.power = o.power;
-      result.final_reactions.push_back(r);
-    }
   }
-  if (model.num_contacts() > 0) {
-    const std::vector<ContactPointOutput> outputs = CalcContactOutputs(model, state);
-    for (int p = 0; p < model.num_contact_points(); ++p) {
-      const ContactPointOutput& o = outputs[static_cast<size_t>(p)];
-      const ContactPointState& ps = state.contacts[static_cast<size_t>(p)];
-      result.final_contacts.push_back({point_labels[static_cast<size_t>(p)],
-                                       ContactModeName(ps.mode), o.normal_force, o.friction_force_W,
-                                       o.slip_velocity_W, o.gap, ps.friction_work, ps.rolling_work,
-                                       ps.impact_work});
-    }
-  }
+  StudySnapshot final_snapshot = MakeSnapshot(scene, model, state, rows, true);
+  result.final_reactions = std::move(final_snapshot.reactions);
+  result.final_contacts = std::move(final_snapshot.contacts);
+  result.final_bodies = std::move(final_snapshot.bodies);
   out.linear_momentum_W = L.linear_momentum_W;
   out.angular_momentum_Scm_W = L.angular_momentum_Scm_W;
   out.angular_momentum_Wo_W = L.angular_momentum_Wo_W;
 
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const BodyState& s = state.bodies[static_cast<size_t>(b)];
-    StudyBodyState f;
-    f.name = model.body(b).name();
-    f.mass = model.body(b).mass();
-    f.inertia_max = model.body(b).I_BBcm_B().diagonal().maxCoeff();
-    f.p_WBcm = s.p_WBcm;
-    f.p_WBo = CalcBodyOriginPosition(model, state, b);
-    f.q_WB = s.q_WB.w() < 0 ? Quat(-s.q_WB.coeffs()) : s.q_WB;
-    f.v_WBcm_W = s.v_WBcm_W;
-    f.w_WB_B = s.w_WB_B;
-    f.w_WB_W = s.q_WB * s.w_WB_B;
-    if (scene.planar) {
-      // Planar bodies map one to one onto Model bodies (no embedding in a planar scene).
-      f.theta = rows.Theta(b, s.q_WB.toRotationMatrix(), f.w_WB_W.z(), state.t);
-    }
-    result.final_bodies.push_back(f);
-  }
   slip.Report(result.notes);
+  result.certificate = certificate.Finish();
   result.t_end = state.t;
   result.stopped_by_event = stopped;
   return result;

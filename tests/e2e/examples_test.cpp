@@ -38,7 +38,8 @@ TEST(Examples, EveryExampleRuns) {
   EXPECT_GE(count, 8);
 }
 
-// Every example with a `simulation:` key also runs through `chasles simulate`.
+// Every example with a `simulation:` key also runs through `chasles simulate`, with an
+// all-pass certificate under --strict (a failed check would exit 3).
 TEST(Examples, EveryDynamicsExampleSimulates) {
   const auto out = std::filesystem::temp_directory_path() /
                    ("chasles_e2e_examples_" + std::to_string(::getpid()));
@@ -52,10 +53,15 @@ TEST(Examples, EveryDynamicsExampleSimulates) {
     ++count;
     for (const char* format : {"text", "json"}) {
       const CliResult r = RunCli("simulate '" + entry.path().string() + "' --format " + format +
-                                 " --out '" + out.string() + "'");
-      EXPECT_EQ(r.exit_code, 0) << entry.path() << ": " << r.err;
+                                 " --out '" + out.string() + "' --strict");
+      EXPECT_EQ(r.exit_code, 0) << entry.path() << ": " << r.err << r.out;
       EXPECT_FALSE(r.out.empty()) << entry.path();
       EXPECT_EQ(r.out.find("nan"), std::string::npos) << entry.path();
+      if (std::string(format) == "json" && r.exit_code != 2) {
+        const nlohmann::json j = nlohmann::json::parse(r.out);
+        EXPECT_TRUE(j.at("checks").at("passed").get<bool>())
+            << entry.path() << ": " << j.at("checks").dump(2);
+      }
     }
     const auto csv = out / (entry.path().stem().string() + ".csv");
     EXPECT_TRUE(std::filesystem::exists(csv)) << csv;
@@ -65,6 +71,28 @@ TEST(Examples, EveryDynamicsExampleSimulates) {
 }
 
 // Example 8.1: z/h = (1 - c q^2) / (2 (1 - c q)), q = h1/h, c = 1 - rho_Al/rho_Pb.
+// Every example without a `simulation:` key passes the certificate of `chasles solve` (its
+// initial state's accelerations, reactions and contact forces) under --strict.
+TEST(Examples, EveryStaticExampleSolvesWithAllChecksPassing) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(SourcePath("examples"))) {
+    if (entry.path().extension() != ".yaml") continue;
+    std::ifstream in(entry.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    if (text.str().find("\nsimulation:") != std::string::npos) continue;
+    ++count;
+    const CliResult r = RunCli("solve '" + entry.path().string() + "' --format json --strict");
+    EXPECT_EQ(r.exit_code, 0) << entry.path() << ": " << r.err << r.out;
+    if (r.exit_code == 0 || r.exit_code == 3) {
+      const nlohmann::json j = nlohmann::json::parse(r.out);
+      EXPECT_TRUE(j.at("checks").at("passed").get<bool>())
+          << entry.path() << ": " << j.at("checks").dump(2);
+    }
+  }
+  EXPECT_GE(count, 5);
+}
+
 TEST(Examples, Example81CentreOfMassForSeveralHeights) {
   const double c = 1.0 - 2712.0 / 11340.0;
   const double h = 0.20;

@@ -32,26 +32,6 @@ enum class EventDirection { kRising, kFalling, kEither };
 /// What happens at an event: the run stops there, or it is recorded and the run goes on.
 enum class EventAction { kStop, kRecord };
 
-struct EventSpec {
-  /// Name used in reports.
-  std::string name;
-  /// The event function g(t, state); an event is a zero crossing in `direction`.
-  std::function<double(double t, const State& state)> g;
-  EventDirection direction = EventDirection::kEither;
-  EventAction action = EventAction::kStop;
-};
-
-struct EventRecord {
-  /// Index into SimulationOptions::events.
-  int event = -1;
-  /// Name of the event.
-  std::string name;
-  /// Time of the crossing [s] (within event_time_tolerance).
-  double t = 0.0;
-  /// State at that time (from the dense output).
-  State state;
-};
-
 /// Why a contact point changed mode.
 enum class ContactEventReason {
   kInitial,         ///< mode chosen at the start of the run
@@ -76,6 +56,30 @@ struct ContactEvent {
   ContactMode from = ContactMode::kSeparated;
   ContactMode to = ContactMode::kSeparated;
   ContactEventReason reason = ContactEventReason::kOther;
+};
+
+struct EventSpec {
+  /// Name used in reports.
+  std::string name;
+  /// The event function g(t, state); an event is a zero crossing in `direction`.
+  std::function<double(double t, const State& state)> g;
+  EventDirection direction = EventDirection::kEither;
+  EventAction action = EventAction::kStop;
+  /// Instead of g, a contact-mode event (models with contacts): it fires at each mode change
+  /// of a contact point during the run for which this returns true (not at the initial choice
+  /// of modes); its record's state is the one just after the change, in the new modes.
+  std::function<bool(const ContactEvent& change)> on_mode_change = nullptr;
+};
+
+struct EventRecord {
+  /// Index into SimulationOptions::events.
+  int event = -1;
+  /// Name of the event.
+  std::string name;
+  /// Time of the crossing [s] (within event_time_tolerance).
+  double t = 0.0;
+  /// State at that time (from the dense output).
+  State state;
 };
 
 /// One impact (or accumulated bounce sequence) at one contact point.
@@ -145,6 +149,9 @@ struct SimulationOptions {
   bool store_samples = true;
   /// Called with every output sample, in time order (optional).
   std::function<void(const State&)> on_sample;
+  /// Called at every contact transition during the run with the state just before it (old
+  /// modes) and just after it (impacts applied, new modes) (optional; models with contacts).
+  std::function<void(const State& before, const State& after)> on_transition = nullptr;
   /// Contact handling (models with contacts).
   ContactOptions contact;
 };

@@ -101,9 +101,24 @@ struct SceneForce {
   Vec3 centre_W = Vec3::Zero();
 };
 
-/// One entry of `events`: a crossing of `when` through `crosses`.
+/// The contact-mode change a contact-mode event watches (docs/scene-format.md, `events`).
+enum class SceneModeChange {
+  kNone,           ///< not a contact-mode event: a crossing of `when`
+  kStartsSliding,  ///< a point begins to slide (from sticking, or touching down sliding)
+  kStopsSliding,   ///< a sliding point sticks (a round body then rolls)
+  kSeparates,      ///< a point in contact separates
+  kTouches,        ///< a separated point touches down (a bounce included)
+  kAny,            ///< any of these, or any other change of mode
+};
+
+/// One entry of `events`: a crossing of `when` through `crosses`, or a contact-mode change.
 struct SceneEvent {
   std::string name;
+  /// A contact-mode event: the change watched, the contact (or point label) as written and
+  /// its points (indices in SceneContacts::point_labels() order).
+  SceneModeChange change = SceneModeChange::kNone;
+  std::string contact;
+  std::vector<int> points;
   /// Expression of t and the state.
   Expression when;
   /// Level crossed, in SI units of when's dimension.

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "chasles/analysis/certificate.h"
 #include "chasles/error.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/model/model.h"
@@ -48,14 +49,6 @@ struct StudyOptions {
   double until = std::numeric_limits<double>::quiet_NaN();
   /// Called with the time of every output sample (e.g. for a progress display).
   std::function<void(double t)> progress;
-};
-
-struct StudyEvent {
-  std::string name;
-  /// Time of the crossing [s].
-  double t = 0.0;
-  /// True when it stopped the run.
-  bool stopped = false;
 };
 
 /// An impulse or impact applied during the run.
@@ -192,6 +185,27 @@ struct StudyReaction {
   double power = 0.0;
 };
 
+/// Bodies, reactions and contact points at one instant (an event, the end of the run).
+struct StudySnapshot {
+  std::vector<StudyBodyState> bodies;
+  /// Reaction of every joint, rolling contact and driver (Model order; a planar scene's plane
+  /// constraints left out).
+  std::vector<StudyReaction> reactions;
+  /// Every contact point (Model order), in the modes of that instant.
+  std::vector<StudyContactPoint> contacts;
+};
+
+struct StudyEvent {
+  std::string name;
+  /// Time of the crossing [s].
+  double t = 0.0;
+  /// True when it stopped the run.
+  bool stopped = false;
+  /// The full state at the event: bodies, reactions and contact points (for a contact-mode
+  /// event, just after the change, in the new modes).
+  StudySnapshot snapshot;
+};
+
 struct StudyResult {
   /// CSV column names and one row per output sample (plus the states just after jumps).
   std::vector<std::string> columns;
@@ -219,6 +233,8 @@ struct StudyResult {
   /// (`project_initial: true`), statically indeterminate reactions (redundant constraints),
   /// jams (sliding without consistent contact forces).
   std::vector<std::string> warnings;
+  /// The run's checks of its own answer at every sample and event (analysis/certificate.h).
+  Certificate certificate;
 };
 
 /// Runs the scene's study. Throws InputError for bad settings, or when the motion of a body

@@ -100,7 +100,11 @@ class SceneReader {
   void ReadDynamics(const At& root, Scene& scene);
   void ReadInitial(const At& at, const SceneBody& body, SceneInitialState& initial);
   SceneForce ReadForce(const At& at, const Scene& scene, size_t index);
-  SceneEvent ReadEvent(const At& at, size_t index);
+  SceneEvent ReadEvent(const At& at, size_t index, const Scene& scene);
+  /// The `contact` and `change` of a contact-mode event (scene_events.cpp).
+  void ReadModeEvent(const At& at, const Scene& scene, SceneEvent& event);
+  /// An event's `action` (stop or record) into `event`.
+  void ReadEventAction(const At& at, SceneEvent& event);
   void ReadSimulation(const At& at, SceneSimulation& simulation);
   void ReadOutput(const At& at, Scene& scene);
   /// A body named at `at` (scene index), with a did-you-mean among the scene's bodies.

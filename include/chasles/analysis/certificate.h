@@ -1,0 +1,131 @@
+#pragma once
+/// @file
+/// The certificate: a run (or an instantaneous solve) checks its own answer at every output
+/// sample and at every event — the Coulomb cone of sticking points, the kinetic friction of
+/// sliding points, N >= 0, gaps, constraint residuals, the work-energy ledger and the
+/// Newton–Euler balance of every body with all the forces that act on it (docs/contact.md,
+/// "Certificate"). Each check compares its worst value with a tolerance scaled by the
+/// problem's own sizes (force, moment, length, velocity, energy), never a bare number.
+///
+/// Use: a CertificateBuilder is fed states (CheckState) and ledger residuals (CheckLedger) in
+/// any order; Finish() turns what it saw into a Certificate. The scales are those of the whole
+/// run (the largest seen), so a check's tolerance does not depend on the order of the samples.
+
+#include <string>
+#include <vector>
+
+#include "chasles/model/data.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+
+namespace chasles {
+
+/// Relative tolerances of the checks; each multiplies a scale of the problem.
+struct CertificateTolerances {
+  /// Force-level checks at one state (friction cone, sliding friction, N >= 0, Newton–Euler
+  /// balance): the forces come from one linear solve, exact up to round-off amplified by its
+  /// conditioning (gear trains reach 1e-12 of the moment scale), so this is some 45,000
+  /// machine epsilons (2.2e-16) of the force scale (the largest force of the run, m |g|
+  /// included) or the moment scale.
+  double force = 1e-11;
+  /// State-level checks (gap, constraint position and velocity residuals): the projection
+  /// after every step holds them to round-off, but output samples and events are read from
+  /// the integrator's dense output between two projections, so they carry its local error.
+  /// The study raises it with a looser integrator tolerance (CertificateTolerancesFor); it
+  /// multiplies the length scale (gap, positions) or the velocity scale (velocities).
+  double state = 1e-9;
+  /// The ledger residual E - E0 - W_nc - jumps, relative to the energy scale: the global
+  /// integration error of the whole run (raised likewise with a looser tolerance).
+  double ledger = 1e-7;
+};
+
+/// When a state was checked.
+enum class CheckPhase { kSample, kEvent, kBeforeTransition, kAfterTransition, kSolve };
+
+/// "sample", "event", "before a contact transition", ...
+const char* CheckPhaseName(CheckPhase phase);
+
+/// One check over the whole run.
+struct CheckResult {
+  /// Short name ("friction cone", "gap", "linear momentum balance", ...).
+  std::string name;
+  /// What it compares, for the report.
+  std::string description;
+  /// SI unit of value and tolerance ("N", "m or rad", ...).
+  std::string unit;
+  /// Number of values checked (0: the check did not apply, e.g. no sticking point).
+  long long count = 0;
+  /// The worst value (the one closest to or furthest past its tolerance) and its tolerance.
+  double worst = 0.0;
+  double tolerance = 0.0;
+  /// Where (body, contact point or constraint, with its row) and when the worst value was.
+  std::string where;
+  double t = 0.0;
+  CheckPhase phase = CheckPhase::kSample;
+  bool passed() const { return !(worst > tolerance); }
+};
+
+struct Certificate {
+  std::vector<CheckResult> checks;
+  /// The scales the tolerances multiply [N, N·m, m, m/s, J].
+  double force_scale = 0.0, moment_scale = 0.0, length_scale = 0.0, velocity_scale = 0.0,
+         energy_scale = 0.0;
+  bool passed() const;
+  /// One sentence per failed check (the warnings of a report).
+  std::vector<std::string> FailureMessages() const;
+};
+
+class CertificateBuilder {
+ public:
+  explicit CertificateBuilder(const CertificateTolerances& tolerances = {});
+
+  /// Checks `state` with `data` evaluated at it (CalcAccelerations; a test may then alter it).
+  void CheckState(const Model& model, const State& state, const Data& data, CheckPhase phase);
+  /// Evaluates Data at `state` (CalcAccelerations in the modes it carries) and checks it.
+  void CheckState(const Model& model, const State& state, CheckPhase phase);
+  /// Checks the ledger residual [J] against the energy scale [J] at time t.
+  void CheckLedger(double t, double residual, double energy_scale, CheckPhase phase);
+
+  Certificate Finish() const;
+
+ private:
+  /// One value of one check and what its tolerance scales with: the run's scale of its kind
+  /// times `a` plus `b` (a constraint row mixes a length and an angle, a velocity and a rate:
+  /// a L + b, a V + b Ω), or `local_scale` (the size of the value's own terms) if larger.
+  enum class Scale { kForce, kMoment, kLength, kVelocity, kEnergy };
+  struct Entry {
+    int check;
+    double value;
+    Scale scale;
+    double a, b;
+    double local_scale;
+    std::string where;
+    double t;
+    CheckPhase phase;
+  };
+  void Add(int check, double value, Scale scale, double a, double b, double local_scale,
+           std::string where, double t, CheckPhase phase);
+  /// The moment, velocity and rate scales derived from the run's scales so far.
+  struct Scales {
+    double moment = 0.0, velocity = 0.0, rate = 0.0;
+  };
+  Scales CurrentScales() const;
+  double Tolerance(const Entry& e, const Scales& k) const;
+  double Ratio(const Entry& e, const Scales& k) const;
+  /// Drops the entries that can no longer matter (bounded memory on long runs).
+  void Compact();
+
+  CertificateTolerances tol_;
+  std::vector<long long> counts_;
+  std::vector<Entry> entries_;
+  /// Compact when this many entries are held.
+  size_t compact_at_ = size_t{1} << 16;
+  /// The run's scales so far: largest force [N], moment [N·m], position or size [m], speed
+  /// [m/s], angular speed [rad/s], energy [J], radius of gyration [m].
+  double force_ = 0.0, moment_ = 0.0, length_ = 0.0, velocity_ = 0.0, rate_ = 0.0, energy_ = 0.0,
+         radius_ = 0.0;
+  /// Largest total mass of the models checked [kg].
+  double mass_ = 0.0;
+};
+
+}  // namespace chasles
