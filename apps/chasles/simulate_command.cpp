@@ -138,7 +138,9 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                             {"approach_speed", x.approach_speed},
                             {"normal_impulse", x.normal_impulse},
                             {"energy_lost", x.energy_lost},
-                            {"accumulation", x.accumulation}});
+                            {"accumulation", x.accumulation},
+                            {"restitution_law", x.restitution_law}});
+    if (x.frictionless_fallback) j["impacts"].back()["frictionless_fallback"] = true;
     if (x.accumulation) j["impacts"].back()["rest_time"] = x.rest_time;
   }
   const StudyLedger& L = r.ledger;
@@ -305,8 +307,14 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
         continue;
       }
       const auto& x = r.impacts[i];
-      out += fmt::format("  t = {}  {}: approach speed {}, energy lost {}\n", time(x.t), x.point,
-                         show(x.approach_speed, kVelocityDim), energy(x.energy_lost));
+      out += fmt::format("  t = {}  {}: approach speed {}, energy lost {} ({} restitution)\n",
+                         time(x.t), x.point, show(x.approach_speed, kVelocityDim),
+                         energy(x.energy_lost), x.restitution_law);
+      if (x.frictionless_fallback) {
+        out +=
+            "    warning: the impulse with friction would have raised the kinetic energy (the "
+            "restitution law allows it); the frictionless impulse was used\n";
+      }
       if (x.accumulation) {
         out += fmt::format(
             "    the bounces shrink by the ratio e: this impact is made plastic; the remaining "

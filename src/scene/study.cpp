@@ -301,6 +301,7 @@ void AddSceneContacts(const Scene& scene, const BodyMap& map, Model& model) {
     spec.mu_k = c.mu_k;
     spec.mu_r = c.mu_r;
     spec.restitution = c.restitution;
+    spec.restitution_law = c.restitution_law;
     model.AddContact(spec);
   }
 }
@@ -804,7 +805,9 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     for (const ContactImpulse& imp : r.impulses) {
       result.impacts.push_back({t, point_labels[static_cast<size_t>(imp.point)], imp.approach_speed,
                                 imp.normal_impulse,
-                                r.kinetic_energy_before - r.kinetic_energy_after, false});
+                                r.kinetic_energy_before - r.kinetic_energy_after, false,
+                                std::numeric_limits<double>::quiet_NaN(),
+                                RestitutionLawName(imp.law), r.frictionless_fallback});
     }
   };
   auto record_changes = [&](const std::vector<ContactModeChange>& changes, double t,
@@ -926,7 +929,8 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
       for (const ImpactRecord& imp : r.impacts) {
         result.impacts.push_back({imp.t, point_labels[static_cast<size_t>(imp.point)],
                                   imp.approach_speed, imp.normal_impulse, imp.energy_lost,
-                                  imp.accumulation, imp.accumulation_time});
+                                  imp.accumulation, imp.accumulation_time,
+                                  RestitutionLawName(imp.law), imp.frictionless_fallback});
       }
       state = r.final_state;
       if (r.stopped_by_event) stopped = true;

@@ -98,6 +98,11 @@ struct StudyImpact {
   bool accumulation = false;
   /// Limit of the bounce sequence, t + t_flight e / (1 - e) [s] (NaN unless `accumulation`).
   double rest_time = std::numeric_limits<double>::quiet_NaN();
+  /// The restitution law used ("energetic", "newton", "poisson").
+  std::string restitution_law;
+  /// True when the impulse with friction would have raised the kinetic energy and the
+  /// frictionless one was used (ImpactResult::frictionless_fallback).
+  bool frictionless_fallback = false;
 };
 
 /// One contact point at the end of the run.
