@@ -3,6 +3,7 @@
 // integration are derived here; no gravity (the impulse acts over an instant).
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -295,6 +296,103 @@ TEST(Impact, CollinearImpactsAgreeUnderAllLaws) {
     EXPECT_TRUE(Near(r.kinetic_energy_before - r.kinetic_energy_after,
                      0.5 * mu * (1 - e * e) * (v1 - v2) * (v1 - v2), 1e-12));
   }
+}
+
+}  // namespace
+}  // namespace chasles
+
+namespace chasles {
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// A 3-D slip that turns: a body (diagonal inertia, tilted) strikes the floor at a point r
+// from G while sliding obliquely. Δv_C = P/m + (I_W⁻¹ (r × P)) × r, so
+//   K = E/m - [r]× I_W⁻¹ [r]×,
+// and while sliding dv/dP_n = K (ẑ - mu ŝ), ŝ = v_t/|v_t| (turns: K_tt is not isotropic and
+// K_tn ≠ 0), dW_n/dP_n = v_z. The reference integrates this with fixed RK4 steps (h = 1e-4
+// of the impulse scale: error ~ h⁴) and finds each event by bisection on the last step:
+// compression ends at v_z = 0, restitution (energetic) at W_n = (1 - e²) W_c. The slip is
+// large enough not to stop (checked).
+TEST(Impact, TurningSlipIn3dAgainstAFineReference) {
+  const double m = 1.3, mu = 0.2, e = 0.6;
+  const Vec3 I_diag(0.1, 0.2, 0.25), r_B(0.2, -0.1, -0.3);
+  const Quat q = Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 3).normalized()));
+  const Vec3 w0(1.0, -2.0, 0.5), vC0(2.0, 1.0, -1.5);
+  const Mat3 R = q.toRotationMatrix();
+  const Vec3 r = R * r_B;
+  const Mat3 I_W = R * I_diag.asDiagonal() * R.transpose();
+  auto cross = [](const Vec3& a) {
+    Mat3 X;
+    X << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+    return X;
+  };
+  const Mat3 K = Mat3::Identity() / m - cross(r) * I_W.inverse() * cross(r);
+  // Reference: y = (v_C, W_n), parameter P_n.
+  using Y = Eigen::Vector4d;
+  auto f = [&](const Y& y) {
+    const Vec3 v = y.head<3>();
+    const Vec3 s = Vec3(v.x(), v.y(), 0).normalized();
+    Y d;
+    d.head<3>() = K * (Vec3::UnitZ() - mu * s);
+    d[3] = v.z();
+    return d;
+  };
+  auto rk4 = [&](const Y& y, double h) {
+    const Y k1 = f(y), k2 = f(y + 0.5 * h * k1), k3 = f(y + 0.5 * h * k2), k4 = f(y + h * k3);
+    return Y(y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4));
+  };
+  // Advances y until g(y) >= 0, the last step bisected to the crossing; returns P_n added.
+  const double h = 1e-4 * vC0.norm() / K(2, 2);
+  auto run_to = [&](Y& y, const std::function<double(const Y&)>& g) {
+    double P = 0;
+    for (int i = 0; i < 1000000; ++i) {
+      const Y next = rk4(y, h);
+      if (g(next) < 0) {
+        y = next, P += h;
+        EXPECT_GT(Vec3(y.x(), y.y(), 0).norm(), 0.1) << "the slip must not stop";
+        continue;
+      }
+      double lo = 0, hi = h;
+      for (int k = 0; k < 200; ++k) (g(rk4(y, 0.5 * (lo + hi))) < 0 ? lo : hi) = 0.5 * (lo + hi);
+      y = rk4(y, hi);
+      return P + hi;
+    }
+    ADD_FAILURE() << "no event";
+    return P;
+  };
+  Y y;
+  y << vC0, 0.0;
+  double Pn = run_to(y, [](const Y& x) { return x.z(); });
+  const double Wc = y[3];
+  Pn += run_to(y, [&](const Y& x) { return x[3] - (1 - e * e) * Wc; });
+  const Vec3 vC1 = y.head<3>();
+
+  Model model;
+  model.AddBody(
+      "body", MassProperties(m, Vec3::Zero(), RotationalInertia::FromMatrix(I_diag.asDiagonal())));
+  ContactSpec spec;
+  spec.name = "floor";
+  spec.shape = ContactShape::kPointSet;
+  spec.body = 0;
+  spec.points_B = {r_B};
+  spec.mu_s = spec.mu_k = mu;
+  spec.restitution = e;
+  model.AddContact(spec);
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Vec3(0, 0, -r.z()), q, s);
+  SetBodyVelocity(model, 0, vC0 - w0.cross(r), w0, s);
+  const ImpactResult res = ResolveImpacts(model, s);
+  ASSERT_EQ(res.impulses.size(), 1u);
+  EXPECT_FALSE(res.impulses[0].sticking);
+  const Vec3 w1 = q * s.bodies[0].w_WB_B;
+  const Vec3 vC = s.bodies[0].v_WBcm_W + w1.cross(r);
+  EXPECT_TRUE(test::MatNear(vC, vC1, 1e-9)) << vC.transpose() << " vs " << vC1.transpose();
+  EXPECT_TRUE(Near(res.impulses[0].normal_impulse, Pn, 1e-9));
+  EXPECT_TRUE(Near(res.impulses[0].compression_work, Wc, 1e-9));
+  // The slip direction turned: the final slip is not parallel to the initial one.
+  const Vec3 t0 = Vec3(vC0.x(), vC0.y(), 0).normalized(),
+             t1 = Vec3(vC1.x(), vC1.y(), 0).normalized();
+  EXPECT_LT(t0.dot(t1), 1 - 1e-3);
 }
 
 }  // namespace
