@@ -150,7 +150,9 @@ nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string&
                             {"normal_impulse", x.normal_impulse},
                             {"energy_lost", x.energy_lost},
                             {"accumulation", x.accumulation},
-                            {"jam", x.jam}});
+                            {"jam", x.jam},
+                            {"restitution_law", x.restitution_law}});
+    if (x.frictionless_fallback) j["impacts"].back()["frictionless_fallback"] = true;
     if (x.accumulation) j["impacts"].back()["rest_time"] = x.rest_time;
   }
   const StudyLedger& L = r.ledger;
@@ -359,12 +361,18 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
         continue;
       }
       const auto& x = r.impacts[i];
-      out += fmt::format("  t = {}  {}: approach speed {}, energy lost {}\n", time(x.t), x.point,
-                         show(x.approach_speed, kVelocityDim), energy(x.energy_lost));
+      out += fmt::format("  t = {}  {}: approach speed {}, energy lost {}{}\n", time(x.t), x.point,
+                         show(x.approach_speed, kVelocityDim), energy(x.energy_lost),
+                         x.jam ? "" : fmt::format(" ({} restitution)", x.restitution_law));
       if (x.jam) {
         out +=
             "    a jam: the slip had no consistent contact forces (Painlevé) and was stopped "
             "by this impulse (see the warnings)\n";
+      }
+      if (x.frictionless_fallback) {
+        out +=
+            "    warning: the impulse with friction would have raised the kinetic energy (the "
+            "restitution law allows it); the frictionless impulse was used\n";
       }
       if (x.accumulation) {
         out += fmt::format(

@@ -421,6 +421,8 @@ class HybridRun {
       rec.impulse_W = ci.impulse_W;
       rec.energy_lost = pn_sum > 0.0 ? lost * ci.normal_impulse / pn_sum : 0.0;
       rec.accumulation = ci.point == plastic;
+      rec.law = ci.law;
+      rec.frictionless_fallback = ir.frictionless_fallback;
       if (rec.accumulation) rec.accumulation_time = accumulation_time;
       r_.impacts.push_back(rec);
     }

@@ -65,6 +65,18 @@ const char* ContactModeName(ContactMode mode) {
   return "unknown";
 }
 
+const char* RestitutionLawName(RestitutionLaw law) {
+  switch (law) {
+    case RestitutionLaw::kNewton:
+      return "newton";
+    case RestitutionLaw::kPoisson:
+      return "poisson";
+    case RestitutionLaw::kEnergetic:
+      break;
+  }
+  return "energetic";
+}
+
 void ValidateContactSpec(const ContactSpec& s) {
   if (s.name.empty()) throw InputError("a contact needs a non-empty name");
   const char* shape = ContactShapeName(s.shape);

@@ -100,7 +100,8 @@ bool SamePair(const SceneMaterialPair& p, const std::string& a, const std::strin
 }  // namespace
 
 void SceneReader::ReadContactCoefficients(const At& at, double& mu_s, double& mu_k, double& mu_r,
-                                          double& restitution, bool have_defaults) {
+                                          double& restitution, RestitutionLaw& law,
+                                          bool have_defaults) {
   // Each coefficient is a plain number; the rules (>= 0, mu_k <= mu_s, e in [0, 1]) are
   // Coulomb's model and Newton's restitution law: a negative coefficient would make friction
   // push along the slip, e > 1 would create energy at every impact.
@@ -139,6 +140,25 @@ void SceneReader::ReadContactCoefficients(const At& at, double& mu_s, double& mu
                                restitution));
     }
   }
+  if (at.Has("restitution_law")) {
+    // The restitution hypothesis (docs/contact.md, Impacts).
+    const At law_at = at.Child("restitution_law");
+    const std::string name = report_.Text(law_at, "newton, poisson or energetic");
+    if (name == "newton") {
+      law = RestitutionLaw::kNewton;
+    } else if (name == "poisson") {
+      law = RestitutionLaw::kPoisson;
+    } else if (name == "energetic") {
+      law = RestitutionLaw::kEnergetic;
+    } else {
+      report_.Fail(law_at,
+                   fmt::format("unknown restitution_law '{}'{}; expected newton "
+                               "(v_n after = -e v_n before), poisson (P_n = (1 + e) x the "
+                               "compression impulse) or energetic (restitution work = e^2 x "
+                               "compression work, the default)",
+                               name, DidYouMean(name, {"newton", "poisson", "energetic"})));
+    }
+  }
 }
 
 void SceneReader::ReadContacts(const At& root, Scene& scene) {
@@ -148,7 +168,8 @@ void SceneReader::ReadContacts(const At& root, Scene& scene) {
     report_.CheckSequence(list, "a list of material pairs");
     for (size_t i = 0; i < list.node.size(); ++i) {
       const At at = list.Item(i);
-      report_.CheckMap(at, {"materials", "mu_s", "mu_k", "mu_r", "restitution"}, "a material pair");
+      report_.CheckMap(at, {"materials", "mu_s", "mu_k", "mu_r", "restitution", "restitution_law"},
+                       "a material pair");
       const At names = report_.Require(at, "materials", "a material pair");
       if (!names.node.IsSequence() || names.node.size() != 2) {
         report_.Fail(names, "expected two material names, e.g. [steel, oak]");
@@ -161,7 +182,7 @@ void SceneReader::ReadContacts(const At& root, Scene& scene) {
           report_.Fail(names, fmt::format("the pair {}/{} is given twice", p.a, p.b));
         }
       }
-      ReadContactCoefficients(at, p.mu_s, p.mu_k, p.mu_r, p.restitution, false);
+      ReadContactCoefficients(at, p.mu_s, p.mu_k, p.mu_r, p.restitution, p.restitution_law, false);
       out.material_pairs.push_back(p);
     }
   }
@@ -174,7 +195,7 @@ void SceneReader::ReadContacts(const At& root, Scene& scene) {
     report_.CheckMap(at,
                      {"name", "body", "shape", "radius", "axis", "center", "length", "size",
                       "points", "plane", "with", "other_radius", "other_center", "materials",
-                      "mu_s", "mu_k", "mu_r", "restitution"},
+                      "mu_s", "mu_k", "mu_r", "restitution", "restitution_law"},
                      "a contact");
     SceneContact c;
     c.name =
@@ -316,9 +337,11 @@ void SceneReader::ReadContacts(const At& root, Scene& scene) {
       c.mu_k = pair->mu_k;
       c.mu_r = pair->mu_r;
       c.restitution = pair->restitution;
+      c.restitution_law = pair->restitution_law;
       c.materials = fmt::format("{}/{}", a, b);
     }
-    ReadContactCoefficients(at, c.mu_s, c.mu_k, c.mu_r, c.restitution, at.Has("materials"));
+    ReadContactCoefficients(at, c.mu_s, c.mu_k, c.mu_r, c.restitution, c.restitution_law,
+                            at.Has("materials"));
     out.contacts.push_back(c);
   }
 }

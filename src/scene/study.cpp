@@ -303,6 +303,7 @@ void AddSceneContacts(const Scene& scene, const BodyMap& map, Model& model) {
     spec.mu_k = c.mu_k;
     spec.mu_r = c.mu_r;
     spec.restitution = c.restitution;
+    spec.restitution_law = c.restitution_law;
     model.AddContact(spec);
   }
 }
@@ -930,7 +931,9 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     for (const ContactImpulse& imp : r.impulses) {
       result.impacts.push_back({t, point_labels[static_cast<size_t>(imp.point)], imp.approach_speed,
                                 imp.normal_impulse,
-                                r.kinetic_energy_before - r.kinetic_energy_after, false});
+                                r.kinetic_energy_before - r.kinetic_energy_after, false,
+                                std::numeric_limits<double>::quiet_NaN(), false,
+                                RestitutionLawName(imp.law), r.frictionless_fallback});
     }
   };
   auto record_changes = [&](const std::vector<ContactModeChange>& changes, double t,
@@ -954,7 +957,7 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
     for (const JamImpulse& j : notes.jams) {
       result.impacts.push_back({state.t, point_labels[static_cast<size_t>(j.point)], 0.0,
                                 j.normal_impulse, j.energy_lost, false,
-                                std::numeric_limits<double>::quiet_NaN(), true});
+                                std::numeric_limits<double>::quiet_NaN(), true, "", false});
       result.warnings.push_back(fmt::format(
           "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces had "
           "no consistent solution (a Painlevé-type paradox); the slip was stopped by an "
@@ -1084,7 +1087,8 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
       for (const ImpactRecord& imp : r.impacts) {
         result.impacts.push_back({imp.t, point_labels[static_cast<size_t>(imp.point)],
                                   imp.approach_speed, imp.normal_impulse, imp.energy_lost,
-                                  imp.accumulation, imp.accumulation_time, imp.jam});
+                                  imp.accumulation, imp.accumulation_time, imp.jam,
+                                  RestitutionLawName(imp.law), imp.frictionless_fallback});
       }
       result.warnings.insert(result.warnings.end(), r.warnings.begin(), r.warnings.end());
       state = r.final_state;

@@ -131,9 +131,12 @@ TEST(ContactSpheres, HeadOnCollisionSimulated) {
 // Relative velocity of the contact points, v_rel = v1 + w1 × r1 - v2 - w2 × r2, changes by
 //   normal:     Δv_n = P_n / μ                             (μ = m1 m2/(m1 + m2)),
 //   tangential: Δv_t = P_t (1/m1 + 1/m2) + R1²/I1 P_t + R2²/I2 P_t = (7/2) P_t / μ
-// ((n × P_t) × n = P_t for P_t ⊥ n). Newton: P_n = -(1 + e) μ v_n.
-//   Sticking (v_t' = 0): P_t = -(2/7) μ v_t, valid when (2/7)|v_t| <= mu_s (1 + e)|v_n|;
-//   sliding: P_t = -mu_k P_n v_t/|v_t|.
+// ((n × P_t) × n = P_t for P_t ⊥ n). The parts decouple: every restitution law gives
+// P_n = -(1 + e) μ v_n. Integrating the impulse (Routh), the slip falls along itself at
+// (7/2) mu_k / μ per unit P_n while sliding, so it stops within the impulse iff
+//   (2/7)|v_t| <= mu_k (1 + e)|v_n|,
+// and then sticks (keeping v_t = 0 needs no friction): P_t = -(2/7) μ v_t. Otherwise it
+// slides throughout: P_t = -mu_k P_n v_t/|v_t|.
 // Impulses act at the contact point C on both bodies equal and opposite: total momentum and
 // total angular momentum about C are conserved, and the kinetic energy never increases.
 void ObliqueImpact(double phi, bool expect_sticking) {
@@ -158,7 +161,7 @@ void ObliqueImpact(double phi, bool expect_sticking) {
   ASSERT_LT(v_n, 0.0);
   const double mu = m1 * m2 / (m1 + m2);
   const double Pn = -(1 + e) * mu * v_n;
-  const bool sticks = 2.0 / 7.0 * v_t.norm() <= mu_s * (1 + e) * std::abs(v_n);
+  const bool sticks = 2.0 / 7.0 * v_t.norm() <= mu_k * (1 + e) * std::abs(v_n);
   ASSERT_EQ(sticks, expect_sticking) << "the test's geometry no longer selects the regime";
   const Vec3 Pt = sticks ? Vec3(-2.0 / 7.0 * mu * v_t) : Vec3(-mu_k * Pn * v_t.normalized());
   const Vec3 P = Pn * n + Pt;

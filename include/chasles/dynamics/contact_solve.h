@@ -15,8 +15,8 @@
 /// w_r (the part of the relative angular velocity along the plane), a moment -mu_r N R ŵ_r
 /// joins the normal row's force direction.
 /// Mode selection solves the normal complementarity 0 <= N ⟂ a_n >= 0 as an LCP (lcp.h) and
-/// checks stick against mu_s. Impacts solve the same problem at velocity level with Newton's
-/// restitution. docs/contact.md has the derivations and the choices.
+/// checks stick against mu_s. Impacts integrate the impulse (impact.h). docs/contact.md has
+/// the derivations and the choices.
 
 #include <vector>
 
@@ -102,43 +102,7 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
                                                   const std::vector<int>& slip_starts = {},
                                                   ModeSelectionNotes* notes = nullptr);
 
-/// One impact at one contact point.
-struct ContactImpulse {
-  /// Contact point index.
-  int point = -1;
-  /// Normal approach speed before, -v_n⁻ > 0 [m/s].
-  double approach_speed = 0.0;
-  /// Normal impulse P_n >= 0 [N·s].
-  double normal_impulse = 0.0;
-  /// Impulse on the body (normal + friction), in W [N·s].
-  Vec3 impulse_W = Vec3::Zero();
-  /// True when the tangential impulse stayed within mu_s P_n (no slip at the end).
-  bool sticking = false;
-};
-
-/// Result of ResolveImpacts.
-struct ImpactResult {
-  /// Impulses of the points that took part (empty: no impact).
-  std::vector<ContactImpulse> impulses;
-  /// Kinetic energy before and after [J] (after <= before).
-  double kinetic_energy_before = 0.0;
-  double kinetic_energy_after = 0.0;
-  /// True when friction with Newton's law would have created energy and the frictionless
-  /// impulse was used instead (docs/contact.md).
-  bool frictionless_fallback = false;
-};
-
-/// Impacts at `state`: every touching point (gap <= tol.gap) approaching faster than
-/// tol.resting_speed takes part. Newton's restitution v_n⁺ = -e v_n⁻ with Coulomb friction
-/// during the impulse (stick if the tangential impulse needed is within mu_s P_n, else slide
-/// with mu_k P_n against the slip), several points together by an LCP on the normal impulses.
-/// Updates the velocities and ContactPointState::impact_work of the points (ΔT split by
-/// normal impulse share).
-ImpactResult ResolveImpacts(const Model& model, State& state, const ContactTolerances& tol = {});
-
-/// ResolveImpacts with restitution 0 at contact point `point` (the others keep theirs): ends a
-/// bounce sequence at once, as its accumulation limit does (docs/contact.md, Zeno).
-ImpactResult ResolvePlasticImpact(const Model& model, State& state, int point,
-                                  const ContactTolerances& tol = {});
-
 }  // namespace chasles
+
+// Impacts (ResolveImpacts, ResolvePlasticImpact) use ContactTolerances above.
+#include "chasles/dynamics/impact.h"  // IWYU pragma: export

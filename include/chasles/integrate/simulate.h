@@ -104,6 +104,10 @@ struct ImpactRecord {
   /// For that impact: the analytic time the bounces accumulate to rest,
   /// t + t_flight e / (1 - e) [s] (NaN otherwise).
   double accumulation_time = std::numeric_limits<double>::quiet_NaN();
+  /// The restitution law used at this point.
+  RestitutionLaw law = RestitutionLaw::kEnergetic;
+  /// True when the frictionless impulse replaced one that would have raised the energy.
+  bool frictionless_fallback = false;
 };
 
 /// An interval of constant mode of one contact point.

@@ -21,6 +21,17 @@
 
 namespace chasles {
 
+/// The restitution hypothesis of an impact (docs/contact.md, Impacts): how the restitution
+/// phase of the normal impulse P_n ends after compression (v_n = 0).
+enum class RestitutionLaw {
+  kEnergetic,  ///< Stronge: work of P_n in restitution = e² |work in compression| (default)
+  kNewton,     ///< kinematic: v_n⁺ = -e v_n⁻
+  kPoisson,    ///< kinetic: P_n = (1 + e) P_n at the end of compression
+};
+
+/// "energetic", "newton", "poisson".
+const char* RestitutionLawName(RestitutionLaw law);
+
 /// The shape of a contact; each reduces to contact points as listed.
 enum class ContactShape {
   kSphere,        ///< sphere (centre, radius) on a plane: 1 point
@@ -89,8 +100,10 @@ struct ContactSpec {
   /// Rolling-resistance coefficient: a resisting moment mu_r N R on a rolling round body
   /// (dimensionless, >= 0; 0 for none).
   double mu_r = 0.0;
-  /// Newton's coefficient of restitution of the normal velocity at an impact, in [0, 1].
+  /// Coefficient of restitution e in [0, 1], read by `restitution_law`.
   double restitution = 0.0;
+  /// How e ends an impact's restitution phase.
+  RestitutionLaw restitution_law = RestitutionLaw::kEnergetic;
 };
 
 /// How a contact point is found on its shape.
@@ -145,6 +158,7 @@ class Contact {
   double mu_k() const { return spec_.mu_k; }
   double mu_r() const { return spec_.mu_r; }
   double restitution() const { return spec_.restitution; }
+  RestitutionLaw restitution_law() const { return spec_.restitution_law; }
 
  private:
   ContactSpec spec_;

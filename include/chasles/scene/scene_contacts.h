@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "chasles/math/types.h"
+#include "chasles/model/contact.h"
 
 namespace chasles {
 
@@ -32,8 +33,10 @@ struct SceneMaterialPair {
   /// The two materials (order does not matter).
   std::string a, b;
   /// Static and kinetic friction coefficients, rolling-resistance coefficient (moment
-  /// mu_r N R) [-], Newton's coefficient of restitution in [0, 1] [-].
+  /// mu_r N R) [-], coefficient of restitution in [0, 1] [-].
   double mu_s = 0.0, mu_k = 0.0, mu_r = 0.0, restitution = 0.0;
+  /// How the coefficient of restitution is read (`restitution_law`).
+  RestitutionLaw restitution_law = RestitutionLaw::kEnergetic;
 };
 
 /// One entry of `contacts`.
@@ -70,6 +73,7 @@ struct SceneContact {
   double other_radius = std::numeric_limits<double>::quiet_NaN();
   /// Coefficients as resolved (the entry's own keys override its material pair's).
   double mu_s = 0.0, mu_k = 0.0, mu_r = 0.0, restitution = 0.0;
+  RestitutionLaw restitution_law = RestitutionLaw::kEnergetic;
   /// "a/b" when the values came from a material pair, empty otherwise.
   std::string materials;
 };

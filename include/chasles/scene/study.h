@@ -96,6 +96,11 @@ struct StudyImpact {
   /// True for a jam: a slip without consistent contact forces (Painlevé) stopped by an
   /// impulse at zero approach speed.
   bool jam = false;
+  /// The restitution law used ("energetic", "newton", "poisson").
+  std::string restitution_law;
+  /// True when the impulse with friction would have raised the kinetic energy and the
+  /// frictionless one was used (ImpactResult::frictionless_fallback).
+  bool frictionless_fallback = false;
 };
 
 /// One contact point at the end of the run.

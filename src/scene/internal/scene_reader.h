@@ -153,10 +153,11 @@ class SceneReader {
   /// Reads `material_pairs` and `contacts` into scene.dynamics.contacts (after the
   /// constraints, whose names contacts must not reuse).
   void ReadContacts(const At& root, Scene& scene);
-  /// mu_s, mu_k, mu_r and restitution of a contact or material pair, validated; with
-  /// `have_defaults` the values passed in (a material pair's) are kept where a key is absent.
+  /// mu_s, mu_k, mu_r, restitution and restitution_law of a contact or material pair,
+  /// validated; with `have_defaults` the values passed in (a material pair's) are kept where a
+  /// key is absent.
   void ReadContactCoefficients(const At& at, double& mu_s, double& mu_k, double& mu_r,
-                               double& restitution, bool have_defaults);
+                               double& restitution, RestitutionLaw& law, bool have_defaults);
 
   Reporter report_;
   SceneOptions options_;
