@@ -11,6 +11,7 @@
 //  sliding with slip u = v - R ω of sign σ: F = -σ μk N, a = (P + m g s + F)/m,
 //    α = (h P - R F)/(β m R²),  u̇ = a - R α   (linear in t);
 //  block: sticking F = -(P + m g s); sliding a = (P + m g s - σ μk N)/m.
+// Every run's certificate must pass (analysis/certificate.h).
 // Sticking ends at the first root of |F(t)| = μs N; slip ends at the first root of u(t) = 0,
 // and then the point sticks if |F_roll| <= μs N there, else slips the other way.
 
@@ -23,6 +24,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "chasles/analysis/certificate.h"
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/model/forces.h"
@@ -233,7 +235,14 @@ TEST(FrictionRegimeProperty, StickThenSlipMatchesClosedForms) {
     const double vs = std::max({1.0, std::abs(v), std::abs(w) * c.R});
     EXPECT_NEAR(sf.bodies[0].v_WBcm_W.x(), v, kRel * vs) << what;
     EXPECT_NEAR(sf.bodies[0].w_WB_B.y(), w, kRel * vs / c.R) << what;
-    // The forces at every sample obey Coulomb's law in the mode they are in.
+    // The run's own certificate passes at every sample (Coulomb in each mode, N >= 0, gaps,
+    // each body's Newton-Euler balance) ...
+    CertificateBuilder cert;
+    for (const State& s : r.samples) cert.CheckState(b.model, s, CheckPhase::kSample);
+    const Certificate verdict = cert.Finish();
+    EXPECT_TRUE(verdict.passed()) << what << ": "
+                                  << ::testing::PrintToString(verdict.FailureMessages());
+    // ... and, checked here directly, the forces obey Coulomb's law in the mode they are in.
     for (const State& s : r.samples) {
       const std::vector<ContactPointOutput> out = CalcContactOutputs(b.model, s);
       for (const ContactPointOutput& p : out) {
@@ -251,7 +260,7 @@ TEST(FrictionRegimeProperty, StickThenSlipMatchesClosedForms) {
     ++checked;
   }
   EXPECT_GT(checked, 600);  // with the test below, over 1,000 random cases
-  EXPECT_GT(slips, 150);  // the rest stick to the end: both kinds are checked
+  EXPECT_GT(slips, 150);    // the rest stick to the end: both kinds are checked
 }
 
 // Slipping at the start (round bodies set down with a slip), until the slip stops; then
