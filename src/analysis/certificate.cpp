@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/newton_euler.h"
 
 namespace chasles {
@@ -180,10 +181,12 @@ void CertificateBuilder::CheckState(const Model& model, const State& state, cons
     } else {
       // Coulomb: sliding friction is mu_k N against the slip. While the slip speed is below
       // the velocity scale's round-off its direction is noise (the engine then keeps the
-      // mode's reference direction, as when the slip stops): the size alone is checked.
+      // mode's reference direction, as when the slip stops or starts from rest; below
+      // kSlipSpeedRoundOff too, as the engine decides): the size alone is checked.
       const double vs = o.slip_velocity_W.norm();
-      const Vec3 s = vs > tol_.state * std::max(velocity_, 1e-300) ? Vec3(o.slip_velocity_W / vs)
-                                                                   : Vec3::Zero();
+      const Vec3 s = vs > std::max(tol_.state * velocity_, kSlipSpeedRoundOff)
+                         ? Vec3(o.slip_velocity_W / vs)
+                         : Vec3::Zero();
       double value = 0.0;
       if (s.squaredNorm() > 0.0) {
         value = (o.friction_force_W + con.mu_k() * N * s).norm();

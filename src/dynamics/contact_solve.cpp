@@ -168,7 +168,7 @@ Vec3 ContactPointGeometry::SlipDirection(const Vec3& s_ref) const {
   // round-off of a body at rest, whose own speed scale is round-off).
   const double vt = v_t.norm();
   const bool has_ref = s_ref.squaredNorm() > 0.0;
-  if (!(vt > 0.0) || (has_ref && vt <= std::max(1e-10 * speed_scale, 1e-14)))
+  if (!(vt > 0.0) || (has_ref && vt <= std::max(1e-10 * speed_scale, kSlipSpeedRoundOff)))
     return has_ref ? s_ref : Vec3::Zero();
   Vec3 s = v_t / vt;
   if (has_ref && s.dot(s_ref) < 0.0) s = -s;

@@ -45,7 +45,8 @@ RunOut SimulateText(const std::string& name, const std::string& text) {
   const std::filesystem::path file = dir / (name + ".yaml");
   std::ofstream(file) << text;
   RunOut r;
-  r.json = SimulateJson(file.string(), dir, "");
+  // --strict: a run whose certificate fails exits 3, and SimulateJson throws.
+  r.json = SimulateJson(file.string(), dir, "--strict");
   r.csv = ReadCsv(r.json.at("csv").get<std::string>());
   return r;
 }

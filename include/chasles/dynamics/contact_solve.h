@@ -36,6 +36,11 @@ void SolveContactForces(const Model& model, const State& state, Data& data);
 /// in the modes it carries: runs CalcAccelerations on a fresh Data. For reports.
 std::vector<ContactPointOutput> CalcContactOutputs(const Model& model, const State& state);
 
+/// A slip speed at or below this has no direction of its own [m/s]: the round-off of the
+/// velocity of a body at rest. A sliding point keeps its mode's reference direction until its
+/// slip exceeds this and 1e-10 of its material point's speed (ContactPointGeometry).
+inline constexpr double kSlipSpeedRoundOff = 1e-14;
+
 /// Tolerances of mode selection and impacts.
 struct ContactTolerances {
   /// A point with gap at or below this is touching [m].
