@@ -121,6 +121,16 @@ Built Build(const Case& c) {
   return b;
 }
 
+// The run to t_end at tolerance 1e-12, four output samples.
+SimulationResult RunCase(const Built& b, double t_end) {
+  SimulationOptions o;
+  o.t_end = t_end;
+  o.adaptive.rtol = 1e-12;
+  o.adaptive.atol = 1e-14;
+  o.output_interval = t_end / 4;
+  return Simulate(b.model, b.s0, o);
+}
+
 // Earliest root in (t0, t1] of p(t) = a0 + a1 (t - t0) equal to ±level (|p| reaching level),
 // for p starting inside (|a0| < level).
 std::optional<double> FirstReach(double t0, double t1, double a0, double a1, double level) {
@@ -190,13 +200,8 @@ TEST(FrictionRegimeProperty, StickThenSlipMatchesClosedForms) {
     if (std::abs(F0) >= 0.98 * Ns) continue;  // starts (nearly) at the limit: not this test
     const std::optional<double> t_slip = FirstReach(0.0, 2.0, F0, F1, Ns);
     const double t_end = t_slip ? *t_slip + 0.5 : 1.0;
-    Built b = Build(c);
-    SimulationOptions o;
-    o.t_end = t_end;
-    o.adaptive.rtol = 1e-12;
-    o.adaptive.atol = 1e-14;
-    o.output_interval = t_end / 4;
-    const SimulationResult r = Simulate(b.model, b.s0, o);
+    const Built b = Build(c);
+    const SimulationResult r = RunCase(b, t_end);
     const std::string what = fmt::format("case {} ({}, P0 {}, k {}, h {}, θ {})", n,
                                          KindName(c.kind), c.P0, c.k, c.h, c.theta);
     // Initial modes: the touching points (all but a block's four top corners) stick.
@@ -300,13 +305,8 @@ TEST(FrictionRegimeProperty, SlipThenStickOrReverseMatchesClosedForms) {
     if (std::abs(std::abs(F0) - Ns) < 1e-3 * Ns) continue;  // too close to call
     const bool rolls = std::abs(F0) < Ns;
     const double t_end = ts + 0.5;
-    Built b = Build(c);
-    SimulationOptions o;
-    o.t_end = t_end;
-    o.adaptive.rtol = 1e-12;
-    o.adaptive.atol = 1e-14;
-    o.output_interval = t_end / 4;
-    const SimulationResult r = Simulate(b.model, b.s0, o);
+    const Built b = Build(c);
+    const SimulationResult r = RunCase(b, t_end);
     const std::string what =
         fmt::format("case {} ({}, u0 {}, P0 {}, h {})", n, KindName(c.kind), u0, c.P0, c.h);
     // The slip stops at ts (every point of the shape); then stick or slide the other way.
