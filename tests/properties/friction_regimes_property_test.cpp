@@ -309,6 +309,9 @@ TEST(FrictionRegimeProperty, SlipThenStickOrReverseMatchesClosedForms) {
     const SimulationResult r = RunCase(b, t_end);
     const std::string what =
         fmt::format("case {} ({}, u0 {}, P0 {}, h {})", n, KindName(c.kind), u0, c.P0, c.h);
+    CertificateBuilder cert;
+    for (const State& s : r.samples) cert.CheckState(b.model, s, CheckPhase::kSample);
+    EXPECT_TRUE(cert.Finish().passed()) << what;
     // The slip stops at ts (every point of the shape); then stick or slide the other way.
     bool seen = false;
     for (const ContactEvent& e : r.contact_events) {
