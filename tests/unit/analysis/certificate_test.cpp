@@ -117,7 +117,8 @@ TEST(Certificate, SlidingFrictionAlongTheSlipIsCaught) {
   data.contact_points[0].friction_force_W = kMuK * kM * kG * Vec3::UnitX();
   CertificateBuilder builder;
   builder.CheckState(b.model, b.state, data, CheckPhase::kSample);
-  const CheckResult& r = Find(builder.Finish(), "sliding friction");
+  const Certificate finished = builder.Finish();
+  const CheckResult& r = Find(finished, "sliding friction");
   EXPECT_FALSE(r.passed());
   EXPECT_NEAR(r.worst, 2 * kMuK * kM * kG, kExact * kM * kG);
 }
@@ -147,7 +148,8 @@ TEST(Certificate, LedgerResidualAgainstTheEnergyScale) {
   builder.CheckLedger(1.0, 1e-12, 10.0, CheckPhase::kSample);
   builder.CheckLedger(2.0, -1e-3, 10.0, CheckPhase::kSample);
   builder.CheckLedger(3.0, 2e-12, 10.0, CheckPhase::kSample);
-  const CheckResult& r = Find(builder.Finish(), "ledger");
+  const Certificate finished = builder.Finish();
+  const CheckResult& r = Find(finished, "ledger");
   EXPECT_FALSE(r.passed());
   EXPECT_EQ(r.worst, 1e-3);
   EXPECT_EQ(r.tolerance, tol.ledger * 10.0);
@@ -164,7 +166,8 @@ TEST(Certificate, LongRunsKeepTheWorstValue) {
     const double residual = i == 123456 ? 1e-3 : 1e-13 * (i % 7);
     builder.CheckLedger(static_cast<double>(i), residual, 10.0, CheckPhase::kSample);
   }
-  const CheckResult& r = Find(builder.Finish(), "ledger");
+  const Certificate finished = builder.Finish();
+  const CheckResult& r = Find(finished, "ledger");
   EXPECT_EQ(r.count, n);
   EXPECT_EQ(r.worst, 1e-3);
   EXPECT_EQ(r.t, 123456.0);
