@@ -15,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev  # tests
   libbenchmark-dev     # benchmarks in bench/
   clang-format         # formatting check
+  clang libclang-rt-dev  # libFuzzer, for scripts/fuzz.sh
 )
 
 missing=()
