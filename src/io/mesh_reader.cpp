@@ -1,9 +1,8 @@
 #include "chasles/io/mesh_reader.h"
 
 #include <algorithm>
-#include <array>
-#include <bit>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -23,16 +22,24 @@ namespace chasles {
 namespace internal {
 namespace {
 
-constexpr std::uintmax_t kStlHeaderBytes = 84;  // 80-byte header + uint32 triangle count
-constexpr std::uintmax_t kStlRecordBytes = 50;  // normal, 3 vertices (12 floats), uint16
+// The extension of `path`, lower case, with its dot.
+std::string Extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
 
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using File = std::unique_ptr<std::FILE, FileCloser>;
+[[noreturn]] void UnsupportedFormat(const std::string& name, const std::string& ext) {
+  throw InputError(fmt::format("mesh file '{}': unsupported format '{}'; supported: {}", name,
+                               ext.empty() ? std::string("(no extension)") : ext,
+                               kSupportedMeshFormats));
+}
+
+using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 
 File OpenOrThrow(const std::string& path) {
-  File f(std::fopen(path.c_str(), "rb"));
+  File f(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!f) {
     throw InputError(fmt::format("mesh file '{}': cannot be opened for reading ({})", path,
                                  std::strerror(errno)));
@@ -40,104 +47,36 @@ File OpenOrThrow(const std::string& path) {
   return f;
 }
 
-std::uint32_t ReadU32LE(const unsigned char* p) {
-  return std::uint32_t{p[0]} | std::uint32_t{p[1]} << 8 | std::uint32_t{p[2]} << 16 |
-         std::uint32_t{p[3]} << 24;
-}
-
-bool StartsWithSolid(const std::string& path) {
+// The whole file in memory (the text readers and PLY work on it). `size` was just measured;
+// a file that shrinks meanwhile is read as far as it goes, one that grows is cut at `size`.
+std::string ReadWholeFile(const std::string& path, std::uintmax_t size) {
   File f = OpenOrThrow(path);
-  std::array<char, 256> buf{};
-  const std::size_t n = std::fread(buf.data(), 1, buf.size(), f.get());
-  std::size_t i = 0;
-  while (i < n && std::isspace(static_cast<unsigned char>(buf[i]))) ++i;
-  return n - i >= 5 && std::memcmp(buf.data() + i, "solid", 5) == 0;
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  const std::size_t n = std::fread(bytes.data(), 1, bytes.size(), f.get());
+  if (std::ferror(f.get())) {
+    throw InputError(fmt::format("mesh file '{}': read error ({})", path, std::strerror(errno)));
+  }
+  bytes.resize(n);
+  return bytes;
 }
 
-std::string Extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
-  return ext;
+// The first bytes of a file, to tell ASCII from binary STL.
+std::string ReadHead(const std::string& path, std::size_t n) {
+  File f = OpenOrThrow(path);
+  std::string bytes(n, '\0');
+  bytes.resize(std::fread(bytes.data(), 1, n, f.get()));
+  return bytes;
 }
 
 }  // namespace
 
-bool LooksLikeBinaryStl(const std::string& path, std::uintmax_t file_size) {
-  if (file_size < kStlHeaderBytes) return false;
-  File f = OpenOrThrow(path);
-  std::array<unsigned char, kStlHeaderBytes> header{};
-  if (std::fread(header.data(), 1, header.size(), f.get()) != header.size()) return false;
-  const std::uint32_t n = ReadU32LE(header.data() + 80);
-  return file_size == kStlHeaderBytes + kStlRecordBytes * std::uintmax_t{n};
-}
-
-// Why a reader of our own: measured on a 1,000,000-triangle binary STL (50 MB, page cache
-// warm; bench/mesh_mass_bench.cpp), assimp 5.2's STL importer takes about 0.18 s, this reader
-// 0.013-0.027 s. Through assimp, read + weld + validate + integrate took 0.38 s, too close to
-// the 0.5 s budget on a busy machine; with this reader it takes 0.15 s. It also reports a
-// size that does not match the announced triangle count as such.
-MeshFileData ReadBinaryStl(const std::string& path) {
-  std::error_code ec;
-  const std::uintmax_t file_size = std::filesystem::file_size(path, ec);
-  if (ec) {
-    throw InputError(fmt::format("mesh file '{}': cannot read its size ({})", path, ec.message()));
-  }
-  File f = OpenOrThrow(path);
-  std::array<unsigned char, kStlHeaderBytes> header{};
-  if (std::fread(header.data(), 1, header.size(), f.get()) != header.size()) {
-    throw InputError(
-        fmt::format("mesh file '{}': too short for a binary STL ({} bytes; the header alone is 84)",
-                    path, file_size));
-  }
-  const std::uint32_t n = ReadU32LE(header.data() + 80);
-  const std::uintmax_t expected = kStlHeaderBytes + kStlRecordBytes * std::uintmax_t{n};
-  if (file_size != expected) {
-    throw InputError(fmt::format(
-        "mesh file '{}': binary STL size mismatch: the header announces {} triangles, i.e. "
-        "84 + 50 x {} = {} bytes, but the file has {} bytes; it is truncated or not a binary "
-        "STL",
-        path, n, n, expected, file_size));
-  }
-  if (n == 0) {
-    throw InputError(
-        fmt::format("mesh file '{}': empty mesh (the binary STL holds 0 triangles)", path));
-  }
-
-  MeshFileData data;
-  data.format = "binary STL";
-  data.xyz.resize(std::size_t{n} * 9);
-  data.indices.resize(std::size_t{n} * 3);
-  // Records are read in chunks so the raw file never sits in memory next to the result.
-  constexpr std::size_t kChunk = 16384;
-  std::vector<unsigned char> buf(kChunk * kStlRecordBytes);
-  float* out = data.xyz.data();
-  for (std::size_t done = 0; done < n;) {
-    const std::size_t count = std::min<std::size_t>(kChunk, n - done);
-    if (std::fread(buf.data(), kStlRecordBytes, count, f.get()) != count) {
-      throw InputError(
-          fmt::format("mesh file '{}': read error after {} of {} triangles", path, done, n));
-    }
-    for (std::size_t r = 0; r < count; ++r) {
-      // Skip the 12-byte normal; copy the 36 bytes of vertices; skip the attribute word.
-      const unsigned char* rec = buf.data() + r * kStlRecordBytes + 12;
-      if constexpr (std::endian::native == std::endian::little) {
-        std::memcpy(out, rec, 36);
-      } else {
-        for (int k = 0; k < 9; ++k) {
-          const std::uint32_t bits = ReadU32LE(rec + 4 * k);
-          out[k] = std::bit_cast<float>(bits);
-        }
-      }
-      out += 9;
-    }
-    done += count;
-  }
-  for (std::size_t i = 0; i < data.indices.size(); ++i) {
-    data.indices[i] = static_cast<std::uint32_t>(i);
-  }
-  return data;
+MeshFileData ReadMeshBytes(std::string_view bytes, const std::string& name) {
+  const std::string ext = Extension(name);
+  if (ext == ".stl") return ReadStl(bytes, name);
+  if (ext == ".obj") return ReadObj(bytes, name);
+  if (ext == ".ply") return ReadPly(bytes, name);
+  if (ext == ".off") return ReadOff(bytes, name);
+  UnsupportedFormat(name, ext);
 }
 
 MeshFileData ReadWithAssimp(const std::string& path) {
@@ -145,8 +84,9 @@ MeshFileData ReadWithAssimp(const std::string& path) {
   // Only faces are wanted: drop lines and points instead of having them split into meshes.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                  aiProcess_PreTransformVertices | aiProcess_SortByPType);
   if (scene == nullptr) {
     const std::string why = importer.GetErrorString();
     // Point clouds and line sets are read, but their primitives are dropped above.
@@ -158,9 +98,7 @@ MeshFileData ReadWithAssimp(const std::string& path) {
         fmt::format("mesh file '{}': unreadable or garbled ({})", path, importer.GetErrorString()));
   }
   MeshFileData data;
-  const std::string ext = Extension(path);
-  data.format = ext.empty() ? std::string("mesh") : ext;
-  if (ext == "STL") data.format = "ASCII STL";
+  data.format = "assimp";
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* mesh = scene->mMeshes[m];
     if ((mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
@@ -208,16 +146,19 @@ MeshFileData ReadMeshFile(const std::string& path) {
   if (ec || size == 0) {
     throw InputError(fmt::format("mesh file '{}': empty mesh (the file is empty)", path));
   }
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = internal::Extension(path);
   if (ext == ".stl") {
+    // The fast path: a consistent binary STL is streamed without holding the file.
     if (internal::LooksLikeBinaryStl(path, size)) return internal::ReadBinaryStl(path);
     // Not a consistent binary STL: an ASCII one starts with "solid"; anything else is a
     // binary STL whose size does not match its count (ReadBinaryStl says so).
-    if (!internal::StartsWithSolid(path)) return internal::ReadBinaryStl(path);
+    if (!internal::LooksLikeAsciiStl(internal::ReadHead(path, 512))) {
+      return internal::ReadBinaryStl(path);
+    }
+  } else if (ext != ".obj" && ext != ".ply" && ext != ".off") {
+    internal::UnsupportedFormat(path, ext);
   }
-  return internal::ReadWithAssimp(path);
+  return internal::ReadMeshBytes(internal::ReadWholeFile(path, size), path);
 }
 
 }  // namespace chasles

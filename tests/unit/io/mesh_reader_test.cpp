@@ -201,10 +201,42 @@ TEST_F(MeshReaderTest, ObjWithoutFacesIsEmpty) {
                                             HasSubstr(p), HasSubstr("empty mesh"))));
 }
 
-TEST_F(MeshReaderTest, GarbledPlyIsUnreadable) {
+TEST_F(MeshReaderTest, GarbledPlyIsNotAPly) {
   const std::string p = WriteText("junk.ply", "this is not a mesh at all\n\x01\x02\x03");
-  EXPECT_THAT([&] { ReadMeshFile(p); }, ::testing::ThrowsMessage<InputError>(::testing::AllOf(
-                                            HasSubstr(p), HasSubstr("unreadable or garbled"))));
+  EXPECT_THAT([&] { ReadMeshFile(p); }, ::testing::ThrowsMessage<InputError>(::testing::HasSubstr(
+                                            "mesh file '" + p +
+                                            "': PLY header: not a PLY file (the first line is not "
+                                            "'ply') (line 1)")));
+}
+
+TEST_F(MeshReaderTest, Off) {
+  std::string s = "OFF\n8 6 0\n";
+  for (int i = 0; i < 8; ++i) {
+    s += fmt::format("{} {} {}\n", Corner(i).x(), Corner(i).y(), Corner(i).z());
+  }
+  for (const auto& q : kQuads) s += fmt::format("4 {} {} {} {}\n", q[0], q[1], q[2], q[3]);
+  const std::string p = WriteText("box.off", s);
+  EXPECT_EQ(ReadMeshFile(p).format, "OFF");
+  ExpectBoxMass(p);
+}
+
+TEST_F(MeshReaderTest, UnknownExtensionListsTheSupportedFormats) {
+  const std::string p = WriteText("box.dae", Obj());
+  EXPECT_THAT([&] { ReadMeshFile(p); },
+              ::testing::ThrowsMessage<InputError>(
+                  ::testing::HasSubstr("mesh file '" + p +
+                                       "': unsupported format '.dae'; supported: .stl (binary or "
+                                       "ASCII), .obj, .ply (ASCII or binary), .off")));
+}
+
+TEST_F(MeshReaderTest, TruncatedAsciiStlNamesTheLine) {
+  std::string stl = AsciiStl();
+  stl.resize(stl.find("endloop", stl.size() / 2));  // half-way, inside a facet
+  const std::string p = WriteText("cut.stl", stl);
+  EXPECT_THAT([&] { ReadMeshFile(p); },
+              ::testing::ThrowsMessage<InputError>(::testing::AllOf(
+                  HasSubstr("mesh file '" + p + "': truncated ASCII STL: the file ends in facet"),
+                  HasSubstr("where 'endloop' was expected (line "))));
 }
 
 TEST_F(MeshReaderTest, GarbledBinaryIsUnreadable) {
