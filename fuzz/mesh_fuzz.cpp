@@ -1,9 +1,10 @@
-// Fuzz target: every mesh reader and the mesh mass pipeline behind it (weld, repair,
-// integrate). Each input is tried as every supported format, by file extension, so one corpus
-// of mesh files serves all readers.
-// Promise: a malformed mesh is an InputError — never a crash, a hang, another exception, or an
-// allocation far beyond the file's size (libFuzzer's -rss_limit_mb and -malloc_limit_mb catch
-// those) — and a mesh that is accepted has finite mass properties.
+// Fuzz target: every mesh reader (src/io/) and the mesh mass pipeline behind it (weld, repair,
+// integrate). Each input is read as every supported format, in memory, so one corpus of mesh
+// files serves all readers.
+// Promise: a malformed mesh is an InputError — never a crash, a hang, another exception, an
+// index out of range or a non-finite coordinate, or an allocation far beyond the input's size
+// (libFuzzer's -rss_limit_mb and -malloc_limit_mb catch those) — and a mesh that is accepted
+// has finite mass properties in solid and in shell mode.
 
 #include <cmath>
 #include <cstdint>
@@ -11,8 +12,25 @@
 #include <string_view>
 
 #include "chasles/error.h"
-#include "chasles/scene/mesh_file.h"
+#include "chasles/mass/mesh_mass.h"
 #include "fuzz_support.h"
+#include "io/internal/mesh_readers.h"
+
+namespace {
+
+void CheckMesh(const chasles::MeshFileData& data, const char* ext) {
+  if (data.xyz.size() % 3 != 0 || data.indices.size() % 3 != 0) {
+    chasles::fuzz::Fail("a reader returned a partial vertex or triangle", ext);
+  }
+  for (float c : data.xyz) {
+    if (!std::isfinite(c)) chasles::fuzz::Fail("a reader returned a non-finite coordinate", ext);
+  }
+  for (std::uint32_t i : data.indices) {
+    if (i >= data.vertex_count()) chasles::fuzz::Fail("a reader returned a bad index", ext);
+  }
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   return 0;
@@ -21,7 +39,15 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   for (const char* ext : {"stl", "ply", "off", "obj"}) {
-    const std::string path = chasles::fuzz::WriteScratchFile(std::string("mesh.") + ext, bytes);
+    chasles::MeshFileData mesh;
+    try {
+      mesh = chasles::internal::ReadMeshBytes(bytes, std::string("fuzz.") + ext);
+    } catch (const chasles::InputError&) {
+      continue;
+    } catch (const std::exception& e) {
+      chasles::fuzz::Fail(e.what(), ext);
+    }
+    CheckMesh(mesh, ext);
     for (const bool shell : {false, true}) {
       chasles::MeshMassOptions opts;
       opts.scale = 1e-3;
@@ -32,7 +58,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         opts.density = 7850.0;
       }
       try {
-        const chasles::MeshMassResult r = chasles::LoadMeshMassProperties(path, opts);
+        std::vector<float> xyz = mesh.xyz;
+        std::vector<std::uint32_t> indices = mesh.indices;
+        const chasles::MeshMassResult r = chasles::ComputeMeshMassProperties(
+            std::move(xyz), std::move(indices), opts, std::string("fuzz.") + ext);
         const chasles::MassProperties& p = r.mass_properties;
         if (!std::isfinite(p.mass()) || !p.p_BoBcm_B().allFinite() ||
             !p.I_BBcm_B().matrix().allFinite()) {
