@@ -602,11 +602,15 @@ SceneReader::MassSource SceneReader::FindMassSource(const At& at, const At& body
 
 MassProperties SceneReader::ReadShapeMass(const At& at, const At& body_at, const Shape& geometry,
                                           const std::string& what, ScenePart& part) {
-  const auto [source, key] = FindMassSource(
+  // Not a structured binding: the lambdas below capture `source` (clang 14 cannot capture a
+  // binding).
+  const auto found = FindMassSource(
       at, body_at, {"mass", "density", "material", "linear_density", "areal_density"},
       fmt::format("{} has no mass: give 'mass', 'density' or 'material' (on the part or on its "
                   "body)",
                   what));
+  const At& source = found.at;
+  const std::string& key = found.key;
   const Shape::Measure measure = geometry.measure();
   const bool slender = measure == Shape::Measure::kLength;
   const bool sheet = measure == Shape::Measure::kArea;
