@@ -25,7 +25,7 @@ std::string SizeText(size_t bytes) {
 [[noreturn]] void TooLarge(const std::string& path, const std::string& size, size_t max_bytes) {
   throw SceneError(path, 0, 0, "",
                    fmt::format("the scene is {}, more than the maximum scene size of {}; a scene "
-                               "that large is refused before it is read (raise the limit with "
+                               "that large is refused before it is parsed (raise the limit with "
                                "--max-scene-bytes N if it is meant to be read)",
                                size, SizeText(max_bytes)));
 }
