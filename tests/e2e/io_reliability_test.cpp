@@ -199,6 +199,23 @@ TEST(PrintedValues, AUnitConversionThatOverflowsIsExit2NamingTheQuantity) {
   fs::remove_all(dir);
 }
 
+TEST(PrintedValues, SolveRefusesANonFiniteValueByName) {
+  // A body at 1e200 m: the certificate's length scale squares the distance (1e400: inf).
+  const fs::path dir = OutDir("io_solve");
+  const fs::path scene = dir / "far.yaml";
+  WriteText(scene,
+            "bodies:\n  - name: far\n    parts: [{shape: sphere, radius: 1 m, mass: 1 kg}]\n"
+            "    initial: {position: [1e200 m, 0, 0]}\n");
+  for (const std::string format : {"text", "json"}) {
+    const CliResult r = RunCli("solve " + Quote(scene.string()) + " --format " + format);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("the solve report: "));
+    EXPECT_THAT(r.err, HasSubstr("is inf, not a finite number"));
+    EXPECT_TRUE(r.out.empty());
+  }
+  fs::remove_all(dir);
+}
+
 // --- all-or-nothing outputs -------------------------------------------------------------
 
 /// Starts `chasles ARGS...` with its output thrown away; returns the process id.
