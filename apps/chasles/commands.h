@@ -9,12 +9,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include "chasles/scene/scene.h"
+
 namespace chasles::cli {
 
 /// Options shared by commands that read a scene.
 struct SceneArgs {
-  std::string scene;             // path, or "" for the built-in demonstration
-  std::vector<std::string> set;  // NAME=EXPRESSION parameter overrides
+  std::string scene;                               // path, or "" for the built-in demonstration
+  std::vector<std::string> set;                    // NAME=EXPRESSION parameter overrides
+  size_t max_scene_bytes = kDefaultMaxSceneBytes;  // --max-scene-bytes
 };
 
 struct MassArgs {

@@ -9,6 +9,7 @@
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/units.h"
 #include "commands.h"
+#include "report_guard.h"
 #include "scene_args.h"
 
 namespace chasles::cli {
@@ -49,7 +50,7 @@ double Clean(double v, double scale) {
 }
 
 std::string Num(double v, double scale) {
-  return fmt::format("{:.7g}", Clean(v, scale));
+  return fmt::format("{:.7g}", Clean(Finite(v, "a value of the mass report"), scale));
 }
 
 std::string VecText(const Vec3& v, double scale) {
@@ -99,7 +100,9 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
   for (const SceneBody& body : scene.bodies) {
     const MassProperties& mp = body.mass_properties;
     const double Lscale =
-        std::max(mp.p_BoBcm_B().norm(), std::sqrt(mp.I_BBcm_B().Trace() / mp.mass()));
+        // stableNorm: |p| of a part at 1e200 m is 1.7e200, where norm() overflows to inf and
+        // would round every coordinate to 0.
+        std::max(mp.p_BoBcm_B().stableNorm(), std::sqrt(mp.I_BBcm_B().Trace() / mp.mass()));
     out += fmt::format("\nBody '{}' ({} part{})\n", body.name, body.parts.size(),
                        body.parts.size() == 1 ? "" : "s");
     if (!args.hide_parts) {
@@ -175,8 +178,8 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
   return out;
 }
 
-std::string JsonReport(const Scene& scene, const Presenter& P,
-                       const std::vector<ReportPoint>& extra, const Frame& frame) {
+nlohmann::json JsonReport(const Scene& scene, const Presenter& P,
+                          const std::vector<ReportPoint>& extra, const Frame& frame) {
   nlohmann::json j;
   j["scene"] = scene.file;
   j["title"] = scene.title;
@@ -238,7 +241,7 @@ std::string JsonReport(const Scene& scene, const Presenter& P,
     j["bodies"].push_back(b);
   }
   j["warnings"] = scene.warnings;
-  return j.dump(2) + "\n";
+  return j;
 }
 
 }  // namespace
@@ -293,6 +296,28 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
 }
 
 namespace {
+/// The inertia about a point P (parallel-axis theorem, eqs. 8.24-8.29: I_P = I_cm + m (d² 1 -
+/// d dᵀ), d from the centre of mass to P) overflows when m d² passes the largest double; say
+/// so by name rather than print inf and nan.
+void CheckPointInertias(const Scene& scene, const std::vector<ReportPoint>& extra) {
+  for (const SceneBody& body : scene.bodies) {
+    const MassProperties& mp = body.mass_properties;
+    std::vector<ReportPoint> points;
+    for (const auto& p : body.points) points.push_back({p.name, p.p_BoP_B});
+    points.insert(points.end(), extra.begin(), extra.end());
+    for (const ReportPoint& p : points) {
+      const Mat3 I = mp.CalcInertiaAbout(p.p_BoP_B).matrix();
+      if (I.allFinite()) continue;
+      const double d = (p.p_BoP_B - mp.p_BoBcm_B()).stableNorm();
+      throw InputError(fmt::format(
+          "the inertia of body '{}' about point {} is not a finite number: the point is {:.6g} m "
+          "from the centre of mass, and m d² = {:.6g} kg * ({:.6g} m)² overflows the range of a "
+          "double (about 1.8e308 kg*m^2); give a point nearer the body",
+          body.name, p.name, d, mp.mass(), d));
+    }
+  }
+}
+
 Scene LoadMassInput(const MassArgs& args) {
   const bool mesh_options =
       !(args.mesh_unit + args.mesh_mode + args.mesh_density + args.mesh_material + args.mesh_mass +
@@ -325,14 +350,18 @@ int RunMass(const MassArgs& args) {
   for (const std::string& a : args.about) {
     extra.push_back({"'" + a + "'", ReadPointOption(scene, a, "--about")});
   }
+  CheckPointInertias(scene, extra);
   Frame frame;
   if (!args.frame.empty()) {
     frame.given = true;
     frame.text = "F";
     frame.R_BF = ReadRotationOption(scene, args.frame, "--frame");
   }
-  const std::string report = args.format == "json" ? JsonReport(scene, P, extra, frame)
-                                                   : TextReport(scene, P, args, extra, frame);
+  // Every value of either report is in the JSON form: checked there first, by name.
+  const nlohmann::json j = JsonReport(scene, P, extra, frame);
+  const std::string report = args.format == "json" ? DumpJson(j, "the mass report")
+                                                   : (CheckFiniteJson(j, "the mass report"),
+                                                      TextReport(scene, P, args, extra, frame));
   Emit(args.output, report);
   return 0;
 }

@@ -2,6 +2,10 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <new>
+
+#include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
 
@@ -50,6 +54,20 @@ int RunParsed(Program& p) {
     return RunMass(demo);
   } catch (const chasles::InputError& e) {
     std::fprintf(stderr, "chasles: error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A file-system problem is the user's to fix (a path, a permission): exit 2 with the path.
+    std::fprintf(stderr, "chasles: error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "chasles: error: out of memory: the input asks for more memory than this "
+                 "machine gives (see docs/reliability-io.md for the size limits)\n");
+    return kExitBadInput;
+  } catch (const nlohmann::json::exception& e) {
+    // Scene text is checked to be UTF-8 at load and reports dump with replacement characters,
+    // so this is text from elsewhere that JSON cannot hold.
+    std::fprintf(stderr, "chasles: error: the report cannot be written as JSON: %s\n", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "chasles: internal error: %s\n", e.what());

@@ -1,8 +1,10 @@
 #include "scene_args.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
-#include "chasles/io/atomic_file.h"
+#include "chasles/io/output_set.h"
 #include "chasles/scene/scene_error.h"
 
 namespace chasles::cli {
@@ -14,10 +16,28 @@ void AddSceneArgs(CLI::App& cmd, SceneArgs& args) {
                  "Override a scene parameter: NAME=EXPRESSION, e.g. --set 'h1=0.25*h' (repeatable)")
       ->allow_extra_args(false)
       ->delimiter('\0');  // an expression may contain commas and brackets: keep it whole
+  cmd.add_option("--max-scene-bytes", args.max_scene_bytes,
+                 "Largest scene file read, in bytes (default 16777216, 16 MiB); a larger file, "
+                 "or a pipe or device that gives more, is refused before it is parsed")
+      ->check(CLI::PositiveNumber);
+}
+
+CLI::Validator PositiveFiniteNumber(const std::string& rule) {
+  return CLI::Validator(
+      [rule](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || !(v > 0)) {
+          return rule + " (a positive, finite number), got '" + text + "'";
+        }
+        return "";
+      },
+      "POSITIVE");
 }
 
 Scene LoadScene(const SceneArgs& args) {
   SceneOptions options;
+  options.max_scene_bytes = args.max_scene_bytes;
   for (const std::string& s : args.set) {
     const auto eq = s.find('=');
     if (eq == std::string::npos || eq == 0) {
@@ -35,7 +55,9 @@ void Emit(const std::string& output, const std::string& text) {
     std::fwrite(text.data(), 1, text.size(), stdout);
     std::fflush(stdout);
   } else {
-    WriteFileAtomically(output, text);
+    OutputSet file;
+    file.Add(output, text);
+    file.Commit();
   }
 }
 

@@ -8,6 +8,10 @@
 namespace chasles::cli {
 
 void AddSceneArgs(CLI::App& cmd, SceneArgs& args);
+/// Accepts a number that is positive and finite (so "nan", "inf", "-1" and "0" are refused
+/// with exit 2 while the command line is parsed); `rule` says what is expected, e.g. "--until
+/// must be a positive time in seconds".
+CLI::Validator PositiveFiniteNumber(const std::string& rule);
 Scene LoadScene(const SceneArgs& args);
 /// Writes text to the file named (atomically) or to standard output when the name is empty.
 void Emit(const std::string& output, const std::string& text);

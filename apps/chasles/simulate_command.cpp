@@ -11,12 +11,13 @@
 
 #include "certificate_report.h"
 #include "chasles/error.h"
-#include "chasles/io/atomic_file.h"
+#include "chasles/io/output_set.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
 #include "chasles/scene/units.h"
 #include "commands.h"
+#include "report_guard.h"
 #include "scene_args.h"
 
 namespace chasles::cli {
@@ -198,15 +199,20 @@ struct Show {
   const UnitSystem& u;
   std::string operator()(double v, const Dimension& d, Angular a = Angular::kNo) const {
     const std::string unit = u.FormatUnit(d, a);
-    return fmt::format("{:.9g}{}{}", u.FromSI(v, d, a) + 0.0, unit.empty() ? "" : " ", unit);
+    return fmt::format("{:.9g}{}{}", Finite(u.FromSI(v, d, a), "a value of the report") + 0.0,
+                       unit.empty() ? "" : " ", unit);
   }
   /// A vector; components below 1e-12 of max(|v|, scale) are round-off and print as 0
   /// (`scale`: the size of that kind of quantity in the run, e.g. a speed from the energy).
   std::string operator()(const Vec3& v, const Dimension& d, Angular a = Angular::kNo,
                          double scale = 0.0) const {
     const std::string unit = u.FormatUnit(d, a);
-    const double floor = 1e-12 * std::max(v.norm(), scale);
-    const auto c = [&](double x) { return u.FromSI(std::abs(x) <= floor ? 0.0 : x, d, a) + 0.0; };
+    // stableNorm: |v| of components near 1e200 overflows norm() to inf, and every component
+    // would then print as round-off 0.
+    const double floor = 1e-12 * std::max(v.stableNorm(), scale);
+    const auto c = [&](double x) {
+      return Finite(u.FromSI(std::abs(x) <= floor ? 0.0 : x, d, a), "a value of the report") + 0.0;
+    };
     return fmt::format("[{:.9g}, {:.9g}, {:.9g}]{}{}", c(v.x()), c(v.y()), c(v.z()),
                        unit.empty() ? "" : " ", unit);
   }
@@ -228,15 +234,15 @@ ReportScales CalcReportScales(const StudyResult& r) {
     k.body_speed.push_back(v);
     k.body_rate.push_back(b.inertia_max > 0.0 ? std::sqrt(2.0 * E / b.inertia_max) : 0.0);
     k.speed = std::max(k.speed, v);
-    k.length = std::max(k.length, b.p_WBcm.norm());
+    k.length = std::max(k.length, b.p_WBcm.stableNorm());
   }
   for (const auto& x : r.final_reactions) {
-    k.force = std::max(k.force, x.F_Jc_W.norm());
-    k.moment = std::max(k.moment, x.M_Jc_W.norm());
-    k.length = std::max(k.length, x.p_WJ.norm());
+    k.force = std::max(k.force, x.F_Jc_W.stableNorm());
+    k.moment = std::max(k.moment, x.M_Jc_W.stableNorm());
+    k.length = std::max(k.length, x.p_WJ.stableNorm());
   }
   for (const auto& c : r.final_contacts) {
-    k.force = std::max({k.force, std::abs(c.normal_force), c.friction_force_W.norm()});
+    k.force = std::max({k.force, std::abs(c.normal_force), c.friction_force_W.stableNorm()});
   }
   k.moment = std::max(k.moment, k.force * k.length);
   return k;
@@ -293,7 +299,8 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
   // Energy and torque share a dimension; in SI the energy's own name is the joule.
   const bool joules = units.FormatUnit(kEnergyDim) == "N*m";
   const auto energy = [&](double e) {
-    return joules ? fmt::format("{:.9g} J", e) : show(e, kEnergyDim);
+    return joules ? fmt::format("{:.9g} J", Finite(e, "an energy of the report"))
+                  : show(e, kEnergyDim);
   };
   std::string out;
   out += fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
@@ -409,8 +416,11 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
     out += fmt::format(
         "  {}\n    position {}\n    quaternion [{:.9g}, {:.9g}, {:.9g}, {:.9g}]\n"
         "    velocity {}\n    angular velocity {} (body frame {})\n",
-        b.name, show(b.p_WBcm, kLength, Angular::kNo, k.length), clean(q[0], 1.0) + 0.0,
-        clean(q[1], 1.0) + 0.0, clean(q[2], 1.0) + 0.0, clean(q[3], 1.0) + 0.0,
+        b.name, show(b.p_WBcm, kLength, Angular::kNo, k.length),
+        Finite(clean(q[0], 1.0), "a quaternion of the report") + 0.0,
+        Finite(clean(q[1], 1.0), "a quaternion of the report") + 0.0,
+        Finite(clean(q[2], 1.0), "a quaternion of the report") + 0.0,
+        Finite(clean(q[3], 1.0), "a quaternion of the report") + 0.0,
         show(b.v_WBcm_W, kVelocityDim, Angular::kNo, v_s),
         show(b.w_WB_W, kRateDim, Angular::kYes, w_s), show(b.w_WB_B, kRateDim, Angular::kYes, w_s));
   }
@@ -491,7 +501,8 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
       "Integrate the motion of a scene's bodies; write a CSV time series and a JSON summary "
       "(final state, events, energy/work/momentum ledger, integrator statistics)");
   AddSceneArgs(*cmd, args.scene);
-  cmd->add_option("--until", args.until, "End time [s], overriding the scene's simulation.until");
+  cmd->add_option("--until", args.until, "End time [s], overriding the scene's simulation.until")
+      ->check(PositiveFiniteNumber("--until must be a positive time in seconds"));
   cmd->add_option("--out", args.out_dir,
                   "Directory for <scene>.csv and <scene>.json (default: the current directory)");
   cmd->add_option("--format", args.format, "Report on standard output: text (default) or json")
@@ -556,23 +567,21 @@ int RunSimulate(const SimulateArgs& args) {
   if (shown) std::fprintf(stderr, "\r%60s\r", "");
 
   const std::filesystem::path dir = args.out_dir.empty() ? "." : args.out_dir;
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) {
-    throw InputError(
-        fmt::format("cannot create the output directory '{}': {}", dir.string(), ec.message()));
-  }
+  CreateOutputFolder(dir.string());
   const std::string stem = std::filesystem::path(args.scene.scene).stem().string();
   const std::string csv_path = (dir / (stem + ".csv")).string();
   const std::string json_path = (dir / (stem + ".json")).string();
-  const nlohmann::json j = Json(scene, r, csv_path);
-  WriteFileAtomically(csv_path, Csv(r));
-  WriteFileAtomically(json_path, j.dump(2) + "\n");
-  if (args.format == "json") {
-    Emit("", j.dump(2) + "\n");
-  } else {
-    Emit("", Text(scene, r, units, csv_path, json_path));
-  }
+  // Every output is made and checked (no non-finite number) before any file appears; then
+  // the CSV and the JSON appear together or not at all (output_set.h).
+  CheckFiniteTable(r.columns, r.rows, "the CSV time series");
+  const std::string json_text = DumpJson(Json(scene, r, csv_path), "the JSON summary");
+  const std::string report =
+      args.format == "json" ? json_text : Text(scene, r, units, csv_path, json_path);
+  OutputSet files;
+  files.Add(csv_path, Csv(r));
+  files.Add(json_path, json_text);
+  files.Commit();
+  Emit("", report);
   return args.strict && !r.certificate.passed() ? kExitCheckFailed : 0;
 }
 

@@ -28,6 +28,7 @@
 #include "chasles/scene/study.h"
 #include "chasles/suggest.h"
 #include "commands.h"
+#include "report_guard.h"
 #include "scene_args.h"
 
 namespace chasles::cli {
@@ -261,14 +262,14 @@ nlohmann::json Json(const Solved& s) {
 /// `x` with round-off against `scale` shown as 0: a component below 1e-12 of the scale is the
 /// solve's rounding, not a physical value (the JSON keeps every digit).
 double Clean(double x, double scale) {
-  return std::abs(x) <= 1e-12 * scale ? 0.0 : x;
+  return std::abs(Finite(x, "a value of the solve report")) <= 1e-12 * scale ? 0.0 : x;
 }
 
 /// A vector for the text report; `scale` is the size of the largest quantity of its kind in
 /// the report (e.g. the largest acceleration of any body), so that 1e-15 m/s² next to 2 m/s²
 /// prints as 0.
 std::string V(const Vec3& v, double scale = 0.0) {
-  const double s = std::max(v.norm(), scale);
+  const double s = std::max(v.stableNorm(), scale);
   return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", Clean(v.x(), s), Clean(v.y(), s), Clean(v.z(), s));
 }
 
@@ -280,23 +281,23 @@ struct ReportScales {
 ReportScales CalcScales(const Solved& s) {
   ReportScales k;
   for (const auto& b : s.solution.bodies) {
-    k.a = std::max(k.a, b.a_WBcm_W.norm());
-    k.alpha = std::max(k.alpha, b.alpha_WB_W.norm());
+    k.a = std::max(k.a, b.a_WBcm_W.stableNorm());
+    k.alpha = std::max(k.alpha, b.alpha_WB_W.stableNorm());
   }
   double arm = 0.0;
   for (const ContactReport& c : s.contacts) {
-    k.force = std::max({k.force, c.out.normal_force, c.out.friction_force_W.norm()});
+    k.force = std::max({k.force, c.out.normal_force, c.out.friction_force_W.stableNorm()});
   }
   for (const auto& r : s.solution.reactions) {
-    k.force = std::max(k.force, r.F_Jc_W.norm());
-    k.moment = std::max(k.moment, r.M_Jc_W.norm());
-    arm = std::max(arm, r.p_WJ.norm());
+    k.force = std::max(k.force, r.F_Jc_W.stableNorm());
+    k.moment = std::max(k.moment, r.M_Jc_W.stableNorm());
+    arm = std::max(arm, r.p_WJ.stableNorm());
   }
   // A moment's round-off comes from forces times lever arms as well as from other moments.
   k.moment = std::max(k.moment, k.force * arm);
   for (const Motion& m : s.motion) {
-    k.p = std::max(k.p, m.P.norm());
-    k.h = std::max({k.h, m.H_cm.norm(), m.H_O.norm()});
+    k.p = std::max(k.p, m.P.stableNorm());
+    k.h = std::max({k.h, m.H_cm.stableNorm(), m.H_O.stableNorm()});
   }
   return k;
 }
@@ -518,7 +519,10 @@ int RunSolve(const SolveArgs& args) {
   if (args.sweep.empty()) {
     const Scene scene = LoadScene(args.scene);
     const Solved s = SolveScene(scene);
-    Emit("", args.format == "json" ? Json(s).dump(2) + "\n" : Text(scene, s));
+    // Every value of either report is in the JSON form: checked there first, by name.
+    const nlohmann::json j = Json(s);
+    Emit("", args.format == "json" ? DumpJson(j, "the solve report")
+                                   : (CheckFiniteJson(j, "the solve report"), Text(scene, s)));
     return args.strict && !s.certificate.passed() ? kExitCheckFailed : 0;
   }
   const Sweep sweep = ParseSweep(args.sweep);
@@ -560,9 +564,10 @@ int RunSolve(const SolveArgs& args) {
     }
     rows.push_back(std::move(row));
   }
+  CheckFiniteTable(names, rows, "the sweep table");
   if (args.format == "json") {
     nlohmann::json j = {{"parameter", sweep.name}, {"columns", names}, {"rows", rows}};
-    Emit("", j.dump(2) + "\n");
+    Emit("", DumpJson(j, "the sweep table"));
     return args.strict && failed ? kExitCheckFailed : 0;
   }
   std::string out = fmt::format("# {} swept (SI values); one row per value\n", sweep.name);

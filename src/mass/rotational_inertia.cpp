@@ -33,7 +33,15 @@ RotationalInertia RotationalInertia::FromMatrix(const Mat3& I) {
 }
 
 std::string RotationalInertia::CheckPhysicallyValid() const {
-  if (!I_.allFinite()) return "the inertia tensor has a non-finite entry";
+  if (!I_.allFinite()) {
+    // Nothing finite in, nothing infinite out, except by overflow: m d² of a distance past
+    // ~1e154 m (d² past 1.8e308), or an infinite mass or size.
+    return fmt::format(
+        "the inertia tensor has a non-finite entry ({}): a value overflowed the range of a "
+        "double (about 1.8e308), e.g. m d² for parts very far apart; check for very large "
+        "positions, sizes, masses or densities",
+        I_.cwiseAbs().maxCoeff());
+  }
   const double scale = std::max(std::abs(I_.trace()), I_.cwiseAbs().maxCoeff());
   const double tol = kValidityTolerance * scale;
   if ((I_ - I_.transpose()).cwiseAbs().maxCoeff() > tol) {

@@ -19,6 +19,7 @@
 #include "chasles/scene/units.h"
 #include "chasles/suggest.h"
 #include "internal/scene_reader.h"
+#include "internal/scene_text.h"
 #include "internal/shape_table.h"
 #include "internal/yaml_reader.h"
 
@@ -237,6 +238,10 @@ void SceneReader::ReadMaterials(const At& root) {
   }
   for (const auto& kv : at.node) {
     const std::string name = kv.first.Scalar();
+    if (materials_.count(name)) {
+      report_.Fail(At{kv.first, at.path + "." + name},
+                   fmt::format("material '{}' appears twice", name));
+    }
     materials_[name] = PositiveValue(At{kv.second, at.path + "." + name}, kDensity,
                                      "the density of material '" + name + "'");
   }
@@ -320,6 +325,12 @@ SceneBody SceneReader::ReadBody(const At& at, size_t index) {
     }
     for (const auto& kv : pts.node) {
       const std::string name = kv.first.Scalar();
+      for (const auto& p : body.points) {
+        if (p.name == name) {
+          report_.Fail(At{kv.first, pts.path + "." + name},
+                       fmt::format("point '{}' appears twice", name));
+        }
+      }
       body.points.push_back(
           {name, BodyVector(At{kv.second, pts.path + "." + name}, kLength, "a point's position")});
     }
@@ -720,18 +731,22 @@ Scene scene_internal::ReadSceneDocument(const YAML::Node& document, const std::s
 }
 
 Scene LoadSceneText(std::string_view text, const std::string& name, const SceneOptions& options) {
-  YAML::Node document;
-  try {
-    document = YAML::Load(std::string(text));
-  } catch (const YAML::Exception& e) {
-    throw SceneError(name, e.mark.line + 1, e.mark.column + 1, "",
-                     fmt::format("this is not valid YAML: {}", e.msg));
+  scene_internal::CheckSceneText(text, name);
+  for (const auto& [key, value] : options.parameter_overrides) {
+    scene_internal::CheckSceneText(key + "=" + value, "command line --set");
   }
-  return scene_internal::ReadSceneDocument(document, name, options);
+  const YAML::Node document = scene_internal::ParseSingleDocument(text, name);
+  try {
+    return scene_internal::ReadSceneDocument(document, name, options);
+  } catch (const YAML::Exception& e) {
+    // A yaml-cpp error the reader did not foresee still points at the scene, never exit 1.
+    throw SceneError(name, e.mark.line + 1, e.mark.column + 1, "", e.msg);
+  }
 }
 
 namespace {
 YAML::Node ParseOptionText(std::string_view text, std::string_view option) {
+  scene_internal::CheckSceneText(text, fmt::format("command line {}", option));
   try {
     return YAML::Load(std::string(text));
   } catch (const YAML::Exception& e) {
@@ -752,11 +767,8 @@ Mat3 ReadRotationOption(const Scene& scene, std::string_view text, std::string_v
 }
 
 Scene LoadSceneFile(const std::string& path, const SceneOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path, 0, 0, "", "cannot open the file (does it exist?)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return LoadSceneText(buffer.str(), path, options);
+  return LoadSceneText(scene_internal::ReadSceneFileText(path, options.max_scene_bytes), path,
+                       options);
 }
 
 }  // namespace chasles

@@ -9,9 +9,9 @@
 
 namespace chasles {
 
-/// Writes `content` to `path` atomically (same directory temporary + rename). Throws
-/// std::runtime_error naming the path and the system's reason on failure; the temporary is
-/// removed then.
+/// Writes `content` to `path` atomically (same directory temporary + rename; an OutputSet of
+/// one file, see output_set.h). Throws InputError (a std::runtime_error) naming the path and
+/// the reason on failure; the temporary is removed then.
 void WriteFileAtomically(const std::string& path, std::string_view content);
 
 }  // namespace chasles

@@ -4,6 +4,7 @@
 /// in its body's frame. Everything here is SI; units exist only in the file and in reports.
 /// The format is documented key by key in docs/scene-format.md.
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -74,10 +75,17 @@ struct Scene {
   SceneDynamics dynamics;
 };
 
+/// The default cap on a scene file's size: 16 MiB, some 200 000 parts, which load in a few
+/// seconds and well under 2 GB (docs/reliability-io.md).
+inline constexpr size_t kDefaultMaxSceneBytes = size_t{16} << 20;
+
 struct SceneOptions {
   /// Parameter overrides NAME=EXPRESSION (command line --set), applied before evaluation; each
   /// NAME must be a parameter of the scene.
   std::vector<std::pair<std::string, std::string>> parameter_overrides;
+  /// The largest scene file read (bytes); a larger one is refused before it is parsed, and a
+  /// pipe or device is read no further (command line --max-scene-bytes).
+  size_t max_scene_bytes = kDefaultMaxSceneBytes;
 };
 
 /// Reads and validates a scene file. Throws SceneError (an InputError) with file, line, column

@@ -1,5 +1,7 @@
 #include "chasles/io/atomic_file.h"
 
+#include "chasles/error.h"
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -33,9 +35,9 @@ TEST(AtomicFile, WritesAndReplacesLeavingNoTemporary) {
 }
 
 TEST(AtomicFile, UnwritablePlaceIsAnErrorNamingThePath) {
-  EXPECT_THAT([] { WriteFileAtomically("/nonexistent-dir/x/report.txt", "data"); },
-              ::testing::ThrowsMessage<std::runtime_error>(
-                  ::testing::HasSubstr("/nonexistent-dir/x/report.txt")));
+  EXPECT_THAT(
+      [] { WriteFileAtomically("/nonexistent-dir/x/report.txt", "data"); },
+      ::testing::ThrowsMessage<InputError>(::testing::HasSubstr("/nonexistent-dir/x/report.txt")));
 }
 
 }  // namespace
