@@ -169,10 +169,8 @@ Solved SolveScene(const Scene& scene) {
       }
     }
     return s;
-  } catch (const SceneError&) {
-    throw;
   } catch (const InputError& e) {
-    ThrowAtConstraintEntry(scene, e);
+    ThrowAtSceneEntry(scene, e);
   }
 }
 
