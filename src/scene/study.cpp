@@ -564,9 +564,11 @@ std::vector<bool> HeldBodies(const Scene& scene) {
 /// span within the step limit. Along the spring's line the two free bodies oscillate at
 /// ω² = k (1/m_a + 1/m_b) at least (the Rayleigh quotient of the stiffness k (u_a - u_b)² over
 /// the kinetic m_a u_a² + m_b u_b²: rotations and other springs only raise the highest
-/// frequency), and an explicit Runge-Kutta step is stable only for h ω below about 3.3
-/// (Dormand-Prince 5(4); Hairer & Wanner, Solving ODE II, IV.2): at least span ω / 4 steps.
-/// A damper adds the rate c (1/m_a + 1/m_b) on the real axis, with the same bound.
+/// frequency). The stability region of Dormand-Prince 5(4), |R(hλ)| <= 1 with
+/// R(z) = Σ_{k<=5} z^k/k! + z^6/600, lies inside |hλ| <= 3.4 (it reaches -3.3 on the real axis
+/// and only ±i on the imaginary one; Hairer & Wanner, Solving ODE II, IV.2), so the step must
+/// keep h ω below 4: at least span ω / 4 steps. A damper adds the rate c (1/m_a + 1/m_b) on
+/// the real axis, with the same bound.
 void CheckSpringStiffness(const Scene& scene, const RunLimits& limits, double span) {
   if (scene.dynamics.simulation.integrator != IntegratorKind::kDormandPrince5) return;
   const std::vector<bool> held = HeldBodies(scene);
