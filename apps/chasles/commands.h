@@ -3,6 +3,7 @@
 /// The subcommands of the chasles program, one file each. Each Add...Command registers its
 /// options on the app and returns the subcommand; Run... does the work once parsed.
 
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -51,15 +52,25 @@ struct SimulateArgs {
   std::vector<std::string> columns;  // CSV columns or groups, replacing the scene's output
   std::string units;                 // text report units; "" = the scene's
   bool strict = false;               // a failed check exits with kExitCheckFailed
+  // Limits on the run's work, replacing the scene's simulation keys (0 / NaN: the scene's).
+  std::int64_t max_steps = 0;
+  std::int64_t max_rows = 0;
+  double timeout = std::numeric_limits<double>::quiet_NaN();   // [s]; 0: none
+  double min_step = std::numeric_limits<double>::quiet_NaN();  // [s]
+  bool quiet = false;                                          // no progress on stderr
+  double progress_interval = 10.0;  // [s] between progress lines off a terminal
 };
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args);
 int RunSimulate(const SimulateArgs& args);
 
 struct SolveArgs {
   SceneArgs scene;
-  std::string sweep;            // NAME=START:STOP:COUNT, or "" for one solve
-  std::string format = "text";  // text | json
-  bool strict = false;          // a failed check exits with kExitCheckFailed
+  std::string sweep;                // NAME=START:STOP:COUNT, or "" for one solve
+  std::string format = "text";      // text | json
+  bool strict = false;              // a failed check exits with kExitCheckFailed
+  std::int64_t max_rows = 0;        // most sweep values; 0: the default limit
+  bool quiet = false;               // no progress on stderr
+  double progress_interval = 10.0;  // [s] between progress lines off a terminal
 };
 CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args);
 int RunSolve(const SolveArgs& args);

@@ -1,5 +1,3 @@
-#include <unistd.h>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,7 +15,9 @@
 #include "chasles/scene/study.h"
 #include "chasles/scene/units.h"
 #include "commands.h"
+#include "progress.h"
 #include "report_guard.h"
+#include "run_limits.h"
 #include "scene_args.h"
 
 namespace chasles::cli {
@@ -517,13 +517,15 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
   cmd->add_option("--units", args.units,
                   "Units of the text report: SI, US (in, lb, lbf), or a list such as 'ft,slug' "
                   "(default: the scene's own units; the CSV and JSON are always SI)");
+  AddRunLimitOptions(*cmd, args);
   cmd->footer(
       "Examples:\n"
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
       "  chasles simulate examples/projectile-drag.yaml --set 'c=0.2 N*s/m' --format json\n"
       "  chasles simulate examples/spring-mass.yaml --until 20\n"
-      "Progress is shown on a terminal for runs longer than a second. Scene keys: "
-      "docs/scene-format.md, section Dynamics.\n"
+      "Progress goes to standard error: redrawn on a terminal after the first second, one "
+      "line every 10 s otherwise (--quiet: none). Scene keys: docs/scene-format.md, section "
+      "Dynamics; limits: docs/reliability-limits.md.\n"
       "Exit codes: 0 success, 2 bad input, 3 a check failed with --strict, 1 internal error.");
   return cmd;
 }
@@ -544,27 +546,15 @@ int RunSimulate(const SimulateArgs& args) {
     }
     options.until = args.until;
   }
-  const bool tty = ::isatty(::fileno(stderr)) != 0;
-  const auto start = std::chrono::steady_clock::now();
-  auto last = start;
-  bool shown = false;
+  ApplyRunLimitOptions(args, options);
   const double t_end =
       std::isfinite(options.until) ? options.until : scene.dynamics.simulation.until;
-  if (tty) {
-    options.progress = [&](double t) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - start < std::chrono::seconds(1) || now - last < std::chrono::milliseconds(200)) {
-        return;
-      }
-      last = now;
-      shown = true;
-      std::fprintf(stderr, "\r  simulating: t = %.6g s of %.6g s (%3.0f%%)", t, t_end,
-                   100.0 * t / t_end);
-      std::fflush(stderr);
-    };
+  StudyResult r;
+  {
+    Progress progress("simulating", "s", args.quiet, args.progress_interval);
+    options.progress = [&](double t) { progress.Update(t, t_end); };
+    r = RunStudy(scene, options);
   }
-  const StudyResult r = RunStudy(scene, options);
-  if (shown) std::fprintf(stderr, "\r%60s\r", "");
 
   const std::filesystem::path dir = args.out_dir.empty() ? "." : args.out_dir;
   CreateOutputFolder(dir.string());

@@ -28,6 +28,7 @@
 #include "chasles/scene/study.h"
 #include "chasles/suggest.h"
 #include "commands.h"
+#include "progress.h"
 #include "report_guard.h"
 #include "scene_args.h"
 
@@ -170,10 +171,8 @@ Solved SolveScene(const Scene& scene) {
       }
     }
     return s;
-  } catch (const SceneError&) {
-    throw;
   } catch (const InputError& e) {
-    ThrowAtConstraintEntry(scene, e);
+    ThrowAtSceneEntry(scene, e);
   }
 }
 
@@ -502,6 +501,15 @@ CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args) {
   cmd->add_flag("--strict", args.strict,
                 "Exit with code 3 when a check of the answer fails (the report's Checks section; "
                 "otherwise a failed check is only a warning)");
+  cmd->add_option("--max-rows", args.max_rows,
+                  "Most values of a sweep (its rows; default 1000000); a larger COUNT is refused")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--quiet", args.quiet,
+                "No progress of a sweep on standard error (otherwise: redrawn on a terminal, one "
+                "line every 10 s off it)");
+  cmd->add_option("--progress-interval", args.progress_interval,
+                  "Seconds between progress lines when standard error is not a terminal "
+                  "(default 10)");
   cmd->footer(
       "Examples:\n"
       "  chasles solve examples/example-8.3-cylinder-incline.yaml\n"
@@ -526,6 +534,13 @@ int RunSolve(const SolveArgs& args) {
     return args.strict && !s.certificate.passed() ? kExitCheckFailed : 0;
   }
   const Sweep sweep = ParseSweep(args.sweep);
+  const std::int64_t max_rows = args.max_rows > 0 ? args.max_rows : kDefaultMaxRows;
+  if (sweep.count > max_rows) {
+    throw SceneError("command line", 0, 0, "--sweep",
+                     fmt::format("COUNT {} is more than the limit of {} rows; raise the limit "
+                                 "with --max-rows",
+                                 sweep.count, max_rows));
+  }
   {
     const Scene scene = LoadScene(args.scene);
     std::vector<std::string> known;
@@ -539,7 +554,13 @@ int RunSolve(const SolveArgs& args) {
   std::vector<std::string> names;
   std::vector<std::vector<double>> rows;
   bool failed = false;
+  if (!(args.progress_interval > 0) || !std::isfinite(args.progress_interval)) {
+    throw InputError(fmt::format("--progress-interval must be a positive time in seconds, got {}",
+                                 args.progress_interval));
+  }
+  Progress progress("solve --sweep", "", args.quiet, args.progress_interval);
   for (int k = 0; k < sweep.count; ++k) {
+    progress.Update(k, sweep.count);
     // The k-th value as an expression, so START and STOP keep their units.
     SceneArgs a = args.scene;
     a.set.push_back(fmt::format("{}=({}) + (({}) - ({})) * {} / {}", sweep.name, sweep.start,

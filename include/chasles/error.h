@@ -17,4 +17,18 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A run reached one of its limits on work: the number of integration steps, of output rows,
+/// the wall time, or the smallest step the adaptive integrator may take. Bad input too (the
+/// problem as posed needs more than the limit allows): the scene layer adds where the limit is
+/// set and how to raise it.
+class LimitError : public InputError {
+ public:
+  enum class Limit { kSteps, kRows, kTime, kMinStep };
+  LimitError(Limit limit, const std::string& message) : InputError(message), limit_(limit) {}
+  Limit limit() const { return limit_; }
+
+ private:
+  Limit limit_;
+};
+
 }  // namespace chasles

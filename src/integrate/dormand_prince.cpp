@@ -148,11 +148,14 @@ void DormandPrince5Integrator::Step(double t_limit) {
     const double fac = std::isfinite(err) ? std::max(0.2, 0.9 * std::pow(err, -0.2)) : 0.2;
     h *= fac;
     if (h < options_.min_step) {
-      throw InputError(fmt::format(
-          "adaptive step fell below {:.3g} s at t = {:.17g} s (error estimate {:.3g}); the "
-          "motion is singular or too stiff here (check for bodies passing through a force "
-          "centre or extreme stiffness)",
-          options_.min_step, t, err));
+      // Derivatives are finite here (OdeSystem::Derivative stops the run on a non-finite
+      // one), so the error estimate is a number: the motion needs ever shorter steps.
+      throw LimitError(LimitError::Limit::kMinStep,
+                       fmt::format("the adaptive step fell below the smallest step {:.3g} s at "
+                                   "t = {:.9g} s (error estimate {:.3g}); the motion is singular "
+                                   "or too stiff here (a body passing through a force centre, "
+                                   "an extreme stiffness or mass ratio)",
+                                   options_.min_step, t, err));
     }
   }
   const double err = std::max(work_->err_norm, 1e-10);

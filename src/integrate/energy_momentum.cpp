@@ -10,6 +10,7 @@
 #include "chasles/error.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/math/rotation.h"
+#include "integrate/internal/ode.h"
 
 namespace chasles {
 
@@ -95,6 +96,7 @@ void EnergyMomentumIntegrator::Step(State& s, double h) {
     }
     CalcKinematics(model_, s, data_);
     CalcForces(model_, s, data_);
+    internal::CheckFiniteEvaluation(model_, s, data_, false);
     ++stats_.function_evaluations;
   }
   // Trapezoidal force integrals: first half with the start-of-step outputs.
@@ -114,6 +116,7 @@ void EnergyMomentumIntegrator::Step(State& s, double h) {
   s.t += h;
   CalcKinematics(model_, s, data_);
   CalcForces(model_, s, data_);
+  internal::CheckFiniteEvaluation(model_, s, data_, false);
   ++stats_.function_evaluations;
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);

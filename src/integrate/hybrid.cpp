@@ -185,6 +185,7 @@ class HybridRun {
       bool restart = false;
       while (dp.t() < o_.t_end && !restart) {
         dp.Step(o_.t_end);
+        if (o_.on_step) o_.on_step(dp.t());
         const double ta = dp.t_previous(), tb = dp.t();
         EvalFunctions(model_, dp.state(), fns, data_, g1);
         normal_velocities(vn1);

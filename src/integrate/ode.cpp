@@ -2,12 +2,101 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/contact_projection.h"
 #include "chasles/dynamics/newton_euler.h"
+#include "chasles/error.h"
 #include "chasles/math/quaternion.h"
 
 namespace chasles::internal {
+
+namespace {
+
+std::string Show(const Vec3& v) {
+  return fmt::format("[{:.6g}, {:.6g}, {:.6g}]", v.x(), v.y(), v.z());
+}
+
+// "infinite" when a component is infinite (a NaN next to it usually comes from it, e.g.
+// 0 * inf in a rotation), else "NaN".
+const char* Kind(std::initializer_list<Vec3> vectors, std::initializer_list<double> values = {}) {
+  for (const Vec3& v : vectors) {
+    for (int i = 0; i < 3; ++i) {
+      if (std::isinf(v[i])) return "infinite";
+    }
+  }
+  for (double v : values) {
+    if (std::isinf(v)) return "infinite";
+  }
+  return "NaN";
+}
+
+}  // namespace
+
+void CheckFiniteEvaluation(const Model& model, const State& state, const Data& data,
+                           bool accelerations) {
+  const double t = state.t;
+  // Inputs before outputs: a body whose state is already not finite makes every force on it so.
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyState& s = state.bodies[static_cast<size_t>(b)];
+    if (!(s.p_WBcm.allFinite() && s.v_WBcm_W.allFinite() && s.w_WB_B.allFinite() &&
+          s.q_WB.coeffs().allFinite())) {
+      throw InputError(fmt::format(
+          "the motion of body '{}' became {} at t = {:.9g} s (position {}, velocity {})",
+          model.body(b).name(), Kind({s.p_WBcm, s.v_WBcm_W, s.w_WB_B}), t, Show(s.p_WBcm),
+          Show(s.v_WBcm_W)));
+    }
+  }
+  for (int e = 0; e < model.num_force_elements() && e < static_cast<int>(data.elements.size());
+       ++e) {
+    const ForceElementOutput& o = data.elements[static_cast<size_t>(e)];
+    if (o.force_W.allFinite() && o.moment_Wo_W.allFinite() && std::isfinite(o.power)) continue;
+    throw InputError(fmt::format(
+        "force element '{}' evaluated to {} at t = {:.9g} s (force {} N, moment about the "
+        "origin {} N*m): check its expression or the bodies' positions "
+        "(a body at a force centre, a logarithm or a division by zero)",
+        model.force_element(e).name(), Kind({o.force_W, o.moment_Wo_W}, {o.power}), t,
+        Show(o.force_W), Show(o.moment_Wo_W)));
+  }
+  for (int c = 0; c < model.num_constraints() && c < static_cast<int>(data.constraints.size());
+       ++c) {
+    const ConstraintOutput& o = data.constraints[static_cast<size_t>(c)];
+    if (o.F_Jc_W.allFinite() && o.M_Jc_W.allFinite() && std::isfinite(o.power)) continue;
+    throw InputError(fmt::format(
+        "constraint '{}': its reaction evaluated to {} at t = {:.9g} s (force {} N, moment {} "
+        "N*m): check the masses and inertias it joins and its driver",
+        model.constraint(c).name(), Kind({o.F_Jc_W, o.M_Jc_W}, {o.power}), t, Show(o.F_Jc_W),
+        Show(o.M_Jc_W)));
+  }
+  for (int p = 0;
+       p < model.num_contact_points() && p < static_cast<int>(data.contact_points.size()); ++p) {
+    const ContactPointOutput& o = data.contact_points[static_cast<size_t>(p)];
+    if (std::isfinite(o.normal_force) && o.friction_force_W.allFinite() &&
+        std::isfinite(o.friction_power) && std::isfinite(o.rolling_power)) {
+      continue;
+    }
+    throw InputError(fmt::format(
+        "contact point '{}': its force evaluated to {} at t = {:.9g} s (normal {:.6g} N, "
+        "friction {} N)",
+        model.contact_point_name(p),
+        Kind({o.friction_force_W}, {o.normal_force, o.friction_power, o.rolling_power}), t,
+        o.normal_force, Show(o.friction_force_W)));
+  }
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    const bool forces =
+        i >= data.F_Bcm_W.size() || (data.F_Bcm_W[i].allFinite() && data.M_Bcm_W[i].allFinite());
+    const bool acc = !accelerations || i >= data.a_WBcm_W.size() ||
+                     (data.a_WBcm_W[i].allFinite() && data.wdot_WB_B[i].allFinite());
+    if (forces && acc) continue;
+    throw InputError(
+        fmt::format("the {} of body '{}' became non-finite at t = {:.9g} s (mass {:.6g} kg): check "
+                    "its mass and inertia against the forces on it",
+                    forces ? "acceleration" : "resultant force", model.body(b).name(), t,
+                    model.body(b).mass()));
+  }
+}
 
 OdeSystem::OdeSystem(const Model& model)
     : model_(model),
@@ -121,6 +210,11 @@ void OdeSystem::Derivative(double t, const Vector& y, Vector& ydot) {
     const ContactPointOutput& out = data_.contact_points[static_cast<size_t>(p)];
     ydot[contact_offset_ + 2 * p] = out.friction_power;
     ydot[contact_offset_ + 2 * p + 1] = out.rolling_power;
+  }
+  // A non-finite derivative: name what made it (a rejected step could never recover from it).
+  if (!ydot.allFinite()) {
+    CheckFiniteEvaluation(model_, state_, data_, true);
+    throw InputError(fmt::format("the equations of motion became non-finite at t = {:.9g} s", t));
   }
 }
 

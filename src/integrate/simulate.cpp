@@ -83,6 +83,7 @@ SimulationResult RunAdaptive(const Model& model, const State& initial, const Sim
   State scratch = dp.state();
   while (dp.t() < o.t_end) {
     dp.Step(o.t_end);
+    if (o.on_step) o.on_step(dp.t());
     const double t0 = dp.t_previous(), t1 = dp.t();
     // Events in this step, earliest first.
     struct Hit {
@@ -156,7 +157,10 @@ SimulationResult RunFixed(const Model& model, const State& initial, const Simula
     const double seg = t_seg_end - s.t;
     const auto n = std::max(1LL, static_cast<long long>(std::ceil(seg / h - 1e-9)));
     const double hs = seg / static_cast<double>(n);
-    for (long long i = 0; i < n; ++i) integ.Step(s, hs);
+    for (long long i = 0; i < n; ++i) {
+      integ.Step(s, hs);
+      if (o.on_step) o.on_step(s.t);
+    }
     s.t = t_seg_end;  // no drift of the time grid by round-off
     if (t_seg_end >= o.t_end) break;
     sampler.Emit(s);

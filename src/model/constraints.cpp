@@ -193,7 +193,7 @@ Constraint::Constraint(std::string name, BodyIndex parent, BodyIndex child)
   }
   if (parent == child) {
     throw InputError(fmt::format(
-        "constraint '{}': parent and child are the same body ({}); a constraint joins two "
+        "constraint '{}': parent and child are the same body (index {}); a constraint joins two "
         "different bodies or a body and the world",
         name_, child));
   }

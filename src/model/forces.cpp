@@ -161,7 +161,7 @@ SpringDamper::SpringDamper(std::string name, BodyIndex body_a, const Vec3& p_AoP
   }
   if (body_a == body_b) {
     throw InputError(fmt::format(
-        "force element '{}': both ends are on body {}; a spring inside one rigid body does "
+        "force element '{}': both ends are on body index {}; a spring inside one rigid body does "
         "nothing",
         this->name(), body_a));
   }

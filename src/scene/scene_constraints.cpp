@@ -33,6 +33,9 @@ const SceneSpot* SceneConstraints::Find(const std::string& name) const {
   for (const auto& d : drivers) {
     if (d.name == name) return &d.where;
   }
+  for (const auto& g : gears) {
+    if (g.name == name) return &g.where;
+  }
   return nullptr;
 }
 
@@ -280,6 +283,7 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
           at, {"name", "type", "parent", "child", "parent_circle", "child_circle", "keep_contact"},
           "a gear mesh");
       SceneGear g;
+      g.where = Spot(at);
       g.name = ConstraintName(at, "gear", i, taken);
       const std::string what = fmt::format("gear mesh '{}'", g.name);
       const At type_at = report_.Require(at, "type", what);

@@ -198,6 +198,7 @@ void SceneReader::ReadContacts(const At& root, Scene& scene) {
                       "mu_s", "mu_k", "mu_r", "restitution", "restitution_law"},
                      "a contact");
     SceneContact c;
+    c.where = SpotAt(at);
     c.name =
         at.Has("name") ? report_.Text(at.Child("name"), "a name") : fmt::format("contact{}", i + 1);
     if (std::find(taken.begin(), taken.end(), c.name) != taken.end()) {

@@ -59,12 +59,32 @@ int SceneVectorExpression::variable_count() const {
                    components[2].variable_count()});
 }
 
+const SceneSpot& SceneSimulation::Spot(std::string_view key) const {
+  const auto it = keys.find(key);
+  return it != keys.end() ? it->second : where;
+}
+
 Vec3 SceneVectorExpression::Evaluate(const std::vector<double>& variables) const {
   const std::span<const double> v(variables.data(), variables.size());
   return {components[0].Evaluate(v), components[1].Evaluate(v), components[2].Evaluate(v)};
 }
 
 namespace scene_internal {
+
+SceneSpot KeySpotAt(const At& map, std::string_view key) {
+  const std::string path = map.Child(key).path;
+  if (map.node.IsMap()) {
+    for (const auto& kv : map.node) {
+      if (kv.first.IsScalar() && kv.first.Scalar() == key) {
+        const YAML::Mark mark = kv.first.Mark();
+        return {mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0, path};
+      }
+    }
+  }
+  SceneSpot spot = SpotAt(map.Child(key));
+  spot.key = path;
+  return spot;
+}
 
 std::optional<Symbol> SceneReader::ResolveStateSymbol(const At& at, std::string_view name) {
   if (auto it = state_variables_.find(name); it != state_variables_.end()) {
@@ -208,6 +228,7 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
                                  KindOf(at.node)));
   }
   SceneForce f;
+  f.where = SpotAt(at);
   const std::string type = report_.Text(report_.Require(at, "type", "a force element"),
                                         "force, moment, spring, drag or central_gravity");
   const std::vector<std::string> types = {"force", "moment", "spring", "drag", "central_gravity"};
@@ -251,6 +272,13 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
       report_.Fail(at.Child("from"), "'from' must be a body end; put the world point in 'to'");
     }
     end(report_.Require(at, "to", what), f.body_b, f.p_BoQ_B);
+    if (f.body_b == f.body) {
+      report_.Fail(at.Child("to"),
+                   fmt::format("both ends of {} are on body '{}'; a spring inside one rigid body "
+                               "exerts no net force or moment on it: put one end on another body "
+                               "or on the world ({{world: [x, y, z]}})",
+                               what, scene.bodies[static_cast<size_t>(f.body)].name));
+    }
     f.rest_length =
         at.Has("rest_length") ? Value(at.Child("rest_length"), kLength, "the rest length") : 0.0;
     f.stiffness =
@@ -284,6 +312,7 @@ SceneEvent SceneReader::ReadEvent(const At& at, size_t index, const Scene& scene
   report_.CheckMap(at, {"name", "when", "crosses", "direction", "action", "contact", "change"},
                    "an event");
   SceneEvent e;
+  e.where = SpotAt(at);
   e.name = at.Has("name") ? report_.Text(at.Child("name"), "a name")
                           : fmt::format("event {}", index + 1);
   if (at.Has("contact") || at.Has("change")) {
@@ -332,10 +361,37 @@ SceneEvent SceneReader::ReadEvent(const At& at, size_t index, const Scene& scene
 }
 
 void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
-  report_.CheckMap(
-      at, {"until", "integrator", "tolerance", "absolute_tolerance", "step", "output_interval"},
-      "the simulation settings");
+  report_.CheckMap(at,
+                   {"until", "integrator", "tolerance", "absolute_tolerance", "step",
+                    "output_interval", "max_steps", "max_rows", "timeout", "min_step"},
+                   "the simulation settings");
   sim.present = true;
+  if (at.node.IsMap()) {
+    for (const auto& kv : at.node) {
+      const std::string key = kv.first.Scalar();
+      sim.keys[key] = KeySpotAt(at, key);
+    }
+  }
+  // A whole number >= 1 (a count of steps or rows), read as any value (expressions allowed).
+  auto count = [&](const char* key, std::string_view what) {
+    const At c = at.Child(key);
+    const double v = Value(c, kDimensionless, what);
+    if (!(v >= 1) || v != std::floor(v) || v > 9e18) {
+      report_.Fail(c, fmt::format("{} must be a whole number >= 1, got {:.6g}", what, v));
+    }
+    return static_cast<std::int64_t>(v);
+  };
+  if (at.Has("max_steps")) sim.max_steps = count("max_steps", "the most integration steps");
+  if (at.Has("max_rows")) sim.max_rows = count("max_rows", "the most output rows");
+  if (at.Has("timeout")) {
+    sim.timeout = Value(at.Child("timeout"), kTime, "the wall-time limit");
+    if (!(sim.timeout >= 0)) {
+      report_.Fail(
+          at.Child("timeout"),
+          fmt::format("the wall-time limit must be >= 0 s (0: none), got {:.6g} s", sim.timeout));
+    }
+  }
+  if (at.Has("min_step")) sim.min_step = PositiveValue(at.Child("min_step"), kTime, "min_step");
   if (at.Has("until")) sim.until = PositiveValue(at.Child("until"), kTime, "the end time");
   if (at.Has("integrator")) {
     const std::string name =
@@ -361,6 +417,14 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
                    "accuracy is set by 'step'");
     }
     sim.rtol = PositiveValue(at.Child("tolerance"), kDimensionless, "the tolerance");
+    if (!(sim.rtol >= kMinTolerance && sim.rtol <= kMaxTolerance)) {
+      report_.Fail(
+          at.Child("tolerance"),
+          fmt::format("the tolerance {:.3g} is out of range: the accepted range is {:g} "
+                      "to {:g} (below {:g} double precision cannot deliver it; above "
+                      "{:g} the answer has no digits worth reporting)",
+                      sim.rtol, kMinTolerance, kMaxTolerance, kMinTolerance, kMaxTolerance));
+    }
     sim.atol = 1e-2 * sim.rtol;
   }
   if (at.Has("absolute_tolerance")) {
@@ -499,7 +563,10 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
     }
   }
 
-  if (root.Has("simulation")) ReadSimulation(root.Child("simulation"), d.simulation);
+  if (root.Has("simulation")) {
+    d.simulation.where = KeySpotAt(root, "simulation");
+    ReadSimulation(root.Child("simulation"), d.simulation);
+  }
 
   if (root.Has("events")) {
     const At events = root.Child("events");

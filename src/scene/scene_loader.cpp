@@ -312,6 +312,7 @@ SceneBody SceneReader::ReadBody(const At& at, size_t index) {
   report_.CheckMap(at, kBodyKeys, "a body");
   SceneBody body;
   body.line = at.node.Mark().line + 1;
+  body.where = {body.line, at.node.Mark().column + 1, at.path};
   body.name = at.Has("name") ? report_.Text(at.Child("name"), "a body name")
                              : fmt::format("body {}", index + 1);
   if (at.Has("material") && at.Has("density")) {
@@ -538,7 +539,14 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
     } catch (const InputError& e) {
       report_.Fail(at, fmt::format("{}: {}", what, e.what()));
     }
-    local = ReadShapeMass(at, body_at, *geometry, what, part);
+    try {
+      local = ReadShapeMass(at, body_at, *geometry, what, part);
+    } catch (const SceneError&) {
+      throw;
+    } catch (const InputError& e) {
+      // The mass properties themselves out of range (a mass that overflows to inf).
+      report_.Fail(at, fmt::format("{}: {}", what, e.what()));
+    }
   }
 
   if (at.Has("subtract")) {

@@ -4,6 +4,7 @@
 #include "chasles/scene/study.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -467,6 +468,177 @@ double EndTime(const Scene& scene, double until) {
   return t;
 }
 
+/// The limits on a run's work (docs/reliability-limits.md): the command line's, else the
+/// scene's, else the defaults.
+struct RunLimits {
+  std::int64_t max_steps = kDefaultMaxSteps;
+  std::int64_t max_rows = kDefaultMaxRows;
+  /// Wall time [s]; 0: none.
+  double timeout = 0.0;
+  /// Smallest step [s].
+  double min_step = 0.0;
+};
+
+RunLimits ResolveLimits(const Scene& scene, const StudyOptions& o, double span) {
+  const SceneSimulation& sim = scene.dynamics.simulation;
+  RunLimits l;
+  l.max_steps = o.max_steps > 0 ? o.max_steps : sim.max_steps;
+  l.max_rows = o.max_rows > 0 ? o.max_rows : sim.max_rows;
+  l.timeout = std::isfinite(o.timeout) ? o.timeout : sim.timeout;
+  l.min_step = std::isfinite(o.min_step)     ? o.min_step
+               : std::isfinite(sim.min_step) ? sim.min_step
+                                             : kDefaultMinStepFraction * span;
+  return l;
+}
+
+/// A limit reached, or certain to be: a SceneError at `spot` (a key of `simulation`, the
+/// block, or the entry to blame) saying what happened, then `alternative` (another way out,
+/// ending in "or "), and how to change the limit: scene key `key`, command-line flag `flag`.
+[[noreturn]] void ThrowLimit(const Scene& scene, const SceneSpot& spot, std::string_view key,
+                             std::string_view flag, const std::string& what,
+                             std::string_view alternative = "", std::string_view verb = "raise") {
+  throw SceneError(scene.file, spot.line, spot.column, spot.key,
+                   fmt::format("{}; {}{} the limit with {} or '{}:' under 'simulation:'", what,
+                               alternative, verb, flag, key));
+}
+
+/// Largest magnitude of a motion in SI (position, speed) that a run accepts: beyond it the
+/// energies (½ m v²) and moments (r × F) of ordinary bodies leave double precision, so such a
+/// motion is a blown-up or mistyped input (CheckFinite stops a run that gets there).
+constexpr double kMotionScale = 1e150;
+/// The accepted range of a body's mass [kg] and of the trace of its inertia [kg·m²]: with
+/// forces and lengths of any physical size the accelerations F/m and I⁻¹M stay far inside
+/// double precision (1e-300 kg would turn 1 N into 1e300 m/s²).
+constexpr double kMinBodyScale = 1e-100, kMaxBodyScale = 1e100;
+
+/// Inputs no run can integrate, refused before it starts at their entries: a body's mass or
+/// inertia outside [1e-100, 1e100] SI, a driver whose motion over the span [0, t_end] exceeds
+/// kMotionScale (f = f0 + f1 t + ½ f2 t², f' = f1 + f2 t).
+void CheckPhysicalInputs(const Scene& scene, double t_end) {
+  for (const SceneBody& b : scene.bodies) {
+    const double m = b.mass_properties.mass();
+    const double tr = b.mass_properties.I_BBcm_B().Trace();
+    const bool m_ok = m >= kMinBodyScale && m <= kMaxBodyScale;
+    if (!m_ok || !(tr >= kMinBodyScale && tr <= kMaxBodyScale)) {
+      throw SceneError(
+          scene.file, b.where.line, b.where.column, b.where.key,
+          fmt::format("body '{}': its {} is {:.6g} {}; a body in motion needs a "
+                      "mass and an inertia (trace) between {:g} and {:g} in SI, so "
+                      "that forces divided by them stay finite",
+                      b.name, m_ok ? "moment of inertia (trace)" : "mass", m_ok ? tr : m,
+                      m_ok ? "kg*m^2" : "kg", kMinBodyScale, kMaxBodyScale));
+    }
+  }
+  for (const SceneDriver& d : scene.dynamics.constraints.drivers) {
+    const double f = std::abs(d.f0) + std::abs(d.f1) * t_end + 0.5 * std::abs(d.f2) * t_end * t_end;
+    const double v = std::abs(d.f1) + std::abs(d.f2) * t_end;
+    const double a = std::abs(d.f2);
+    if (f <= kMotionScale && v <= kMotionScale && a <= kMotionScale) continue;
+    throw SceneError(
+        scene.file, d.where.line, d.where.column, d.where.key,
+        fmt::format("driver '{}': its motion reaches {:.3g} (position), {:.3g} (rate), {:.3g} "
+                    "(acceleration) in SI by t = {:.6g} s; a run accepts motions up to {:g} in "
+                    "SI (beyond, energies and reactions leave double precision): check f0, f1, "
+                    "f2 and their units",
+                    d.name, f, v, a, t_end, kMotionScale));
+  }
+}
+
+/// Bodies held by a constraint or touching through a contact: a spring's stiffness estimate
+/// below is a lower bound only for bodies free of them.
+std::vector<bool> HeldBodies(const Scene& scene) {
+  std::vector<bool> held(scene.bodies.size(), false);
+  const auto hold = [&](int b) {
+    if (b >= 0 && b < static_cast<int>(held.size())) held[static_cast<size_t>(b)] = true;
+  };
+  const SceneConstraints& c = scene.dynamics.constraints;
+  for (const auto& j : c.joints) hold(j.parent), hold(j.child);
+  for (const auto& r : c.rolling) hold(r.on), hold(r.body);
+  for (const auto& d : c.drivers) hold(d.parent), hold(d.child);
+  for (const auto& g : c.gears) hold(g.parent), hold(g.child);
+  for (const auto& k : scene.dynamics.contacts.contacts) hold(k.body), hold(k.other_body);
+  return held;
+}
+
+/// Refuses, before the run, a spring so stiff that the adaptive integrator cannot cross the
+/// span within the step limit. Along the spring's line the two free bodies oscillate at
+/// ω² = k (1/m_a + 1/m_b) at least (the Rayleigh quotient of the stiffness k (u_a - u_b)² over
+/// the kinetic m_a u_a² + m_b u_b²: rotations and other springs only raise the highest
+/// frequency). The stability region of Dormand-Prince 5(4), |R(hλ)| <= 1 with
+/// R(z) = Σ_{k<=5} z^k/k! + z^6/600, lies inside |hλ| <= 3.4 (it reaches -3.3 on the real axis
+/// and only ±i on the imaginary one; Hairer & Wanner, Solving ODE II, IV.2), so the step must
+/// keep h ω below 4: at least span ω / 4 steps. A damper adds the rate c (1/m_a + 1/m_b) on
+/// the real axis, with the same bound.
+void CheckSpringStiffness(const Scene& scene, const RunLimits& limits, double span) {
+  if (scene.dynamics.simulation.integrator != IntegratorKind::kDormandPrince5) return;
+  const std::vector<bool> held = HeldBodies(scene);
+  for (const SceneForce& f : scene.dynamics.forces) {
+    if (f.type != SceneForce::Type::kSpring) continue;
+    const auto inv_mass = [&](int b) {
+      return b == kWorld ? 0.0 : 1.0 / scene.bodies[static_cast<size_t>(b)].mass_properties.mass();
+    };
+    if (held[static_cast<size_t>(f.body)] ||
+        (f.body_b != kWorld && held[static_cast<size_t>(f.body_b)])) {
+      continue;
+    }
+    const double s = inv_mass(f.body) + inv_mass(f.body_b);
+    const double rate = std::max(std::sqrt(f.stiffness * s), f.damping * s);
+    const double steps = span * rate / 4.0;
+    if (!(steps > static_cast<double>(limits.max_steps))) continue;
+    ThrowLimit(scene, f.where, "max_steps", "--max-steps",
+               fmt::format("spring '{}' is too stiff for the step limit: its bodies oscillate "
+                           "at {:.3g} rad/s or faster, an explicit step must be shorter than "
+                           "about 4 / ({:.3g} rad/s) = {:.3g} s to stay stable, so the span of "
+                           "{:.6g} s needs at least {:.3g} steps, more than the limit of {} "
+                           "steps",
+                           f.name, rate, rate, 4.0 / rate, span, steps, limits.max_steps),
+               "soften the spring, shorten the run, or ");
+  }
+}
+
+/// Limits the run would exceed for sure, refused before it starts: the rows the output grid
+/// needs (span / output_interval + the first and last + one per impulse or impact), a fixed
+/// step below the smallest step or needing more steps than allowed, a spring too stiff.
+void CheckLimitsUpFront(const Scene& scene, const RunLimits& limits, double span,
+                        double output_interval) {
+  const SceneSimulation& sim = scene.dynamics.simulation;
+  const double jumps =
+      static_cast<double>(scene.dynamics.impulses.size() + scene.dynamics.impacts.size());
+  const double rows = std::floor(span / output_interval + 1e-9) + 2.0 + jumps;
+  if (rows > static_cast<double>(limits.max_rows)) {
+    ThrowLimit(scene, sim.Spot(sim.keys.count("output_interval") ? "output_interval" : "max_rows"),
+               "max_rows", "--max-rows",
+               fmt::format("the run would write {:.4g} output rows (a span of {:.6g} s every "
+                           "{:.6g} s), more than the limit of {} rows",
+                           rows, span, output_interval, limits.max_rows),
+               "choose a longer 'output_interval' or ");
+  }
+  if (!(limits.min_step > 0) || !std::isfinite(limits.min_step)) {
+    ThrowLimit(
+        scene, sim.Spot("min_step"), "min_step", "--min-step",
+        fmt::format("the smallest step must be a positive time, got {:.6g} s", limits.min_step), "",
+        "set");
+  }
+  if (sim.integrator != IntegratorKind::kDormandPrince5 && std::isfinite(sim.step)) {
+    if (sim.step < limits.min_step) {
+      ThrowLimit(scene, sim.Spot("step"), "min_step", "--min-step",
+                 fmt::format("the step {:.6g} s is below the smallest step allowed, {:.6g} s "
+                             "({:g} of the span {:.6g} s unless 'min_step' says otherwise)",
+                             sim.step, limits.min_step, kDefaultMinStepFraction, span),
+                 "choose a longer 'step' or ", "lower");
+    }
+    const double steps = std::ceil(span / sim.step);
+    if (steps > static_cast<double>(limits.max_steps)) {
+      ThrowLimit(scene, sim.Spot("step"), "max_steps", "--max-steps",
+                 fmt::format("the run would take {:.4g} steps of {:.6g} s over {:.6g} s, more "
+                             "than the limit of {} steps",
+                             steps, sim.step, span, limits.max_steps),
+                 "choose a longer 'step' or ");
+    }
+  }
+  CheckSpringStiffness(scene, limits, span);
+}
+
 /// Throws when a body's motion is not finite (or has run away beyond any physical scale).
 void CheckFinite(const Model& model, const State& state) {
   for (int b = 0; b < model.num_bodies(); ++b) {
@@ -856,45 +1028,110 @@ StudySnapshot MakeSnapshot(const Scene& scene, const Model& model, const State& 
 
 }  // namespace
 
-Study BuildStudy(const Scene& scene, double until) {
-  const double t_end = EndTime(scene, until);
-  Segment seg = FirstSegment(scene);
-  Study study;
-  study.model = std::shared_ptr<const Model>(std::move(seg.model));  // same address
-  study.options = BaseOptions(scene, t_end);
-  // On the constraints, or an error, or projected with each change a warning.
-  study.initial = scene_internal::SettleInitialState(
-      scene, *study.model, InitialState(scene, *study.model), study.warnings);
-  study.options.events = BuildEvents(scene, seg.model_ref, seg.map);
-  return study;
+namespace {
+
+/// The entry of the scene element called `name`; `before` is the message's text before the
+/// quoted name, whose last words say the kind ("force element", "constraint", "contact point",
+/// "body", "event"). Any kind matches when that kind has no such name; null when none has.
+const SceneSpot* FindSceneEntry(const Scene& scene, const std::string& name,
+                                std::string_view before) {
+  const SceneDynamics& d = scene.dynamics;
+  const auto ends_with = [&](std::string_view w) {
+    return before.size() >= w.size() && before.substr(before.size() - w.size()) == w;
+  };
+  const auto force = [&]() -> const SceneSpot* {
+    for (const SceneForce& f : d.forces) {
+      if (f.name == name) return &f.where;
+    }
+    return nullptr;
+  };
+  const auto constraint = [&]() { return d.constraints.Find(name); };
+  const auto contact = [&]() -> const SceneSpot* {
+    for (const SceneContact& c : d.contacts.contacts) {
+      if (c.name == name || name.rfind(c.name + "[", 0) == 0) return &c.where;
+      for (const std::string& label : ContactPointLabels(c)) {
+        if (label == name) return &c.where;
+      }
+    }
+    return nullptr;
+  };
+  const auto body = [&]() -> const SceneSpot* {
+    for (const SceneBody& b : scene.bodies) {
+      if (b.name == name) return &b.where;
+    }
+    return nullptr;
+  };
+  const auto event = [&]() -> const SceneSpot* {
+    for (const SceneEvent& e : d.events) {
+      if (e.name == name) return &e.where;
+    }
+    return nullptr;
+  };
+  const SceneSpot* spot = nullptr;
+  if (ends_with("force element ") || ends_with("spring ") || ends_with("force ")) {
+    spot = force();
+  } else if (ends_with("contact point ") || ends_with("contact ")) {
+    spot = contact();
+  } else if (ends_with("body ")) {
+    spot = body();
+  } else if (ends_with("event ")) {
+    spot = event();
+  }
+  if (!spot) spot = constraint();
+  if (!spot) spot = force();
+  if (!spot) spot = contact();
+  if (!spot) spot = body();
+  if (!spot) spot = event();
+  return spot;
 }
 
-namespace {
-StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options);
 }  // namespace
 
-void ThrowAtConstraintEntry(const Scene& scene, const InputError& error) {
-  // The first quoted name in the message that is a constraint of the scene.
+void ThrowAtSceneEntry(const Scene& scene, const InputError& error) {
+  if (const auto* located = dynamic_cast<const SceneError*>(&error)) throw *located;
+  // The first quoted name in the message that is an element of the scene.
   const std::string what = error.what();
   const SceneSpot* spot = nullptr;
   size_t at = 0;
   while (!spot && (at = what.find('\'', at)) != std::string::npos) {
     const size_t end = what.find('\'', at + 1);
     if (end == std::string::npos) break;
-    spot = scene.dynamics.constraints.Find(what.substr(at + 1, end - at - 1));
+    spot = FindSceneEntry(scene, what.substr(at + 1, end - at - 1),
+                          std::string_view(what).substr(0, at));
     at = end + 1;
   }
-  if (!spot) throw error;
+  // Naming none, it is about the run as the `simulation` block sets it up.
+  if (!spot) spot = &scene.dynamics.simulation.where;
   throw SceneError(scene.file, spot->line, spot->column, spot->key, what);
 }
+
+Study BuildStudy(const Scene& scene, double until) {
+  try {
+    const double t_end = EndTime(scene, until);
+    CheckPhysicalInputs(scene, t_end);
+    Segment seg = FirstSegment(scene);
+    Study study;
+    study.model = std::shared_ptr<const Model>(std::move(seg.model));  // same address
+    study.options = BaseOptions(scene, t_end);
+    // On the constraints, or an error, or projected with each change a warning.
+    study.initial = scene_internal::SettleInitialState(
+        scene, *study.model, InitialState(scene, *study.model), study.warnings);
+    study.options.events = BuildEvents(scene, seg.model_ref, seg.map);
+    return study;
+  } catch (const InputError& e) {
+    ThrowAtSceneEntry(scene, e);
+  }
+}
+
+namespace {
+StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options);
+}  // namespace
 
 StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
   try {
     return RunStudyUnlocated(scene, options);
-  } catch (const SceneError&) {
-    throw;
   } catch (const InputError& e) {
-    ThrowAtConstraintEntry(scene, e);
+    ThrowAtSceneEntry(scene, e);
   }
 }
 
@@ -902,6 +1139,11 @@ namespace {
 
 StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
   const double t_end = EndTime(scene, options.until);
+  CheckPhysicalInputs(scene, t_end);
+  const RunLimits limits = ResolveLimits(scene, options, t_end);
+  CheckLimitsUpFront(scene, limits, t_end, BaseOptions(scene, t_end).output_interval);
+  const auto started = std::chrono::steady_clock::now();
+  std::int64_t steps_taken = 0;
   const SceneDynamics& d = scene.dynamics;
   StudyResult result;
   result.integrator = IntegratorName(d.simulation.integrator);
@@ -1016,9 +1258,31 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
   std::stable_sort(jumps.begin(), jumps.end(),
                    [](const Jump& a, const Jump& b) { return a.t < b.t; });
 
-  const SimulationOptions base = BaseOptions(scene, t_end);
+  SimulationOptions base = BaseOptions(scene, t_end);
+  base.adaptive.min_step = limits.min_step;
   const double dt_out = base.output_interval;
   bool stopped = false;
+  const SceneSimulation& sim = d.simulation;
+  // Every accepted step of every segment counts against the step limit and the wall time.
+  const auto on_step = [&](double t) {
+    if (options.progress) options.progress(t);
+    if (++steps_taken > limits.max_steps) {
+      ThrowLimit(scene, sim.Spot("max_steps"), "max_steps", "--max-steps",
+                 fmt::format("the run reached the limit of {} integration steps at t = {:.9g} s "
+                             "(of {:.9g} s)",
+                             limits.max_steps, t, t_end),
+                 "loosen 'tolerance', shorten the run, or ");
+    }
+    if (limits.timeout > 0) {
+      const std::chrono::duration<double> used = std::chrono::steady_clock::now() - started;
+      if (used.count() > limits.timeout) {
+        ThrowLimit(scene, sim.Spot("timeout"), "timeout", "--timeout",
+                   fmt::format("the run reached its wall-time limit of {:g} s at t = {:.9g} s "
+                               "(of {:.9g} s) after {} steps (a limit of 0 s turns it off)",
+                               limits.timeout, t, t_end, steps_taken));
+      }
+    }
+  };
 
   // Integrates from state.t to t_b, sampling on the global grid k * dt_out.
   auto run_to = [&](double t_b) {
@@ -1031,11 +1295,18 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
       o.output_interval = on_grid ? dt_out : 0.0;
       o.events = BuildEvents(scene, seg.model_ref, seg.map);
       o.store_samples = false;
+      o.on_step = on_step;
       bool first = true;
       o.on_sample = [&](const State& s) {
         if (first) {
           first = false;
           return;
+        }
+        if (static_cast<std::int64_t>(result.rows.size()) >= limits.max_rows) {
+          ThrowLimit(scene, sim.Spot("max_rows"), "max_rows", "--max-rows",
+                     fmt::format("the run reached the limit of {} output rows at t = {:.9g} s",
+                                 limits.max_rows, s.t),
+                     "choose a longer 'output_interval' or ");
         }
         CheckFinite(*seg.model, s);
         result.rows.push_back(rows.Row(*seg.model, *seg.map, s, carry));
@@ -1054,6 +1325,12 @@ StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
       for (size_t p = 0; p < carried.size(); ++p) carried[p] = state.contacts[p].mode;
       try {
         r = Simulate(*seg.model, state, o);
+      } catch (const SceneError&) {
+        throw;  // a limit, already located
+      } catch (const LimitError& e) {
+        // The adaptive step fell below the smallest step.
+        ThrowLimit(scene, sim.Spot("min_step"), "min_step", "--min-step", e.what(),
+                   "check the forces and masses for a singularity, or ", "lower");
       } catch (const InputError& e) {
         const double t_last = result.rows.empty() ? t_from : result.rows.back().front();
         throw InputError(fmt::format("the run stopped after t = {:.9g} s: {}", t_last, e.what()));

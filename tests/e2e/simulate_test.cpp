@@ -309,8 +309,9 @@ TEST(SimulateCli, HelpAndErrors) {
 }
 
 // A force that has no value below z = 0 (the square root of a negative number) on a fixed-step
-// integrator: the run stops with the body named and writes no output.
-TEST(SimulateCli, DivergingRunStopsWithTheBodyNamed) {
+// integrator: the run stops at the first NaN with the force named at its entry (line 7,
+// column 5) and writes no output.
+TEST(SimulateCli, DivergingRunStopsWithTheForceNamed) {
   const auto dir = OutDir();
   const auto scene = dir / "diverge.yaml";
   std::ofstream(scene) << "bodies:\n"
@@ -323,7 +324,8 @@ TEST(SimulateCli, DivergingRunStopsWithTheBodyNamed) {
                           "simulation: {until: 3 s, integrator: rk4, step: 0.25 s}\n";
   const CliResult r = RunCli("simulate '" + scene.string() + "' --out '" + dir.string() + "'");
   EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_THAT(r.err, ::testing::HasSubstr("body 'probe' diverged"));
+  EXPECT_THAT(r.err, ::testing::HasSubstr(scene.string() + ":7:5: forces[0]: "));
+  EXPECT_THAT(r.err, ::testing::HasSubstr("force element 'force 1' evaluated to NaN at t = "));
   EXPECT_FALSE(std::filesystem::exists(dir / "diverge.csv"));
 }
 

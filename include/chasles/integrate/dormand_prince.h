@@ -37,7 +37,8 @@ struct AdaptiveOptions {
   double initial_step = 0.0;
   /// Largest step [s].
   double max_step = std::numeric_limits<double>::infinity();
-  /// Throws when control asks for a step smaller than this [s] (a stiff or singular problem).
+  /// Throws LimitError (kMinStep) when control asks for a step smaller than this [s] (a stiff
+  /// or singular problem).
   double min_step = 1e-14;
   /// Project onto the active contact rows of the current modes after each step (false: they
   /// are projected only at mode switches and drift with the integration error in between;

@@ -158,6 +158,9 @@ struct SimulationOptions {
   std::function<void(const State& before, const State& after)> on_transition = nullptr;
   /// Contact handling (models with contacts).
   ContactOptions contact;
+  /// Called after every accepted integration step with the time it reached (optional): the
+  /// caller counts the work and stops a run that exceeds its limits by throwing (LimitError).
+  std::function<void(double t)> on_step = nullptr;
 };
 
 struct SimulationResult {
@@ -183,7 +186,9 @@ struct SimulationResult {
 std::vector<ContactModeInterval> CalcModeTimeline(const SimulationResult& result, int point);
 
 /// Runs the simulation. Throws InputError for an invalid initial state or options (the message
-/// names the option and the fix). A model with contacts runs as a hybrid system (adaptive
+/// names the option and the fix), and when a force, an acceleration or the state becomes
+/// non-finite (the message names the force element, constraint, contact point or body and the
+/// time; see OdeSystem::Derivative). A model with contacts runs as a hybrid system (adaptive
 /// integrator only): the contact modes switch at events located on the dense output, with
 /// impacts at touch-down, and the integrator restarts after each switch (docs/contact.md). For a
 /// model with constraints the initial state is first projected onto them (ProjectOntoConstraints),

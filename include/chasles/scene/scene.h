@@ -52,6 +52,8 @@ struct SceneBody {
   /// Sum of the parts, validated (positive mass, physically valid inertia).
   MassProperties mass_properties;
   int line = 0;
+  /// The body's entry, for errors found when the motion is built or run.
+  SceneSpot where;
 };
 
 struct Scene {

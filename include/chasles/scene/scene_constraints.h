@@ -90,6 +90,7 @@ struct ScenePitchCircle {
 /// One entry of `gears`: two gears in mesh, their pitch circles rolling on each other.
 struct SceneGear {
   std::string name;
+  SceneSpot where;
   GearKind kind = GearKind::kExternal;
   /// Parent body (scene index) or kWorld; child body (scene index).
   int parent = kWorld;

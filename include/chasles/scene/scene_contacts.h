@@ -11,6 +11,7 @@
 
 #include "chasles/math/types.h"
 #include "chasles/model/contact.h"
+#include "chasles/scene/scene_constraints.h"
 
 namespace chasles {
 
@@ -43,6 +44,8 @@ struct SceneMaterialPair {
 struct SceneContact {
   /// Unique name (reports, columns "<name>_N" ...).
   std::string name;
+  /// The entry, for errors found when the motion is built or run.
+  SceneSpot where;
   /// The body (scene index).
   int body = -1;
   SceneContactShape shape = SceneContactShape::kSphere;

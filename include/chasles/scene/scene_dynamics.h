@@ -6,8 +6,11 @@
 /// StateVariableLayout as their variable slots.
 
 #include <array>
+#include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "chasles/integrate/simulate.h"
@@ -80,6 +83,8 @@ struct SceneForce {
   Type type = Type::kForce;
   /// Unique name (reports, ledger columns "W_<name>").
   std::string name;
+  /// The entry, for errors found when the motion is built or run.
+  SceneSpot where;
   /// Body acted on (scene index), or for a spring its first end.
   int body = -1;
   /// Point of application from Bo in B [m] (force; spring's first end).
@@ -114,6 +119,8 @@ enum class SceneModeChange {
 /// One entry of `events`: a crossing of `when` through `crosses`, or a contact-mode change.
 struct SceneEvent {
   std::string name;
+  /// The entry, for errors found when the motion is built or run.
+  SceneSpot where;
   /// A contact-mode event: the change watched, the contact (or point label) as written and
   /// its points (indices in SceneContacts::point_labels() order).
   SceneModeChange change = SceneModeChange::kNone;
@@ -149,6 +156,18 @@ struct SceneImpact {
   double exit_fraction = 0.0;
 };
 
+/// Default limits on a run's work (docs/reliability-limits.md); the scene's `simulation:` keys
+/// and the command line's flags replace them.
+inline constexpr std::int64_t kDefaultMaxSteps = 10'000'000;
+inline constexpr std::int64_t kDefaultMaxRows = 1'000'000;
+/// The smallest step, as a fraction of the span simulated, when `min_step` is not given.
+inline constexpr double kDefaultMinStepFraction = 1e-12;
+/// The accepted range of the adaptive integrator's relative tolerance: below 1e-14 double
+/// precision cannot deliver it (round-off of a step is ~1e-16 per component), above 1e-2 the
+/// answer has no digits worth reporting.
+inline constexpr double kMinTolerance = 1e-14;
+inline constexpr double kMaxTolerance = 1e-2;
+
 /// Key `simulation`.
 struct SceneSimulation {
   /// True when the scene has the key (the scene can be simulated).
@@ -163,6 +182,19 @@ struct SceneSimulation {
   double step = std::numeric_limits<double>::quiet_NaN();
   /// Output spacing [s]; NaN: 200 intervals over the run.
   double output_interval = std::numeric_limits<double>::quiet_NaN();
+  /// Limits on the run's work: accepted integration steps, output rows, wall time [s] (0:
+  /// none), and the smallest step [s] (NaN: kDefaultMinStepFraction of the span).
+  std::int64_t max_steps = kDefaultMaxSteps;
+  std::int64_t max_rows = kDefaultMaxRows;
+  double timeout = 0.0;
+  double min_step = std::numeric_limits<double>::quiet_NaN();
+  /// Where the `simulation` key stands (line 1 of the file when the scene has none), and each
+  /// of its keys given ("until", "tolerance", "step", "max_steps", ...), for errors found when
+  /// the run is built or during it.
+  SceneSpot where{1, 1, ""};
+  std::map<std::string, SceneSpot, std::less<>> keys;
+  /// The spot of `key` when the scene gives it, else that of `simulation`.
+  const SceneSpot& Spot(std::string_view key) const;
 };
 
 struct SceneDynamics {

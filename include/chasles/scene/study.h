@@ -11,6 +11,7 @@
 ///   E - E0 = W_nc + jumps + residual.
 /// Output samples lie on one grid t = k * output_interval from 0 whatever the segments.
 
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -47,8 +48,17 @@ Study BuildStudy(const Scene& scene, double until = std::numeric_limits<double>:
 struct StudyOptions {
   /// End time [s], overriding the scene's when finite.
   double until = std::numeric_limits<double>::quiet_NaN();
-  /// Called with the time of every output sample (e.g. for a progress display).
+  /// Called with the time of every output sample and every accepted step (e.g. for a
+  /// progress display).
   std::function<void(double t)> progress;
+  /// Limits on the run's work replacing the scene's `simulation:` keys (command-line flags;
+  /// docs/reliability-limits.md): accepted integration steps and output rows (< 1: the
+  /// scene's), wall time [s] (0: none; NaN: the scene's) and the smallest step [s] (NaN: the
+  /// scene's, or 1e-12 of the span).
+  std::int64_t max_steps = 0;
+  std::int64_t max_rows = 0;
+  double timeout = std::numeric_limits<double>::quiet_NaN();
+  double min_step = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// An impulse or impact applied during the run.
@@ -242,16 +252,20 @@ struct StudyResult {
   Certificate certificate;
 };
 
-/// Runs the scene's study. Throws InputError for bad settings, or when the motion of a body
-/// becomes non-finite (the body and the time are named; nothing non-finite is ever returned).
-/// Constraints that cannot be assembled or contradict each other are a SceneError at the
-/// first entry the error names (ThrowAtConstraintEntry).
+/// Runs the scene's study. Every error is a SceneError with the scene file's line and column
+/// (ThrowAtSceneEntry): bad settings; a force, reaction, acceleration or state that becomes
+/// non-finite (the element and the time are named; nothing non-finite is ever returned); a
+/// limit on the work reached (steps, rows, wall time, smallest step: the message names the
+/// limit and the flag and scene key that raise it). Limits that the run would exceed for sure
+/// (rows from the span and the output interval, fixed steps, a spring too stiff for the step
+/// budget) are refused before it starts.
 StudyResult RunStudy(const Scene& scene, const StudyOptions& options = {});
 
-/// Rethrows an InputError of the constraint stage (an assembly that fails, inconsistent
-/// constraints) as a SceneError at the line of the first scene constraint it names ('name');
-/// as it is when it names none.
-[[noreturn]] void ThrowAtConstraintEntry(const Scene& scene, const InputError& error);
+/// Rethrows an InputError found after the scene was read (building the Model, assembling or
+/// solving the constraints, during the run) as a SceneError at the entry of the first scene
+/// element it names in quotes: a force element, constraint, contact (or contact point), body
+/// or event; at the `simulation` key when it names none. A SceneError is rethrown as it is.
+[[noreturn]] void ThrowAtSceneEntry(const Scene& scene, const InputError& error);
 
 /// The CSV columns named on the command line (groups or single columns, as in the scene's
 /// `output.columns`), with `t` first. Throws SceneError naming --columns for an unknown name.

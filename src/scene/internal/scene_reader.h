@@ -26,6 +26,16 @@
 
 namespace chasles::scene_internal {
 
+/// Where `at` stands in the file (yaml-cpp marks are 0-based; the spot's are 1-based).
+inline SceneSpot SpotAt(const At& at) {
+  const YAML::Mark mark = at.node.Mark();
+  return {mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0, at.path};
+}
+
+/// Where the key `key` of the mapping at `map` stands (the key itself, e.g. the line of
+/// `simulation:`), with the path of its value.
+SceneSpot KeySpotAt(const At& map, std::string_view key);
+
 class SceneReader {
  public:
   SceneReader(std::string file, const SceneOptions& options)
