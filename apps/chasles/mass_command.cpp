@@ -154,13 +154,17 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
     out += fmt::format("  Principal axes      e1 = {}, e2 = {}, e3 = {}  (body axes)\n",
                        VecText(pa.axes.col(0), 1), VecText(pa.axes.col(1), 1),
                        VecText(pa.axes.col(2), 1));
+    // The radii describe the spread about the centre of mass, so their round-off scale is
+    // their own size, not the body's distance from its origin (a body at 1e200 m still has
+    // radii of centimetres).
+    const double k_scale = std::sqrt(std::abs(Icm.Trace() / mp.mass()));
     const Vec3 k_body = Icm.CalcRadiiOfGyration(mp.mass());
     const Vec3 k_principal = RotationalInertia(pa.moments[0], pa.moments[1], pa.moments[2])
                                  .CalcRadiiOfGyration(mp.mass());
     out += fmt::format("  Radii of gyration   about body axes through the centre of mass: {} {}\n",
-                       VecText(P.Lengths(k_body), P.Length(Lscale)), P.L);
+                       VecText(P.Lengths(k_body), P.Length(k_scale)), P.L);
     out += fmt::format("                      about the principal axes: {} {}\n",
-                       VecText(P.Lengths(k_principal), P.Length(Lscale)), P.L);
+                       VecText(P.Lengths(k_principal), P.Length(k_scale)), P.L);
     std::vector<ReportPoint> points;
     for (const auto& p : body.points) points.push_back({p.name, p.p_BoP_B});
     points.insert(points.end(), extra.begin(), extra.end());

@@ -172,6 +172,9 @@ TEST(PrintedValues, APartAt1e200MetresPrintsWhereItIs) {
   const CliResult text = RunCli("mass " + Quote(scene.string()) + " --units SI");
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_THAT(text.out, HasSubstr("Centre of mass      [1e+200, -2e+200, 0] m"));
+  // The radii of gyration are the sphere's own, sqrt(0.4 / 1) m = 0.632455532 m, however far
+  // the body is from its origin (they were once rounded against the 1e200 m position to 0).
+  EXPECT_THAT(text.out, HasSubstr("centre of mass: [0.6324555, 0.6324555, 0.6324555] m"));
   const CliResult json = RunCli("mass " + Quote(scene.string()) + " --units SI --format json");
   ASSERT_EQ(json.exit_code, 0) << json.err;
   const nlohmann::json b = nlohmann::json::parse(json.out)["bodies"][0];
