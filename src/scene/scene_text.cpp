@@ -22,12 +22,15 @@ std::string SizeText(size_t bytes) {
   return fmt::format("{} bytes ({:.1f} MiB)", bytes, static_cast<double>(bytes) / (1 << 20));
 }
 
+/// `size` is the file's size, or "" when it has none (a pipe or a device read past the limit).
 [[noreturn]] void TooLarge(const std::string& path, const std::string& size, size_t max_bytes) {
-  throw SceneError(path, 0, 0, "",
-                   fmt::format("the scene is {}, more than the maximum scene size of {}; a scene "
-                               "that large is refused before it is parsed (raise the limit with "
-                               "--max-scene-bytes N if it is meant to be read)",
-                               size, SizeText(max_bytes)));
+  throw SceneError(
+      path, 0, 0, "",
+      fmt::format("the scene is {} the maximum scene size of {}; a scene that "
+                  "large is refused before it is parsed (raise the limit with "
+                  "--max-scene-bytes N if it is meant to be read)",
+                  size.empty() ? std::string("longer than") : fmt::format("{}, more than", size),
+                  SizeText(max_bytes)));
 }
 
 /// Closes the descriptor however the read ends.
@@ -92,7 +95,7 @@ std::string ReadSceneFileText(const std::string& path, size_t max_bytes) {
     if (n == 0) break;
     text.append(buffer.data(), static_cast<size_t>(n));
     // A pipe or a device (/dev/zero) may never end: stop one byte past the limit.
-    if (text.size() > max_bytes) TooLarge(path, "larger than " + SizeText(max_bytes), max_bytes);
+    if (text.size() > max_bytes) TooLarge(path, "", max_bytes);
   }
   return text;
 }

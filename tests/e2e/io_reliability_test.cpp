@@ -94,8 +94,8 @@ TEST(CommandLine, UntilMustBeAPositiveFiniteTime) {
 TEST(SceneFiles, EndlessOrNonRegularInputIsReadWithTheCap) {
   const CliResult zero = RunCli("check /dev/zero");
   EXPECT_EQ(zero.exit_code, 2) << zero.err;
-  EXPECT_THAT(zero.err, HasSubstr("/dev/zero: the scene is larger than 16777216 bytes (16.0 "
-                                  "MiB), more than the maximum scene size of 16777216 bytes"));
+  EXPECT_THAT(zero.err, HasSubstr("/dev/zero: the scene is longer than the maximum scene size "
+                                  "of 16777216 bytes (16.0 MiB)"));
   EXPECT_THAT(zero.err, HasSubstr("--max-scene-bytes"));
   // A pipe is read too, within the cap.
   const std::string cube = Quote(SourcePath(kCube));
