@@ -64,5 +64,18 @@ TEST(SceneText, OneDocumentOnly) {
   EXPECT_THROW(ParseSingleDocument("a: 1\n---\n", "s.yaml"), SceneError);
 }
 
+TEST(SceneText, AStrayFlowIndicatorEndsAtOnce) {
+  // yaml-cpp's LoadAll never returns on a lone ',' (found by the scene fuzz target: it grew
+  // past 2 GB); here it is an error at its place, with and without a document marker after it.
+  for (const char* text : {",", ",\nbodies: []\n", "# c\n  ,\n---\na: 1\n"}) {
+    try {
+      ParseSingleDocument(text, "s.yaml");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const SceneError& e) {
+      EXPECT_THAT(e.message(), ::testing::HasSubstr("a document cannot start with ','")) << text;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace chasles::scene_internal
