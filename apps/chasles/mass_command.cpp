@@ -276,18 +276,24 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
   cmd->add_option("-o,--output", args.output,
                   "Write the report to this file instead of the terminal");
   cmd->add_flag("--no-parts", args.hide_parts, "Leave out the table of parts");
-  CLI::Option_group* mesh = cmd->add_option_group(
-      "Mesh file", "When SCENE is a mesh file (.stl, .obj, .ply, .off) instead of a scene");
-  mesh->add_option(
-      "--unit", args.mesh_unit,
-      "Length of one unit of the mesh file, e.g. mm or in (mesh files carry no units)");
-  mesh->add_option("--density", args.mesh_density, "Density, e.g. 7850 or '7.85 g/cm^3'");
-  mesh->add_option("--material", args.mesh_material, "A material name instead of a density");
-  mesh->add_option("--mass", args.mesh_mass, "The total mass instead of a density");
-  mesh->add_option("--mode", args.mesh_mode,
-                   "solid (default: a closed surface) or shell (a thin sheet)");
-  mesh->add_option("--thickness", args.mesh_thickness, "Shell mode: sheet thickness");
-  mesh->add_option("--areal-density", args.mesh_areal_density, "Shell mode: mass per area");
+  // A help heading (Option::group), not an Option_group: CLI11 2.1's option groups are
+  // subcommands inside, and `mass a "" --x` (an empty extra argument, then an unknown option)
+  // sent its parser round them forever (found by the command-line fuzz target).
+  const std::string mesh = "Mesh file (when SCENE is a .stl, .obj, .ply or .off file)";
+  cmd->add_option("--unit", args.mesh_unit,
+                  "Length of one unit of the mesh file, e.g. mm or in (mesh files carry no units)")
+      ->group(mesh);
+  cmd->add_option("--density", args.mesh_density, "Density, e.g. 7850 or '7.85 g/cm^3'")
+      ->group(mesh);
+  cmd->add_option("--material", args.mesh_material, "A material name instead of a density")
+      ->group(mesh);
+  cmd->add_option("--mass", args.mesh_mass, "The total mass instead of a density")->group(mesh);
+  cmd->add_option("--mode", args.mesh_mode,
+                  "solid (default: a closed surface) or shell (a thin sheet)")
+      ->group(mesh);
+  cmd->add_option("--thickness", args.mesh_thickness, "Shell mode: sheet thickness")->group(mesh);
+  cmd->add_option("--areal-density", args.mesh_areal_density, "Shell mode: mass per area")
+      ->group(mesh);
   cmd->footer(
       "Examples:\n"
       "  chasles mass examples/example-8.1-cylinder.yaml\n"

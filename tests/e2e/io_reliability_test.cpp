@@ -77,6 +77,15 @@ TEST(OutputPaths, SimulateOutUnderAFileIsExit2) {
   fs::remove_all(dir);
 }
 
+TEST(CommandLine, AnEmptyArgumentThenAnUnknownOptionIsExit2) {
+  // Once a parse that never ended (found by the command-line fuzz target; the input is in
+  // fuzz/regressions/cli/): an empty extra argument, then an option mass does not know.
+  const CliResult r = RunCli("mass fuzz/corpus/mesh/cube.off '' --unit mm --density@7850");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--density@7850"));
+  EXPECT_TRUE(r.out.empty());
+}
+
 TEST(CommandLine, UntilMustBeAPositiveFiniteTime) {
   const std::string scene = Quote(SourcePath("examples/spring-mass.yaml"));
   for (const std::string bad : {"nan", "inf", "-inf", "-1", "0", "1e999", "2s"}) {
