@@ -13,8 +13,8 @@
 namespace chasles::cli {
 
 /// Exit codes: 0 success, 2 bad input (scene, options, files, physically impossible values),
-/// 3 a failed check of the answer under --strict (simulate, solve), 1 internal error.
-inline constexpr int kExitOk = 0;
+/// 3 a failed check of the answer under --strict (simulate, solve: kExitCheckFailed, in
+/// certificate_report.h), 1 internal error (docs/reliability.md).
 inline constexpr int kExitInternal = 1;
 inline constexpr int kExitBadInput = 2;
 
