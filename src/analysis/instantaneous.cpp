@@ -47,31 +47,35 @@ InstantaneousSolution SolveInstantaneous(const Model& model, const State& state,
     s.bodies.push_back(r);
   }
   for (int c = 0; c < model.num_constraints(); ++c) {
-    const Constraint& con = model.constraint(c);
-    const ConstraintOutput& o = data.constraints[static_cast<size_t>(c)];
-    ReactionReport r;
-    r.name = con.name();
-    r.kind = con.kind();
-    r.parent = con.parent();
-    r.child = con.child();
-    r.p_WJ = o.p_WJ;
-    r.F_Jc_W = o.F_Jc_W;
-    r.M_Jc_W = o.M_Jc_W;
-    r.F_Jc_B = o.F_Jc_B;
-    r.M_Jc_B = o.M_Jc_B;
-    r.power = o.power;
-    for (int k = 0; k < con.num_rows(); ++k) r.lambda.push_back(o.lambda[k]);
-    if (const auto* roll = dynamic_cast<const RollingContact*>(&con)) {
-      r.is_rolling = true;
-      r.normal_force = o.lambda[0];
-      const Mat3 T = roll->CalcPlaneFrame(data);  // [t1 t2 n] in W now
-      r.friction_W = o.lambda[1] * T.col(0) + o.lambda[2] * T.col(1);
-      r.friction_needed = r.normal_force > 0.0 ? r.friction_W.norm() / r.normal_force
-                                               : std::numeric_limits<double>::infinity();
-    }
-    s.reactions.push_back(std::move(r));
+    s.reactions.push_back(MakeReactionReport(model, data, c));
   }
   return s;
+}
+
+ReactionReport MakeReactionReport(const Model& model, const Data& data, int c) {
+  const Constraint& con = model.constraint(c);
+  const ConstraintOutput& o = data.constraints[static_cast<size_t>(c)];
+  ReactionReport r;
+  r.name = con.name();
+  r.kind = con.kind();
+  r.parent = con.parent();
+  r.child = con.child();
+  r.p_WJ = o.p_WJ;
+  r.F_Jc_W = o.F_Jc_W;
+  r.M_Jc_W = o.M_Jc_W;
+  r.F_Jc_B = o.F_Jc_B;
+  r.M_Jc_B = o.M_Jc_B;
+  r.power = o.power;
+  for (int k = 0; k < con.num_rows(); ++k) r.lambda.push_back(o.lambda[k]);
+  if (const auto* roll = dynamic_cast<const RollingContact*>(&con)) {
+    r.is_rolling = true;
+    r.normal_force = o.lambda[0];
+    const Mat3 T = roll->CalcPlaneFrame(data);  // [t1 t2 n] in W now
+    r.friction_W = o.lambda[1] * T.col(0) + o.lambda[2] * T.col(1);
+    r.friction_needed = r.normal_force > 0.0 ? r.friction_W.norm() / r.normal_force
+                                             : std::numeric_limits<double>::infinity();
+  }
+  return r;
 }
 
 }  // namespace chasles

@@ -153,7 +153,7 @@ class HybridRun {
     const size_t ne = o_.events.size();
     std::vector<double> ug_prev(ne), ug_new(ne);
     for (size_t e = 0; e < ne; ++e) {
-      if (o_.events[e].g) ug_prev[e] = o_.events[e].g(s.t, s);
+      if (o_.events[e].g) ug_prev[e] = o_.events[e].g(model_, s);
     }
     State scratch = s;
     while (s.t < o_.t_end) {
@@ -260,11 +260,11 @@ class HybridRun {
         double t_stop = std::numeric_limits<double>::infinity();
         for (size_t e = 0; e < ne; ++e) {
           if (!o_.events[e].g) continue;  // a contact-mode event (RecordModeEvents)
-          ug_new[e] = o_.events[e].g(tb, dp.state());
+          ug_new[e] = o_.events[e].g(model_, dp.state());
           if (!internal::Crosses(o_.events[e].direction, ug_prev[e], ug_new[e])) continue;
           auto g = [&](double t) {
             dp.Interpolate(t, scratch);
-            return o_.events[e].g(t, scratch);
+            return o_.events[e].g(model_, scratch);
           };
           const double t =
               internal::LocateEventTime(g, ta, ug_prev[e], tb, ug_new[e], o_.event_time_tolerance);
@@ -306,7 +306,7 @@ class HybridRun {
             return std::move(r_);
           }
           for (size_t e = 0; e < ne; ++e) {
-            if (o_.events[e].g) ug_prev[e] = o_.events[e].g(s.t, s);
+            if (o_.events[e].g) ug_prev[e] = o_.events[e].g(model_, s);
           }
           restart = true;
           if (++switches_ > o_.contact.max_mode_switches) {

@@ -78,7 +78,7 @@ SimulationResult RunAdaptive(const Model& model, const State& initial, const Sim
   sampler.Emit(dp.state());
   const size_t ne = o.events.size();
   std::vector<double> g_prev(ne);
-  for (size_t e = 0; e < ne; ++e) g_prev[e] = o.events[e].g(dp.state().t, dp.state());
+  for (size_t e = 0; e < ne; ++e) g_prev[e] = o.events[e].g(model, dp.state());
   long long k = 1;
   State scratch = dp.state();
   while (dp.t() < o.t_end) {
@@ -93,11 +93,11 @@ SimulationResult RunAdaptive(const Model& model, const State& initial, const Sim
     std::vector<Hit> hits;
     std::vector<double> g_new(ne);
     for (size_t e = 0; e < ne; ++e) {
-      g_new[e] = o.events[e].g(t1, dp.state());
+      g_new[e] = o.events[e].g(model, dp.state());
       if (!internal::Crosses(o.events[e].direction, g_prev[e], g_new[e])) continue;
       auto g = [&](double t) {
         dp.Interpolate(t, scratch);
-        return o.events[e].g(t, scratch);
+        return o.events[e].g(model, scratch);
       };
       hits.push_back(
           {internal::LocateEventTime(g, t0, g_prev[e], t1, g_new[e], o.event_time_tolerance), e});

@@ -103,14 +103,14 @@ std::shared_ptr<AppliedForce> AppliedForce::Constant(std::string name, BodyIndex
                                                      VectorFrame frame) {
   RequireFinite(name, "force", force);
   return std::make_shared<AppliedForce>(
-      std::move(name), body, p_BoP_B, [force](double, const State&) { return force; }, frame);
+      std::move(name), body, p_BoP_B, [force](const Model&, const State&) { return force; }, frame);
 }
 
 double AppliedForce::AddForces(const Model& model, const State& state, const Data& data,
                                WrenchAccumulator& out) const {
   const auto i = static_cast<size_t>(body_);
   const Mat3& R = data.R_WB[i];
-  const Vec3 f = force_(state.t, state);
+  const Vec3 f = force_(model, state);
   const Vec3 F_W = frame_ == VectorFrame::kWorld ? f : Vec3(R * f);
   out.AddForceAtPoint(body_, R * model.body(body_).PointFromCenterOfMass(p_BoP_B_), F_W);
   return out.power();
@@ -126,12 +126,12 @@ std::shared_ptr<AppliedMoment> AppliedMoment::Constant(std::string name, BodyInd
                                                        const Vec3& moment, VectorFrame frame) {
   RequireFinite(name, "moment", moment);
   return std::make_shared<AppliedMoment>(
-      std::move(name), body, [moment](double, const State&) { return moment; }, frame);
+      std::move(name), body, [moment](const Model&, const State&) { return moment; }, frame);
 }
 
-double AppliedMoment::AddForces(const Model&, const State& state, const Data& data,
+double AppliedMoment::AddForces(const Model& model, const State& state, const Data& data,
                                 WrenchAccumulator& out) const {
-  const Vec3 m = moment_(state.t, state);
+  const Vec3 m = moment_(model, state);
   out.AddMoment(
       body_, frame_ == VectorFrame::kWorld ? m : Vec3(data.R_WB[static_cast<size_t>(body_)] * m));
   return out.power();

@@ -1,5 +1,8 @@
-// Running a scene's dynamics: Model building, segments between impulses and impacts, output
-// rows and the ledger carried across segments (see include/chasles/scene/study.h).
+// A scene's dynamics as a StudyDefinition: the Model builder (bodies, the scene's force
+// elements with their expressions, joints, rolling contacts, drivers, gears and contacts, all
+// placed through the body map), the events, the initial state, the options and the limits
+// (see include/chasles/scene/study.h). The run itself is the library's RunStudy
+// (include/chasles/analysis/study.h).
 
 #include "chasles/scene/study.h"
 
@@ -34,61 +37,29 @@ namespace {
 using scene_internal::AllColumns;
 using scene_internal::ColumnInfo;
 
-/// Where a scene body sits in a Model body: the same body, or a part of a composite after an
-/// embedding. R_MB and p_MoBo_M place the scene body's frame in the model body's frame.
-struct Placement {
-  int model_body = 0;
-  Mat3 R_MB = Mat3::Identity();
-  Vec3 p_MoBo_M = Vec3::Zero();
-};
-
-/// Scene bodies mapped to the current Model, with each scene body's own centre of mass.
-struct BodyMap {
-  std::vector<Placement> place;
-  std::vector<Vec3> p_BoBcm_B;
-  /// Number of the scene's own constraints (a planar Model adds its plane constraints after
-  /// them; those have no state variables).
-  int num_scene_constraints = 0;
-};
-
-/// Kinematics of one scene body at a state (exact for a part of a composite too).
-struct SceneBodyMotion {
-  Mat3 R_WB;
-  Vec3 p_WBo, p_WBcm, v_WBcm_W, w_WB_W;
-};
-
-SceneBodyMotion CalcSceneBodyMotion(const Model& model, const State& state, const BodyMap& map,
-                                    int b) {
-  const Placement& pl = map.place[static_cast<size_t>(b)];
-  const BodyState& s = state.bodies[static_cast<size_t>(pl.model_body)];
-  const Body& body = model.body(pl.model_body);
-  const Mat3 R_WM = s.q_WB.toRotationMatrix();
-  SceneBodyMotion m;
-  m.R_WB = R_WM * pl.R_MB;
-  m.w_WB_W = R_WM * s.w_WB_B;
-  const Vec3 p_WMo = s.p_WBcm - R_WM * body.p_BoBcm_B();
-  m.p_WBo = p_WMo + R_WM * pl.p_MoBo_M;
-  m.p_WBcm = m.p_WBo + m.R_WB * map.p_BoBcm_B[static_cast<size_t>(b)];
-  // Rigid-body velocity field: v_P = v_Mcm + w × (p_P - p_Mcm).
-  m.v_WBcm_W = s.v_WBcm_W + m.w_WB_W.cross(m.p_WBcm - s.p_WBcm);
-  return m;
-}
-
 /// Euler ZYX angles (yaw, pitch, roll) of R = Rz(yaw) Ry(pitch) Rx(roll) [rad].
 Vec3 CalcYawPitchRoll(const Mat3& R) {
   const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
   return {std::atan2(R(1, 0), R(0, 0)), pitch, std::atan2(R(2, 1), R(2, 2))};
 }
 
+/// The scene's body map and how many of the Model's constraints are the scene's own (a planar
+/// Model adds its plane constraints after them; those have no state variables).
+struct SceneMap {
+  BodyMap map;
+  int num_scene_constraints = 0;
+};
+
 /// Fills the state variables (StateVariableLayout) up to `count` slots.
-void FillVariables(const Model& model, const State& state, const BodyMap& map, int count,
+void FillVariables(const Model& model, const State& state, const SceneMap& scene_map, int count,
                    std::vector<double>& v) {
+  const BodyMap& map = scene_map.map;
   v.assign(static_cast<size_t>(std::max(count, 1)), 0.0);
   v[0] = state.t;
   const int per = StateVariableLayout::kPerBody;
   const int num_scene_bodies = static_cast<int>(map.place.size());
   for (int b = 0; b < num_scene_bodies && b * per + 1 < count; ++b) {
-    const SceneBodyMotion m = CalcSceneBodyMotion(model, state, map, b);
+    const MappedBodyMotion m = CalcMappedBodyMotion(model, state, map, b);
     const Vec3 w_B = m.R_WB.transpose() * m.w_WB_W;
     const Vec3 ypr = CalcYawPitchRoll(m.R_WB);
     const double block[StateVariableLayout::kPerBody] = {
@@ -118,8 +89,9 @@ void FillVariables(const Model& model, const State& state, const BodyMap& map, i
   // Reactions (events only): six slots per scene constraint after the scene bodies' blocks,
   // then the contact points' values (StateVariableLayout).
   const int first = StateVariableLayout::Slot(num_scene_bodies, 0);
-  const int num_constraints = std::min(map.num_scene_constraints, model.num_constraints());
-  const int first_contact = first + StateVariableLayout::kPerConstraint * map.num_scene_constraints;
+  const int num_constraints = std::min(scene_map.num_scene_constraints, model.num_constraints());
+  const int first_contact =
+      first + StateVariableLayout::kPerConstraint * scene_map.num_scene_constraints;
   const bool reactions = count > first && num_constraints > 0;
   const bool contacts = count > first_contact && model.num_contact_points() > 0;
   if (!reactions && !contacts) return;
@@ -147,15 +119,15 @@ void FillVariables(const Model& model, const State& state, const BodyMap& map, i
 }
 
 /// A VectorFunction evaluating a scene vector expression; `R_MB` turns a body-frame value into
-/// the model body's frame.
-VectorFunction MakeVectorFunction(std::shared_ptr<const Model*> model_ref,
-                                  std::shared_ptr<const BodyMap> map,
+/// the model body's frame. Its variables are filled on the caller's stack at each call: the
+/// function keeps nothing mutable, so one Model runs in several threads at once.
+VectorFunction MakeVectorFunction(std::shared_ptr<const SceneMap> map,
                                   const SceneVectorExpression& value, const Mat3& R_MB) {
-  auto buffer = std::make_shared<std::vector<double>>();
   const int count = value.variable_count();
-  return [model_ref, map, value, R_MB, buffer, count](double, const State& state) -> Vec3 {
-    FillVariables(**model_ref, state, *map, count, *buffer);
-    return R_MB * value.Evaluate(*buffer);
+  return [map, value, R_MB, count](const Model& model, const State& state) -> Vec3 {
+    std::vector<double> variables;
+    FillVariables(model, state, *map, count, variables);
+    return R_MB * value.Evaluate(variables);
   };
 }
 
@@ -165,16 +137,6 @@ State InitialState(const Scene& scene, const Model& model);
 /// scene's own constraints in Model order; reports of planar scenes leave these out).
 std::string PlaneConstraintName(const Scene& scene, int b) {
   return fmt::format("{} (in plane)", scene.bodies[static_cast<size_t>(b)].name);
-}
-
-/// The angle θ of B about z in a planar scene, continuous from `reference` (the previous
-/// sample's θ advanced by the trapezoidal ω Δt, or the initial θ): the branch of
-/// atan2(R(1,0), R(0,0)) + 2πk nearest to it. Output samples closer than half a turn of
-/// prediction error apart keep θ continuous however many turns the body makes.
-double UnwrapTheta(const Mat3& R_WB, double reference) {
-  const double wrapped = std::atan2(R_WB(1, 0), R_WB(0, 0));
-  const double two_pi = 2.0 * std::numbers::pi;
-  return wrapped + two_pi * std::round((reference - wrapped) / two_pi);
 }
 
 /// Adds the scene's joints, rolling contacts, drivers and gear meshes to `model` (bodies already
@@ -310,21 +272,18 @@ void AddSceneContacts(const Scene& scene, const BodyMap& map, Model& model) {
 }
 
 /// The Model of one segment: bodies (name, mass properties) and the scene's force elements
-/// placed through `map`. `model_ref` is set to the Model's final address by the caller.
-Model BuildModel(const Scene& scene,
-                 const std::vector<std::pair<std::string, MassProperties>>& bodies,
-                 const std::shared_ptr<const BodyMap>& map,
-                 const std::shared_ptr<const Model*>& model_ref) {
+/// placed through `body_map` (the StudyDefinition's ModelBuilder).
+Model BuildModel(const Scene& scene, const std::vector<NamedBody>& bodies,
+                 const BodyMap& body_map) {
   Model model;
-  for (const auto& [name, mp] : bodies) model.AddBody(name, mp);
+  for (const NamedBody& b : bodies) model.AddBody(b.name, b.mass_properties);
+  const auto map = std::make_shared<const SceneMap>(
+      SceneMap{body_map, static_cast<int>(scene.dynamics.constraints.names().size())});
   const SceneDynamics& d = scene.dynamics;
   if (d.has_gravity) model.AddForceElement(std::make_shared<UniformGravity>("gravity", d.g_W));
-  auto point = [&](int b, const Vec3& p_BoP_B) {
-    const Placement& pl = map->place[static_cast<size_t>(b)];
-    return Vec3(pl.R_MB * p_BoP_B + pl.p_MoBo_M);
-  };
+  auto point = [&](int b, const Vec3& p_BoP_B) { return map->map.PointInModelBody(b, p_BoP_B); };
   for (const SceneForce& f : d.forces) {
-    const Placement* pl = f.body >= 0 ? &map->place[static_cast<size_t>(f.body)] : nullptr;
+    const BodyPlacement* pl = f.body >= 0 ? &map->map.place[static_cast<size_t>(f.body)] : nullptr;
     switch (f.type) {
       case SceneForce::Type::kForce:
         if (f.value.is_constant()) {
@@ -335,7 +294,7 @@ Model BuildModel(const Scene& scene,
         } else {
           model.AddForceElement(std::make_shared<AppliedForce>(
               f.name, pl->model_body, point(f.body, f.p_BoP_B),
-              MakeVectorFunction(model_ref, map, f.value,
+              MakeVectorFunction(map, f.value,
                                  f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity()),
               f.frame));
         }
@@ -349,14 +308,14 @@ Model BuildModel(const Scene& scene,
         } else {
           model.AddForceElement(std::make_shared<AppliedMoment>(
               f.name, pl->model_body,
-              MakeVectorFunction(model_ref, map, f.value,
+              MakeVectorFunction(map, f.value,
                                  f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity()),
               f.frame));
         }
         break;
       case SceneForce::Type::kSpring: {
         const int mb =
-            f.body_b == kWorld ? kWorld : map->place[static_cast<size_t>(f.body_b)].model_body;
+            f.body_b == kWorld ? kWorld : map->map.place[static_cast<size_t>(f.body_b)].model_body;
         const Vec3 q = f.body_b == kWorld ? f.p_BoQ_B : point(f.body_b, f.p_BoQ_B);
         model.AddForceElement(
             std::make_shared<SpringDamper>(f.name, pl->model_body, point(f.body, f.p_BoP_B), mb, q,
@@ -372,8 +331,8 @@ Model BuildModel(const Scene& scene,
         break;
     }
   }
-  AddSceneConstraints(scene, *map, model);
-  AddSceneContacts(scene, *map, model);
+  AddSceneConstraints(scene, body_map, model);
+  AddSceneContacts(scene, body_map, model);
   return model;
 }
 
@@ -417,9 +376,10 @@ bool IsModeChange(SceneModeChange change, const ContactEvent& c) {
   return false;
 }
 
-std::vector<EventSpec> BuildEvents(const Scene& scene, std::shared_ptr<const Model*> model_ref,
-                                   std::shared_ptr<const BodyMap> map) {
+std::vector<EventSpec> BuildEvents(const Scene& scene, const BodyMap& body_map) {
   std::vector<EventSpec> events;
+  const auto map = std::make_shared<const SceneMap>(
+      SceneMap{body_map, static_cast<int>(scene.dynamics.constraints.names().size())});
   for (const SceneEvent& e : scene.dynamics.events) {
     if (e.change != SceneModeChange::kNone) {
       // Contact points are added to the Model in the scene's label order (AddSceneContacts).
@@ -433,28 +393,18 @@ std::vector<EventSpec> BuildEvents(const Scene& scene, std::shared_ptr<const Mod
       events.push_back(std::move(spec));
       continue;
     }
-    auto buffer = std::make_shared<std::vector<double>>();
     const Expression when = e.when;
     const double level = e.crosses;
     const int count = when.variable_count();
-    events.push_back(
-        EventSpec{e.name,
-                  [model_ref, map, when, level, buffer, count](double, const State& state) {
-                    FillVariables(**model_ref, state, *map, count, *buffer);
-                    return when.Evaluate(*buffer) - level;
-                  },
-                  e.direction, e.action});
+    events.push_back(EventSpec{e.name,
+                               [map, when, level, count](const Model& model, const State& state) {
+                                 std::vector<double> variables;
+                                 FillVariables(model, state, *map, count, variables);
+                                 return when.Evaluate(variables) - level;
+                               },
+                               e.direction, e.action});
   }
   return events;
-}
-
-double MechanicalEnergy(const Model& model, const State& state) {
-  double V = 0.0;
-  for (int i = 0; i < model.num_force_elements(); ++i) {
-    V += model.force_element(i).CalcPotentialEnergy(model, state);
-  }
-  return CalcTranslationalKineticEnergy(model, state) + CalcRotationalKineticEnergy(model, state) +
-         V;
 }
 
 double EndTime(const Scene& scene, double until) {
@@ -500,6 +450,26 @@ RunLimits ResolveLimits(const Scene& scene, const StudyOptions& o, double span) 
   throw SceneError(scene.file, spot.line, spot.column, spot.key,
                    fmt::format("{}; {}{} the limit with {} or '{}:' under 'simulation:'", what,
                                alternative, verb, flag, key));
+}
+
+/// A limit the run reached (RunStudy's LimitError), at the `simulation` key that sets it.
+[[noreturn]] void ThrowLimitReached(const Scene& scene, const LimitError& e) {
+  const SceneSimulation& sim = scene.dynamics.simulation;
+  switch (e.limit()) {
+    case LimitError::Limit::kSteps:
+      ThrowLimit(scene, sim.Spot("max_steps"), "max_steps", "--max-steps", e.what(),
+                 "loosen 'tolerance', shorten the run, or ");
+    case LimitError::Limit::kRows:
+      ThrowLimit(scene, sim.Spot("max_rows"), "max_rows", "--max-rows", e.what(),
+                 "choose a longer 'output_interval' or ");
+    case LimitError::Limit::kTime:
+      ThrowLimit(scene, sim.Spot("timeout"), "timeout", "--timeout", e.what());
+    case LimitError::Limit::kMinStep:
+      break;
+  }
+  // The adaptive step fell below the smallest step.
+  ThrowLimit(scene, sim.Spot("min_step"), "min_step", "--min-step", e.what(),
+             "check the forces and masses for a singularity, or ", "lower");
 }
 
 /// Largest magnitude of a motion in SI (position, speed) that a run accepts: beyond it the
@@ -639,74 +609,34 @@ void CheckLimitsUpFront(const Scene& scene, const RunLimits& limits, double span
   CheckSpringStiffness(scene, limits, span);
 }
 
-/// Throws when a body's motion is not finite (or has run away beyond any physical scale).
-void CheckFinite(const Model& model, const State& state) {
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const BodyState& s = state.bodies[static_cast<size_t>(b)];
-    const double big = 1e150;
-    const bool ok = s.p_WBcm.allFinite() && s.v_WBcm_W.allFinite() && s.w_WB_B.allFinite() &&
-                    s.q_WB.coeffs().allFinite() && s.p_WBcm.norm() < big &&
-                    s.v_WBcm_W.norm() < big && s.w_WB_B.norm() < big;
-    if (!ok) {
-      throw InputError(fmt::format(
-          "the motion of body '{}' diverged (non-finite or beyond 1e150 in SI) near t = {:.9g} s; "
-          "the run is stopped. Check the force expressions for a singularity, or use a smaller "
-          "'step' or the adaptive integrator",
-          model.body(b).name(), state.t));
-    }
-  }
-}
-
-const char* IntegratorName(IntegratorKind k) {
-  switch (k) {
-    case IntegratorKind::kDormandPrince5:
-      return "adaptive Dormand-Prince 5(4)";
-    case IntegratorKind::kRk4:
-      return "RK4 (fixed step)";
-    case IntegratorKind::kEnergyMomentum:
-      return "energy-momentum (fixed step)";
-  }
-  return "";
-}
-
-/// Everything that changes at an embedding: the bodies, the map and the Model built on them.
-struct Segment {
-  std::vector<std::pair<std::string, MassProperties>> bodies;
-  std::shared_ptr<BodyMap> map;
-  std::shared_ptr<const Model*> model_ref = std::make_shared<const Model*>(nullptr);
-  std::unique_ptr<Model> model;
-
-  void Build(const Scene& scene) {
-    model_ref = std::make_shared<const Model*>(nullptr);
-    model = std::make_unique<Model>(BuildModel(scene, bodies, map, model_ref));
-    *model_ref = model.get();
-  }
-};
-
-Segment FirstSegment(const Scene& scene) {
-  Segment seg;
-  seg.map = std::make_shared<BodyMap>();
-  seg.map->num_scene_constraints = static_cast<int>(scene.dynamics.constraints.names().size());
-  for (size_t b = 0; b < scene.bodies.size(); ++b) {
-    const MassProperties& mp = scene.bodies[b].mass_properties;
+/// The scene's bodies as the study's bodies. In plane motion (w = w_z e_z, held by the plane
+/// constraint) only I_zz about Bcm acts: eq. 8.36-8.38, H_z = I_zz w_z. The other entries only
+/// change the out-of-plane reactions, which a planar scene does not report, so the Model takes
+/// a lamina's, I_xx = I_yy = I_zz / 2 and no products: valid, and invertible for any body with
+/// I_zz > 0 (a slender rod in the plane has I_xx = 0 about its own axis).
+std::vector<NamedBody> StudyBodies(const Scene& scene) {
+  std::vector<NamedBody> bodies;
+  for (const SceneBody& b : scene.bodies) {
+    const MassProperties& mp = b.mass_properties;
     if (scene.planar) {
-      // In plane motion (w = w_z e_z, held by the plane constraint) only I_zz about Bcm acts:
-      // eq. 8.36-8.38, H_z = I_zz w_z. The other entries only change the out-of-plane
-      // reactions, which a planar scene does not report, so the Model takes a lamina's,
-      // I_xx = I_yy = I_zz / 2 and no products: valid, and invertible for any body with
-      // I_zz > 0 (a slender rod in the plane has I_xx = 0 about its own axis).
       const double Izz = mp.I_BBcm_B().Izz();
-      seg.bodies.emplace_back(
-          scene.bodies[b].name,
-          MassProperties(mp.mass(), mp.p_BoBcm_B(), RotationalInertia(0.5 * Izz, 0.5 * Izz, Izz)));
+      bodies.push_back({b.name, MassProperties(mp.mass(), mp.p_BoBcm_B(),
+                                               RotationalInertia(0.5 * Izz, 0.5 * Izz, Izz))});
     } else {
-      seg.bodies.emplace_back(scene.bodies[b].name, mp);
+      bodies.push_back({b.name, mp});
     }
-    seg.map->place.push_back(Placement{static_cast<int>(b), Mat3::Identity(), Vec3::Zero()});
-    seg.map->p_BoBcm_B.push_back(scene.bodies[b].mass_properties.p_BoBcm_B());
   }
-  seg.Build(scene);
-  return seg;
+  return bodies;
+}
+
+/// The identity map of the scene's bodies (before any embedding).
+BodyMap IdentityMap(const Scene& scene) {
+  BodyMap map;
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    map.place.push_back({static_cast<int>(b), Mat3::Identity(), Vec3::Zero()});
+    map.p_BoBcm_B.push_back(scene.bodies[b].mass_properties.p_BoBcm_B());
+  }
+  return map;
 }
 
 State InitialState(const Scene& scene, const Model& model) {
@@ -732,298 +662,6 @@ SimulationOptions BaseOptions(const Scene& scene, double t_end) {
   o.adaptive.rtol = sim.rtol;
   o.adaptive.atol = sim.atol;
   return o;
-}
-
-/// The ledger across segments: totals of the finished segments plus the running one.
-struct LedgerCarry {
-  State segment_initial;
-  double work_nc = 0.0, dissipated = 0.0, jumps = 0.0, residual = 0.0, scale = 0.0;
-  std::map<std::string, double> work_by_force;
-};
-
-struct RowMaker {
-  const Scene& scene;
-  std::vector<ColumnInfo> columns;
-  bool needs_accelerations = false;
-  /// Planar scenes: each body's last reported θ [rad], ω [rad/s] and time [s], for unwrapping.
-  struct ThetaTrack {
-    bool started = false;
-    double theta = 0.0, omega = 0.0, t = 0.0;
-  };
-  mutable std::vector<ThetaTrack> theta_track;
-
-  /// θ of scene body `b` at time t, continuous with the previous call (calls in time order).
-  double Theta(int b, const Mat3& R_WB, double omega, double t) const {
-    theta_track.resize(scene.bodies.size());
-    ThetaTrack& k = theta_track[static_cast<size_t>(b)];
-    const double reference = k.started ? k.theta + 0.5 * (k.omega + omega) * (t - k.t)
-                                       : scene.dynamics.initial[static_cast<size_t>(b)].theta;
-    k = {true, UnwrapTheta(R_WB, reference), omega, t};
-    return k.theta;
-  }
-
-  /// θ of scene body `b` at time t from the last reported one, without advancing the track
-  /// (for an event's state, which may lie before the last sample).
-  double ThetaAt(int b, const Mat3& R_WB, double omega, double t) const {
-    theta_track.resize(scene.bodies.size());
-    const ThetaTrack& k = theta_track[static_cast<size_t>(b)];
-    const double reference = k.started ? k.theta + 0.5 * (k.omega + omega) * (t - k.t)
-                                       : scene.dynamics.initial[static_cast<size_t>(b)].theta;
-    return UnwrapTheta(R_WB, reference);
-  }
-
-  std::vector<double> Row(const Model& model, const BodyMap& map, const State& s,
-                          const LedgerCarry& carry) const {
-    const LedgerSample L = CalcLedgerSample(model, s, carry.segment_initial);
-    Data data;
-    if (needs_accelerations) {
-      data = MakeData(model);
-      CalcAccelerations(model, s, data);
-    }
-    std::vector<double> row;
-    row.reserve(columns.size());
-    if (scene.planar) {
-      // θ of every body at every sample, so that it stays continuous whatever is printed.
-      for (size_t b = 0; b < map.place.size(); ++b) {
-        const SceneBodyMotion m = CalcSceneBodyMotion(model, s, map, static_cast<int>(b));
-        Theta(static_cast<int>(b), m.R_WB, m.w_WB_W.z(), s.t);
-      }
-    }
-    for (const ColumnInfo& c : columns) {
-      if (c.body >= 0) {
-        const SceneBodyMotion m = CalcSceneBodyMotion(model, s, map, c.body);
-        const std::string& q = c.quantity;
-        const Vec3 w_B = m.R_WB.transpose() * m.w_WB_W;
-        Vec3 a_W = Vec3::Zero(), al_W = Vec3::Zero();
-        if (q[0] == 'a') {
-          const int mb = map.place[static_cast<size_t>(c.body)].model_body;
-          const BodyState& bs = s.bodies[static_cast<size_t>(mb)];
-          al_W = data.R_WB[static_cast<size_t>(mb)] * data.wdot_WB_B[static_cast<size_t>(mb)];
-          const Vec3 r = m.p_WBcm - bs.p_WBcm;
-          a_W = data.a_WBcm_W[static_cast<size_t>(mb)] + al_W.cross(r) +
-                m.w_WB_W.cross(m.w_WB_W.cross(r));
-        }
-        const Quat q_WB(m.R_WB);
-        const Vec3 ypr = CalcYawPitchRoll(m.R_WB);
-        const Vec3 al_B = m.R_WB.transpose() * al_W;
-        static const std::map<std::string, int> index = {
-            {"x", 0},     {"y", 1},     {"z", 2},     {"ox", 3},     {"oy", 4},     {"oz", 5},
-            {"qw", 6},    {"qx", 7},    {"qy", 8},    {"qz", 9},     {"yaw", 10},   {"pitch", 11},
-            {"roll", 12}, {"tilt", 13}, {"vx", 14},   {"vy", 15},    {"vz", 16},    {"speed", 17},
-            {"wx", 18},   {"wy", 19},   {"wz", 20},   {"wbx", 21},   {"wby", 22},   {"wbz", 23},
-            {"ax", 24},   {"ay", 25},   {"az", 26},   {"alx", 27},   {"aly", 28},   {"alz", 29},
-            {"albx", 30}, {"alby", 31}, {"albz", 32}, {"theta", 33}, {"omega", 34}, {"alpha", 35}};
-        // Quaternion sign: keep w >= 0 so that the printed components are continuous where
-        // they can be and the same rotation always prints the same.
-        const double sign = q_WB.w() < 0 ? -1.0 : 1.0;
-        const double values[] = {
-            m.p_WBcm.x(),    m.p_WBcm.y(),
-            m.p_WBcm.z(),    m.p_WBo.x(),
-            m.p_WBo.y(),     m.p_WBo.z(),
-            sign * q_WB.w(), sign * q_WB.x(),
-            sign * q_WB.y(), sign * q_WB.z(),
-            ypr.x(),         ypr.y(),
-            ypr.z(),         std::acos(std::clamp(m.R_WB(2, 2), -1.0, 1.0)),
-            m.v_WBcm_W.x(),  m.v_WBcm_W.y(),
-            m.v_WBcm_W.z(),  m.v_WBcm_W.norm(),
-            m.w_WB_W.x(),    m.w_WB_W.y(),
-            m.w_WB_W.z(),    w_B.x(),
-            w_B.y(),         w_B.z(),
-            a_W.x(),         a_W.y(),
-            a_W.z(),         al_W.x(),
-            al_W.y(),        al_W.z(),
-            al_B.x(),        al_B.y(),
-            al_B.z(),        q == "theta" ? theta_track[static_cast<size_t>(c.body)].theta : 0.0,
-            m.w_WB_W.z(),    al_W.z()};
-        row.push_back(values[index.at(q)]);
-        continue;
-      }
-      const std::string& q = c.quantity;
-      if (c.group == "contacts") {
-        const ContactPointOutput& o = data.contact_points[static_cast<size_t>(c.point)];
-        const double values[] = {static_cast<double>(o.mode), o.normal_force,
-                                 o.friction_force_W.norm(), o.slip_velocity_W.norm(), o.gap};
-        static const std::map<std::string, int> index = {
-            {"mode", 0}, {"N", 1}, {"f", 2}, {"slip", 3}, {"gap", 4}};
-        row.push_back(values[index.at(q)]);
-        continue;
-      }
-      if (q == "W_friction" || q == "W_rolling" || q == "W_impacts") {
-        // Running integrals the State carries since t = 0 (across every segment).
-        double w = 0.0;
-        for (const ContactPointState& p : s.contacts) {
-          w += q == "W_friction" ? p.friction_work
-                                 : (q == "W_rolling" ? p.rolling_work : p.impact_work);
-        }
-        row.push_back(w);
-        continue;
-      }
-      if (c.group == "reactions") {
-        // Force (F) or moment about J (M) the parent exerts on the child, in W ("Fx") or in
-        // the child's frame B ("Fx_B").
-        const ConstraintOutput& r =
-            data.constraints[static_cast<size_t>(model.FindConstraint(c.force))];
-        const bool in_B = q.size() > 2;
-        const Vec3& v = q[0] == 'F' ? (in_B ? r.F_Jc_B : r.F_Jc_W) : (in_B ? r.M_Jc_B : r.M_Jc_W);
-        row.push_back(v[q[1] - 'x']);
-        continue;
-      }
-      double v = 0.0;
-      if (q == "t") {
-        v = s.t;
-      } else if (q == "T_trans") {
-        v = L.kinetic_translational;
-      } else if (q == "T_rot") {
-        v = L.kinetic_rotational;
-      } else if (q == "T") {
-        v = L.kinetic_translational + L.kinetic_rotational;
-      } else if (q == "V") {
-        v = L.potential;
-      } else if (q == "E") {
-        v = L.mechanical_energy;
-      } else if (q == "W_nc") {
-        v = carry.work_nc + L.work_nonconservative;
-      } else if (q == "W") {
-        v = carry.work_by_force.count(c.force) ? carry.work_by_force.at(c.force) : 0.0;
-        for (const ForceLedger& f : L.forces) {
-          if (f.name == c.force) v += f.work_nonconservative;
-        }
-        for (const ConstraintLedger& f : L.constraints) {
-          if (f.name == c.force) v += f.work;
-        }
-      } else if (q == "dissipated") {
-        v = carry.dissipated + L.dissipated;
-      } else if (q == "jumps") {
-        v = carry.jumps;
-      } else if (q == "residual") {
-        v = carry.residual + L.energy_residual;
-      } else if (q[0] == 'P') {
-        v = L.linear_momentum_W[q[1] - 'x'];
-      } else if (q[0] == 'H' && q[1] == 'O') {
-        v = L.angular_momentum_Wo_W[q[2] - 'x'];
-      } else if (q[0] == 'H') {
-        v = L.angular_momentum_Scm_W[q[1] - 'x'];
-      }
-      row.push_back(v);
-    }
-    return row;
-  }
-};
-
-/// Watches the friction each rolling contact with a `mu_s` needs over the output samples: the
-/// simulation holds the rolling whatever friction it takes, so the report says when more than
-/// mu_s N was needed (the body would slip).
-struct SlipWatch {
-  struct Entry {
-    const SceneRolling* rolling;
-    int constraint;  // Model index
-    double worst = 0.0, t_worst = 0.0;
-    bool lifts = false;
-    double t_lift = 0.0;
-  };
-  std::vector<Entry> entries;
-
-  explicit SlipWatch(const Scene& scene) {
-    const SceneConstraints& c = scene.dynamics.constraints;
-    for (size_t i = 0; i < c.rolling.size(); ++i) {
-      if (std::isnan(c.rolling[i].mu_s)) continue;
-      entries.push_back({&c.rolling[i], static_cast<int>(c.joints.size() + i)});
-    }
-  }
-  void Sample(const Model& model, const State& s) {
-    if (entries.empty() || model.num_constraints() == 0) return;
-    Data data = MakeData(model);
-    CalcAccelerations(model, s, data);
-    for (Entry& e : entries) {
-      // The multipliers are N (row 0) and the friction components along the plane's
-      // tangents t1, t2 (rows 1, 2); the plane may turn with its body.
-      const ConstraintEval::Column& lambda =
-          data.constraints[static_cast<size_t>(e.constraint)].lambda;
-      const double N = lambda[0];
-      if (!(N > 0)) {
-        if (!e.lifts) e.lifts = true, e.t_lift = s.t;
-        continue;
-      }
-      const double ratio = std::hypot(lambda[1], lambda[2]) / N;
-      if (ratio > e.worst) e.worst = ratio, e.t_worst = s.t;
-    }
-  }
-  void Report(std::vector<std::string>& notes) const {
-    for (const Entry& e : entries) {
-      if (e.lifts) {
-        notes.push_back(
-            fmt::format("rolling contact '{}': the plane would have to pull (N <= 0) "
-                        "at t = {:.6g} s: the body would lift off",
-                        e.rolling->name, e.t_lift));
-      }
-      if (e.worst > e.rolling->mu_s) {
-        notes.push_back(
-            fmt::format("rolling contact '{}' needs f/N = {:.6g} at t = {:.6g} s, "
-                        "more than mu_s = {:.6g}: the body would slip (the "
-                        "simulation holds it rolling)",
-                        e.rolling->name, e.worst, e.t_worst, e.rolling->mu_s));
-      }
-    }
-  }
-};
-
-/// Bodies, reactions (the scene's own constraints) and contact points of `model` at `state`.
-/// Planar scenes: θ continuous with the rows' track, which `advance` moves on to `state`.
-StudySnapshot MakeSnapshot(const Scene& scene, const Model& model, const State& state,
-                           const RowMaker& rows, bool advance) {
-  StudySnapshot out;
-  const size_t num_scene_constraints = scene.dynamics.constraints.names().size();
-  if (model.num_constraints() > 0) {
-    // The reactions at `state` (the constraint stage of CalcAccelerations).
-    Data data = MakeData(model);
-    CalcAccelerations(model, state, data);
-    for (int i = 0; i < static_cast<int>(num_scene_constraints); ++i) {
-      const Constraint& con = model.constraint(i);
-      const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
-      StudyReaction r;
-      r.name = con.name();
-      r.kind = con.kind();
-      r.p_WJ = o.p_WJ;
-      r.F_Jc_W = o.F_Jc_W;
-      r.M_Jc_W = o.M_Jc_W;
-      r.F_Jc_B = o.F_Jc_B;
-      r.M_Jc_B = o.M_Jc_B;
-      r.power = o.power;
-      out.reactions.push_back(r);
-    }
-  }
-  if (model.num_contacts() > 0) {
-    const std::vector<std::string> point_labels = scene.dynamics.contacts.point_labels();
-    const std::vector<ContactPointOutput> outputs = CalcContactOutputs(model, state);
-    for (int p = 0; p < model.num_contact_points(); ++p) {
-      const ContactPointOutput& o = outputs[static_cast<size_t>(p)];
-      const ContactPointState& ps = state.contacts[static_cast<size_t>(p)];
-      out.contacts.push_back({point_labels[static_cast<size_t>(p)], ContactModeName(ps.mode),
-                              o.normal_force, o.friction_force_W, o.slip_velocity_W, o.gap,
-                              ps.friction_work, ps.rolling_work, ps.impact_work});
-    }
-  }
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const BodyState& s = state.bodies[static_cast<size_t>(b)];
-    StudyBodyState f;
-    f.name = model.body(b).name();
-    f.mass = model.body(b).mass();
-    f.inertia_max = model.body(b).I_BBcm_B().diagonal().maxCoeff();
-    f.p_WBcm = s.p_WBcm;
-    f.p_WBo = CalcBodyOriginPosition(model, state, b);
-    f.q_WB = s.q_WB.w() < 0 ? Quat(-s.q_WB.coeffs()) : s.q_WB;
-    f.v_WBcm_W = s.v_WBcm_W;
-    f.w_WB_B = s.w_WB_B;
-    f.w_WB_W = s.q_WB * s.w_WB_B;
-    if (scene.planar) {
-      // Planar bodies map one to one onto Model bodies (no embedding in a planar scene).
-      const Mat3 R = s.q_WB.toRotationMatrix();
-      f.theta = advance ? rows.Theta(b, R, f.w_WB_W.z(), state.t)
-                        : rows.ThetaAt(b, R, f.w_WB_W.z(), state.t);
-    }
-    out.bodies.push_back(f);
-  }
-  return out;
 }
 
 }  // namespace
@@ -1109,18 +747,70 @@ Study BuildStudy(const Scene& scene, double until) {
   try {
     const double t_end = EndTime(scene, until);
     CheckPhysicalInputs(scene, t_end);
-    Segment seg = FirstSegment(scene);
     Study study;
-    study.model = std::shared_ptr<const Model>(std::move(seg.model));  // same address
+    study.model =
+        std::make_shared<const Model>(BuildModel(scene, StudyBodies(scene), IdentityMap(scene)));
     study.options = BaseOptions(scene, t_end);
     // On the constraints, or an error, or projected with each change a warning.
     study.initial = scene_internal::SettleInitialState(
         scene, *study.model, InitialState(scene, *study.model), study.warnings);
-    study.options.events = BuildEvents(scene, seg.model_ref, seg.map);
+    study.options.events = BuildEvents(scene, IdentityMap(scene));
     return study;
   } catch (const InputError& e) {
     ThrowAtSceneEntry(scene, e);
   }
+}
+
+StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& options) {
+  const SceneDynamics& d = scene.dynamics;
+  const double t_end = EndTime(scene, options.until);
+  CheckPhysicalInputs(scene, t_end);
+  const RunLimits limits = ResolveLimits(scene, options, t_end);
+  StudyDefinition def;
+  def.options = BaseOptions(scene, t_end);
+  CheckLimitsUpFront(scene, limits, t_end, def.options.output_interval);
+  def.options.adaptive.min_step = limits.min_step;
+  def.limits = {limits.max_steps, limits.max_rows, limits.timeout};
+  def.bodies = StudyBodies(scene);
+  // The builder and the events outlive the caller's Scene (a definition may be kept and run
+  // later, or in another thread): they hold their own copy.
+  const auto shared = std::make_shared<const Scene>(scene);
+  def.build_model = [shared](const std::vector<NamedBody>& bodies, const BodyMap& map) {
+    return BuildModel(*shared, bodies, map);
+  };
+  def.events = [shared](const BodyMap& map) { return BuildEvents(*shared, map); };
+  const std::vector<scene_internal::ColumnInfo> all = scene_internal::AllColumns(scene);
+  for (const std::string& name : d.columns) {
+    const auto it = std::find_if(all.begin(), all.end(), [&](const scene_internal::ColumnInfo& c) {
+      return c.name == name;
+    });
+    if (it != all.end()) def.columns.push_back(*it);
+  }
+  for (const SceneImpulse& i : d.impulses) {
+    def.impulses.push_back({i.t, i.body, i.p_BoP_B, i.J, i.frame});
+  }
+  for (const SceneImpact& i : d.impacts) {
+    def.impacts.push_back({i.t, i.target, i.projectile, i.exit_fraction});
+  }
+  def.contact_point_labels = d.contacts.point_labels();
+  for (const SceneForce& f : d.forces) def.reported_forces.push_back(f.name);
+  def.num_reported_constraints = static_cast<int>(d.constraints.names().size());
+  if (scene.planar) {
+    for (const SceneInitialState& in : d.initial) def.initial_theta.push_back(in.theta);
+  }
+  for (size_t i = 0; i < d.constraints.rolling.size(); ++i) {
+    const SceneRolling& r = d.constraints.rolling[i];
+    if (std::isnan(r.mu_s)) continue;
+    def.rolling_watch.push_back(
+        {r.name, static_cast<int>(d.constraints.joints.size() + i), r.mu_s});
+  }
+  def.certificate = CertificateTolerancesFor(scene);
+  def.progress = options.progress;
+  const Model first = BuildModel(scene, def.bodies, IdentityMap(scene));
+  // On the constraints, or an error, or projected with each change a warning.
+  def.initial =
+      scene_internal::SettleInitialState(scene, first, InitialState(scene, first), def.warnings);
+  return def;
 }
 
 namespace {
@@ -1138,443 +828,12 @@ StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
 namespace {
 
 StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
-  const double t_end = EndTime(scene, options.until);
-  CheckPhysicalInputs(scene, t_end);
-  const RunLimits limits = ResolveLimits(scene, options, t_end);
-  CheckLimitsUpFront(scene, limits, t_end, BaseOptions(scene, t_end).output_interval);
-  const auto started = std::chrono::steady_clock::now();
-  std::int64_t steps_taken = 0;
-  const SceneDynamics& d = scene.dynamics;
-  StudyResult result;
-  result.integrator = IntegratorName(d.simulation.integrator);
-
-  RowMaker rows{scene, {}, false, {}};
-  const std::vector<ColumnInfo> all = AllColumns(scene);
-  for (const std::string& name : d.columns) {
-    for (const ColumnInfo& c : all) {
-      if (c.name == name) {
-        rows.columns.push_back(c);
-        if ((c.quantity[0] == 'a' && c.body >= 0) || c.group == "reactions" ||
-            c.group == "contacts") {
-          rows.needs_accelerations = true;
-        }
-        break;
-      }
-    }
+  const StudyDefinition definition = MakeStudyDefinition(scene, options);
+  try {
+    return RunStudy(definition);
+  } catch (const LimitError& e) {
+    ThrowLimitReached(scene, e);
   }
-  for (const ColumnInfo& c : rows.columns) result.columns.push_back(c.name);
-
-  Segment seg = FirstSegment(scene);
-  State state = scene_internal::SettleInitialState(
-      scene, *seg.model, InitialState(scene, *seg.model), result.warnings);
-  CheckFinite(*seg.model, state);
-  const std::vector<std::string> point_labels = d.contacts.point_labels();
-  auto record_impacts = [&](const ImpactResult& r, double t) {
-    for (const ContactImpulse& imp : r.impulses) {
-      result.impacts.push_back({t, point_labels[static_cast<size_t>(imp.point)], imp.approach_speed,
-                                imp.normal_impulse,
-                                r.kinetic_energy_before - r.kinetic_energy_after, false,
-                                std::numeric_limits<double>::quiet_NaN(), false,
-                                RestitutionLawName(imp.law), r.frictionless_fallback});
-    }
-  };
-  auto record_changes = [&](const std::vector<ContactModeChange>& changes, double t,
-                            const char* reason) {
-    for (const ContactModeChange& c : changes) {
-      const Model& m = *seg.model;
-      result.contact_events.push_back({t, point_labels[static_cast<size_t>(c.point)],
-                                       m.contact(m.contact_of_point(c.point)).name(),
-                                       ContactModeName(c.from), ContactModeName(c.to), reason});
-    }
-  };
-  // Contacts that approach at t = 0 take their impact first; then every contact point gets a
-  // consistent initial mode, so that the first output row already shows it.
-  auto settle_contacts = [&](const char* reason) {
-    if (seg.model->num_contacts() == 0) return;
-    const ContactTolerances tol;
-    const ImpactResult impacts = ResolveImpacts(*seg.model, state, tol);
-    record_impacts(impacts, state.t);
-    ModeSelectionNotes notes;
-    record_changes(SelectContactModes(*seg.model, state, tol, {}, &notes), state.t, reason);
-    for (const JamImpulse& j : notes.jams) {
-      result.impacts.push_back({state.t, point_labels[static_cast<size_t>(j.point)], 0.0,
-                                j.normal_impulse, j.energy_lost, false,
-                                std::numeric_limits<double>::quiet_NaN(), true, "", false});
-      result.warnings.push_back(fmt::format(
-          "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces had "
-          "no consistent solution (a Painlevé-type paradox); the slip was stopped by an "
-          "impulsive jam (an impact without collision) that took {:.6g} J",
-          point_labels[static_cast<size_t>(j.point)], state.t, j.slip_speed, j.energy_lost));
-    }
-  };
-  // The ledger starts from the state as given: an impact or a jam at t = 0 is part of it.
-  if (seg.model->num_contacts() > 0) {
-    state.contacts.assign(static_cast<size_t>(seg.model->num_contact_points()),
-                          ContactPointState{});
-  }
-  const State as_given = state;
-  if (seg.model->num_contacts() > 0) {
-    settle_contacts("initial");
-    // Every point's initial mode is part of the timeline, changed or not.
-    for (int p = 0; p < seg.model->num_contact_points(); ++p) {
-      const bool listed = std::any_of(result.contact_events.begin(), result.contact_events.end(),
-                                      [&](const StudyContactEvent& e) {
-                                        return e.point == point_labels[static_cast<size_t>(p)];
-                                      });
-      if (!listed) {
-        const ContactMode m = state.contacts[static_cast<size_t>(p)].mode;
-        result.contact_events.push_back({state.t, point_labels[static_cast<size_t>(p)],
-                                         seg.model->contact(seg.model->contact_of_point(p)).name(),
-                                         ContactModeName(m), ContactModeName(m), "initial"});
-      }
-    }
-  }
-  LedgerCarry carry;
-  carry.segment_initial = as_given;
-  const double E0 = MechanicalEnergy(*seg.model, as_given);
-  result.rows.push_back(rows.Row(*seg.model, *seg.map, state, carry));
-  // The certificate: every sample, event and contact transition is checked (the ledger with
-  // the residual carried across the segments).
-  CertificateBuilder certificate(CertificateTolerancesFor(scene));
-  auto certify = [&](const State& s, CheckPhase phase) {
-    certificate.CheckState(*seg.model, s, phase);
-    const LedgerSample L = CalcLedgerSample(*seg.model, s, carry.segment_initial);
-    certificate.CheckLedger(s.t, carry.residual + L.energy_residual,
-                            std::max(carry.scale, L.energy_scale), phase);
-  };
-  certify(state, CheckPhase::kSample);
-  SlipWatch slip(scene);
-  slip.Sample(*seg.model, state);
-
-  // Impulses and impacts in time order (stable: the file's order at equal times).
-  struct Jump {
-    double t;
-    const SceneImpulse* impulse;
-    const SceneImpact* impact;
-  };
-  std::vector<Jump> jumps;
-  for (const auto& i : d.impulses) jumps.push_back({i.t, &i, nullptr});
-  for (const auto& i : d.impacts) jumps.push_back({i.t, nullptr, &i});
-  std::stable_sort(jumps.begin(), jumps.end(),
-                   [](const Jump& a, const Jump& b) { return a.t < b.t; });
-
-  SimulationOptions base = BaseOptions(scene, t_end);
-  base.adaptive.min_step = limits.min_step;
-  const double dt_out = base.output_interval;
-  bool stopped = false;
-  const SceneSimulation& sim = d.simulation;
-  // Every accepted step of every segment counts against the step limit and the wall time.
-  const auto on_step = [&](double t) {
-    if (options.progress) options.progress(t);
-    if (++steps_taken > limits.max_steps) {
-      ThrowLimit(scene, sim.Spot("max_steps"), "max_steps", "--max-steps",
-                 fmt::format("the run reached the limit of {} integration steps at t = {:.9g} s "
-                             "(of {:.9g} s)",
-                             limits.max_steps, t, t_end),
-                 "loosen 'tolerance', shorten the run, or ");
-    }
-    if (limits.timeout > 0) {
-      const std::chrono::duration<double> used = std::chrono::steady_clock::now() - started;
-      if (used.count() > limits.timeout) {
-        ThrowLimit(scene, sim.Spot("timeout"), "timeout", "--timeout",
-                   fmt::format("the run reached its wall-time limit of {:g} s at t = {:.9g} s "
-                               "(of {:.9g} s) after {} steps (a limit of 0 s turns it off)",
-                               limits.timeout, t, t_end, steps_taken));
-      }
-    }
-  };
-
-  // Integrates from state.t to t_b, sampling on the global grid k * dt_out.
-  auto run_to = [&](double t_b) {
-    while (state.t < t_b && !stopped) {
-      const double k = std::ceil(state.t / dt_out - 1e-9);
-      const double next_grid = k * dt_out;
-      const bool on_grid = std::abs(next_grid - state.t) <= 1e-9 * dt_out;
-      SimulationOptions o = base;
-      o.t_end = on_grid ? t_b : std::min(next_grid, t_b);
-      o.output_interval = on_grid ? dt_out : 0.0;
-      o.events = BuildEvents(scene, seg.model_ref, seg.map);
-      o.store_samples = false;
-      o.on_step = on_step;
-      bool first = true;
-      o.on_sample = [&](const State& s) {
-        if (first) {
-          first = false;
-          return;
-        }
-        if (static_cast<std::int64_t>(result.rows.size()) >= limits.max_rows) {
-          ThrowLimit(scene, sim.Spot("max_rows"), "max_rows", "--max-rows",
-                     fmt::format("the run reached the limit of {} output rows at t = {:.9g} s",
-                                 limits.max_rows, s.t),
-                     "choose a longer 'output_interval' or ");
-        }
-        CheckFinite(*seg.model, s);
-        result.rows.push_back(rows.Row(*seg.model, *seg.map, s, carry));
-        certify(s, CheckPhase::kSample);
-        slip.Sample(*seg.model, s);
-        if (options.progress) options.progress(s.t);
-      };
-      o.on_transition = [&](const State& before, const State& after) {
-        certify(before, CheckPhase::kBeforeTransition);
-        certify(after, CheckPhase::kAfterTransition);
-      };
-      SimulationResult r;
-      const double t_from = state.t;
-      // Modes carried into this run: its "initial" records that only restate them are dropped.
-      std::vector<ContactMode> carried(state.contacts.size());
-      for (size_t p = 0; p < carried.size(); ++p) carried[p] = state.contacts[p].mode;
-      try {
-        r = Simulate(*seg.model, state, o);
-      } catch (const SceneError&) {
-        throw;  // a limit, already located
-      } catch (const LimitError& e) {
-        // The adaptive step fell below the smallest step.
-        ThrowLimit(scene, sim.Spot("min_step"), "min_step", "--min-step", e.what(),
-                   "check the forces and masses for a singularity, or ", "lower");
-      } catch (const InputError& e) {
-        const double t_last = result.rows.empty() ? t_from : result.rows.back().front();
-        throw InputError(fmt::format("the run stopped after t = {:.9g} s: {}", t_last, e.what()));
-      }
-      CheckFinite(*seg.model, r.final_state);
-      result.stats.steps += r.stats.steps;
-      result.stats.rejected_steps += r.stats.rejected_steps;
-      result.stats.function_evaluations += r.stats.function_evaluations;
-      for (const EventRecord& e : r.events) {
-        const bool stop = d.events[static_cast<size_t>(e.event)].action == EventAction::kStop;
-        certify(e.state, CheckPhase::kEvent);
-        result.events.push_back(
-            {e.name, e.t, stop, MakeSnapshot(scene, *seg.model, e.state, rows, false)});
-      }
-      for (const ContactEvent& e : r.contact_events) {
-        // The modes carried into this run are already in the timeline: Simulate lists every
-        // point's starting mode (as a change from separated); only a mode it chose
-        // differently from the one carried in is news.
-        ContactMode from = e.from;
-        if (e.reason == ContactEventReason::kInitial) {
-          const auto p = static_cast<size_t>(e.point);
-          from = p < carried.size() ? carried[p] : ContactMode::kSeparated;
-          if (from == e.to) continue;
-        }
-        const Model& m = *seg.model;
-        result.contact_events.push_back({e.t, point_labels[static_cast<size_t>(e.point)],
-                                         m.contact(m.contact_of_point(e.point)).name(),
-                                         ContactModeName(from), ContactModeName(e.to),
-                                         ContactEventReasonName(e.reason)});
-      }
-      for (const ImpactRecord& imp : r.impacts) {
-        result.impacts.push_back({imp.t, point_labels[static_cast<size_t>(imp.point)],
-                                  imp.approach_speed, imp.normal_impulse, imp.energy_lost,
-                                  imp.accumulation, imp.accumulation_time, imp.jam,
-                                  RestitutionLawName(imp.law), imp.frictionless_fallback});
-      }
-      result.warnings.insert(result.warnings.end(), r.warnings.begin(), r.warnings.end());
-      state = r.final_state;
-      if (r.stopped_by_event) stopped = true;
-    }
-  };
-
-  auto close_segment = [&]() {
-    const LedgerSample L = CalcLedgerSample(*seg.model, state, carry.segment_initial);
-    carry.work_nc += L.work_nonconservative;
-    carry.dissipated += L.dissipated;
-    carry.residual += L.energy_residual;
-    carry.scale = std::max(carry.scale, L.energy_scale);
-    for (const ForceLedger& f : L.forces) carry.work_by_force[f.name] += f.work_nonconservative;
-    for (const ConstraintLedger& f : L.constraints) carry.work_by_force[f.name] += f.work;
-  };
-
-  for (const Jump& j : jumps) {
-    if (j.t > t_end) {
-      result.notes.push_back(
-          fmt::format("an impulse or impact at t = {:.6g} s is after the end "
-                      "time {:.6g} s and was not applied",
-                      j.t, t_end));
-      continue;
-    }
-    run_to(j.t);
-    if (stopped) break;
-    close_segment();
-    const double E_before = MechanicalEnergy(*seg.model, state);
-    StudyJump rec;
-    rec.t = state.t;
-    int shown_body = 0;
-    if (j.impulse) {
-      const SceneImpulse& imp = *j.impulse;
-      const Placement& pl = seg.map->place[static_cast<size_t>(imp.body)];
-      const Mat3 R_WM = state.bodies[static_cast<size_t>(pl.model_body)].q_WB.toRotationMatrix();
-      const Vec3 J_W = imp.frame == VectorFrame::kWorld ? imp.J : Vec3(R_WM * pl.R_MB * imp.J);
-      ApplyImpulse(*seg.model, pl.model_body, pl.R_MB * imp.p_BoP_B + pl.p_MoBo_M, J_W, state);
-      rec.kind = "impulse";
-      rec.description =
-          fmt::format("impulse on {}", scene.bodies[static_cast<size_t>(imp.body)].name);
-      shown_body = pl.model_body;
-    } else {
-      const SceneImpact& imp = *j.impact;
-      const std::string& tname = scene.bodies[static_cast<size_t>(imp.target)].name;
-      const std::string& pname = scene.bodies[static_cast<size_t>(imp.projectile)].name;
-      const int mt = seg.map->place[static_cast<size_t>(imp.target)].model_body;
-      const int mp = seg.map->place[static_cast<size_t>(imp.projectile)].model_body;
-      if (mt == mp) {
-        throw InputError(
-            fmt::format("impact at t = {:.6g} s: '{}' and '{}' are already one body "
-                        "(an earlier impact embedded one in the other)",
-                        imp.t, pname, tname));
-      }
-      const BodyState& sp = state.bodies[static_cast<size_t>(mp)];
-      if (imp.exit_fraction > 0) {
-        const Vec3 v_p = sp.v_WBcm_W;
-        ApplyPassThrough(*seg.model, mt, sp.p_WBcm, seg.model->body(mp).mass(), v_p,
-                         imp.exit_fraction, state);
-        state.bodies[static_cast<size_t>(mp)].v_WBcm_W = imp.exit_fraction * v_p;
-        rec.kind = "pass-through";
-        rec.description = fmt::format("{} passes through {} keeping {:.4g} of its velocity", pname,
-                                      tname, imp.exit_fraction);
-        shown_body = mt;
-      } else {
-        auto motion = [&](int m) {
-          const BodyState& s = state.bodies[static_cast<size_t>(m)];
-          BodyMotion bm;
-          bm.mass_properties = seg.model->body(m).mass_properties();
-          bm.R_WB = s.q_WB.toRotationMatrix();
-          bm.p_WBcm = s.p_WBcm;
-          bm.v_WBcm_W = s.v_WBcm_W;
-          bm.w_WB_W = bm.R_WB * s.w_WB_B;
-          return bm;
-        };
-        const BodyMotion target = motion(mt), projectile = motion(mp);
-        const EmbeddingResult e = CalcEmbedding(target, projectile);
-        // Re-place the projectile's scene bodies in the target's frame:
-        // R_TB = R_WTᵀ R_WP R_PB,  p_ToBo_T = R_WTᵀ (p_WPo + R_WP p_PoBo_P - p_WTo).
-        const Vec3 p_WTo = CalcBodyOriginPosition(*seg.model, state, mt);
-        const Vec3 p_WPo = CalcBodyOriginPosition(*seg.model, state, mp);
-        auto map = std::make_shared<BodyMap>(*seg.map);
-        for (Placement& pl : map->place) {
-          if (pl.model_body == mp) {
-            pl.p_MoBo_M = target.R_WB.transpose() * (p_WPo + projectile.R_WB * pl.p_MoBo_M - p_WTo);
-            pl.R_MB = target.R_WB.transpose() * projectile.R_WB * pl.R_MB;
-            pl.model_body = mt;
-          }
-          if (pl.model_body > mp) --pl.model_body;
-        }
-        Segment next;
-        next.map = map;
-        for (int m = 0; m < seg.model->num_bodies(); ++m) {
-          if (m == mp) continue;
-          if (m == mt) {
-            next.bodies.emplace_back(seg.bodies[static_cast<size_t>(mt)].first + "+" +
-                                         seg.bodies[static_cast<size_t>(mp)].first,
-                                     e.composite.mass_properties);
-          } else {
-            next.bodies.push_back(seg.bodies[static_cast<size_t>(m)]);
-          }
-        }
-        next.Build(scene);
-        State s2 = MakeRestState(*next.model);
-        s2.t = state.t;
-        int k = 0;
-        for (int m = 0; m < seg.model->num_bodies(); ++m) {
-          if (m == mp) continue;
-          if (m == mt) {
-            BodyState& c = s2.bodies[static_cast<size_t>(k)];
-            c.p_WBcm = e.composite.p_WBcm;
-            c.q_WB = Quat(e.composite.R_WB).normalized();
-            c.v_WBcm_W = e.composite.v_WBcm_W;
-            c.w_WB_B = e.composite.R_WB.transpose() * e.composite.w_WB_W;
-            shown_body = k;
-          } else {
-            s2.bodies[static_cast<size_t>(k)] = state.bodies[static_cast<size_t>(m)];
-          }
-          ++k;
-        }
-        seg = std::move(next);
-        state = std::move(s2);
-        rec.kind = "embedding";
-        rec.description = fmt::format("{} embeds in {}", pname, tname);
-      }
-    }
-    if (seg.model->num_constraints() > 0) {
-      // The supports' impulsive reaction: projecting the velocities onto the constraints with
-      // the mass metric, du = -M⁻¹ Jᵀ μ, is exactly the response of ideal constraints to the
-      // impulse (impulse-momentum with the constraint impulse Jᵀ μ).
-      Data data = MakeData(*seg.model);
-      ProjectOntoConstraints(*seg.model, state, data);
-    }
-    // A contact the jump drives into its plane takes an impact; then the modes are chosen
-    // again for the new velocities (a sticking point may now slip).
-    settle_contacts("impulse");
-    CheckFinite(*seg.model, state);
-    rec.energy_before = E_before;
-    rec.energy_after = MechanicalEnergy(*seg.model, state);
-    const BodyState& shown = state.bodies[static_cast<size_t>(shown_body)];
-    rec.v_after_W = shown.v_WBcm_W;
-    rec.w_after_W = shown.q_WB * shown.w_WB_B;
-    carry.jumps += rec.energy_after - rec.energy_before;
-    carry.scale = std::max({carry.scale, std::abs(rec.energy_before), std::abs(rec.energy_after)});
-    carry.segment_initial = state;
-    result.jumps.push_back(rec);
-    result.rows.push_back(rows.Row(*seg.model, *seg.map, state, carry));
-    certify(state, CheckPhase::kSample);
-  }
-  if (!stopped) run_to(t_end);
-
-  // Final ledger.
-  const Model& model = *seg.model;
-  const LedgerSample L = CalcLedgerSample(model, state, carry.segment_initial);
-  StudyLedger& out = result.ledger;
-  out.kinetic_translational = L.kinetic_translational;
-  out.kinetic_rotational = L.kinetic_rotational;
-  out.potential = L.potential;
-  out.energy = L.mechanical_energy;
-  out.energy_initial = E0;
-  out.work_nonconservative = carry.work_nc + L.work_nonconservative;
-  out.dissipated = carry.dissipated + L.dissipated;
-  for (const ContactPointState& p : state.contacts) {
-    out.friction_work += p.friction_work;
-    out.rolling_work += p.rolling_work;
-    out.impact_work += p.impact_work;
-  }
-  out.jumps = carry.jumps;
-  out.residual = carry.residual + L.energy_residual;
-  out.energy_scale = std::max(carry.scale, L.energy_scale);
-  for (const SceneForce& f : d.forces) {
-    double w = carry.work_by_force.count(f.name) ? carry.work_by_force.at(f.name) : 0.0;
-    for (const ForceLedger& fl : L.forces) {
-      if (fl.name == f.name) w += fl.work_nonconservative;
-    }
-    out.work_by_force.emplace_back(f.name, w);
-  }
-  // The plane constraints of a planar scene come after the scene's own; they are left out of
-  // its reports (their reactions are out of plane, not physical for a planar body).
-  const size_t num_scene_constraints = d.constraints.names().size();
-  for (const ConstraintLedger& cl : L.constraints) {
-    if (out.work_by_constraint.size() == num_scene_constraints) break;
-    const double w =
-        (carry.work_by_force.count(cl.name) ? carry.work_by_force.at(cl.name) : 0.0) + cl.work;
-    out.work_by_constraint.emplace_back(cl.name, w);
-  }
-  if (model.num_constraints() > 0) {
-    Data data = MakeData(model);
-    CalcAccelerations(model, state, data);
-    if (data.constraint_rank < model.num_constraint_rows()) {
-      Data scratch = MakeData(model);
-      for (std::string& w : DescribeRedundancy(model, AnalyseRedundancy(model, state, scratch))) {
-        result.warnings.push_back(std::move(w));
-      }
-    }
-  }
-  StudySnapshot final_snapshot = MakeSnapshot(scene, model, state, rows, true);
-  result.final_reactions = std::move(final_snapshot.reactions);
-  result.final_contacts = std::move(final_snapshot.contacts);
-  result.final_bodies = std::move(final_snapshot.bodies);
-  out.linear_momentum_W = L.linear_momentum_W;
-  out.angular_momentum_Scm_W = L.angular_momentum_Scm_W;
-  out.angular_momentum_Wo_W = L.angular_momentum_Wo_W;
-
-  slip.Report(result.notes);
-  result.certificate = certificate.Finish();
-  result.t_end = state.t;
-  result.stopped_by_event = stopped;
-  return result;
 }
 
 }  // namespace

@@ -36,7 +36,7 @@ Model MakeBusyModel() {
   model.AddForceElement(std::make_shared<LinearDrag>("air", b, 0.4, 0.01));
   model.AddForceElement(std::make_shared<AppliedForce>(
       "push", b, Vec3(0.05, 0, 0),
-      [](double t, const State&) { return Vec3(std::sin(3 * t), 0.5, std::cos(2 * t)); },
+      [](const Model&, const State& s) { return Vec3(std::sin(3 * s.t), 0.5, std::cos(2 * s.t)); },
       VectorFrame::kBody));
   model.AddForceElement(AppliedMoment::Constant("motor", a, Vec3(0, 0, 0.2), VectorFrame::kBody));
   return model;

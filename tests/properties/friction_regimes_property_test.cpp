@@ -109,10 +109,12 @@ Built Build(const Case& c) {
       "gravity", Vec3(kG * std::sin(c.theta), 0, -kG * std::cos(c.theta))));
   const double P0 = c.P0, k = c.k, h = c.h;
   m.AddForceElement(std::make_shared<AppliedForce>(
-      "push", 0, Vec3::Zero(), [P0, k](double t, const State&) { return Vec3(P0 + k * t, 0, 0); },
+      "push", 0, Vec3::Zero(),
+      [P0, k](const Model&, const State& s) { return Vec3(P0 + k * s.t, 0, 0); },
       VectorFrame::kWorld));
   m.AddForceElement(std::make_shared<AppliedMoment>(
-      "push-height", 0, [P0, k, h](double t, const State&) { return Vec3(0, h * (P0 + k * t), 0); },
+      "push-height", 0,
+      [P0, k, h](const Model&, const State& s) { return Vec3(0, h * (P0 + k * s.t), 0); },
       VectorFrame::kWorld));
   m.AddContact(spec);
   b.s0 = MakeRestState(m);

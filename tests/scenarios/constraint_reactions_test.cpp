@@ -187,7 +187,7 @@ TEST(SupportReaction, RodLeavesTheWallWhereCosThetaIsTwoThirdsCosTheta0) {
   EventSpec leaves;
   leaves.name = "wall reaction zero";
   leaves.direction = EventDirection::kFalling;
-  leaves.g = [&](double, const State& s) {
+  leaves.g = [&](const Model&, const State& s) {
     return SolveInstantaneous(ladder.model, s, {1e-7}).reactions[0].F_Jc_W.x();
   };
   o.events.push_back(leaves);

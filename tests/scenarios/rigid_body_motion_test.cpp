@@ -136,7 +136,7 @@ TEST(Projectile, GroundHitEventLocatedTo1e10Seconds) {
   SimulationOptions o = Tight(100.0, 0.0);
   o.adaptive.rtol =
       1e-8;  // a quadratic is integrated exactly; the event is found on the interpolant
-  o.events.push_back({"ground", [](double, const State& s) { return s.bodies[0].p_WBcm.z(); },
+  o.events.push_back({"ground", [](const Model&, const State& s) { return s.bodies[0].p_WBcm.z(); },
                       EventDirection::kFalling, EventAction::kStop});
   const SimulationResult r = Simulate(model, s0, o);
   const double t_star = (vz + std::sqrt(vz * vz + 2 * g * z0)) / g;
@@ -160,7 +160,7 @@ TEST(SpringMass, PeriodAndEnergy) {
   const double period = 2 * std::numbers::pi * std::sqrt(m / k);
   SimulationOptions o = Tight(2.5 * period, period / 8);
   // vx goes from + to - once per period, at t = T, 2T (vx = -a ω sin ω t).
-  o.events.push_back({"turn", [](double, const State& s) { return s.bodies[0].v_WBcm_W.x(); },
+  o.events.push_back({"turn", [](const Model&, const State& s) { return s.bodies[0].v_WBcm_W.x(); },
                       EventDirection::kFalling, EventAction::kRecord});
   const SimulationResult r = Simulate(model, s0, o);
   ASSERT_EQ(r.events.size(), 2u);

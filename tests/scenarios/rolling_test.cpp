@@ -107,7 +107,7 @@ TEST(Rolling, SpeedAfterADropExample86) {
     EventSpec drop;
     drop.name = "dropped h";
     drop.direction = EventDirection::kRising;
-    drop.g = [&](double, const State& s) {
+    drop.g = [&](const Model&, const State& s) {
       return (s0.bodies[0].p_WBcm.y() - s.bodies[0].p_WBcm.y()) - h;
     };
     o.events.push_back(drop);

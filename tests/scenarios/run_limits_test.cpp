@@ -30,8 +30,8 @@ Model PushedBody(VectorFunction force) {
 }
 
 // F = 1 N until t = 0.25 s, then NaN (a force with no value there, e.g. sqrt of a negative).
-Vec3 NanAfterQuarterSecond(double t, const State&) {
-  return t < 0.25 ? Vec3(1.0, 0.0, 0.0) : Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+Vec3 NanAfterQuarterSecond(const Model&, const State& s) {
+  return s.t < 0.25 ? Vec3(1.0, 0.0, 0.0) : Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
 }
 
 class NonFiniteForce : public ::testing::TestWithParam<IntegratorKind> {};
@@ -68,7 +68,7 @@ INSTANTIATE_TEST_SUITE_P(Integrators, NonFiniteForce,
 // RK4 with h = 0.01 s over 1 s and output every 0.1 s: exactly span / h = 100 accepted steps,
 // each reported once, at t = k h.
 TEST(StepHook, SeesEveryFixedStep) {
-  const Model model = PushedBody([](double, const State&) { return Vec3(1.0, 0.0, 0.0); });
+  const Model model = PushedBody([](const Model&, const State&) { return Vec3(1.0, 0.0, 0.0); });
   SimulationOptions o;
   o.integrator = IntegratorKind::kRk4;
   o.t_end = 1.0;
@@ -90,7 +90,8 @@ TEST(StepHook, SeesEveryFixedStep) {
 // The adaptive hook is called once per accepted step (stats().steps), and throwing from it
 // stops the run there.
 TEST(StepHook, CountsAdaptiveStepsAndCanStopTheRun) {
-  const Model model = PushedBody([](double t, const State&) { return Vec3(std::sin(t), 0, 0); });
+  const Model model =
+      PushedBody([](const Model&, const State& s) { return Vec3(std::sin(s.t), 0, 0); });
   SimulationOptions o;
   o.t_end = 2.0;
   std::int64_t calls = 0;
@@ -107,8 +108,8 @@ TEST(StepHook, CountsAdaptiveStepsAndCanStopTheRun) {
 // towards the width of the jump; with a smallest step of 1 ms the run stops there with a
 // LimitError (kMinStep) before t = 0.5 s + 1 ms.
 TEST(MinStep, AnAdaptiveStepBelowItIsALimitError) {
-  const Model model = PushedBody([](double t, const State&) {
-    return Vec3(1000.0 * std::clamp((t - 0.5) * 1e12, 0.0, 1.0), 0.0, 0.0);
+  const Model model = PushedBody([](const Model&, const State& s) {
+    return Vec3(1000.0 * std::clamp((s.t - 0.5) * 1e12, 0.0, 1.0), 0.0, 0.0);
   });
   SimulationOptions o;
   o.t_end = 1.0;

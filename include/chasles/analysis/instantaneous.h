@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "chasles/model/data.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
 
@@ -76,5 +77,10 @@ struct InstantaneousOptions {
 /// constraint by more than the tolerance (naming it) or the constraints are inconsistent.
 InstantaneousSolution SolveInstantaneous(const Model& model, const State& state,
                                          const InstantaneousOptions& options = {});
+
+/// The report of constraint `c` from the constraint stage of CalcAccelerations in `data`
+/// (data.constraints[c]): the one conversion from the solve's ConstraintOutput to the reaction
+/// every report shows (SolveInstantaneous, RunStudy).
+ReactionReport MakeReactionReport(const Model& model, const Data& data, int c);
 
 }  // namespace chasles

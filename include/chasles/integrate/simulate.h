@@ -61,8 +61,9 @@ struct ContactEvent {
 struct EventSpec {
   /// Name used in reports.
   std::string name;
-  /// The event function g(t, state); an event is a zero crossing in `direction`.
-  std::function<double(double t, const State& state)> g;
+  /// The event function g(model, state) (time state.t); an event is a zero crossing in
+  /// `direction`. Like a VectorFunction it keeps no mutable state of its own.
+  std::function<double(const Model& model, const State& state)> g;
   EventDirection direction = EventDirection::kEither;
   EventAction action = EventAction::kStop;
   /// Instead of g, a contact-mode event (models with contacts): it fires at each mode change

@@ -19,9 +19,11 @@ struct State;
 struct Data;
 struct ForceElementOutput;
 
-/// A vector-valued function of time and state, e.g. a force [N] or a moment [N·m]. The scene
-/// layer compiles its expressions into these.
-using VectorFunction = std::function<Vec3(double t, const State& state)>;
+/// A vector-valued function of the state (time state.t), e.g. a force [N] or a moment [N·m].
+/// The scene layer compiles its expressions into these. It receives the Model it is evaluated
+/// for and must keep no mutable state of its own: a Model is shared between threads (sweeps,
+/// Python), so scratch space lives on the caller's stack or in Data.
+using VectorFunction = std::function<Vec3(const Model& model, const State& state)>;
 
 /// In which frame a callback's vector is expressed: fixed in the world, or turning with the
 /// body it acts on (a thruster).

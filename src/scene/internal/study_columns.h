@@ -7,25 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "chasles/analysis/study.h"
 #include "chasles/scene/scene.h"
 
 namespace chasles::scene_internal {
 
-struct ColumnInfo {
-  /// Column name in the CSV header.
-  std::string name;
-  /// Group it belongs to ("position", "energy", ...).
-  std::string group;
-  /// Scene body index for per-body columns; -1 for t and ledger columns.
-  int body = -1;
-  /// What it is: a body quantity suffix ("x", "qw", "ax", ...), or the ledger name ("T_trans",
-  /// "W_nc", ...), or "W" with `force` set for a force element's work.
-  std::string quantity;
-  /// Force element name for per-force work columns.
-  std::string force;
-  /// Contact point index (Model order) for the "contacts" group's columns; -1 otherwise.
-  int point = -1;
-};
+/// A column: name, group, body, quantity, force, contact point (see StudyColumn).
+using ColumnInfo = StudyColumn;
 
 /// Every column the scene offers, in a stable order.
 std::vector<ColumnInfo> AllColumns(const Scene& scene);

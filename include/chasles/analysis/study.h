@@ -1,0 +1,362 @@
+#pragma once
+/// @file
+/// A study: a Model run from an initial State with impulses, impacts and events, sampled on an
+/// output grid, with the energy ledger carried across the whole run and a certificate of its
+/// own checks. This is what `chasles simulate` reports; a C++ caller builds a StudyDefinition
+/// in code (docs/cpp.md) and calls RunStudy, without a scene file.
+///
+/// Impulses and impacts split the run into segments. Between them Simulate integrates the
+/// current Model; at each instant the state jumps (ApplyImpulse, ApplyPassThrough) or, when a
+/// projectile embeds, a new Model is built with the composite body by the definition's
+/// ModelBuilder (Models are immutable). The ledger is carried across the segments: each
+/// segment's work-energy residual adds up, and the kinetic-energy jumps are booked separately,
+/// so that
+///   E - E0 = W_nc + jumps + residual.
+/// Output samples lie on one grid t = k * output_interval from 0 whatever the segments.
+///
+/// Bodies are the caller's ("user bodies"): one Model body each until an embedding merges two;
+/// a BodyMap says where each user body sits in the current Model's bodies.
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "chasles/analysis/certificate.h"
+#include "chasles/analysis/instantaneous.h"
+#include "chasles/integrate/simulate.h"
+#include "chasles/mass/mass_properties.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+
+namespace chasles {
+
+/// Where a user body sits in a Model body: the same body, or a part of a composite after an
+/// embedding. R_MB and p_MoBo_M place the user body's frame B in the model body's frame M.
+struct BodyPlacement {
+  int model_body = 0;
+  Mat3 R_MB = Mat3::Identity();
+  Vec3 p_MoBo_M = Vec3::Zero();
+};
+
+/// User bodies mapped to the current Model, with each user body's own centre of mass.
+struct BodyMap {
+  std::vector<BodyPlacement> place;
+  std::vector<Vec3> p_BoBcm_B;
+  /// A point fixed in user body b, given in B, in the model body's frame M.
+  Vec3 PointInModelBody(int b, const Vec3& p_BoP_B) const;
+};
+
+/// Kinematics of one user body at a state (exact for a part of a composite too).
+struct MappedBodyMotion {
+  Mat3 R_WB = Mat3::Identity();
+  Vec3 p_WBo = Vec3::Zero(), p_WBcm = Vec3::Zero(), v_WBcm_W = Vec3::Zero(), w_WB_W = Vec3::Zero();
+};
+MappedBodyMotion CalcMappedBodyMotion(const Model& model, const State& state, const BodyMap& map,
+                                      int b);
+
+/// A named body's mass properties (a Model body to be).
+struct NamedBody {
+  std::string name;
+  MassProperties mass_properties;
+};
+
+/// Builds the Model of a segment from its bodies and the map of the user bodies onto them
+/// (force elements, constraints and contacts placed through the map). Called once at the
+/// start (identity map) and after every embedding.
+using ModelBuilder = std::function<Model(const std::vector<NamedBody>& bodies, const BodyMap& map)>;
+
+/// The events of a segment, for its map (their functions read user-body quantities).
+using EventBuilder = std::function<std::vector<EventSpec>(const BodyMap& map)>;
+
+/// An impulse J [N·s] at a point P of a user body at time t.
+struct StudyImpulseSpec {
+  double t = 0.0;
+  int body = 0;
+  /// P in the body's frame B [m].
+  Vec3 p_BoP_B = Vec3::Zero();
+  /// The impulse, in W or in B (`frame`) [N·s].
+  Vec3 J = Vec3::Zero();
+  VectorFrame frame = VectorFrame::kWorld;
+};
+
+/// A projectile (user body) striking a target (user body) at time t: it embeds
+/// (exit_fraction = 0, the two become one composite body) or passes through keeping
+/// exit_fraction of its velocity (docs/scene-format.md, "Impacts").
+struct StudyImpactSpec {
+  double t = 0.0;
+  int target = 0;
+  int projectile = 0;
+  double exit_fraction = 0.0;
+};
+
+/// One output column: a user-body quantity, a ledger quantity, a reaction component or a
+/// contact point's value (names as in docs/scene-format.md, "Output columns").
+struct StudyColumn {
+  /// Column name in the CSV header.
+  std::string name;
+  /// Group it belongs to ("position", "energy", "reactions", "contacts", ...).
+  std::string group;
+  /// User body index for per-body columns; -1 for t and ledger columns.
+  int body = -1;
+  /// A body quantity suffix ("x", "qw", "ax", "theta", ...), a ledger name ("T_trans", "W_nc",
+  /// "Px", ...), "W" with `force` set for an element's work, a reaction component ("Fx",
+  /// "My_B", ...) with `force` naming the constraint, or a contact value ("N", "slip", ...).
+  std::string quantity;
+  /// Force element or constraint name (per-element work, reactions).
+  std::string force;
+  /// Contact point index (Model order) for the "contacts" group; -1 otherwise.
+  int point = -1;
+};
+
+/// A rolling constraint whose friction the run watches against μ_s (it holds the rolling
+/// whatever friction it takes; the result's notes say when more was needed).
+struct RollingWatch {
+  std::string name;
+  /// Model index of the constraint.
+  int constraint = 0;
+  double mu_s = 0.0;
+};
+
+/// Limits on a run's work (docs/reliability-limits.md): LimitError when reached.
+struct StudyLimits {
+  std::int64_t max_steps = 10'000'000;
+  std::int64_t max_rows = 1'000'000;
+  /// Wall time [s]; 0: none.
+  double timeout = 0.0;
+};
+
+/// Everything a study needs. `bodies`, `build_model`, `initial` and `options.t_end` are
+/// required; the rest has defaults.
+struct StudyDefinition {
+  /// The user bodies, one Model body each at the start.
+  std::vector<NamedBody> bodies;
+  /// Builds the Model (see ModelBuilder).
+  ModelBuilder build_model;
+  /// The initial state (on the constraints; the run chooses the contact modes, after any
+  /// impact at the start).
+  State initial;
+  /// Integrator, end time (t_end), output interval, fixed step, adaptive tolerances and the
+  /// smallest step (options.adaptive.min_step). Its events are ignored: use `events`.
+  SimulationOptions options;
+  /// Events of each segment (optional).
+  EventBuilder events;
+  /// Output columns (t first, by convention).
+  std::vector<StudyColumn> columns;
+  std::vector<StudyImpulseSpec> impulses;
+  std::vector<StudyImpactSpec> impacts;
+  /// Contact point labels in Model order (empty: Model::contact_point_name).
+  std::vector<std::string> contact_point_labels;
+  /// Force elements whose work the ledger lists, in this order (empty: every element of the
+  /// first Model).
+  std::vector<std::string> reported_forces;
+  /// Number of the Model's constraints (the first ones) reported in reactions and the ledger
+  /// (-1: all). A planar scene's plane constraints come after its own and are left out.
+  int num_reported_constraints = -1;
+  /// Planar runs: each user body's initial angle θ about z [rad], for a continuous θ column
+  /// and the bodies' θ in the snapshots (empty: not planar).
+  std::vector<double> initial_theta;
+  std::vector<RollingWatch> rolling_watch;
+  CertificateTolerances certificate;
+  StudyLimits limits;
+  /// Called with the time of every output sample and every accepted step (optional).
+  std::function<void(double t)> progress;
+  /// Warnings about the initial state (e.g. values projected onto the constraints), passed
+  /// on into the result.
+  std::vector<std::string> warnings;
+};
+
+/// An impulse or impact applied during the run.
+struct StudyJump {
+  /// "impulse", "embedding" or "pass-through".
+  std::string kind;
+  /// What happened, for the report ("bullet embeds in block").
+  std::string description;
+  /// Time [s].
+  double t = 0.0;
+  /// Mechanical energy just before and just after [J].
+  double energy_before = 0.0;
+  double energy_after = 0.0;
+  /// Velocity of the (composite) target's centre of mass and its angular velocity just after,
+  /// in W [m/s, rad/s].
+  Vec3 v_after_W = Vec3::Zero();
+  Vec3 w_after_W = Vec3::Zero();
+};
+
+/// A mode change of one contact point (the mode timeline; the initial modes come first, with
+/// reason "initial").
+struct StudyContactEvent {
+  /// Time [s] (located to 1e-12 s).
+  double t = 0.0;
+  /// Contact point label (ContactPointLabels) and its contact's name.
+  std::string point;
+  std::string contact;
+  /// Modes before and after ("separated", "sliding", "sticking") and why ("slip stopped", ...).
+  std::string from, to, reason;
+};
+
+/// One impact (or accumulated bounce sequence) at a contact point.
+struct StudyImpact {
+  double t = 0.0;
+  std::string point;
+  /// Normal approach speed before [m/s]; normal impulse [N·s]; kinetic energy lost [J].
+  double approach_speed = 0.0;
+  double normal_impulse = 0.0;
+  double energy_lost = 0.0;
+  /// True for the impact that ends a geometric bounce sequence: it is made plastic, and the
+  /// bounces it stands for would end at `rest_time` (docs/contact.md, bouncing to rest).
+  bool accumulation = false;
+  /// Limit of the bounce sequence, t + t_flight e / (1 - e) [s] (NaN unless `accumulation`).
+  double rest_time = std::numeric_limits<double>::quiet_NaN();
+  /// True for a jam: a slip without consistent contact forces (Painlevé) stopped by an
+  /// impulse at zero approach speed.
+  bool jam = false;
+  /// The restitution law used ("energetic", "newton", "poisson").
+  std::string restitution_law;
+  /// True when the impulse with friction would have raised the kinetic energy and the
+  /// frictionless one was used (ImpactResult::frictionless_fallback).
+  bool frictionless_fallback = false;
+};
+
+/// One contact point at the end of the run.
+struct StudyContactPoint {
+  std::string point;
+  std::string mode;
+  /// Normal force [N], friction force in W [N], slip velocity in W [m/s], gap [m].
+  double normal_force = 0.0;
+  Vec3 friction_force_W = Vec3::Zero();
+  Vec3 slip_velocity_W = Vec3::Zero();
+  double gap = 0.0;
+  /// Work of sliding friction, of rolling resistance, and energy lost in impacts at this point
+  /// since t = 0 [J] (each <= 0).
+  double friction_work = 0.0, rolling_work = 0.0, impact_work = 0.0;
+};
+
+/// Motion of one body of the final Model.
+struct StudyBodyState {
+  /// Name ("target+projectile" for a composite).
+  std::string name;
+  /// Mass [kg].
+  double mass = 0.0;
+  /// Largest moment of inertia about the axes of B through the centre of mass [kg·m²].
+  double inertia_max = 0.0;
+  /// Centre of mass and frame origin in W [m].
+  Vec3 p_WBcm = Vec3::Zero();
+  Vec3 p_WBo = Vec3::Zero();
+  /// Orientation.
+  Quat q_WB = Quat::Identity();
+  /// Velocity of Bcm in W [m/s]; angular velocity in W and in B [rad/s].
+  Vec3 v_WBcm_W = Vec3::Zero();
+  Vec3 w_WB_W = Vec3::Zero();
+  Vec3 w_WB_B = Vec3::Zero();
+  /// Planar scenes: angle of B about z, continuous from the initial one [rad] (NaN otherwise).
+  double theta = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// The ledger at the end of the run, relative to the initial state, across all segments.
+struct StudyLedger {
+  /// Kinetic energy, translational and rotational [J]; potential [J]; E = T + V [J].
+  double kinetic_translational = 0.0;
+  double kinetic_rotational = 0.0;
+  double potential = 0.0;
+  double energy = 0.0;
+  /// Mechanical energy at the start [J].
+  double energy_initial = 0.0;
+  /// Non-conservative work of all force elements [J], and of each (scene order) [J].
+  double work_nonconservative = 0.0;
+  std::vector<std::pair<std::string, double>> work_by_force;
+  /// Work of each joint, rolling contact and driver (Model order) [J]: zero for the ideal
+  /// ones up to the integration error, a driver's input otherwise (part of W_nc).
+  std::vector<std::pair<std::string, double>> work_by_constraint;
+  /// Work of sliding friction, of rolling resistance, and the kinetic-energy change at
+  /// impacts, at all contacts since t = 0 [J] (each <= 0; part of W_nc).
+  double friction_work = 0.0;
+  double rolling_work = 0.0;
+  double impact_work = 0.0;
+  /// Energy removed by dampers, drag, friction and impacts [J] >= 0.
+  double dissipated = 0.0;
+  /// Sum of the energy jumps at impulses and impacts [J].
+  double jumps = 0.0;
+  /// E - E0 - W_nc - jumps [J]: zero for the exact solution.
+  double residual = 0.0;
+  /// Energy scale for the residual [J].
+  double energy_scale = 0.0;
+  /// Linear momentum, angular momentum about the system's centre of mass and about the
+  /// origin, in W [kg·m/s, kg·m²/s].
+  Vec3 linear_momentum_W = Vec3::Zero();
+  Vec3 angular_momentum_Scm_W = Vec3::Zero();
+  Vec3 angular_momentum_Wo_W = Vec3::Zero();
+};
+
+/// The reaction of one constraint (name, kind, point, force and moment in W and in the child's
+/// frame, power): the same record `SolveInstantaneous` reports, made from the constraint stage's
+/// ConstraintOutput by MakeReactionReport.
+using StudyReaction = ReactionReport;
+
+/// Bodies, reactions and contact points at one instant (an event, the end of the run).
+struct StudySnapshot {
+  std::vector<StudyBodyState> bodies;
+  /// Reaction of every joint, rolling contact and driver (Model order; a planar scene's plane
+  /// constraints left out).
+  std::vector<StudyReaction> reactions;
+  /// Every contact point (Model order), in the modes of that instant.
+  std::vector<StudyContactPoint> contacts;
+};
+
+struct StudyEvent {
+  std::string name;
+  /// Time of the crossing [s].
+  double t = 0.0;
+  /// True when it stopped the run.
+  bool stopped = false;
+  /// The full state at the event: bodies, reactions and contact points (for a contact-mode
+  /// event, just after the change, in the new modes).
+  StudySnapshot snapshot;
+};
+
+struct StudyResult {
+  /// CSV column names and one row per output sample (plus the states just after jumps).
+  std::vector<std::string> columns;
+  std::vector<std::vector<double>> rows;
+  std::vector<StudyEvent> events;
+  std::vector<StudyJump> jumps;
+  /// Contact mode changes and impacts in time order.
+  std::vector<StudyContactEvent> contact_events;
+  std::vector<StudyImpact> impacts;
+  /// Every contact point at the end (Model order).
+  std::vector<StudyContactPoint> final_contacts;
+  /// Time the run ended [s] (the end time, or a stopping event's time).
+  double t_end = 0.0;
+  bool stopped_by_event = false;
+  std::vector<StudyBodyState> final_bodies;
+  /// Reaction of every joint, rolling contact and driver at the final state (Model order).
+  std::vector<StudyReaction> final_reactions;
+  StudyLedger ledger;
+  /// Integrator name and work counters summed over the segments.
+  std::string integrator;
+  IntegratorStats stats;
+  /// Things to tell the user (impulses after the end time, ...).
+  std::vector<std::string> notes;
+  /// Things the user must know: initial values changed to satisfy the constraints
+  /// (`project_initial: true`), statically indeterminate reactions (redundant constraints),
+  /// jams (sliding without consistent contact forces).
+  std::vector<std::string> warnings;
+  /// The run's checks of its own answer at every sample and event (analysis/certificate.h).
+  Certificate certificate;
+};
+
+/// Runs a study. Throws InputError for bad settings, and for a force, reaction, acceleration
+/// or state that becomes non-finite (naming the element, the quantity and the time: nothing
+/// non-finite is ever returned); LimitError when a limit on the work is reached.
+StudyResult RunStudy(const StudyDefinition& definition);
+
+/// Mechanical energy T + V of the whole Model at `state` [J].
+double CalcMechanicalEnergy(const Model& model, const State& state);
+
+/// Name of an integrator ("adaptive Dormand-Prince 5(4)", ...).
+const char* IntegratorName(IntegratorKind kind);
+
+}  // namespace chasles

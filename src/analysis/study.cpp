@@ -1,0 +1,413 @@
+// RunStudy: segments between impulses and impacts, contact settling at the start and after
+// each jump, output rows on one global grid, the ledger carried across segments, limits on the
+// work, and the certificate (include/chasles/analysis/study.h).
+
+#include "chasles/analysis/study.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "chasles/analysis/ledger.h"
+#include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/contact_solve.h"
+#include "chasles/dynamics/impact.h"
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/dynamics/redundancy.h"
+#include "chasles/error.h"
+#include "chasles/model/data.h"
+#include "internal/study_steps.h"
+
+namespace chasles {
+
+namespace {
+
+using study_internal::LedgerCarry;
+using study_internal::RowMaker;
+using study_internal::Segment;
+using study_internal::SlipWatch;
+using study_internal::ThetaTracker;
+
+/// Largest magnitude of a motion in SI (position, speed) a run accepts: beyond it the energies
+/// (½ m v²) and moments (r × F) of ordinary bodies leave double precision, so such a motion is
+/// a blown-up or mistyped input.
+constexpr double kMotionScale = 1e150;
+
+/// Throws when a body's motion is not finite or has run away beyond kMotionScale.
+void CheckFinite(const Model& model, const State& state) {
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyState& s = state.bodies[static_cast<size_t>(b)];
+    const bool ok = s.p_WBcm.allFinite() && s.v_WBcm_W.allFinite() && s.w_WB_B.allFinite() &&
+                    s.q_WB.coeffs().allFinite() && s.p_WBcm.norm() < kMotionScale &&
+                    s.v_WBcm_W.norm() < kMotionScale && s.w_WB_B.norm() < kMotionScale;
+    if (!ok) {
+      throw InputError(fmt::format(
+          "the motion of body '{}' diverged (non-finite or beyond 1e150 in SI) near t = {:.9g} s; "
+          "the run is stopped. Check the force expressions for a singularity, or use a smaller "
+          "'step' or the adaptive integrator",
+          model.body(b).name(), state.t));
+    }
+  }
+}
+
+/// An impulse or an impact, in time order.
+struct Jump {
+  double t;
+  const StudyImpulseSpec* impulse;
+  const StudyImpactSpec* impact;
+};
+
+/// One run of a study: the state, the current segment and everything recorded so far.
+class StudyRun {
+ public:
+  explicit StudyRun(const StudyDefinition& def)
+      : def_(def),
+        theta_(def.initial_theta),
+        rows_(def.columns, theta_),
+        certificate_(def.certificate),
+        slip_(def.rolling_watch),
+        started_(std::chrono::steady_clock::now()) {}
+
+  StudyResult Run();
+
+ private:
+  const std::string& Label(int p) const { return labels_[static_cast<size_t>(p)]; }
+  void Start();
+  void RecordImpacts(const ImpactResult& r, double t);
+  void RecordChanges(const std::vector<ContactModeChange>& changes, double t, const char* reason);
+  void SettleContacts(const char* reason);
+  void Certify(const State& s, CheckPhase phase);
+  void OnStep(double t);
+  void RunTo(double t_b);
+  void RecordSimulation(const SimulationResult& r, const std::vector<ContactMode>& carried,
+                        const std::vector<EventSpec>& events);
+  void ApplyJump(const Jump& j);
+  void Finish();
+
+  const StudyDefinition& def_;
+  ThetaTracker theta_;
+  RowMaker rows_;
+  CertificateBuilder certificate_;
+  SlipWatch slip_;
+  std::chrono::steady_clock::time_point started_;
+  std::int64_t steps_taken_ = 0;
+  Segment seg_;
+  State state_;
+  LedgerCarry carry_;
+  double energy_initial_ = 0.0;
+  std::vector<std::string> labels_;
+  bool stopped_ = false;
+  StudyResult result_;
+};
+
+StudyResult StudyRun::Run() {
+  Start();
+  // Impulses and impacts in time order (stable: the definition's order at equal times).
+  std::vector<Jump> jumps;
+  for (const auto& i : def_.impulses) jumps.push_back({i.t, &i, nullptr});
+  for (const auto& i : def_.impacts) jumps.push_back({i.t, nullptr, &i});
+  std::stable_sort(jumps.begin(), jumps.end(),
+                   [](const Jump& a, const Jump& b) { return a.t < b.t; });
+  const double t_end = def_.options.t_end;
+  for (const Jump& j : jumps) {
+    if (j.t > t_end) {
+      result_.notes.push_back(fmt::format(
+          "an impulse or impact at t = {:.6g} s is after the end time {:.6g} s and was not "
+          "applied",
+          j.t, t_end));
+      continue;
+    }
+    RunTo(j.t);
+    if (stopped_) break;
+    ApplyJump(j);
+  }
+  if (!stopped_) RunTo(t_end);
+  Finish();
+  return std::move(result_);
+}
+
+void StudyRun::Start() {
+  if (!(def_.options.output_interval > 0)) {
+    throw InputError("a study needs a positive output interval (options.output_interval)");
+  }
+  result_.integrator = IntegratorName(def_.options.integrator);
+  result_.warnings = def_.warnings;
+  for (const StudyColumn& c : def_.columns) result_.columns.push_back(c.name);
+  seg_ = study_internal::FirstSegment(def_);
+  state_ = def_.initial;
+  CheckFinite(*seg_.model, state_);
+  const Model& model = *seg_.model;
+  labels_ = def_.contact_point_labels;
+  for (int p = static_cast<int>(labels_.size()); p < model.num_contact_points(); ++p) {
+    labels_.push_back(model.contact_point_name(p));
+  }
+  // The ledger starts from the state as given: an impact or a jam at t = 0 is part of it.
+  if (model.num_contacts() > 0) {
+    state_.contacts.assign(static_cast<size_t>(model.num_contact_points()), ContactPointState{});
+  }
+  const State as_given = state_;
+  if (model.num_contacts() > 0) {
+    SettleContacts("initial");
+    // Every point's initial mode is part of the timeline, changed or not.
+    for (int p = 0; p < model.num_contact_points(); ++p) {
+      const bool listed =
+          std::any_of(result_.contact_events.begin(), result_.contact_events.end(),
+                      [&](const StudyContactEvent& e) { return e.point == Label(p); });
+      if (listed) continue;
+      const ContactMode m = state_.contacts[static_cast<size_t>(p)].mode;
+      result_.contact_events.push_back({state_.t, Label(p),
+                                        model.contact(model.contact_of_point(p)).name(),
+                                        ContactModeName(m), ContactModeName(m), "initial"});
+    }
+  }
+  carry_.segment_initial = as_given;
+  energy_initial_ = CalcMechanicalEnergy(model, as_given);
+  result_.rows.push_back(rows_.Row(model, seg_.map, state_, carry_));
+  Certify(state_, CheckPhase::kSample);
+  slip_.Sample(model, state_);
+}
+
+void StudyRun::RecordImpacts(const ImpactResult& r, double t) {
+  for (const ContactImpulse& imp : r.impulses) {
+    result_.impacts.push_back({t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
+                               r.kinetic_energy_before - r.kinetic_energy_after, false,
+                               std::numeric_limits<double>::quiet_NaN(), false,
+                               RestitutionLawName(imp.law), r.frictionless_fallback});
+  }
+}
+
+void StudyRun::RecordChanges(const std::vector<ContactModeChange>& changes, double t,
+                             const char* reason) {
+  const Model& m = *seg_.model;
+  for (const ContactModeChange& c : changes) {
+    result_.contact_events.push_back({t, Label(c.point),
+                                      m.contact(m.contact_of_point(c.point)).name(),
+                                      ContactModeName(c.from), ContactModeName(c.to), reason});
+  }
+}
+
+// Contacts that approach take their impact first; then every contact point gets a consistent
+// mode, so that the next output row already shows it.
+void StudyRun::SettleContacts(const char* reason) {
+  if (seg_.model->num_contacts() == 0) return;
+  const ContactTolerances tol;
+  RecordImpacts(ResolveImpacts(*seg_.model, state_, tol), state_.t);
+  ModeSelectionNotes notes;
+  RecordChanges(SelectContactModes(*seg_.model, state_, tol, {}, &notes), state_.t, reason);
+  for (const JamImpulse& j : notes.jams) {
+    result_.impacts.push_back({state_.t, Label(j.point), 0.0, j.normal_impulse, j.energy_lost,
+                               false, std::numeric_limits<double>::quiet_NaN(), true, "", false});
+    result_.warnings.push_back(fmt::format(
+        "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces had no "
+        "consistent solution (a Painlevé-type paradox); the slip was stopped by an impulsive "
+        "jam (an impact without collision) that took {:.6g} J",
+        Label(j.point), state_.t, j.slip_speed, j.energy_lost));
+  }
+}
+
+// The certificate: every sample, event and contact transition is checked (the ledger with the
+// residual carried across the segments).
+void StudyRun::Certify(const State& s, CheckPhase phase) {
+  certificate_.CheckState(*seg_.model, s, phase);
+  const LedgerSample L = CalcLedgerSample(*seg_.model, s, carry_.segment_initial);
+  certificate_.CheckLedger(s.t, carry_.residual + L.energy_residual,
+                           std::max(carry_.scale, L.energy_scale), phase);
+}
+
+// Every accepted step of every segment counts against the step limit and the wall time.
+void StudyRun::OnStep(double t) {
+  if (def_.progress) def_.progress(t);
+  const StudyLimits& limits = def_.limits;
+  if (++steps_taken_ > limits.max_steps) {
+    throw LimitError(LimitError::Limit::kSteps,
+                     fmt::format("the run reached the limit of {} integration steps at t = {:.9g} "
+                                 "s (of {:.9g} s)",
+                                 limits.max_steps, t, def_.options.t_end));
+  }
+  if (limits.timeout > 0) {
+    const std::chrono::duration<double> used = std::chrono::steady_clock::now() - started_;
+    if (used.count() > limits.timeout) {
+      throw LimitError(LimitError::Limit::kTime,
+                       fmt::format("the run reached its wall-time limit of {:g} s at t = {:.9g} s "
+                                   "(of {:.9g} s) after {} steps (a limit of 0 s turns it off)",
+                                   limits.timeout, t, def_.options.t_end, steps_taken_));
+    }
+  }
+}
+
+// Integrates from state.t to t_b, sampling on the global grid k * dt_out.
+void StudyRun::RunTo(double t_b) {
+  const double dt_out = def_.options.output_interval;
+  while (state_.t < t_b && !stopped_) {
+    const double k = std::ceil(state_.t / dt_out - 1e-9);
+    const double next_grid = k * dt_out;
+    const bool on_grid = std::abs(next_grid - state_.t) <= 1e-9 * dt_out;
+    SimulationOptions o = def_.options;
+    o.t_end = on_grid ? t_b : std::min(next_grid, t_b);
+    o.output_interval = on_grid ? dt_out : 0.0;
+    o.events = def_.events ? def_.events(seg_.map) : std::vector<EventSpec>{};
+    o.store_samples = false;
+    o.on_step = [this](double t) { OnStep(t); };
+    bool first = true;
+    o.on_sample = [&](const State& s) {
+      if (first) {
+        first = false;
+        return;
+      }
+      if (static_cast<std::int64_t>(result_.rows.size()) >= def_.limits.max_rows) {
+        throw LimitError(LimitError::Limit::kRows,
+                         fmt::format("the run reached the limit of {} output rows at t = {:.9g} s",
+                                     def_.limits.max_rows, s.t));
+      }
+      CheckFinite(*seg_.model, s);
+      result_.rows.push_back(rows_.Row(*seg_.model, seg_.map, s, carry_));
+      Certify(s, CheckPhase::kSample);
+      slip_.Sample(*seg_.model, s);
+      if (def_.progress) def_.progress(s.t);
+    };
+    o.on_transition = [&](const State& before, const State& after) {
+      Certify(before, CheckPhase::kBeforeTransition);
+      Certify(after, CheckPhase::kAfterTransition);
+    };
+    const double t_from = state_.t;
+    // Modes carried into this run: its "initial" records that only restate them are dropped.
+    std::vector<ContactMode> carried(state_.contacts.size());
+    for (size_t p = 0; p < carried.size(); ++p) carried[p] = state_.contacts[p].mode;
+    SimulationResult r;
+    try {
+      r = Simulate(*seg_.model, state_, o);
+    } catch (const LimitError&) {
+      throw;
+    } catch (const InputError& e) {
+      const double t_last = result_.rows.empty() ? t_from : result_.rows.back().front();
+      throw InputError(fmt::format("the run stopped after t = {:.9g} s: {}", t_last, e.what()));
+    }
+    RecordSimulation(r, carried, o.events);
+    state_ = r.final_state;
+    if (r.stopped_by_event) stopped_ = true;
+  }
+}
+
+void StudyRun::RecordSimulation(const SimulationResult& r, const std::vector<ContactMode>& carried,
+                                const std::vector<EventSpec>& events) {
+  const Model& m = *seg_.model;
+  CheckFinite(m, r.final_state);
+  result_.stats.steps += r.stats.steps;
+  result_.stats.rejected_steps += r.stats.rejected_steps;
+  result_.stats.function_evaluations += r.stats.function_evaluations;
+  for (const EventRecord& e : r.events) {
+    const bool stop = events[static_cast<size_t>(e.event)].action == EventAction::kStop;
+    Certify(e.state, CheckPhase::kEvent);
+    result_.events.push_back(
+        {e.name, e.t, stop,
+         study_internal::MakeSnapshot(m, e.state, def_.num_reported_constraints, labels_, theta_,
+                                      false)});
+  }
+  for (const ContactEvent& e : r.contact_events) {
+    // The modes carried into this run are already in the timeline: Simulate lists every
+    // point's starting mode (as a change from separated); only a mode it chose differently
+    // from the one carried in is news.
+    ContactMode from = e.from;
+    if (e.reason == ContactEventReason::kInitial) {
+      const auto p = static_cast<size_t>(e.point);
+      from = p < carried.size() ? carried[p] : ContactMode::kSeparated;
+      if (from == e.to) continue;
+    }
+    result_.contact_events.push_back(
+        {e.t, Label(e.point), m.contact(m.contact_of_point(e.point)).name(), ContactModeName(from),
+         ContactModeName(e.to), ContactEventReasonName(e.reason)});
+  }
+  for (const ImpactRecord& imp : r.impacts) {
+    result_.impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
+                               imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam,
+                               RestitutionLawName(imp.law), imp.frictionless_fallback});
+  }
+  result_.warnings.insert(result_.warnings.end(), r.warnings.begin(), r.warnings.end());
+}
+
+void StudyRun::ApplyJump(const Jump& j) {
+  study_internal::CloseSegment(*seg_.model, state_, carry_);
+  StudyJump rec;
+  rec.t = state_.t;
+  rec.energy_before = CalcMechanicalEnergy(*seg_.model, state_);
+  int shown = 0;
+  if (j.impulse) {
+    shown = study_internal::ApplyStudyImpulse(*j.impulse, seg_, state_);
+    rec.kind = "impulse";
+    rec.description =
+        fmt::format("impulse on {}", def_.bodies[static_cast<size_t>(j.impulse->body)].name);
+  } else {
+    const std::string& target = def_.bodies[static_cast<size_t>(j.impact->target)].name;
+    const std::string& projectile = def_.bodies[static_cast<size_t>(j.impact->projectile)].name;
+    const auto model_body = [&](int b) {
+      return seg_.map.place[static_cast<size_t>(b)].model_body;
+    };
+    if (model_body(j.impact->target) == model_body(j.impact->projectile)) {
+      throw InputError(fmt::format(
+          "impact at t = {:.6g} s: '{}' and '{}' are already one body (an earlier impact "
+          "embedded one in the other)",
+          j.impact->t, projectile, target));
+    }
+    shown = study_internal::ApplyStudyImpact(*j.impact, def_.build_model, seg_, state_);
+    rec.kind = j.impact->exit_fraction > 0 ? "pass-through" : "embedding";
+    rec.description = j.impact->exit_fraction > 0
+                          ? fmt::format("{} passes through {} keeping {:.4g} of its velocity",
+                                        projectile, target, j.impact->exit_fraction)
+                          : fmt::format("{} embeds in {}", projectile, target);
+  }
+  if (seg_.model->num_constraints() > 0) {
+    // The supports' impulsive reaction: projecting the velocities onto the constraints with the
+    // mass metric, du = -M⁻¹ Jᵀ μ, is exactly the response of ideal constraints to the impulse
+    // (impulse-momentum with the constraint impulse Jᵀ μ).
+    Data data = MakeData(*seg_.model);
+    ProjectOntoConstraints(*seg_.model, state_, data);
+  }
+  // A contact the jump drives into its plane takes an impact; then the modes are chosen again
+  // for the new velocities (a sticking point may now slip).
+  SettleContacts("impulse");
+  CheckFinite(*seg_.model, state_);
+  rec.energy_after = CalcMechanicalEnergy(*seg_.model, state_);
+  const BodyState& s = state_.bodies[static_cast<size_t>(shown)];
+  rec.v_after_W = s.v_WBcm_W;
+  rec.w_after_W = s.q_WB * s.w_WB_B;
+  carry_.jumps += rec.energy_after - rec.energy_before;
+  carry_.scale = std::max({carry_.scale, std::abs(rec.energy_before), std::abs(rec.energy_after)});
+  carry_.segment_initial = state_;
+  result_.jumps.push_back(rec);
+  result_.rows.push_back(rows_.Row(*seg_.model, seg_.map, state_, carry_));
+  Certify(state_, CheckPhase::kSample);
+}
+
+void StudyRun::Finish() {
+  const Model& model = *seg_.model;
+  result_.ledger = study_internal::FinalLedger(def_, model, state_, carry_, energy_initial_);
+  if (model.num_constraints() > 0) {
+    Data data = MakeData(model);
+    CalcAccelerations(model, state_, data);
+    if (data.constraint_rank < model.num_constraint_rows()) {
+      Data scratch = MakeData(model);
+      for (std::string& w : DescribeRedundancy(model, AnalyseRedundancy(model, state_, scratch))) {
+        result_.warnings.push_back(std::move(w));
+      }
+    }
+  }
+  StudySnapshot final_snapshot = study_internal::MakeSnapshot(
+      model, state_, def_.num_reported_constraints, labels_, theta_, true);
+  result_.final_reactions = std::move(final_snapshot.reactions);
+  result_.final_contacts = std::move(final_snapshot.contacts);
+  result_.final_bodies = std::move(final_snapshot.bodies);
+  slip_.Report(result_.notes);
+  result_.certificate = certificate_.Finish();
+  result_.t_end = state_.t;
+  result_.stopped_by_event = stopped_;
+}
+
+}  // namespace
+
+StudyResult RunStudy(const StudyDefinition& definition) {
+  return StudyRun(definition).Run();
+}
+
+}  // namespace chasles
