@@ -105,6 +105,7 @@ void CertificateBuilder::CheckState(const Model& model, const State& state, Chec
 
 void CertificateBuilder::CheckState(const Model& model, const State& state, const Data& data,
                                     CheckPhase phase) {
+  CheckDataFor(model, data);
   double total_mass = 0.0;
   for (int b = 0; b < model.num_bodies(); ++b) total_mass += model.body(b).mass();
   mass_ = std::max(mass_, total_mass);

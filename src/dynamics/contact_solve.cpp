@@ -372,6 +372,7 @@ void WeighRedundantRows(const Model& model, const State& state, const Data& data
 
 // ---------------------------------------------------------------------------------------
 void SolveContactForces(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   const int nb = model.num_bodies();
   const int nc_rows = model.num_constraint_rows();
   ContactWorkspace& ws = data.contact_work;

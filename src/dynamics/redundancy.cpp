@@ -103,6 +103,7 @@ std::string JointFor(const std::array<bool, 6>& kept) {
 }  // namespace
 
 double CalcMechanismLength(const Model& model, const Data& data) {
+  CheckDataFor(model, data);
   const int nc = model.num_constraints();
   double ell = 0.0;
   if (nc > 0) {
@@ -124,6 +125,7 @@ double CalcMechanismLength(const Model& model, const Data& data) {
 }
 
 VectorXd CalcReactionWeights(const Model& model, const Data& data) {
+  CheckDataFor(model, data);
   VectorXd d = VectorXd::Ones(model.num_constraint_rows());
   const double ell = CalcMechanismLength(model, data);
   for (int c = 0; c < model.num_constraints(); ++c) {
@@ -319,6 +321,7 @@ std::vector<SupportChange> DeterminateSupports(const Model& model, const State& 
 }  // namespace
 
 Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   Redundancy r;
   const int nc = model.num_constraints();
   r.rows = model.num_constraint_rows();
