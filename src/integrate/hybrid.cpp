@@ -14,6 +14,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
 #include "integrate/internal/event_root.h"
+#include "integrate/internal/ode.h"
 
 namespace chasles::internal {
 namespace {
@@ -193,6 +194,7 @@ class HybridRun {
     }
     if (model_.num_constraints() > 0) ProjectOntoConstraints(model_, s, data_);
     Transition(s, -1, ContactEventReason::kInitial);
+    CheckFiniteState(model_, s);
     for (int p = 0; p < model_.num_contact_points(); ++p) {
       r_.contact_events.insert(
           r_.contact_events.begin() + p,
@@ -362,6 +364,7 @@ class HybridRun {
     const State before = o_.on_transition ? s : State{};
     const size_t first_change = r_.contact_events.size();
     Transition(s, fn.point, fn.reason);
+    CheckFiniteState(model_, s);
     if (o_.on_transition) o_.on_transition(before, s);
     if (RecordModeEvents(first_change, s)) {
       r_.final_state = s;
