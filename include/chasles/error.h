@@ -2,6 +2,10 @@
 /// @file
 /// Error types shared by every layer. Exit codes of the CLI follow them: an InputError (bad
 /// scene, bad mesh, impossible physical value) exits with 2; anything else with 1.
+///
+/// Policy: InputError and its kinds are for what a user can get wrong (the scene, the mesh,
+/// the limits they set). A misuse of the library's API that no input can cause, a bug in the
+/// calling code, is a UsageError (a std::logic_error), not an InputError.
 
 #include <stdexcept>
 #include <string>
@@ -29,6 +33,14 @@ class LimitError : public InputError {
 
  private:
   Limit limit_;
+};
+
+/// A call the API does not allow whatever the input: a Data used with a Model other than the
+/// one MakeData made it for (see model/data.h). A bug in the calling code; the message says
+/// how to call it instead.
+class UsageError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
 };
 
 }  // namespace chasles

@@ -105,44 +105,52 @@ void CertificateBuilder::CheckState(const Model& model, const State& state, Chec
 
 void CertificateBuilder::CheckState(const Model& model, const State& state, const Data& data,
                                     CheckPhase phase) {
-  const double t = state.t;
-  const int nb = model.num_bodies();
+  CheckDataFor(model, data);
   double total_mass = 0.0;
-  for (int b = 0; b < nb; ++b) total_mass += model.body(b).mass();
+  for (int b = 0; b < model.num_bodies(); ++b) total_mass += model.body(b).mass();
   mass_ = std::max(mass_, total_mass);
-  // Per body: the sums of all forces on it and of their moments about its centre of mass, and
-  // the sums of their magnitudes (the size round-off in the sums is relative to).
-  std::vector<Vec3> F(static_cast<size_t>(nb)), M(static_cast<size_t>(nb));
-  std::vector<double> F_size(static_cast<size_t>(nb), 0.0), M_size(static_cast<size_t>(nb), 0.0);
-  auto p_cm = [&](int b) { return state.bodies[static_cast<size_t>(b)].p_WBcm; };
-  auto add_force = [&](int b, const Vec3& f, const Vec3& p_W) {
-    if (b == kWorld) return;
-    const auto i = static_cast<size_t>(b);
-    const Vec3 r = p_W - p_cm(b);
-    F[i] += f;
-    M[i] += r.cross(f);
-    F_size[i] += f.norm();
-    M_size[i] += r.norm() * f.norm();
-    force_ = std::max(force_, f.norm());
-    moment_ = std::max(moment_, r.norm() * f.norm());
-    length_ = std::max(length_, p_W.norm());
-  };
-  auto add_moment = [&](int b, const Vec3& m) {
-    if (b == kWorld) return;
-    const auto i = static_cast<size_t>(b);
-    M[i] += m;
-    M_size[i] += m.norm();
-    moment_ = std::max(moment_, m.norm());
-  };
+  BodyResultants resultants = CollectForces(model, state, data);
+  CheckContacts(model, state, data, phase, resultants);
+  CheckBalances(model, state, data, phase, resultants);
+  CheckConstraintRows(model, state, data, phase);
+}
+
+void CertificateBuilder::AddForce(const State& state, BodyResultants& r, int b, const Vec3& f,
+                                  const Vec3& p_W) {
+  if (b == kWorld) return;
+  const auto i = static_cast<size_t>(b);
+  const Vec3 arm = p_W - state.bodies[i].p_WBcm;
+  r.F[i] += f;
+  r.M[i] += arm.cross(f);
+  r.F_size[i] += f.norm();
+  r.M_size[i] += arm.norm() * f.norm();
+  force_ = std::max(force_, f.norm());
+  moment_ = std::max(moment_, arm.norm() * f.norm());
+  length_ = std::max(length_, p_W.norm());
+}
+
+void CertificateBuilder::AddMoment(BodyResultants& r, int b, const Vec3& m) {
+  if (b == kWorld) return;
+  const auto i = static_cast<size_t>(b);
+  r.M[i] += m;
+  r.M_size[i] += m.norm();
+  moment_ = std::max(moment_, m.norm());
+}
+
+CertificateBuilder::BodyResultants CertificateBuilder::CollectForces(const Model& model,
+                                                                     const State& state,
+                                                                     const Data& data) {
+  const auto nb = static_cast<size_t>(model.num_bodies());
+  BodyResultants r{std::vector<Vec3>(nb), std::vector<Vec3>(nb), std::vector<double>(nb, 0.0),
+                   std::vector<double>(nb, 0.0)};
   // Applied forces, gravity, springs, drag: the force stage's resultants about each Bcm.
-  for (int b = 0; b < nb; ++b) {
-    const auto i = static_cast<size_t>(b);
-    F[i] = data.F_Bcm_W[i];
-    M[i] = data.M_Bcm_W[i];
-    F_size[i] = data.F_Bcm_W[i].norm();
-    M_size[i] = data.M_Bcm_W[i].norm();
-    force_ = std::max(force_, F_size[i]);
-    moment_ = std::max(moment_, M_size[i]);
+  for (size_t i = 0; i < nb; ++i) {
+    r.F[i] = data.F_Bcm_W[i];
+    r.M[i] = data.M_Bcm_W[i];
+    r.F_size[i] = data.F_Bcm_W[i].norm();
+    r.M_size[i] = data.M_Bcm_W[i].norm();
+    force_ = std::max(force_, r.F_size[i]);
+    moment_ = std::max(moment_, r.M_size[i]);
   }
   for (const ForceElementOutput& e : data.elements) force_ = std::max(force_, e.force_W.norm());
   // Reactions: the force and moment about J on the child, the opposite on the parent (the
@@ -150,11 +158,17 @@ void CertificateBuilder::CheckState(const Model& model, const State& state, cons
   for (int c = 0; c < model.num_constraints(); ++c) {
     const Constraint& con = model.constraint(c);
     const ConstraintOutput& o = data.constraints[static_cast<size_t>(c)];
-    add_force(con.child(), o.F_Jc_W, o.p_WJ);
-    add_moment(con.child(), o.M_Jc_W);
-    add_force(con.parent(), -o.F_Jc_W, o.p_WJ);
-    add_moment(con.parent(), -o.M_Jc_W);
+    AddForce(state, r, con.child(), o.F_Jc_W, o.p_WJ);
+    AddMoment(r, con.child(), o.M_Jc_W);
+    AddForce(state, r, con.parent(), -o.F_Jc_W, o.p_WJ);
+    AddMoment(r, con.parent(), -o.M_Jc_W);
   }
+  return r;
+}
+
+void CertificateBuilder::CheckContacts(const Model& model, const State& state, const Data& data,
+                                       CheckPhase phase, BodyResultants& r) {
+  const double t = state.t;
   // Contact forces at the contact point: normal N n and friction on the body, the opposite
   // on the other body; rolling-resistance moments likewise.
   for (int p = 0; p < model.num_contact_points(); ++p) {
@@ -166,10 +180,10 @@ void CertificateBuilder::CheckState(const Model& model, const State& state, cons
     Add(kGap, std::max(0.0, -o.gap), Scale::kLength, 1.0, 0.0, 0.0, where, t, phase);
     if (o.mode == ContactMode::kSeparated) continue;
     const Vec3 f = o.normal_force * o.n_W + o.friction_force_W;
-    add_force(con.body(), f, o.p_WC);
-    add_force(con.other_body(), -f, o.p_WC);
-    add_moment(con.body(), o.rolling_moment_W);
-    add_moment(con.other_body(), -o.rolling_moment_W);
+    AddForce(state, r, con.body(), f, o.p_WC);
+    AddForce(state, r, con.other_body(), -f, o.p_WC);
+    AddMoment(r, con.body(), o.rolling_moment_W);
+    AddMoment(r, con.other_body(), -o.rolling_moment_W);
     force_ = std::max({force_, std::abs(o.normal_force), o.friction_force_W.norm()});
     const double N = o.normal_force;
     const double local = std::abs(N) + o.friction_force_W.norm();
@@ -196,9 +210,14 @@ void CertificateBuilder::CheckState(const Model& model, const State& state, cons
       Add(kSlidingFriction, value, Scale::kForce, 1.0, 0.0, local, where, t, phase);
     }
   }
+}
+
+void CertificateBuilder::CheckBalances(const Model& model, const State& state, const Data& data,
+                                       CheckPhase phase, const BodyResultants& r) {
+  const double t = state.t;
   // Newton–Euler per body (eq. 8.39 and Euler's equations, eq. 8.68): m a_cm = ΣF;
   // dH_cm/dt = R (I ω̇ + ω × I ω) with ω in B = ΣM_cm.
-  for (int b = 0; b < nb; ++b) {
+  for (int b = 0; b < model.num_bodies(); ++b) {
     const auto i = static_cast<size_t>(b);
     const Body& body = model.body(b);
     const BodyState& bs = state.bodies[i];
@@ -215,11 +234,16 @@ void CertificateBuilder::CheckState(const Model& model, const State& state, cons
     rate_ = std::max(rate_, w.norm());
     radius_ = std::max(radius_, radius);
     const std::string where = fmt::format("body '{}'", body.name());
-    Add(kLinearBalance, (ma - F[i]).norm(), Scale::kForce, 1.0, 0.0, ma.norm() + F_size[i], where,
-        t, phase);
-    Add(kAngularBalance, (Hdot_W - M[i]).norm(), Scale::kMoment, 1.0, 0.0,
-        Iwdot.norm() + gyro.norm() + M_size[i], where, t, phase);
+    Add(kLinearBalance, (ma - r.F[i]).norm(), Scale::kForce, 1.0, 0.0, ma.norm() + r.F_size[i],
+        where, t, phase);
+    Add(kAngularBalance, (Hdot_W - r.M[i]).norm(), Scale::kMoment, 1.0, 0.0,
+        Iwdot.norm() + gyro.norm() + r.M_size[i], where, t, phase);
   }
+}
+
+void CertificateBuilder::CheckConstraintRows(const Model& model, const State& state,
+                                             const Data& data, CheckPhase phase) {
+  const double t = state.t;
   // Constraint residuals, row by row. A row's position error is a length (its translational
   // Jacobian part is a unit direction) or an angle (only a rotational part): its scale is
   // |J_trans| L + |J_rot| (1 rad); its velocity residual's is |J_trans| V + |J_rot| Ω.

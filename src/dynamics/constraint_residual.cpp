@@ -14,6 +14,7 @@ bool IsMomentRow(const ConstraintEval& eval, int k) {
 }
 
 ConstraintScales CalcConstraintScales(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   ConstraintScales s;
   CalcKinematics(model, state, data);
   CalcConstraintRows(model, state, data);
@@ -42,6 +43,7 @@ ConstraintScales CalcConstraintScales(const Model& model, const State& state, Da
 std::vector<ConstraintResidual> FindConstraintViolations(const Model& model, const State& state,
                                                          Data& data, const ConstraintScales& scales,
                                                          double relative_tolerance) {
+  CheckDataFor(model, data);
   std::vector<ConstraintResidual> out;
   if (model.num_constraints() == 0) return out;
   CalcKinematics(model, state, data);

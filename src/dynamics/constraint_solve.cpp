@@ -90,6 +90,7 @@ std::vector<int> RowOwners(const Model& model) {
 }  // namespace
 
 void CalcConstraintRows(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   data.J.setZero();
   for (int c = 0; c < model.num_constraints(); ++c) {
     const Constraint& con = model.constraint(c);
@@ -107,6 +108,7 @@ void CalcConstraintRows(const Model& model, const State& state, Data& data) {
 }
 
 void SolveConstraintForces(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   const int nb = model.num_bodies();
   CalcConstraintRows(model, state, data);
   // Free accelerations u̇_free = [a_WBcm_W; R ẇ_B] from the Newton–Euler stage.
@@ -138,6 +140,7 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
 }
 
 ConstraintViolation CalcConstraintViolation(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   ConstraintViolation v;
   if (model.num_constraints() == 0) return v;
   CalcKinematics(model, state, data);
@@ -161,6 +164,7 @@ ConstraintViolation CalcConstraintViolation(const Model& model, const State& sta
 
 void ProjectOntoConstraints(const Model& model, State& state, Data& data,
                             const ProjectionOptions& options) {
+  CheckDataFor(model, data);
   if (model.num_constraints() == 0) return;
   const int nb = model.num_bodies();
   std::vector<int> hol;  // holonomic rows

@@ -40,6 +40,7 @@ bool HasActiveContactRows(const Model& model, const State& state) {
 }
 
 ContactViolation CalcContactViolation(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   ContactViolation v;
   CalcKinematics(model, state, data);
   double worst = -1.0;
@@ -59,6 +60,7 @@ ContactViolation CalcContactViolation(const Model& model, const State& state, Da
 
 void ProjectOntoContactModes(const Model& model, State& state, Data& data,
                              const ProjectionOptions& options) {
+  CheckDataFor(model, data);
   if (!HasActiveContactRows(model, state)) {
     ProjectOntoConstraints(model, state, data, options);
     return;

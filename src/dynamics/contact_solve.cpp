@@ -372,6 +372,7 @@ void WeighRedundantRows(const Model& model, const State& state, const Data& data
 
 // ---------------------------------------------------------------------------------------
 void SolveContactForces(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   const int nb = model.num_bodies();
   const int nc_rows = model.num_constraint_rows();
   ContactWorkspace& ws = data.contact_work;
@@ -579,6 +580,347 @@ PlanSolution SolvePlan(const Model& model, const Data& data,
   return sol;
 }
 
+bool Contains(const std::vector<int>& v, int p) {
+  return std::find(v.begin(), v.end(), p) != v.end();
+}
+
+// The working set of SelectContactModes: the evaluated state's geometry and free
+// accelerations, the plan of candidate points, and what each pass learned about them.
+class ModeSelector {
+ public:
+  ModeSelector(const Model& model, const State& state, const ContactTolerances& tol,
+               const std::vector<int>& slip_starts);
+  // Candidates: touching and not moving apart.
+  void PlanCandidates();
+  // Passes over the plan until the modes are consistent; leaves the points in contact.
+  void SelectModes();
+  // Writes the modes and reference directions into `state`.
+  void WriteModes(State& state) const;
+  // Velocity projection onto the chosen rows (see the definition).
+  void ProjectVelocities(State& state, ModeSelectionNotes* notes) const;
+
+ private:
+  bool TakeSlidingAsSticking();
+  const std::vector<ContactPointOutput>& EvaluateActive();
+  bool DropPullingPoint(const std::vector<ContactPointOutput>& out);
+  bool StartSlips(const std::vector<ContactPointOutput>& out);
+  bool SettleStartingSlips(const std::vector<ContactPointOutput>& out);
+  void BookJams(State& state, const std::vector<PointPlan>& vplan, const PlanSolution& sol,
+                double dT, ModeSelectionNotes* notes) const;
+
+  const Model& model_;
+  const ContactTolerances& tol_;
+  const std::vector<int>& slip_starts_;
+  int np_;
+  Data data_;
+  VectorXd u_free_, u_, c_con_;
+  std::vector<ContactPointGeometry> geo_;
+  double a_scale_ = 0.0, f_scale_ = 0.0, a_tol_ = 0.0, a_cone_ = 0.0;
+  std::vector<PointPlan> plan_, active_;
+  // Per point: 0 untouched, 1 switched to sliding at zero slip (slip starting), 2 tried as
+  // starting to slip and found to stick (not tried again).
+  std::vector<int> starting_;
+  std::vector<int> turns_;  // direction updates of a starting slip
+  std::vector<int> jammed_;
+  State trial_;
+  Data tdata_;
+};
+
+ModeSelector::ModeSelector(const Model& model, const State& state, const ContactTolerances& tol,
+                           const std::vector<int>& slip_starts)
+    : model_(model),
+      tol_(tol),
+      slip_starts_(slip_starts),
+      np_(model.num_contact_points()),
+      data_(MakeData(model)) {
+  CalcKinematics(model, state, data_);
+  CalcForces(model, state, data_);
+  FreeAccelerations(model, state, data_, u_free_);
+  if (model.num_constraints() > 0) CalcConstraintRows(model, state, data_);
+  geo_.resize(static_cast<size_t>(np_));
+  for (int p = 0; p < np_; ++p) {
+    geo_[static_cast<size_t>(p)] = internal::CalcContactPointGeometry(model, state, data_, p);
+  }
+  internal::GetVelocity(model, state, data_, u_);
+  c_con_ = model.num_constraints() > 0 ? VectorXd(data_.acceleration_rhs) : VectorXd();
+  a_scale_ = std::max(1.0, u_free_.cwiseAbs().maxCoeff());
+  double m_max = 0.0;
+  for (int b = 0; b < model.num_bodies(); ++b) m_max = std::max(m_max, model.body(b).mass());
+  f_scale_ = m_max * a_scale_;
+  a_tol_ = tol.relative * a_scale_;
+  // The friction-cone test is at round-off level and symmetric: a point within
+  // tol.cone (relative) of its cone is "at the limit", and there the motion decides: it is
+  // tried as sliding in the direction of impending slip and slides if the slip then grows
+  // (slip acceleration along s above tol.cone · a_scale), else it sticks. So a threshold found
+  // by bisection on the regime is the exact one to round-off, from either side.
+  a_cone_ = tol.cone * a_scale_;
+  starting_.assign(static_cast<size_t>(np_), 0);
+  turns_.assign(static_cast<size_t>(np_), 0);
+  // Each pass evaluates the active set with the contact stage itself (the forces the
+  // integrator will use, friction shared as there), so what is checked is what is integrated.
+  trial_ = state;
+  tdata_ = MakeData(model);
+}
+
+void ModeSelector::PlanCandidates() {
+  for (int p = 0; p < np_; ++p) {
+    const ContactPointGeometry& g = geo_[static_cast<size_t>(p)];
+    if (g.gap > tol_.gap || g.v_n > tol_.resting_speed) continue;
+    PointPlan pp;
+    pp.point = p;
+    const double vt = g.v_t.norm();
+    const Contact& con = model_.contact(model_.contact_of_point(p));
+    if (vt > tol_.stick_speed) {
+      pp.mode = ContactMode::kSliding;
+      pp.s = g.v_t / vt;
+    } else if (con.mu_s() == 0.0) {
+      pp.mode = ContactMode::kSliding;  // frictionless: slides without a direction
+    }
+    pp.target_n = g.AccelerationBias(g.n);
+    pp.target_t = Vec3(g.AccelerationBias(g.t1), g.AccelerationBias(g.t2), 0.0);
+    plan_.push_back(pp);
+  }
+}
+
+void ModeSelector::SelectModes() {
+  for (int pass = 0; pass < 24 * np_ + 8 && !plan_.empty(); ++pass) {
+    PlanSolution sol = SolvePlan(model_, data_, geo_, plan_, u_free_, c_con_, true);
+    if (!sol.solved) {
+      if (!TakeSlidingAsSticking()) break;
+      continue;
+    }
+    // Points whose normal acceleration is positive leave (N = 0 there by complementarity).
+    active_.clear();
+    for (size_t i = 0; i < plan_.size(); ++i) {
+      if (sol.w[static_cast<Eigen::Index>(i)] <= a_tol_) active_.push_back(plan_[i]);
+    }
+    if (active_.empty()) break;
+    const std::vector<ContactPointOutput>& out = EvaluateActive();
+    if (DropPullingPoint(out)) {
+      active_.clear();
+      continue;
+    }
+    if (StartSlips(out)) continue;
+    if (!SettleStartingSlips(out)) break;
+  }
+  plan_ = active_;
+}
+
+// No consistent normal forces with the sliding friction (a Painlevé-type inconsistency): the
+// sliding points are taken as sticking, and their slip is removed by the impulsive velocity
+// projection (ProjectVelocities: an impact without collision; reported in `notes`,
+// docs/contact.md). Returns whether a point changed.
+bool ModeSelector::TakeSlidingAsSticking() {
+  bool changed = false;
+  for (PointPlan& pp : plan_) {
+    if (pp.mode == ContactMode::kSliding && pp.s.squaredNorm() > 0.0) {
+      pp.mode = ContactMode::kSticking, changed = true;
+      if (geo_[static_cast<size_t>(pp.point)].v_t.norm() > tol_.stick_speed) {
+        jammed_.push_back(pp.point);
+      }
+    }
+  }
+  return changed;
+}
+
+// The contact stage at the trial state with the active points in their planned modes.
+const std::vector<ContactPointOutput>& ModeSelector::EvaluateActive() {
+  for (ContactPointState& ps : trial_.contacts) {
+    ps.mode = ContactMode::kSeparated;
+    ps.slip_direction_W.setZero();
+  }
+  for (const PointPlan& pp : active_) {
+    ContactPointState& ps = trial_.contacts[static_cast<size_t>(pp.point)];
+    ps.mode = pp.mode;
+    ps.slip_direction_W = pp.s;
+  }
+  CalcAccelerations(model_, trial_, tdata_);
+  return tdata_.contact_points;
+}
+
+// A least-norm split may pull at a redundant point: that point leaves for good. Returns
+// whether a point left.
+bool ModeSelector::DropPullingPoint(const std::vector<ContactPointOutput>& out) {
+  int drop = -1;
+  double most_negative = -tol_.relative * f_scale_;
+  for (const PointPlan& pp : active_) {
+    const double N = out[static_cast<size_t>(pp.point)].normal_force;
+    if (N < most_negative) most_negative = N, drop = pp.point;
+  }
+  if (drop < 0) return false;
+  plan_.erase(std::find_if(plan_.begin(), plan_.end(),
+                           [&](const PointPlan& pp) { return pp.point == drop; }));
+  return true;
+}
+
+// Friction check of the sticking points. Ranks: 3, its friction limit was just crossed
+// (slip_starts); 2, over the cone by more than round-off; 1, at the limit (within it).
+// The points to switch: every point over the cone is handled one at a time, largest
+// excess first; otherwise the crossed and at-limit points start to slip together: points
+// that share a load in proportion to their capacity (WeighRedundantRows) reach their
+// cones together, and a rigid body held at several points breaks loose at all of them at
+// once (one by one would load the rest past their cones in skewed directions). Returns
+// whether a point started to slip.
+bool ModeSelector::StartSlips(const std::vector<ContactPointOutput>& out) {
+  struct Ranked {
+    int point, rank;
+    double excess;
+    Vec3 f;
+  };
+  std::vector<Ranked> ranked;
+  for (const PointPlan& pp : active_) {
+    if (pp.mode != ContactMode::kSticking) continue;
+    const auto ip = static_cast<size_t>(pp.point);
+    if (starting_[ip] == 2) continue;
+    const Contact& con = model_.contact(model_.contact_of_point(pp.point));
+    const Vec3& f = out[ip].friction_force_W;
+    const double cap = con.mu_s() * std::max(0.0, out[ip].normal_force);
+    const double excess = f.norm() - cap;
+    const double band = tol_.cone * std::max({f.norm(), cap, 1e-6 * f_scale_});
+    int rank = 0;
+    if (Contains(slip_starts_, pp.point) && f.norm() > band) {
+      rank = 3;
+    } else if (excess > band) {
+      rank = 2;
+    } else if (excess >= -band && f.norm() > band) {
+      rank = 1;
+    }
+    if (rank > 0) ranked.push_back({pp.point, rank, excess, f});
+  }
+  if (ranked.empty()) return false;
+  const auto worst =
+      std::max_element(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) {
+        return a.rank == 2 && b.rank == 2 ? a.excess < b.excess : (a.rank == 2) < (b.rank == 2);
+      });
+  for (const Ranked& r : ranked) {
+    if (worst->rank == 2 ? r.point != worst->point : r.rank == 2) continue;
+    for (PointPlan& pp : plan_) {
+      if (pp.point != r.point) continue;
+      pp.mode = ContactMode::kSliding;
+      pp.s = -r.f.normalized();  // slip starts against the friction it needed
+    }
+    starting_[static_cast<size_t>(r.point)] = 1;
+  }
+  return true;
+}
+
+// Consistency of the slips that start: the slip acceleration a_t must point along s (a
+// slip that starts grows along its own direction, and friction -mu_k N s opposes it:
+// maximum dissipation). Where a_t has turned from s (an anisotropic body), s follows it
+// (fixed point s = a_t/|a_t|); a point whose slip would not grow sticks after all. Returns
+// whether a point reverted or turned (another pass is needed).
+bool ModeSelector::SettleStartingSlips(const std::vector<ContactPointOutput>& out) {
+  int revert = -1;
+  bool turned = false;
+  for (PointPlan& pp : plan_) {
+    const auto ip = static_cast<size_t>(pp.point);
+    if (starting_[ip] != 1 || pp.mode != ContactMode::kSliding) continue;
+    const Vec3& a_t = out[ip].slip_acceleration_W;
+    const double a_s = a_t.dot(pp.s);
+    const bool forced = Contains(slip_starts_, pp.point);
+    if (a_s < -a_cone_ || (!forced && a_s <= a_cone_)) {
+      revert = pp.point;
+      pp.mode = ContactMode::kSticking;
+      pp.s.setZero();
+      starting_[ip] = 2;
+      break;
+    }
+    if (a_t.norm() > a_cone_ && turns_[ip] < 20 && (a_t.normalized() - pp.s).norm() > 1e-12) {
+      pp.s = a_t.normalized();
+      ++turns_[ip];
+      turned = true;
+    }
+  }
+  return revert >= 0 || turned;
+}
+
+void ModeSelector::WriteModes(State& state) const {
+  for (int p = 0; p < np_; ++p) {
+    ContactPointState& ps = state.contacts[static_cast<size_t>(p)];
+    ps.mode = ContactMode::kSeparated;
+    ps.slip_direction_W.setZero();
+    ps.rolling_direction_W.setZero();
+  }
+  for (const PointPlan& pp : plan_) {
+    ContactPointState& ps = state.contacts[static_cast<size_t>(pp.point)];
+    ps.mode = pp.mode;
+    if (pp.mode == ContactMode::kSliding) ps.slip_direction_W = pp.s;
+    const ContactPointGeometry& g = geo_[static_cast<size_t>(pp.point)];
+    const Contact& con = model_.contact(model_.contact_of_point(pp.point));
+    if (con.mu_r() > 0.0 && g.round) {
+      const Vec3 wr = g.RollingVelocity();
+      if (wr.norm() > tol_.stick_speed / std::max(g.radius, 1e-300))
+        ps.rolling_direction_W = wr.normalized();
+    }
+  }
+}
+
+// Velocity projection onto the chosen rows: normal velocity zero at pressing points,
+// tangential too at sticking ones, constraints J u = b. For the round-off velocities of
+// touching points this is a tidy-up; for jammed points (TakeSlidingAsSticking) it is the
+// impulse that stops their slip, checked against the friction cone.
+void ModeSelector::ProjectVelocities(State& state, ModeSelectionNotes* notes) const {
+  if (plan_.empty()) return;
+  const double T0 = internal::KineticEnergy(model_, state);
+  std::vector<PointPlan> vplan = plan_;
+  for (PointPlan& pp : vplan) pp.target_n = 0.0, pp.target_t.setZero();
+  // Sliding points keep their slip: only their normal row (no friction in this correction).
+  for (PointPlan& pp : vplan) {
+    if (pp.mode == ContactMode::kSliding) pp.s.setZero();
+  }
+  const VectorXd b_con = model_.num_constraints() > 0 ? VectorXd(data_.velocity_rhs) : VectorXd();
+  const PlanSolution sol = SolvePlan(model_, data_, geo_, vplan, u_, b_con, false);
+  internal::SetVelocity(model_, data_, sol.u_new, state);
+  const double dT = internal::KineticEnergy(model_, state) - T0;
+  if (jammed_.empty()) {
+    state.contacts[static_cast<size_t>(plan_.front().point)].friction_work += dT;
+  } else {
+    BookJams(state, vplan, sol, dT, notes);
+  }
+}
+
+// The jam is an impulse: its energy goes to the impact ledger, shared by the jammed points'
+// normal impulses (equally when they carry none).
+void ModeSelector::BookJams(State& state, const std::vector<PointPlan>& vplan,
+                            const PlanSolution& sol, double dT, ModeSelectionNotes* notes) const {
+  Eigen::Index e = model_.num_constraint_rows();
+  std::vector<JamImpulse> jams;
+  for (size_t i = 0; i < vplan.size(); ++i) {
+    const PointPlan& pp = vplan[i];
+    const ContactPointGeometry& g = geo_[static_cast<size_t>(pp.point)];
+    double Pn = sol.N[static_cast<Eigen::Index>(i)];
+    Vec3 Pt = Vec3::Zero();
+    if (pp.mode == ContactMode::kSticking) {
+      Pt = sol.lambda_E[e] * g.t1 + sol.lambda_E[e + 1] * g.t2;
+      e += 2;
+    }
+    if (!Contains(jammed_, pp.point)) continue;
+    jams.push_back({pp.point, Pn, Pn * g.n + Pt, g.v_t.norm()});
+  }
+  const double n = static_cast<double>(jams.size());
+  double pn_sum = 0.0;
+  for (const JamImpulse& j : jams) pn_sum += std::max(0.0, j.normal_impulse);
+  for (JamImpulse& j : jams) {
+    const double share = pn_sum > 0.0 ? std::max(0.0, j.normal_impulse) / pn_sum : 1.0 / n;
+    j.energy_lost = -dT * share;
+    state.contacts[static_cast<size_t>(j.point)].impact_work += dT * share;
+    const Contact& con = model_.contact(model_.contact_of_point(j.point));
+    const ContactPointGeometry& g = geo_[static_cast<size_t>(j.point)];
+    const double Pn = j.normal_impulse;
+    const double Pt = (j.impulse_W - Pn * g.n).norm();
+    if (Pn < 0.0 || Pt > con.mu_s() * Pn * (1.0 + tol_.cone) + tol_.cone * j.impulse_W.norm()) {
+      throw InputError(fmt::format(
+          "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces "
+          "have no consistent solution (a Painlevé-type paradox of rigid bodies with "
+          "friction), and the impulse that would stop the slip ({:.6g} N·s tangential, "
+          "{:.6g} N·s normal) lies outside the friction cone mu_s = {}: the rigid model "
+          "has no answer here. Lower the friction coefficient or soften the model",
+          model_.contact_point_name(j.point), state.t, j.slip_speed, Pt, Pn, con.mu_s()));
+    }
+  }
+  if (notes != nullptr) notes->jams = std::move(jams);
+}
+
 }  // namespace
 
 std::vector<ContactModeChange> SelectContactModes(const Model& model, State& state,
@@ -592,267 +934,11 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
   std::vector<ContactMode> before(static_cast<size_t>(np));
   for (int p = 0; p < np; ++p)
     before[static_cast<size_t>(p)] = state.contacts[static_cast<size_t>(p)].mode;
-  Data data = MakeData(model);
-  CalcKinematics(model, state, data);
-  CalcForces(model, state, data);
-  VectorXd u_free;
-  FreeAccelerations(model, state, data, u_free);
-  if (model.num_constraints() > 0) CalcConstraintRows(model, state, data);
-  std::vector<ContactPointGeometry> geo(static_cast<size_t>(np));
-  for (int p = 0; p < np; ++p) {
-    geo[static_cast<size_t>(p)] = internal::CalcContactPointGeometry(model, state, data, p);
-  }
-  VectorXd u;
-  internal::GetVelocity(model, state, data, u);
-  // Candidates: touching and not moving apart.
-  std::vector<PointPlan> plan;
-  for (int p = 0; p < np; ++p) {
-    const ContactPointGeometry& g = geo[static_cast<size_t>(p)];
-    if (g.gap > tol.gap || g.v_n > tol.resting_speed) continue;
-    PointPlan pp;
-    pp.point = p;
-    const double vt = g.v_t.norm();
-    const Contact& con = model.contact(model.contact_of_point(p));
-    if (vt > tol.stick_speed) {
-      pp.mode = ContactMode::kSliding;
-      pp.s = g.v_t / vt;
-    } else if (con.mu_s() == 0.0) {
-      pp.mode = ContactMode::kSliding;  // frictionless: slides without a direction
-    }
-    pp.target_n = g.AccelerationBias(g.n);
-    pp.target_t = Vec3(g.AccelerationBias(g.t1), g.AccelerationBias(g.t2), 0.0);
-    plan.push_back(pp);
-  }
-  const VectorXd c_con = model.num_constraints() > 0 ? VectorXd(data.acceleration_rhs) : VectorXd();
-  const double a_scale = std::max(1.0, u_free.cwiseAbs().maxCoeff());
-  const double f_scale = [&] {
-    double s = 0.0;
-    for (int b = 0; b < model.num_bodies(); ++b) s = std::max(s, model.body(b).mass());
-    return s * a_scale;
-  }();
-  const double a_tol = tol.relative * a_scale;
-  // The friction-cone test is at round-off level and symmetric: a point within
-  // tol.cone (relative) of its cone is "at the limit", and there the motion decides: it is
-  // tried as sliding in the direction of impending slip and slides if the slip then grows
-  // (slip acceleration along s above tol.cone · a_scale), else it sticks. So a threshold found
-  // by bisection on the regime is the exact one to round-off, from either side.
-  const double a_cone = tol.cone * a_scale;
-  auto in = [](const std::vector<int>& v, int p) {
-    return std::find(v.begin(), v.end(), p) != v.end();
-  };
-  // Per point: 0 untouched, 1 switched to sliding at zero slip (slip starting), 2 tried as
-  // starting to slip and found to stick (not tried again).
-  std::vector<int> starting(static_cast<size_t>(np), 0);
-  std::vector<int> turns(static_cast<size_t>(np), 0);  // direction updates of a starting slip
-  std::vector<int> jammed;
-  // Each pass evaluates the active set with the contact stage itself (the forces the
-  // integrator will use, friction shared as there), so what is checked is what is integrated.
-  State trial = state;
-  Data tdata = MakeData(model);
-  std::vector<PointPlan> active;
-  for (int pass = 0; pass < 24 * np + 8 && !plan.empty(); ++pass) {
-    PlanSolution sol = SolvePlan(model, data, geo, plan, u_free, c_con, true);
-    if (!sol.solved) {
-      // No consistent normal forces with the sliding friction (a Painlevé-type
-      // inconsistency): the sliding points are taken as sticking, and their slip is removed
-      // by the impulsive velocity projection below (an impact without collision; reported
-      // in `notes`, docs/contact.md).
-      bool changed = false;
-      for (PointPlan& pp : plan) {
-        if (pp.mode == ContactMode::kSliding && pp.s.squaredNorm() > 0.0) {
-          pp.mode = ContactMode::kSticking, changed = true;
-          if (geo[static_cast<size_t>(pp.point)].v_t.norm() > tol.stick_speed) {
-            jammed.push_back(pp.point);
-          }
-        }
-      }
-      if (!changed) break;
-      continue;
-    }
-    // Points whose normal acceleration is positive leave (N = 0 there by complementarity).
-    active.clear();
-    for (size_t i = 0; i < plan.size(); ++i) {
-      if (sol.w[static_cast<Eigen::Index>(i)] <= a_tol) active.push_back(plan[i]);
-    }
-    if (active.empty()) break;
-    for (ContactPointState& ps : trial.contacts) {
-      ps.mode = ContactMode::kSeparated;
-      ps.slip_direction_W.setZero();
-    }
-    for (const PointPlan& pp : active) {
-      ContactPointState& ps = trial.contacts[static_cast<size_t>(pp.point)];
-      ps.mode = pp.mode;
-      ps.slip_direction_W = pp.s;
-    }
-    CalcAccelerations(model, trial, tdata);
-    const std::vector<ContactPointOutput>& out = tdata.contact_points;
-    // A least-norm split may pull at a redundant point: that point leaves for good.
-    int drop = -1;
-    double most_negative = -tol.relative * f_scale;
-    for (const PointPlan& pp : active) {
-      const double N = out[static_cast<size_t>(pp.point)].normal_force;
-      if (N < most_negative) most_negative = N, drop = pp.point;
-    }
-    if (drop >= 0) {
-      plan.erase(std::find_if(plan.begin(), plan.end(),
-                              [&](const PointPlan& pp) { return pp.point == drop; }));
-      active.clear();
-      continue;
-    }
-    // Friction check of the sticking points. Ranks: 3, its friction limit was just crossed
-    // (slip_starts); 2, over the cone by more than round-off; 1, at the limit (within it).
-    // The points to switch: every point over the cone is handled one at a time, largest
-    // excess first; otherwise the crossed and at-limit points start to slip together: points
-    // that share a load in proportion to their capacity (WeighRedundantRows) reach their
-    // cones together, and a rigid body held at several points breaks loose at all of them at
-    // once (one by one would load the rest past their cones in skewed directions).
-    struct Ranked {
-      int point, rank;
-      double excess;
-      Vec3 f;
-    };
-    std::vector<Ranked> ranked;
-    for (const PointPlan& pp : active) {
-      if (pp.mode != ContactMode::kSticking) continue;
-      const auto ip = static_cast<size_t>(pp.point);
-      if (starting[ip] == 2) continue;
-      const Contact& con = model.contact(model.contact_of_point(pp.point));
-      const Vec3& f = out[ip].friction_force_W;
-      const double cap = con.mu_s() * std::max(0.0, out[ip].normal_force);
-      const double excess = f.norm() - cap;
-      const double band = tol.cone * std::max({f.norm(), cap, 1e-6 * f_scale});
-      int rank = 0;
-      if (in(slip_starts, pp.point) && f.norm() > band) {
-        rank = 3;
-      } else if (excess > band) {
-        rank = 2;
-      } else if (excess >= -band && f.norm() > band) {
-        rank = 1;
-      }
-      if (rank > 0) ranked.push_back({pp.point, rank, excess, f});
-    }
-    if (!ranked.empty()) {
-      const auto worst =
-          std::max_element(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) {
-            return a.rank == 2 && b.rank == 2 ? a.excess < b.excess : (a.rank == 2) < (b.rank == 2);
-          });
-      for (const Ranked& r : ranked) {
-        if (worst->rank == 2 ? r.point != worst->point : r.rank == 2) continue;
-        for (PointPlan& pp : plan) {
-          if (pp.point != r.point) continue;
-          pp.mode = ContactMode::kSliding;
-          pp.s = -r.f.normalized();  // slip starts against the friction it needed
-        }
-        starting[static_cast<size_t>(r.point)] = 1;
-      }
-      continue;
-    }
-    // Consistency of the slips that start: the slip acceleration a_t must point along s (a
-    // slip that starts grows along its own direction, and friction -mu_k N s opposes it:
-    // maximum dissipation). Where a_t has turned from s (an anisotropic body), s follows it
-    // (fixed point s = a_t/|a_t|); a point whose slip would not grow sticks after all.
-    int revert = -1;
-    bool turned = false;
-    for (PointPlan& pp : plan) {
-      const auto ip = static_cast<size_t>(pp.point);
-      if (starting[ip] != 1 || pp.mode != ContactMode::kSliding) continue;
-      const Vec3& a_t = out[ip].slip_acceleration_W;
-      const double a_s = a_t.dot(pp.s);
-      const bool forced = in(slip_starts, pp.point);
-      if (a_s < -a_cone || (!forced && a_s <= a_cone)) {
-        revert = pp.point;
-        pp.mode = ContactMode::kSticking;
-        pp.s.setZero();
-        starting[ip] = 2;
-        break;
-      }
-      if (a_t.norm() > a_cone && turns[ip] < 20 && (a_t.normalized() - pp.s).norm() > 1e-12) {
-        pp.s = a_t.normalized();
-        ++turns[ip];
-        turned = true;
-      }
-    }
-    if (revert < 0 && !turned) break;
-  }
-  plan = active;
-  // Write the modes and reference directions.
-  for (int p = 0; p < np; ++p) {
-    ContactPointState& ps = state.contacts[static_cast<size_t>(p)];
-    ps.mode = ContactMode::kSeparated;
-    ps.slip_direction_W.setZero();
-    ps.rolling_direction_W.setZero();
-  }
-  for (const PointPlan& pp : plan) {
-    ContactPointState& ps = state.contacts[static_cast<size_t>(pp.point)];
-    ps.mode = pp.mode;
-    if (pp.mode == ContactMode::kSliding) ps.slip_direction_W = pp.s;
-    const ContactPointGeometry& g = geo[static_cast<size_t>(pp.point)];
-    const Contact& con = model.contact(model.contact_of_point(pp.point));
-    if (con.mu_r() > 0.0 && g.round) {
-      const Vec3 wr = g.RollingVelocity();
-      if (wr.norm() > tol.stick_speed / std::max(g.radius, 1e-300))
-        ps.rolling_direction_W = wr.normalized();
-    }
-  }
-  // Velocity projection onto the chosen rows: normal velocity zero at pressing points,
-  // tangential too at sticking ones, constraints J u = b. For the round-off velocities of
-  // touching points this is a tidy-up; for jammed points (above) it is the impulse that stops
-  // their slip, checked against the friction cone.
-  if (!plan.empty()) {
-    const double T0 = internal::KineticEnergy(model, state);
-    std::vector<PointPlan> vplan = plan;
-    for (PointPlan& pp : vplan) pp.target_n = 0.0, pp.target_t.setZero();
-    // Sliding points keep their slip: only their normal row (no friction in this correction).
-    for (PointPlan& pp : vplan) {
-      if (pp.mode == ContactMode::kSliding) pp.s.setZero();
-    }
-    const VectorXd b_con = model.num_constraints() > 0 ? VectorXd(data.velocity_rhs) : VectorXd();
-    const PlanSolution sol = SolvePlan(model, data, geo, vplan, u, b_con, false);
-    internal::SetVelocity(model, data, sol.u_new, state);
-    const double dT = internal::KineticEnergy(model, state) - T0;
-    if (jammed.empty()) {
-      state.contacts[static_cast<size_t>(plan.front().point)].friction_work += dT;
-    } else {
-      // The jam is an impulse: its energy goes to the impact ledger, shared by the jammed
-      // points' normal impulses (equally when they carry none).
-      Eigen::Index e = model.num_constraint_rows();
-      std::vector<JamImpulse> jams;
-      for (size_t i = 0; i < vplan.size(); ++i) {
-        const PointPlan& pp = vplan[i];
-        const ContactPointGeometry& g = geo[static_cast<size_t>(pp.point)];
-        double Pn = sol.N[static_cast<Eigen::Index>(i)];
-        Vec3 Pt = Vec3::Zero();
-        if (pp.mode == ContactMode::kSticking) {
-          Pt = sol.lambda_E[e] * g.t1 + sol.lambda_E[e + 1] * g.t2;
-          e += 2;
-        }
-        if (!in(jammed, pp.point)) continue;
-        jams.push_back({pp.point, Pn, Pn * g.n + Pt, g.v_t.norm()});
-      }
-      const double n = static_cast<double>(jams.size());
-      double pn_sum = 0.0;
-      for (const JamImpulse& j : jams) pn_sum += std::max(0.0, j.normal_impulse);
-      for (JamImpulse& j : jams) {
-        const double share = pn_sum > 0.0 ? std::max(0.0, j.normal_impulse) / pn_sum : 1.0 / n;
-        j.energy_lost = -dT * share;
-        state.contacts[static_cast<size_t>(j.point)].impact_work += dT * share;
-        const Contact& con = model.contact(model.contact_of_point(j.point));
-        const ContactPointGeometry& g = geo[static_cast<size_t>(j.point)];
-        const double Pn = j.normal_impulse;
-        const double Pt = (j.impulse_W - Pn * g.n).norm();
-        if (Pn < 0.0 || Pt > con.mu_s() * Pn * (1.0 + tol.cone) + tol.cone * j.impulse_W.norm()) {
-          throw InputError(fmt::format(
-              "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces "
-              "have no consistent solution (a Painlevé-type paradox of rigid bodies with "
-              "friction), and the impulse that would stop the slip ({:.6g} N·s tangential, "
-              "{:.6g} N·s normal) lies outside the friction cone mu_s = {}: the rigid model "
-              "has no answer here. Lower the friction coefficient or soften the model",
-              model.contact_point_name(j.point), state.t, j.slip_speed, Pt, Pn, con.mu_s()));
-        }
-      }
-      if (notes != nullptr) notes->jams = std::move(jams);
-    }
-  }
+  ModeSelector selector(model, state, tol, slip_starts);
+  selector.PlanCandidates();
+  selector.SelectModes();
+  selector.WriteModes(state);
+  selector.ProjectVelocities(state, notes);
   std::vector<ContactModeChange> changes;
   for (int p = 0; p < np; ++p) {
     const ContactMode m = state.contacts[static_cast<size_t>(p)].mode;

@@ -6,6 +6,7 @@
 namespace chasles {
 
 void CalcKinematics(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   for (int b = 0; b < model.num_bodies(); ++b) {
     const auto i = static_cast<size_t>(b);
     const BodyState& bs = state.bodies[i];
@@ -17,6 +18,7 @@ void CalcKinematics(const Model& model, const State& state, Data& data) {
 }
 
 void CalcForces(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   for (int b = 0; b < model.num_bodies(); ++b) {
     data.F_Bcm_W[static_cast<size_t>(b)].setZero();
     data.M_Bcm_W[static_cast<size_t>(b)].setZero();
@@ -37,6 +39,7 @@ Vec3 CalcEulerAngularAcceleration(const Mat3& I, const Mat3& I_inv, const Vec3& 
 }
 
 void CalcAccelerations(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
   CalcKinematics(model, state, data);
   CalcForces(model, state, data);
   for (int b = 0; b < model.num_bodies(); ++b) {

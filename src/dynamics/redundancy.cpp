@@ -103,6 +103,7 @@ std::string JointFor(const std::array<bool, 6>& kept) {
 }  // namespace
 
 double CalcMechanismLength(const Model& model, const Data& data) {
+  CheckDataFor(model, data);
   const int nc = model.num_constraints();
   double ell = 0.0;
   if (nc > 0) {
@@ -124,6 +125,7 @@ double CalcMechanismLength(const Model& model, const Data& data) {
 }
 
 VectorXd CalcReactionWeights(const Model& model, const Data& data) {
+  CheckDataFor(model, data);
   VectorXd d = VectorXd::Ones(model.num_constraint_rows());
   const double ell = CalcMechanismLength(model, data);
   for (int c = 0; c < model.num_constraints(); ++c) {
@@ -135,32 +137,14 @@ VectorXd CalcReactionWeights(const Model& model, const Data& data) {
   return d;
 }
 
-Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data) {
-  Redundancy r;
+namespace {
+
+// The reaction components of each null vector (the columns of Lambda): per constraint
+// [f; m/ℓ] in its frame.
+MatrixXd NullReactionComponents(const Model& model, const State& state, const Data& data,
+                                const MatrixXd& Lambda, double length) {
   const int nc = model.num_constraints();
-  r.rows = model.num_constraint_rows();
-  if (nc == 0) return r;
-  CalcKinematics(model, state, data);
-  CalcConstraintRows(model, state, data);
-  r.length = CalcMechanismLength(model, data);
-  const VectorXd d = CalcReactionWeights(model, data);
-
-  // Null space of Jᵀ, from the weighted Schur complement D J M⁻¹ Jᵀ D (positive
-  // semi-definite; its null space is D⁻¹ null(Jᵀ), and the weighting makes "small" mean the
-  // same in every unit).
-  MatrixXd JMinv;
-  internal::TimesMassInverse(model, data, data.J, JMinv);
-  const MatrixXd A = d.asDiagonal() * (JMinv * data.J.transpose()) * d.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(A);
-  const VectorXd& ev = eig.eigenvalues();
-  const double ev_max = std::max(ev.cwiseAbs().maxCoeff(), 0.0);
-  int null_dim = 0;
-  while (null_dim < ev.size() && ev[null_dim] <= kNullTolerance * ev_max) ++null_dim;
-  r.rank = r.rows - null_dim;
-  if (null_dim == 0) return r;
-  const MatrixXd Lambda = d.asDiagonal() * eig.eigenvectors().leftCols(null_dim);
-
-  // The reaction components of each null vector: per constraint [f; m/ℓ] in its frame.
+  const auto null_dim = static_cast<int>(Lambda.cols());
   MatrixXd C = MatrixXd::Zero(null_dim, 6 * nc);
   for (int c = 0; c < nc; ++c) {
     const Constraint& con = model.constraint(c);
@@ -173,10 +157,16 @@ Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data)
       const Vec3 F = w.head<3>();
       const Vec3 M_J = w.tail<3>() - r_J.cross(F);
       C.block<1, 3>(j, 6 * c) = (e.R_WJ.transpose() * F).transpose();
-      C.block<1, 3>(j, 6 * c + 3) = (e.R_WJ.transpose() * M_J).transpose() / r.length;
+      C.block<1, 3>(j, 6 * c + 3) = (e.R_WJ.transpose() * M_J).transpose() / length;
     }
   }
-  // Reduced row echelon form: each row a combination touching as few components as possible.
+  return C;
+}
+
+// Reduced row echelon form of C in place: each row a combination touching as few components
+// as possible. Returns the number of non-zero rows.
+int ReduceToEchelon(MatrixXd& C) {
+  const auto null_dim = static_cast<int>(C.rows());
   const double c_max = C.cwiseAbs().maxCoeff();
   int lead = 0;
   for (Eigen::Index col = 0; col < C.cols() && lead < null_dim; ++col) {
@@ -196,7 +186,12 @@ Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data)
       if (std::abs(C(i, k)) <= kNullTolerance * 1e2) C(i, k) = 0.0;
     }
   }
-  // Groups: components that appear in a common combination (union-find).
+  return lead;
+}
+
+// Groups: components that appear in a common combination (the first `lead` rows of the
+// echelon form C), by union-find.
+void GroupComponents(const MatrixXd& C, int lead, int nc, Redundancy& r) {
   std::vector<int> parent(static_cast<size_t>(6 * nc));
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int x) {
@@ -241,15 +236,20 @@ Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data)
       }
     }
   }
+}
 
-  // A determinate set of supports: greedy over candidate components, forces first.
-  struct Candidate {
-    int constraint;
-    int component;  // 0..5 for joints, the row for the others
-    VectorXd g;
-  };
-  std::vector<Candidate> forces, moments;
-  std::vector<SupportChange> support(static_cast<size_t>(nc));
+// A candidate support component of a determinate set, with its generalised force.
+struct Candidate {
+  int constraint;
+  int component;  // 0..5 for joints, the row for the others
+  VectorXd g;
+};
+
+// The candidate support components, forces and moments, and per constraint what it carries.
+void CollectSupportCandidates(const Model& model, const State& state, const Data& data,
+                              std::vector<Candidate>& forces, std::vector<Candidate>& moments,
+                              std::vector<SupportChange>& support) {
+  const int nc = model.num_constraints();
   for (int c = 0; c < nc; ++c) {
     const Constraint& con = model.constraint(c);
     const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
@@ -281,6 +281,15 @@ Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data)
       (i < 3 ? forces : moments).push_back({c, i, g});
     }
   }
+}
+
+// A determinate set of supports: greedy over candidate components, forces first; the
+// constraints that change.
+std::vector<SupportChange> DeterminateSupports(const Model& model, const State& state,
+                                               const Data& data) {
+  std::vector<Candidate> forces, moments;
+  std::vector<SupportChange> support(static_cast<size_t>(model.num_constraints()));
+  CollectSupportCandidates(model, state, data, forces, moments, support);
   std::vector<VectorXd> basis;
   auto take = [&](const std::vector<Candidate>& list) {
     for (const Candidate& cand : list) {
@@ -300,11 +309,47 @@ Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data)
   };
   take(forces);
   take(moments);
+  std::vector<SupportChange> changes;
   for (const SupportChange& s : support) {
     const bool same =
         s.is_joint ? s.kept == s.carried : static_cast<int>(s.kept_rows.size()) == s.num_rows;
-    if (!same) r.changes.push_back(s);
+    if (!same) changes.push_back(s);
   }
+  return changes;
+}
+
+}  // namespace
+
+Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data) {
+  CheckDataFor(model, data);
+  Redundancy r;
+  const int nc = model.num_constraints();
+  r.rows = model.num_constraint_rows();
+  if (nc == 0) return r;
+  CalcKinematics(model, state, data);
+  CalcConstraintRows(model, state, data);
+  r.length = CalcMechanismLength(model, data);
+  const VectorXd d = CalcReactionWeights(model, data);
+
+  // Null space of Jᵀ, from the weighted Schur complement D J M⁻¹ Jᵀ D (positive
+  // semi-definite; its null space is D⁻¹ null(Jᵀ), and the weighting makes "small" mean the
+  // same in every unit).
+  MatrixXd JMinv;
+  internal::TimesMassInverse(model, data, data.J, JMinv);
+  const MatrixXd A = d.asDiagonal() * (JMinv * data.J.transpose()) * d.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(A);
+  const VectorXd& ev = eig.eigenvalues();
+  const double ev_max = std::max(ev.cwiseAbs().maxCoeff(), 0.0);
+  int null_dim = 0;
+  while (null_dim < ev.size() && ev[null_dim] <= kNullTolerance * ev_max) ++null_dim;
+  r.rank = r.rows - null_dim;
+  if (null_dim == 0) return r;
+  const MatrixXd Lambda = d.asDiagonal() * eig.eigenvectors().leftCols(null_dim);
+
+  MatrixXd C = NullReactionComponents(model, state, data, Lambda, r.length);
+  const int lead = ReduceToEchelon(C);
+  GroupComponents(C, lead, nc, r);
+  r.changes = DeterminateSupports(model, state, data);
   return r;
 }
 

@@ -173,6 +173,7 @@ void DormandPrince5Integrator::Step(double t_limit) {
   std::swap(w.k1, w.k7);
   ode_->Unpack(t_new, w.y0, state_);
   ProjectAfterStep();
+  internal::CheckFiniteState(ode_->model(), state_);
 }
 
 void DormandPrince5Integrator::ProjectAfterStep() {
@@ -200,6 +201,7 @@ void DormandPrince5Integrator::StepFixed(double h) {
   std::swap(w.k1, w.k7);
   ode_->Unpack(t + h, w.y0, state_);
   ProjectAfterStep();
+  internal::CheckFiniteState(ode_->model(), state_);
 }
 
 void DormandPrince5Integrator::PrepareDense() {
@@ -234,6 +236,7 @@ void DormandPrince5Integrator::Interpolate(double t, State& out) {
   // The interpolant meets the constraints (and contact rows) only to its own error; put the
   // output back on them.
   if (ode_->projects(options_.project_contacts)) ode_->Project(out, options_.project_contacts);
+  internal::CheckFiniteState(ode_->model(), out);
 }
 
 }  // namespace chasles

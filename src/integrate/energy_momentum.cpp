@@ -131,6 +131,7 @@ void EnergyMomentumIntegrator::Step(State& s, double h) {
   }
   // Second half with the end-of-step outputs.
   AddHalfStepIntegrals(data_, 0.5 * h, s);
+  internal::CheckFiniteState(model_, s);
   // The forces in data_ were evaluated before the second kick; they are the next step's
   // first-kick forces only for position- and time-dependent forces. Velocity-dependent ones
   // are re-evaluated there only if the caller changed the state; otherwise the half-step

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -13,6 +14,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
 #include "integrate/internal/event_root.h"
+#include "integrate/internal/ode.h"
 
 namespace chasles::internal {
 namespace {
@@ -126,13 +128,73 @@ class HybridRun {
         bounces_(static_cast<size_t>(model.num_contact_points())) {}
 
   SimulationResult Run(const State& initial) {
+    State s = Start(initial);
+    DormandPrince5Integrator dp(model_, o_.adaptive);
+    const size_t ne = o_.events.size();
+    ug_prev_.assign(ne, 0.0);
+    ug_new_.assign(ne, 0.0);
+    for (size_t e = 0; e < ne; ++e) {
+      if (o_.events[e].g) ug_prev_[e] = o_.events[e].g(model_, s);
+    }
+    scratch_ = s;
+    while (s.t < o_.t_end) {
+      dp.Initialize(s);
+      Stretch st = BeginStretch(dp, s);
+      bool restart = false;
+      while (dp.t() < o_.t_end && !restart) {
+        dp.Step(o_.t_end);
+        if (o_.on_step) o_.on_step(dp.t());
+        EvalFunctions(model_, dp.state(), st.fns, data_, st.g1);
+        NormalVelocities(st.fns, st.vn1);
+        const auto [t_c, which] = FindContactEvent(dp, st);
+        const double t_stop = LocateUserEvents(dp, t_c);
+        const double t_out_end = std::min({dp.t(), t_c, t_stop});
+        EmitUpTo(dp, t_out_end, scratch_);
+        if (std::isfinite(t_stop)) {
+          StopAtUserEvent(dp, t_stop);
+          return std::move(r_);
+        }
+        if (which >= 0) {
+          if (SwitchModes(dp, s, t_c, st.fns[static_cast<size_t>(which)])) return std::move(r_);
+          restart = true;
+        } else {
+          st.g0 = st.g1;
+          st.vn0 = st.vn1;
+          ug_prev_ = ug_new_;
+          s = dp.state();
+        }
+      }
+      AddStats(dp);
+    }
+    r_.final_state = s;
+    Emit(s);
+    return std::move(r_);
+  }
+
+ private:
+  // The contact event functions of one stretch of integration between mode switches, their
+  // values and the points' normal velocities at the ends of the current step, and the
+  // functions armed at the restart (BeginStretch).
+  struct Stretch {
+    std::vector<ContactFn> fns;
+    std::vector<double> g0, g1;
+    // Normal velocities of the points at the step's ends (closest approach, EventTime).
+    std::vector<double> vn0, vn1;
+    double t_restart = 0.0;
+    std::vector<double> band;
+    std::vector<char> armed;
+  };
+
+  // The first instant: projection onto the constraints, the initial modes (impacts of points
+  // that start touching and approaching, then selection) and the first sample.
+  State Start(const State& initial) {
     State s = initial;
     if (s.contacts.size() != static_cast<size_t>(model_.num_contact_points())) {
       s.contacts.assign(static_cast<size_t>(model_.num_contact_points()), ContactPointState{});
     }
     if (model_.num_constraints() > 0) ProjectOntoConstraints(model_, s, data_);
-    // Initial modes: impacts of points that start touching and approaching, then selection.
     Transition(s, -1, ContactEventReason::kInitial);
+    CheckFiniteState(model_, s);
     for (int p = 0; p < model_.num_contact_points(); ++p) {
       r_.contact_events.insert(
           r_.contact_events.begin() + p,
@@ -149,189 +211,181 @@ class HybridRun {
     }
     t0_ = s.t;
     Emit(s);
-    DormandPrince5Integrator dp(model_, o_.adaptive);
-    const size_t ne = o_.events.size();
-    std::vector<double> ug_prev(ne), ug_new(ne);
-    for (size_t e = 0; e < ne; ++e) {
-      if (o_.events[e].g) ug_prev[e] = o_.events[e].g(model_, s);
-    }
-    State scratch = s;
-    while (s.t < o_.t_end) {
-      dp.Initialize(s);
-      const std::vector<ContactFn> fns = EventFunctions(model_, s);
-      std::vector<double> g0, g1;
-      // Normal velocities of the points at the step's ends (closest approach, below).
-      std::vector<double> vn0, vn1;
-      auto normal_velocities = [&](std::vector<double>& vn) {
-        vn.resize(fns.size());
-        for (size_t i = 0; i < fns.size(); ++i) {
-          vn[i] = data_.contact_points[static_cast<size_t>(fns[i].point)].normal_velocity;
-        }
-      };
-      EvalFunctions(model_, dp.state(), fns, data_, g0);
-      normal_velocities(vn0);
-      // A function that is zero (or round-off below) where the run restarts has its crossing
-      // there, not in a later step: a sticking point left exactly at its friction limit, a
-      // slip that started from zero, a normal force that is zero. It is armed: if it then
-      // falls below its round-off band before rising out of it, the event is at the restart
-      // (without this the crossing would never be seen, since it never was positive).
-      const double t_restart = dp.t();
-      std::vector<double> band(fns.size());
-      std::vector<char> armed(fns.size(), 0);
-      for (size_t i = 0; i < fns.size(); ++i) {
-        band[i] = RoundOffBand(fns[i], data_);
-        armed[i] = fns[i].fn != Fn::kGap && g0[i] <= band[i];
-      }
-      bool restart = false;
-      while (dp.t() < o_.t_end && !restart) {
-        dp.Step(o_.t_end);
-        if (o_.on_step) o_.on_step(dp.t());
-        const double ta = dp.t_previous(), tb = dp.t();
-        EvalFunctions(model_, dp.state(), fns, data_, g1);
-        normal_velocities(vn1);
-        // Earliest contact event in the step.
-        double t_c = std::numeric_limits<double>::infinity();
-        int which = -1;
-        for (size_t i = 0; i < fns.size(); ++i) {
-          if (armed[i]) {
-            if (g1[i] < -band[i]) {
-              if (t_restart < t_c) t_c = t_restart, which = static_cast<int>(i);
-              continue;
-            }
-            if (g1[i] > band[i]) armed[i] = 0;
-            if (armed[i]) continue;
-          }
-          std::vector<double> gv;
-          auto g = [&](double t) {
-            dp.Interpolate(t, scratch);
-            EvalFunctions(model_, scratch, {fns[i]}, data_, gv);
-            return gv[0];
-          };
-          double a = ta, ga = g0[i];
-          if (fns[i].fn == Fn::kGap && g0[i] > 0.0 && g1[i] > 0.0) {
-            // Apart at both ends, but approaching at the start and separating at the end: the
-            // closest approach (the zero of ġ) lies inside the step, and the gap may have
-            // dipped below zero there (two spheres passing through each other in one long
-            // free-flight step, a turning vertex). Then the touch-down is in [ta, closest].
-            if (!(vn0[i] < 0.0 && vn1[i] > 0.0)) continue;
-            const auto p = static_cast<size_t>(fns[i].point);
-            auto gdot = [&](double t) {
-              g(t);
-              return data_.contact_points[p].normal_velocity;
-            };
-            const double t_min =
-                internal::LocateEventTime(gdot, ta, vn0[i], tb, vn1[i], o_.event_time_tolerance);
-            const double g_min = g(t_min);
-            if (!(g_min < 0.0)) continue;
-            const double t =
-                internal::LocateEventTime(g, ta, g0[i], t_min, g_min, o_.event_time_tolerance);
-            if (t < t_c) t_c = t, which = static_cast<int>(i);
-            continue;
-          }
-          if (!internal::Crosses(EventDirection::kFalling, g0[i], g1[i])) {
-            // A point that separated at the step's start (gap at round-off, <= 0) and ends it
-            // below the plane made a flight shorter than the step: the gap rose and fell
-            // inside it, which the end values do not show. The top of that flight is the zero
-            // of the normal velocity ġ; the touch-down is then bracketed by [top, tb]. A
-            // flight whose top is not above the plane (a rebound below round-off) lands at
-            // its top, and a point that never moved away lands at once.
-            if (fns[i].fn != Fn::kGap || g0[i] > 0.0 || !(g1[i] < 0.0)) continue;
-            const auto p = static_cast<size_t>(fns[i].point);
-            auto gdot = [&](double t) {
-              g(t);
-              return data_.contact_points[p].normal_velocity;
-            };
-            const double v0 = gdot(ta), v1 = gdot(tb);
-            double t_top = ta;
-            if (v0 > 0.0 && v1 < 0.0) {
-              t_top = internal::LocateEventTime(gdot, ta, v0, tb, v1, o_.event_time_tolerance);
-            }
-            const double g_top = g(t_top);
-            if (!(g_top > 0.0)) {
-              if (t_top < t_c) t_c = t_top, which = static_cast<int>(i);
-              continue;
-            }
-            a = t_top, ga = g_top;
-          }
-          const double t = internal::LocateEventTime(g, a, ga, tb, g1[i], o_.event_time_tolerance);
-          if (t < t_c) t_c = t, which = static_cast<int>(i);
-        }
-        // User events up to the contact event.
-        double t_stop = std::numeric_limits<double>::infinity();
-        for (size_t e = 0; e < ne; ++e) {
-          if (!o_.events[e].g) continue;  // a contact-mode event (RecordModeEvents)
-          ug_new[e] = o_.events[e].g(model_, dp.state());
-          if (!internal::Crosses(o_.events[e].direction, ug_prev[e], ug_new[e])) continue;
-          auto g = [&](double t) {
-            dp.Interpolate(t, scratch);
-            return o_.events[e].g(model_, scratch);
-          };
-          const double t =
-              internal::LocateEventTime(g, ta, ug_prev[e], tb, ug_new[e], o_.event_time_tolerance);
-          if (t > t_c) continue;
-          EventRecord rec;
-          rec.event = static_cast<int>(e);
-          rec.name = o_.events[e].name;
-          rec.t = t;
-          dp.Interpolate(t, rec.state);
-          r_.events.push_back(std::move(rec));
-          if (o_.events[e].action == EventAction::kStop) t_stop = std::min(t_stop, t);
-        }
-        std::sort(r_.events.begin(), r_.events.end(),
-                  [](const EventRecord& a, const EventRecord& b) { return a.t < b.t; });
-        const double t_out_end = std::min({tb, t_c, t_stop});
-        EmitUpTo(dp, t_out_end, scratch);
-        if (std::isfinite(t_stop)) {
-          // Drop records after the stop.
-          while (!r_.events.empty() && r_.events.back().t > t_stop) r_.events.pop_back();
-          r_.final_state = r_.events.back().state;
-          r_.stopped_by_event = true;
-          Emit(r_.final_state);
-          AddStats(dp);
-          return std::move(r_);
-        }
-        if (which >= 0) {
-          dp.Interpolate(t_c, s);
-          s.t = t_c;
-          const State before = o_.on_transition ? s : State{};
-          const size_t first_change = r_.contact_events.size();
-          Transition(s, fns[static_cast<size_t>(which)].point,
-                     fns[static_cast<size_t>(which)].reason);
-          if (o_.on_transition) o_.on_transition(before, s);
-          if (RecordModeEvents(first_change, s)) {
-            r_.final_state = s;
-            r_.stopped_by_event = true;
-            Emit(s);
-            AddStats(dp);
-            return std::move(r_);
-          }
-          for (size_t e = 0; e < ne; ++e) {
-            if (o_.events[e].g) ug_prev[e] = o_.events[e].g(model_, s);
-          }
-          restart = true;
-          if (++switches_ > o_.contact.max_mode_switches) {
-            throw InputError(fmt::format(
-                "contacts switched mode more than {} times (at t = {:.9g} s, point '{}'); the "
-                "motion chatters: check the friction coefficients and the tolerances, or raise "
-                "max_mode_switches",
-                o_.contact.max_mode_switches, s.t,
-                model_.contact_point_name(fns[static_cast<size_t>(which)].point)));
-          }
-        } else {
-          g0 = g1;
-          vn0 = vn1;
-          ug_prev = ug_new;
-          s = dp.state();
-        }
-      }
-      AddStats(dp);
-    }
-    r_.final_state = s;
-    Emit(s);
-    return std::move(r_);
+    return s;
   }
 
- private:
+  // Normal velocities of the points of `fns` (data_ filled by EvalFunctions).
+  void NormalVelocities(const std::vector<ContactFn>& fns, std::vector<double>& vn) const {
+    vn.resize(fns.size());
+    for (size_t i = 0; i < fns.size(); ++i) {
+      vn[i] = data_.contact_points[static_cast<size_t>(fns[i].point)].normal_velocity;
+    }
+  }
+
+  // The event functions of the modes of `s` and their values at the restart (dp initialised
+  // at `s`).
+  Stretch BeginStretch(const DormandPrince5Integrator& dp, const State& s) {
+    Stretch st;
+    st.fns = EventFunctions(model_, s);
+    EvalFunctions(model_, dp.state(), st.fns, data_, st.g0);
+    NormalVelocities(st.fns, st.vn0);
+    // A function that is zero (or round-off below) where the run restarts has its crossing
+    // there, not in a later step: a sticking point left exactly at its friction limit, a
+    // slip that started from zero, a normal force that is zero. It is armed: if it then
+    // falls below its round-off band before rising out of it, the event is at the restart
+    // (without this the crossing would never be seen, since it never was positive).
+    st.t_restart = dp.t();
+    st.band.resize(st.fns.size());
+    st.armed.assign(st.fns.size(), 0);
+    for (size_t i = 0; i < st.fns.size(); ++i) {
+      st.band[i] = RoundOffBand(st.fns[i], data_);
+      st.armed[i] = st.fns[i].fn != Fn::kGap && st.g0[i] <= st.band[i];
+    }
+    return st;
+  }
+
+  // Earliest contact event in the step just taken: its time and the index of its function
+  // (infinity and -1: none).
+  std::pair<double, int> FindContactEvent(DormandPrince5Integrator& dp, Stretch& st) {
+    double t_c = std::numeric_limits<double>::infinity();
+    int which = -1;
+    for (size_t i = 0; i < st.fns.size(); ++i) {
+      const double t = EventTime(dp, st, i);
+      if (t < t_c) t_c = t, which = static_cast<int>(i);
+    }
+    return {t_c, which};
+  }
+
+  // Time of the crossing of event function `i` in the step [ta, tb] just taken (infinity:
+  // none).
+  double EventTime(DormandPrince5Integrator& dp, Stretch& st, size_t i) {
+    constexpr double kNone = std::numeric_limits<double>::infinity();
+    const std::vector<ContactFn>& fns = st.fns;
+    const std::vector<double>&g0 = st.g0, &g1 = st.g1, &vn0 = st.vn0, &vn1 = st.vn1;
+    const double ta = dp.t_previous(), tb = dp.t();
+    if (st.armed[i]) {
+      if (g1[i] < -st.band[i]) return st.t_restart;
+      if (g1[i] > st.band[i]) st.armed[i] = 0;
+      if (st.armed[i]) return kNone;
+    }
+    std::vector<double> gv;
+    auto g = [&](double t) {
+      dp.Interpolate(t, scratch_);
+      EvalFunctions(model_, scratch_, {fns[i]}, data_, gv);
+      return gv[0];
+    };
+    double a = ta, ga = g0[i];
+    if (fns[i].fn == Fn::kGap && g0[i] > 0.0 && g1[i] > 0.0) {
+      // Apart at both ends, but approaching at the start and separating at the end: the
+      // closest approach (the zero of ġ) lies inside the step, and the gap may have
+      // dipped below zero there (two spheres passing through each other in one long
+      // free-flight step, a turning vertex). Then the touch-down is in [ta, closest].
+      if (!(vn0[i] < 0.0 && vn1[i] > 0.0)) return kNone;
+      const auto p = static_cast<size_t>(fns[i].point);
+      auto gdot = [&](double t) {
+        g(t);
+        return data_.contact_points[p].normal_velocity;
+      };
+      const double t_min =
+          internal::LocateEventTime(gdot, ta, vn0[i], tb, vn1[i], o_.event_time_tolerance);
+      const double g_min = g(t_min);
+      if (!(g_min < 0.0)) return kNone;
+      return internal::LocateEventTime(g, ta, g0[i], t_min, g_min, o_.event_time_tolerance);
+    }
+    if (!internal::Crosses(EventDirection::kFalling, g0[i], g1[i])) {
+      // A point that separated at the step's start (gap at round-off, <= 0) and ends it
+      // below the plane made a flight shorter than the step: the gap rose and fell
+      // inside it, which the end values do not show. The top of that flight is the zero
+      // of the normal velocity ġ; the touch-down is then bracketed by [top, tb]. A
+      // flight whose top is not above the plane (a rebound below round-off) lands at
+      // its top, and a point that never moved away lands at once.
+      if (fns[i].fn != Fn::kGap || g0[i] > 0.0 || !(g1[i] < 0.0)) return kNone;
+      const auto p = static_cast<size_t>(fns[i].point);
+      auto gdot = [&](double t) {
+        g(t);
+        return data_.contact_points[p].normal_velocity;
+      };
+      const double v0 = gdot(ta), v1 = gdot(tb);
+      double t_top = ta;
+      if (v0 > 0.0 && v1 < 0.0) {
+        t_top = internal::LocateEventTime(gdot, ta, v0, tb, v1, o_.event_time_tolerance);
+      }
+      const double g_top = g(t_top);
+      if (!(g_top > 0.0)) return t_top;
+      a = t_top, ga = g_top;
+    }
+    return internal::LocateEventTime(g, a, ga, tb, g1[i], o_.event_time_tolerance);
+  }
+
+  // User events in the step just taken, up to the contact event at t_c: records them and
+  // returns the time of the earliest that stops the run (infinity: none).
+  double LocateUserEvents(DormandPrince5Integrator& dp, double t_c) {
+    const double ta = dp.t_previous(), tb = dp.t();
+    double t_stop = std::numeric_limits<double>::infinity();
+    for (size_t e = 0; e < o_.events.size(); ++e) {
+      if (!o_.events[e].g) continue;  // a contact-mode event (RecordModeEvents)
+      ug_new_[e] = o_.events[e].g(model_, dp.state());
+      if (!internal::Crosses(o_.events[e].direction, ug_prev_[e], ug_new_[e])) continue;
+      auto g = [&](double t) {
+        dp.Interpolate(t, scratch_);
+        return o_.events[e].g(model_, scratch_);
+      };
+      const double t =
+          internal::LocateEventTime(g, ta, ug_prev_[e], tb, ug_new_[e], o_.event_time_tolerance);
+      if (t > t_c) continue;
+      EventRecord rec;
+      rec.event = static_cast<int>(e);
+      rec.name = o_.events[e].name;
+      rec.t = t;
+      dp.Interpolate(t, rec.state);
+      r_.events.push_back(std::move(rec));
+      if (o_.events[e].action == EventAction::kStop) t_stop = std::min(t_stop, t);
+    }
+    std::sort(r_.events.begin(), r_.events.end(),
+              [](const EventRecord& a, const EventRecord& b) { return a.t < b.t; });
+    return t_stop;
+  }
+
+  // Ends the run at a user event that stops it, at t_stop.
+  void StopAtUserEvent(const DormandPrince5Integrator& dp, double t_stop) {
+    // Drop records after the stop.
+    while (!r_.events.empty() && r_.events.back().t > t_stop) r_.events.pop_back();
+    r_.final_state = r_.events.back().state;
+    r_.stopped_by_event = true;
+    Emit(r_.final_state);
+    AddStats(dp);
+  }
+
+  // The contact event of `fn` at t_c: moves `s` there and makes the transition. True when a
+  // contact-mode event stops the run (the result is then complete).
+  bool SwitchModes(DormandPrince5Integrator& dp, State& s, double t_c, const ContactFn& fn) {
+    dp.Interpolate(t_c, s);
+    s.t = t_c;
+    const State before = o_.on_transition ? s : State{};
+    const size_t first_change = r_.contact_events.size();
+    Transition(s, fn.point, fn.reason);
+    CheckFiniteState(model_, s);
+    if (o_.on_transition) o_.on_transition(before, s);
+    if (RecordModeEvents(first_change, s)) {
+      r_.final_state = s;
+      r_.stopped_by_event = true;
+      Emit(s);
+      AddStats(dp);
+      return true;
+    }
+    for (size_t e = 0; e < o_.events.size(); ++e) {
+      if (o_.events[e].g) ug_prev_[e] = o_.events[e].g(model_, s);
+    }
+    if (++switches_ > o_.contact.max_mode_switches) {
+      throw InputError(fmt::format(
+          "contacts switched mode more than {} times (at t = {:.9g} s, point '{}'); the "
+          "motion chatters: check the friction coefficients and the tolerances, or raise "
+          "max_mode_switches",
+          o_.contact.max_mode_switches, s.t, model_.contact_point_name(fn.point)));
+    }
+    return false;
+  }
+
   void Emit(const State& s) {
     if (o_.on_sample) o_.on_sample(s);
     if (o_.store_samples) r_.samples.push_back(s);
@@ -472,6 +526,10 @@ class HybridRun {
   double t0_ = 0.0;
   long long k_ = 1;
   int switches_ = 0;
+  /// User event functions at the start and end of the current step.
+  std::vector<double> ug_prev_, ug_new_;
+  /// Dense-output state for event location and samples.
+  State scratch_;
 };
 
 }  // namespace

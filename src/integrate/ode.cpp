@@ -34,20 +34,29 @@ const char* Kind(std::initializer_list<Vec3> vectors, std::initializer_list<doub
 
 }  // namespace
 
+void CheckFiniteState(const Model& model, const State& state) {
+  for (int b = 0; b < model.num_bodies() && b < static_cast<int>(state.bodies.size()); ++b) {
+    const BodyState& s = state.bodies[static_cast<size_t>(b)];
+    const char* quantity = !s.p_WBcm.allFinite()          ? "position"
+                           : !s.q_WB.coeffs().allFinite() ? "orientation"
+                           : !s.v_WBcm_W.allFinite()      ? "velocity"
+                           : !s.w_WB_B.allFinite()        ? "angular velocity"
+                                                          : nullptr;
+    if (quantity == nullptr) continue;
+    throw InputError(fmt::format(
+        "the {} of body '{}' became {} at t = {:.9g} s (position {}, velocity {}, angular "
+        "velocity {})",
+        quantity, model.body(b).name(),
+        Kind({s.p_WBcm, s.v_WBcm_W, s.w_WB_B, Vec3(s.q_WB.coeffs().head<3>())}, {s.q_WB.w()}),
+        state.t, Show(s.p_WBcm), Show(s.v_WBcm_W), Show(s.w_WB_B)));
+  }
+}
+
 void CheckFiniteEvaluation(const Model& model, const State& state, const Data& data,
                            bool accelerations) {
   const double t = state.t;
   // Inputs before outputs: a body whose state is already not finite makes every force on it so.
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const BodyState& s = state.bodies[static_cast<size_t>(b)];
-    if (!(s.p_WBcm.allFinite() && s.v_WBcm_W.allFinite() && s.w_WB_B.allFinite() &&
-          s.q_WB.coeffs().allFinite())) {
-      throw InputError(fmt::format(
-          "the motion of body '{}' became {} at t = {:.9g} s (position {}, velocity {})",
-          model.body(b).name(), Kind({s.p_WBcm, s.v_WBcm_W, s.w_WB_B}), t, Show(s.p_WBcm),
-          Show(s.v_WBcm_W)));
-    }
-  }
+  CheckFiniteState(model, state);
   for (int e = 0; e < model.num_force_elements() && e < static_cast<int>(data.elements.size());
        ++e) {
     const ForceElementOutput& o = data.elements[static_cast<size_t>(e)];

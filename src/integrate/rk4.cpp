@@ -40,6 +40,7 @@ void Rk4Integrator::Step(State& state, double h) {
   ode_->Unpack(t + h, w.y, state);
   // Constrained models: back onto the constraint manifold (removes the drift of g and J u).
   if (ode_->has_constraints()) ode_->Project(state, false);
+  internal::CheckFiniteState(ode_->model(), state);
   ++stats_.steps;
   stats_.function_evaluations += 4;
 }

@@ -279,14 +279,19 @@ TriangleMesh BuildTriangleMesh(std::span<const double> xyz, std::span<const std:
   return BuildImpl(xyz, indices, scale, tolerance, report);
 }
 
-void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
-  MeshRepairReport local;
-  MeshRepairReport& rep = report ? *report : local;
-  std::vector<TriangleIndices>& tris = mesh.triangles;
+namespace {
+
+// Twin of each half-edge, and the number of edges whose two triangles traverse it in the same
+// direction (inconsistent orientation). Throws InputError for a boundary or non-manifold edge.
+struct EdgeMatch {
+  std::vector<std::uint32_t> twin;
+  std::size_t inconsistent = 0;
+};
+
+EdgeMatch MatchEdges(const TriangleMesh& mesh) {
+  const std::vector<TriangleIndices>& tris = mesh.triangles;
   const std::size_t nt = tris.size();
   const std::size_t nv = mesh.vertices.size();
-  if (3 * nt >= kNone) throw InputError("mesh: more than 2^32 / 3 triangles are not supported");
-
   // Edges bucketed by their lower vertex (compressed rows): each half-edge he is stored at its
   // lower endpoint as (upper endpoint << 32 | he). Sorting a bucket groups the uses of each
   // undirected edge; buckets hold about six entries, so this is linear in practice and needs
@@ -304,8 +309,11 @@ void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
       entries[fill[std::min(a, b)]++] = (std::uint64_t{std::max(a, b)} << 32) | he;
     }
   }
-  std::vector<std::uint32_t> twin(3 * nt, kNone);
-  std::size_t boundary = 0, nonmanifold = 0, inconsistent = 0;
+  EdgeMatch m;
+  std::vector<std::uint32_t>& twin = m.twin;
+  twin.assign(3 * nt, kNone);
+  std::size_t boundary = 0, nonmanifold = 0;
+  std::size_t& inconsistent = m.inconsistent;
   std::uint32_t first_bad = kNone;  // a half-edge of the first offending edge
   const char* first_kind = "";
   for (std::size_t v = 0; v < nv; ++v) {
@@ -354,15 +362,36 @@ void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
         "mode: shell with a thickness or areal density for sheet parts",
         boundary, nonmanifold, first_kind, FormatPoint(a), FormatPoint(b)));
   }
+  return m;
+}
 
+// Connected components over shared edges: component[t] of each triangle, the triangles in
+// breadth-first order per component (queue, component c at [start[c], start[c + 1])), and
+// parity[t], whether t must be reversed to agree with its component's first triangle.
+struct Components {
+  std::vector<std::uint32_t> component;
+  std::vector<std::uint8_t> parity;
+  std::vector<std::uint32_t> queue;
+  std::vector<std::uint32_t> start;
+  std::size_t count() const { return start.size() - 1; }
+};
+
+Components FindComponents(const TriangleMesh& mesh, const EdgeMatch& edges) {
+  const std::vector<TriangleIndices>& tris = mesh.triangles;
+  const std::size_t nt = tris.size();
+  const std::vector<std::uint32_t>& twin = edges.twin;
+  const std::size_t inconsistent = edges.inconsistent;
   // Connected components by breadth-first search over shared edges. parity[t] says whether t
   // must be reversed to agree with the component's first triangle: crossing an edge that both
   // triangles traverse in the same direction toggles it.
-  std::vector<std::uint32_t> component(nt, kNone);
-  std::vector<std::uint8_t> parity(nt, 0);
-  std::vector<std::uint32_t> queue;
+  Components k;
+  std::vector<std::uint32_t>& component = k.component;
+  std::vector<std::uint8_t>& parity = k.parity;
+  std::vector<std::uint32_t>& queue = k.queue;
+  std::vector<std::uint32_t>& component_start = k.start;
+  component.assign(nt, kNone);
+  parity.assign(nt, 0);
   queue.reserve(nt);
-  std::vector<std::uint32_t> component_start;  // offsets into queue
   for (std::uint32_t seed = 0; seed < nt; ++seed) {
     if (component[seed] != kNone) continue;
     const auto c = static_cast<std::uint32_t>(component_start.size());
@@ -391,34 +420,48 @@ void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
     }
   }
   component_start.push_back(static_cast<std::uint32_t>(nt));
-  const std::size_t nc = component_start.size() - 1;
-  rep.components = nc;
+  return k;
+}
 
-  if (inconsistent > 0) {
-    // Keep the majority orientation of each component: fewest triangles reversed.
-    std::size_t flipped = 0;
-    for (std::size_t c = 0; c < nc; ++c) {
-      std::size_t ones = 0;
-      for (std::uint32_t q = component_start[c]; q < component_start[c + 1]; ++q) {
-        ones += parity[queue[q]];
-      }
-      const std::size_t size = component_start[c + 1] - component_start[c];
-      const std::uint8_t reverse = 2 * ones > size ? 0 : 1;
-      for (std::uint32_t q = component_start[c]; q < component_start[c + 1]; ++q) {
-        const std::uint32_t t = queue[q];
-        if (parity[t] == reverse) {
-          std::swap(tris[t][1], tris[t][2]);
-          ++flipped;
-        }
+// Reverses triangles so that each component is consistently oriented.
+void OrientConsistently(TriangleMesh& mesh, const Components& k, MeshRepairReport& rep) {
+  std::vector<TriangleIndices>& tris = mesh.triangles;
+  const std::size_t nt = tris.size();
+  const std::size_t nc = k.count();
+  const std::vector<std::uint8_t>& parity = k.parity;
+  const std::vector<std::uint32_t>& queue = k.queue;
+  const std::vector<std::uint32_t>& component_start = k.start;
+  // Keep the majority orientation of each component: fewest triangles reversed.
+  std::size_t flipped = 0;
+  for (std::size_t c = 0; c < nc; ++c) {
+    std::size_t ones = 0;
+    for (std::uint32_t q = component_start[c]; q < component_start[c + 1]; ++q) {
+      ones += parity[queue[q]];
+    }
+    const std::size_t size = component_start[c + 1] - component_start[c];
+    const std::uint8_t reverse = 2 * ones > size ? 0 : 1;
+    for (std::uint32_t q = component_start[c]; q < component_start[c + 1]; ++q) {
+      const std::uint32_t t = queue[q];
+      if (parity[t] == reverse) {
+        std::swap(tris[t][1], tris[t][2]);
+        ++flipped;
       }
     }
-    rep.triangles_flipped += flipped;
-    rep.warnings.push_back(fmt::format(
-        "inconsistent triangle orientation: {} of {} triangles reversed to agree with their "
-        "neighbours (flood fill per connected component)",
-        flipped, nt));
   }
+  rep.triangles_flipped += flipped;
+  rep.warnings.push_back(fmt::format(
+      "inconsistent triangle orientation: {} of {} triangles reversed to agree with their "
+      "neighbours (flood fill per connected component)",
+      flipped, nt));
+}
 
+// Turns an inside-out mesh outward; warns about components that enclose a negative volume.
+void OrientOutward(TriangleMesh& mesh, const Components& k, MeshRepairReport& rep) {
+  std::vector<TriangleIndices>& tris = mesh.triangles;
+  const std::size_t nt = tris.size();
+  const std::size_t nc = k.count();
+  const std::vector<std::uint32_t>& component = k.component;
+  const std::vector<std::uint32_t>& component_start = k.start;
   // Enclosed volume per component (divergence theorem, signed tetrahedra from the bounding-box
   // centre; see mesh_mass.cpp), to detect an inside-out mesh.
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -465,6 +508,20 @@ void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
           c, component_start[c + 1] - component_start[c], volume[c]));
     }
   }
+}
+
+}  // namespace
+
+void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
+  MeshRepairReport local;
+  MeshRepairReport& rep = report ? *report : local;
+  const std::size_t nt = mesh.triangles.size();
+  if (3 * nt >= kNone) throw InputError("mesh: more than 2^32 / 3 triangles are not supported");
+  const EdgeMatch edges = MatchEdges(mesh);
+  const Components components = FindComponents(mesh, edges);
+  rep.components = components.count();
+  if (edges.inconsistent > 0) OrientConsistently(mesh, components, rep);
+  OrientOutward(mesh, components, rep);
 }
 
 }  // namespace chasles

@@ -1,5 +1,8 @@
 #include "chasles/model/data.h"
 
+#include <fmt/format.h>
+
+#include "chasles/error.h"
 #include "chasles/model/model.h"
 
 namespace chasles {
@@ -7,6 +10,7 @@ namespace chasles {
 Data MakeData(const Model& model) {
   const auto nb = static_cast<size_t>(model.num_bodies());
   Data d;
+  d.model_id = model.id();
   d.R_WB.assign(nb, Mat3::Identity());
   d.w_WB_W.assign(nb, Vec3::Zero());
   d.F_Bcm_W.assign(nb, Vec3::Zero());
@@ -32,6 +36,20 @@ Data MakeData(const Model& model) {
   d.schur_rhs = Eigen::VectorXd::Zero(rows);
   d.contact_points.assign(static_cast<size_t>(model.num_contact_points()), ContactPointOutput{});
   return d;
+}
+
+void CheckDataFor(const Model& model, const Data& data) {
+  if (data.model_id == model.id()) return;
+  if (data.model_id == 0) {
+    throw UsageError(
+        "this Data was not made by MakeData; make one with MakeData(model) for the Model it is "
+        "used with");
+  }
+  throw UsageError(fmt::format(
+      "this Data was made for another Model (id {}; the Model given has id {}, with {} bodies); "
+      "make one with MakeData(model). A copy of a Model is another Model, and adding a body, "
+      "force element, constraint or contact makes the Data made before it stale",
+      data.model_id, model.id(), model.num_bodies()));
 }
 
 }  // namespace chasles

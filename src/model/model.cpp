@@ -1,10 +1,17 @@
 #include "chasles/model/model.h"
 
+#include <atomic>
+
 #include <fmt/format.h>
 
 #include "chasles/error.h"
 
 namespace chasles {
+
+std::uint64_t ModelIdentity::Next() noexcept {
+  static std::atomic<std::uint64_t> counter{0};
+  return counter.fetch_add(1, std::memory_order_relaxed) + 1;
+}
 
 BodyIndex Model::AddBody(std::string name, const MassProperties& mass_properties) {
   if (name.empty()) throw InputError("a body needs a non-empty name");
@@ -15,6 +22,7 @@ BodyIndex Model::AddBody(std::string name, const MassProperties& mass_properties
     }
   }
   bodies_.emplace_back(std::move(name), mass_properties);
+  id_.Renew();
   return num_bodies() - 1;
 }
 
@@ -35,6 +43,7 @@ int Model::AddForceElement(std::shared_ptr<const ForceElement> element) {
     }
   }
   forces_.push_back(std::move(element));
+  id_.Renew();
   return num_force_elements() - 1;
 }
 
@@ -63,6 +72,7 @@ int Model::AddConstraint(std::shared_ptr<const Constraint> constraint) {
   row_offsets_.push_back(num_constraint_rows_);
   num_constraint_rows_ += rows;
   constraints_.push_back(std::move(constraint));
+  id_.Renew();
   return num_constraints() - 1;
 }
 
@@ -104,6 +114,7 @@ int Model::AddContact(const ContactSpec& spec) {
     }
   }
   contacts_.emplace_back(*this, spec);
+  id_.Renew();
   contact_offsets_.push_back(num_contact_points_);
   const int n = contacts_.back().num_points();
   for (int k = 0; k < n; ++k) point_owner_.push_back(num_contacts() - 1);

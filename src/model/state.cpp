@@ -78,8 +78,9 @@ void ValidateState(const Model& model, const State& state) {
                       : !bs.w_WB_B.allFinite()        ? "angular velocity"
                                                       : nullptr;
     if (bad) {
-      throw InputError(fmt::format("body '{}': {} is not finite; set every component",
-                                   model.body(b).name(), bad));
+      throw InputError(
+          fmt::format("body '{}': {} is not finite at t = {:.9g} s; set every component",
+                      model.body(b).name(), bad, state.t));
     }
     if (std::abs(bs.q_WB.norm() - 1.0) > 1e-6) {
       throw InputError(fmt::format(

@@ -112,6 +112,239 @@ std::string SceneReader::ConstraintName(const At& at, const char* kind, size_t i
   return name;
 }
 
+SceneJoint SceneReader::ReadJoint(const At& at, size_t i, const Scene& scene,
+                                  std::vector<std::string>& taken) {
+  report_.CheckMap(at, {"name", "type", "parent", "child", "at", "axis"}, "a joint");
+  SceneJoint j;
+  j.name = ConstraintName(at, "joint", i, taken);
+  j.where = Spot(at);
+  const std::string what = fmt::format("joint '{}'", j.name);
+  const At type_at = report_.Require(at, "type", what);
+  const std::string type = report_.Text(type_at, "a joint type");
+  const JointType* jt = nullptr;
+  std::vector<std::string> types;
+  for (const JointType& t : kJointTypes) {
+    types.emplace_back(t.name);
+    if (type == t.name) jt = &t;
+  }
+  if (!jt) {
+    report_.Fail(type_at, fmt::format("unknown joint type '{}'{}; types: {}", type,
+                                      DidYouMean(type, types), fmt::join(types, ", ")));
+  }
+  j.kind = jt->kind;
+  if (planar_) ReadPlanarJointType(at, what, j);
+  j.parent = ParentIndexAt(report_.Require(at, "parent", what), scene);
+  j.child = BodyIndexAt(report_.Require(at, "child", what), scene);
+  if (j.parent == j.child) {
+    report_.Fail(at.Child("child"), "a joint's parent and child must differ");
+  }
+  j.p_WJ = WorldVector(report_.Require(at, "at", what), kLength, "the joint point (world)");
+  if (planar_) {
+    // ReadPlanarJointType read the axis.
+  } else if (jt->needs_axis) {
+    j.axis_W = AxisAt(report_.Require(at, "axis", what), "the joint axis");
+  } else if (at.Has("axis")) {
+    j.axis_W = AxisAt(at.Child("axis"), "the joint axis");
+  }
+  return j;
+}
+
+SceneRolling SceneReader::ReadRolling(const At& at, size_t i, const Scene& scene,
+                                      std::vector<std::string>& taken) {
+  report_.CheckMap(at, {"name", "body", "on", "shape", "radius", "axis", "center", "plane", "mu_s"},
+                   "a rolling contact");
+  SceneRolling r;
+  r.name = ConstraintName(at, "rolling", i, taken);
+  r.where = Spot(at);
+  const std::string what = fmt::format("rolling contact '{}'", r.name);
+  r.body = BodyIndexAt(report_.Require(at, "body", what), scene);
+  if (at.Has("on")) {
+    r.on = ParentIndexAt(at.Child("on"), scene);
+    if (r.on == r.body) {
+      report_.Fail(at.Child("on"), "a body cannot roll on itself; name the body under it");
+    }
+  }
+  const SceneBody& body = scene.bodies[static_cast<size_t>(r.body)];
+  if (planar_) {
+    ReadPlanarRolling(at, body, what, r);
+    return r;
+  }
+  const At shape_at = report_.Require(at, "shape", what);
+  const std::string shape = report_.Text(shape_at, "sphere, cylinder or disk");
+  if (shape == "sphere") {
+    r.shape = RollingShape::kSphere;
+  } else if (shape == "cylinder") {
+    r.shape = RollingShape::kCylinder;
+  } else if (shape == "disk") {
+    r.shape = RollingShape::kDisk;
+  } else {
+    report_.Fail(shape_at,
+                 fmt::format("unknown rolling shape '{}'{}; shapes: sphere, cylinder, disk", shape,
+                             DidYouMean(shape, {"sphere", "cylinder", "disk"})));
+  }
+  r.radius = PositiveValue(report_.Require(at, "radius", what), kLength, "the radius");
+  if (r.shape != RollingShape::kSphere) {
+    r.axis_B = AxisAt(report_.Require(at, "axis", what), "the symmetry axis (body frame)");
+  } else if (at.Has("axis")) {
+    report_.Fail(at.Child("axis"), "a sphere has no axis; remove 'axis'");
+  }
+  r.p_BoC_B =
+      at.Has("center") ? BodyPointAt(at.Child("center"), body) : body.mass_properties.p_BoBcm_B();
+  const At plane = report_.Require(at, "plane", what);
+  report_.CheckMap(plane, {"point", "normal"}, "a plane ({point, normal})");
+  if (plane.Has("point")) {
+    r.plane_point_W = Vector(plane.Child("point"), kLength, "a point of the plane");
+  }
+  r.plane_normal_W = AxisAt(report_.Require(plane, "normal", "a plane"), "the plane's normal");
+  if (at.Has("mu_s")) {
+    r.mu_s = Value(at.Child("mu_s"), kDimensionless, "the coefficient of static friction");
+    if (!(r.mu_s >= 0)) report_.Fail(at.Child("mu_s"), "mu_s must be >= 0");
+  }
+  return r;
+}
+
+SceneDriver SceneReader::ReadDriver(const At& at, size_t i, const Scene& scene,
+                                    std::vector<std::string>& taken) {
+  report_.CheckMap(at, {"name", "type", "parent", "child", "at", "axis", "value"}, "a driver");
+  SceneDriver d;
+  d.name = ConstraintName(at, "driver", i, taken);
+  d.where = Spot(at);
+  const std::string what = fmt::format("driver '{}'", d.name);
+  const At type_at = report_.Require(at, "type", what);
+  const std::string type = report_.Text(type_at, "translation or rotation");
+  if (type == "translation") {
+    d.kind = DriverKind::kTranslation;
+  } else if (type == "rotation") {
+    d.kind = DriverKind::kRotation;
+  } else {
+    report_.Fail(type_at, fmt::format("unknown driver type '{}'{}; types: translation, rotation",
+                                      type, DidYouMean(type, {"translation", "rotation"})));
+  }
+  const bool rot = d.kind == DriverKind::kRotation;
+  d.parent = ParentIndexAt(report_.Require(at, "parent", what), scene);
+  d.child = BodyIndexAt(report_.Require(at, "child", what), scene);
+  if (d.parent == d.child) {
+    report_.Fail(at.Child("child"), "a driver's parent and child must differ");
+  }
+  d.p_WJ = WorldVector(report_.Require(at, "at", what), kLength, "the driver point (world)");
+  if (planar_ && rot) {
+    // A rotation in the plane is about z.
+    if (at.Has("axis")) {
+      report_.Fail(at.Child("axis"),
+                   "in a planar scene a rotation driver turns about z; remove 'axis'");
+    }
+    d.axis_W = Vec3::UnitZ();
+  } else {
+    d.axis_W = AxisAt(report_.Require(at, "axis", what), "the driver axis");
+  }
+  const At value = report_.Require(at, "value", what);
+  report_.CheckMap(value, {"position", "velocity", "acceleration"},
+                   "a driver's value ({position, velocity, acceleration})");
+  if (value.Has("position")) {
+    d.f0 = Value(value.Child("position"), rot ? kDimensionless : kLength,
+                 rot ? "the angle at t = 0" : "the position at t = 0");
+  }
+  if (value.Has("velocity")) {
+    d.f1 = Value(value.Child("velocity"), rot ? kAngularVelocity : kVelocity,
+                 rot ? "the rate at t = 0" : "the velocity at t = 0");
+  }
+  if (value.Has("acceleration")) {
+    d.f2 = Value(value.Child("acceleration"), rot ? kAngularAcceleration : kAcceleration,
+                 "the (constant) acceleration");
+  }
+  return d;
+}
+
+SceneGear SceneReader::ReadGear(const At& at, size_t i, const Scene& scene,
+                                std::vector<std::string>& taken) {
+  report_.CheckMap(
+      at, {"name", "type", "parent", "child", "parent_circle", "child_circle", "keep_contact"},
+      "a gear mesh");
+  SceneGear g;
+  g.where = Spot(at);
+  g.name = ConstraintName(at, "gear", i, taken);
+  const std::string what = fmt::format("gear mesh '{}'", g.name);
+  const At type_at = report_.Require(at, "type", what);
+  const std::string type = report_.Text(type_at, "external, internal or face");
+  if (type == "external") {
+    g.kind = GearKind::kExternal;
+  } else if (type == "internal") {
+    g.kind = GearKind::kInternal;
+  } else if (type == "face") {
+    g.kind = GearKind::kFace;
+  } else {
+    report_.Fail(type_at, fmt::format("unknown gear type '{}'{}; types: external, internal, face",
+                                      type, DidYouMean(type, {"external", "internal", "face"})));
+  }
+  g.parent = ParentIndexAt(report_.Require(at, "parent", what), scene);
+  g.child = BodyIndexAt(report_.Require(at, "child", what), scene);
+  if (g.parent == g.child) {
+    report_.Fail(at.Child("child"), "a gear mesh's parent and child must differ");
+  }
+  const auto circle = [&](const char* key, bool with_radius) {
+    const At c_at = report_.Require(at, key, what);
+    report_.CheckMap(c_at, {"center", "axis", "radius"}, "a pitch circle ({center, axis, radius})");
+    ScenePitchCircle pc;
+    pc.center_W =
+        Vector(report_.Require(c_at, "center", "a pitch circle"), kLength, "the centre (world)");
+    pc.axis_W = AxisAt(report_.Require(c_at, "axis", "a pitch circle"), "the gear's axis");
+    if (with_radius) {
+      pc.radius = PositiveValue(report_.Require(c_at, "radius", "a pitch circle"), kLength,
+                                "the pitch radius");
+    } else if (c_at.Has("radius")) {
+      report_.Fail(c_at.Child("radius"),
+                   "a face gear's pitch surface is the plane through its centre normal to "
+                   "its axis; remove 'radius'");
+    }
+    return pc;
+  };
+  g.parent_circle = circle("parent_circle", g.kind != GearKind::kFace);
+  g.child_circle = circle("child_circle", true);
+  if (at.Has("keep_contact")) {
+    const At k = at.Child("keep_contact");
+    if (!k.node.IsScalar() || !YAML::convert<bool>::decode(k.node, g.keep_contact)) {
+      report_.Fail(k, fmt::format("expected true or false, got {}", KindOf(k.node)));
+    }
+  }
+  CheckPitchCirclesTouch(at, g);
+  return g;
+}
+
+// The pitch circles must touch at the initial configuration (the mesh row alone does not pull
+// them together): the same distance the constraint's contact row holds.
+void SceneReader::CheckPitchCirclesTouch(const At& at, const SceneGear& g) {
+  const ScenePitchCircle& pc = g.parent_circle;
+  const ScenePitchCircle& cc = g.child_circle;
+  const double ra = cc.radius;
+  const Vec3 d = pc.center_W - cc.center_W;
+  double gap = 0.0;
+  std::string rule;
+  if (g.kind == GearKind::kFace) {
+    const double sigma = pc.axis_W.dot(cc.axis_W);
+    gap = d.dot(-pc.axis_W) - ra * std::sqrt(std::max(0.0, 1.0 - sigma * sigma));
+    rule =
+        "the lowest point of the child's pitch circle lies on the parent's pitch plane "
+        "(the parent's axis points towards the child)";
+  } else {
+    const double ell = (d - d.dot(cc.axis_W) * cc.axis_W).norm();
+    if (g.kind == GearKind::kInternal && !(ra < pc.radius)) {
+      report_.Fail(at.Child("child_circle"),
+                   fmt::format("an internal mesh needs the child's pitch radius ({:.6g} m) "
+                               "smaller than the ring's ({:.6g} m)",
+                               ra, pc.radius));
+    }
+    gap = g.kind == GearKind::kExternal ? ell - (ra + pc.radius) : (pc.radius - ra) - ell;
+    rule = fmt::format("the centre distance in the child's plane is {:.9g} m, {} {:.9g} m", ell,
+                       g.kind == GearKind::kExternal ? "the radii's sum" : "their difference",
+                       g.kind == GearKind::kExternal ? ra + pc.radius : pc.radius - ra);
+  }
+  if (std::abs(gap) > 1e-6 * std::max(ra, 1e-3)) {
+    report_.Fail(at, fmt::format("the pitch circles of gear mesh '{}' do not touch (gap "
+                                 "{:.6g} m): {}; move a centre or change a radius",
+                                 g.name, gap, rule));
+  }
+}
+
 void SceneReader::ReadConstraints(const At& root, Scene& scene) {
   SceneConstraints& c = scene.dynamics.constraints;
   std::vector<std::string> taken;
@@ -120,40 +353,7 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
     const At list = root.Child("joints");
     report_.CheckSequence(list, "a list of joints");
     for (size_t i = 0; i < list.node.size(); ++i) {
-      const At at = list.Item(i);
-      report_.CheckMap(at, {"name", "type", "parent", "child", "at", "axis"}, "a joint");
-      SceneJoint j;
-      j.name = ConstraintName(at, "joint", i, taken);
-      j.where = Spot(at);
-      const std::string what = fmt::format("joint '{}'", j.name);
-      const At type_at = report_.Require(at, "type", what);
-      const std::string type = report_.Text(type_at, "a joint type");
-      const JointType* jt = nullptr;
-      std::vector<std::string> types;
-      for (const JointType& t : kJointTypes) {
-        types.emplace_back(t.name);
-        if (type == t.name) jt = &t;
-      }
-      if (!jt) {
-        report_.Fail(type_at, fmt::format("unknown joint type '{}'{}; types: {}", type,
-                                          DidYouMean(type, types), fmt::join(types, ", ")));
-      }
-      j.kind = jt->kind;
-      if (planar_) ReadPlanarJointType(at, what, j);
-      j.parent = ParentIndexAt(report_.Require(at, "parent", what), scene);
-      j.child = BodyIndexAt(report_.Require(at, "child", what), scene);
-      if (j.parent == j.child) {
-        report_.Fail(at.Child("child"), "a joint's parent and child must differ");
-      }
-      j.p_WJ = WorldVector(report_.Require(at, "at", what), kLength, "the joint point (world)");
-      if (planar_) {
-        // ReadPlanarJointType read the axis.
-      } else if (jt->needs_axis) {
-        j.axis_W = AxisAt(report_.Require(at, "axis", what), "the joint axis");
-      } else if (at.Has("axis")) {
-        j.axis_W = AxisAt(at.Child("axis"), "the joint axis");
-      }
-      c.joints.push_back(j);
+      c.joints.push_back(ReadJoint(list.Item(i), i, scene, taken));
     }
   }
 
@@ -161,59 +361,7 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
     const At list = root.Child("rolling");
     report_.CheckSequence(list, "a list of rolling contacts");
     for (size_t i = 0; i < list.node.size(); ++i) {
-      const At at = list.Item(i);
-      report_.CheckMap(at,
-                       {"name", "body", "on", "shape", "radius", "axis", "center", "plane", "mu_s"},
-                       "a rolling contact");
-      SceneRolling r;
-      r.name = ConstraintName(at, "rolling", i, taken);
-      r.where = Spot(at);
-      const std::string what = fmt::format("rolling contact '{}'", r.name);
-      r.body = BodyIndexAt(report_.Require(at, "body", what), scene);
-      if (at.Has("on")) {
-        r.on = ParentIndexAt(at.Child("on"), scene);
-        if (r.on == r.body) {
-          report_.Fail(at.Child("on"), "a body cannot roll on itself; name the body under it");
-        }
-      }
-      const SceneBody& body = scene.bodies[static_cast<size_t>(r.body)];
-      if (planar_) {
-        ReadPlanarRolling(at, body, what, r);
-        c.rolling.push_back(r);
-        continue;
-      }
-      const At shape_at = report_.Require(at, "shape", what);
-      const std::string shape = report_.Text(shape_at, "sphere, cylinder or disk");
-      if (shape == "sphere") {
-        r.shape = RollingShape::kSphere;
-      } else if (shape == "cylinder") {
-        r.shape = RollingShape::kCylinder;
-      } else if (shape == "disk") {
-        r.shape = RollingShape::kDisk;
-      } else {
-        report_.Fail(shape_at,
-                     fmt::format("unknown rolling shape '{}'{}; shapes: sphere, cylinder, disk",
-                                 shape, DidYouMean(shape, {"sphere", "cylinder", "disk"})));
-      }
-      r.radius = PositiveValue(report_.Require(at, "radius", what), kLength, "the radius");
-      if (r.shape != RollingShape::kSphere) {
-        r.axis_B = AxisAt(report_.Require(at, "axis", what), "the symmetry axis (body frame)");
-      } else if (at.Has("axis")) {
-        report_.Fail(at.Child("axis"), "a sphere has no axis; remove 'axis'");
-      }
-      r.p_BoC_B = at.Has("center") ? BodyPointAt(at.Child("center"), body)
-                                   : body.mass_properties.p_BoBcm_B();
-      const At plane = report_.Require(at, "plane", what);
-      report_.CheckMap(plane, {"point", "normal"}, "a plane ({point, normal})");
-      if (plane.Has("point")) {
-        r.plane_point_W = Vector(plane.Child("point"), kLength, "a point of the plane");
-      }
-      r.plane_normal_W = AxisAt(report_.Require(plane, "normal", "a plane"), "the plane's normal");
-      if (at.Has("mu_s")) {
-        r.mu_s = Value(at.Child("mu_s"), kDimensionless, "the coefficient of static friction");
-        if (!(r.mu_s >= 0)) report_.Fail(at.Child("mu_s"), "mu_s must be >= 0");
-      }
-      c.rolling.push_back(r);
+      c.rolling.push_back(ReadRolling(list.Item(i), i, scene, taken));
     }
   }
 
@@ -221,56 +369,7 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
     const At list = root.Child("drivers");
     report_.CheckSequence(list, "a list of drivers");
     for (size_t i = 0; i < list.node.size(); ++i) {
-      const At at = list.Item(i);
-      report_.CheckMap(at, {"name", "type", "parent", "child", "at", "axis", "value"}, "a driver");
-      SceneDriver d;
-      d.name = ConstraintName(at, "driver", i, taken);
-      d.where = Spot(at);
-      const std::string what = fmt::format("driver '{}'", d.name);
-      const At type_at = report_.Require(at, "type", what);
-      const std::string type = report_.Text(type_at, "translation or rotation");
-      if (type == "translation") {
-        d.kind = DriverKind::kTranslation;
-      } else if (type == "rotation") {
-        d.kind = DriverKind::kRotation;
-      } else {
-        report_.Fail(type_at,
-                     fmt::format("unknown driver type '{}'{}; types: translation, rotation", type,
-                                 DidYouMean(type, {"translation", "rotation"})));
-      }
-      const bool rot = d.kind == DriverKind::kRotation;
-      d.parent = ParentIndexAt(report_.Require(at, "parent", what), scene);
-      d.child = BodyIndexAt(report_.Require(at, "child", what), scene);
-      if (d.parent == d.child) {
-        report_.Fail(at.Child("child"), "a driver's parent and child must differ");
-      }
-      d.p_WJ = WorldVector(report_.Require(at, "at", what), kLength, "the driver point (world)");
-      if (planar_ && rot) {
-        // A rotation in the plane is about z.
-        if (at.Has("axis")) {
-          report_.Fail(at.Child("axis"),
-                       "in a planar scene a rotation driver turns about z; remove 'axis'");
-        }
-        d.axis_W = Vec3::UnitZ();
-      } else {
-        d.axis_W = AxisAt(report_.Require(at, "axis", what), "the driver axis");
-      }
-      const At value = report_.Require(at, "value", what);
-      report_.CheckMap(value, {"position", "velocity", "acceleration"},
-                       "a driver's value ({position, velocity, acceleration})");
-      if (value.Has("position")) {
-        d.f0 = Value(value.Child("position"), rot ? kDimensionless : kLength,
-                     rot ? "the angle at t = 0" : "the position at t = 0");
-      }
-      if (value.Has("velocity")) {
-        d.f1 = Value(value.Child("velocity"), rot ? kAngularVelocity : kVelocity,
-                     rot ? "the rate at t = 0" : "the velocity at t = 0");
-      }
-      if (value.Has("acceleration")) {
-        d.f2 = Value(value.Child("acceleration"), rot ? kAngularAcceleration : kAcceleration,
-                     "the (constant) acceleration");
-      }
-      c.drivers.push_back(d);
+      c.drivers.push_back(ReadDriver(list.Item(i), i, scene, taken));
     }
   }
 
@@ -278,91 +377,7 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
     const At list = root.Child("gears");
     report_.CheckSequence(list, "a list of gear meshes");
     for (size_t i = 0; i < list.node.size(); ++i) {
-      const At at = list.Item(i);
-      report_.CheckMap(
-          at, {"name", "type", "parent", "child", "parent_circle", "child_circle", "keep_contact"},
-          "a gear mesh");
-      SceneGear g;
-      g.where = Spot(at);
-      g.name = ConstraintName(at, "gear", i, taken);
-      const std::string what = fmt::format("gear mesh '{}'", g.name);
-      const At type_at = report_.Require(at, "type", what);
-      const std::string type = report_.Text(type_at, "external, internal or face");
-      if (type == "external") {
-        g.kind = GearKind::kExternal;
-      } else if (type == "internal") {
-        g.kind = GearKind::kInternal;
-      } else if (type == "face") {
-        g.kind = GearKind::kFace;
-      } else {
-        report_.Fail(type_at,
-                     fmt::format("unknown gear type '{}'{}; types: external, internal, face", type,
-                                 DidYouMean(type, {"external", "internal", "face"})));
-      }
-      g.parent = ParentIndexAt(report_.Require(at, "parent", what), scene);
-      g.child = BodyIndexAt(report_.Require(at, "child", what), scene);
-      if (g.parent == g.child) {
-        report_.Fail(at.Child("child"), "a gear mesh's parent and child must differ");
-      }
-      const auto circle = [&](const char* key, bool with_radius) {
-        const At c_at = report_.Require(at, key, what);
-        report_.CheckMap(c_at, {"center", "axis", "radius"},
-                         "a pitch circle ({center, axis, radius})");
-        ScenePitchCircle pc;
-        pc.center_W = Vector(report_.Require(c_at, "center", "a pitch circle"), kLength,
-                             "the centre (world)");
-        pc.axis_W = AxisAt(report_.Require(c_at, "axis", "a pitch circle"), "the gear's axis");
-        if (with_radius) {
-          pc.radius = PositiveValue(report_.Require(c_at, "radius", "a pitch circle"), kLength,
-                                    "the pitch radius");
-        } else if (c_at.Has("radius")) {
-          report_.Fail(c_at.Child("radius"),
-                       "a face gear's pitch surface is the plane through its centre normal to "
-                       "its axis; remove 'radius'");
-        }
-        return pc;
-      };
-      g.parent_circle = circle("parent_circle", g.kind != GearKind::kFace);
-      g.child_circle = circle("child_circle", true);
-      if (at.Has("keep_contact")) {
-        const At k = at.Child("keep_contact");
-        if (!k.node.IsScalar() || !YAML::convert<bool>::decode(k.node, g.keep_contact)) {
-          report_.Fail(k, fmt::format("expected true or false, got {}", KindOf(k.node)));
-        }
-      }
-      // The pitch circles must touch at the initial configuration (the mesh row alone does not
-      // pull them together): the same distance the constraint's contact row holds.
-      const ScenePitchCircle& pc = g.parent_circle;
-      const ScenePitchCircle& cc = g.child_circle;
-      const double ra = cc.radius;
-      const Vec3 d = pc.center_W - cc.center_W;
-      double gap = 0.0;
-      std::string rule;
-      if (g.kind == GearKind::kFace) {
-        const double sigma = pc.axis_W.dot(cc.axis_W);
-        gap = d.dot(-pc.axis_W) - ra * std::sqrt(std::max(0.0, 1.0 - sigma * sigma));
-        rule =
-            "the lowest point of the child's pitch circle lies on the parent's pitch plane "
-            "(the parent's axis points towards the child)";
-      } else {
-        const double ell = (d - d.dot(cc.axis_W) * cc.axis_W).norm();
-        if (g.kind == GearKind::kInternal && !(ra < pc.radius)) {
-          report_.Fail(at.Child("child_circle"),
-                       fmt::format("an internal mesh needs the child's pitch radius ({:.6g} m) "
-                                   "smaller than the ring's ({:.6g} m)",
-                                   ra, pc.radius));
-        }
-        gap = g.kind == GearKind::kExternal ? ell - (ra + pc.radius) : (pc.radius - ra) - ell;
-        rule = fmt::format("the centre distance in the child's plane is {:.9g} m, {} {:.9g} m", ell,
-                           g.kind == GearKind::kExternal ? "the radii's sum" : "their difference",
-                           g.kind == GearKind::kExternal ? ra + pc.radius : pc.radius - ra);
-      }
-      if (std::abs(gap) > 1e-6 * std::max(ra, 1e-3)) {
-        report_.Fail(at, fmt::format("the pitch circles of gear mesh '{}' do not touch (gap "
-                                     "{:.6g} m): {}; move a centre or change a radius",
-                                     g.name, gap, rule));
-      }
-      c.gears.push_back(g);
+      c.gears.push_back(ReadGear(list.Item(i), i, scene, taken));
     }
   }
 }

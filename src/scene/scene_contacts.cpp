@@ -167,23 +167,7 @@ void SceneReader::ReadContacts(const At& root, Scene& scene) {
     const At list = root.Child("material_pairs");
     report_.CheckSequence(list, "a list of material pairs");
     for (size_t i = 0; i < list.node.size(); ++i) {
-      const At at = list.Item(i);
-      report_.CheckMap(at, {"materials", "mu_s", "mu_k", "mu_r", "restitution", "restitution_law"},
-                       "a material pair");
-      const At names = report_.Require(at, "materials", "a material pair");
-      if (!names.node.IsSequence() || names.node.size() != 2) {
-        report_.Fail(names, "expected two material names, e.g. [steel, oak]");
-      }
-      SceneMaterialPair p;
-      p.a = report_.Text(names.Item(0), "a material name");
-      p.b = report_.Text(names.Item(1), "a material name");
-      for (const SceneMaterialPair& q : out.material_pairs) {
-        if (SamePair(q, p.a, p.b)) {
-          report_.Fail(names, fmt::format("the pair {}/{} is given twice", p.a, p.b));
-        }
-      }
-      ReadContactCoefficients(at, p.mu_s, p.mu_k, p.mu_r, p.restitution, p.restitution_law, false);
-      out.material_pairs.push_back(p);
+      out.material_pairs.push_back(ReadMaterialPair(list.Item(i), out.material_pairs));
     }
   }
   if (!root.Has("contacts")) return;
@@ -191,160 +175,202 @@ void SceneReader::ReadContacts(const At& root, Scene& scene) {
   report_.CheckSequence(list, "a list of contacts");
   std::vector<std::string> taken = scene.dynamics.constraints.names();
   for (size_t i = 0; i < list.node.size(); ++i) {
-    const At at = list.Item(i);
-    report_.CheckMap(at,
-                     {"name", "body", "shape", "radius", "axis", "center", "length", "size",
-                      "points", "plane", "with", "other_radius", "other_center", "materials",
-                      "mu_s", "mu_k", "mu_r", "restitution", "restitution_law"},
-                     "a contact");
-    SceneContact c;
-    c.where = SpotAt(at);
-    c.name =
-        at.Has("name") ? report_.Text(at.Child("name"), "a name") : fmt::format("contact{}", i + 1);
-    if (std::find(taken.begin(), taken.end(), c.name) != taken.end()) {
-      report_.Fail(at.Has("name") ? at.Child("name") : at,
-                   fmt::format("the name '{}' is already used by a contact, joint, rolling "
-                               "contact or driver; names must be unique",
-                               c.name));
-    }
-    taken.push_back(c.name);
-    const std::string what = fmt::format("contact '{}'", c.name);
-    c.body = BodyIndexAt(report_.Require(at, "body", what), scene);
-    const SceneBody& body = scene.bodies[static_cast<size_t>(c.body)];
-
-    const At shape_at = report_.Require(at, "shape", what);
-    const std::string shape = report_.Text(shape_at, "a contact shape");
-    std::vector<std::string> shapes;
-    bool found = false;
-    for (SceneContactShape s : kShapes) {
-      shapes.emplace_back(SceneContactShapeName(s));
-      if (shape == SceneContactShapeName(s)) c.shape = s, found = true;
-    }
-    if (!found) {
-      report_.Fail(shape_at, fmt::format("unknown contact shape '{}'{}; shapes: {}", shape,
-                                         DidYouMean(shape, shapes), fmt::join(shapes, ", ")));
-    }
-    // Keys that belong to other shapes are errors, not silently ignored.
-    auto refuse = [&](const char* key, const char* why) {
-      if (at.Has(key)) report_.Fail(at.Child(key), fmt::format("a {} contact {}", shape, why));
-    };
-    if (HasRadius(c.shape)) {
-      c.radius = PositiveValue(report_.Require(at, "radius", what), kLength, "the radius");
-    } else {
-      refuse("radius", "has no radius");
-    }
-    if (HasAxis(c.shape)) {
-      c.axis_B = AxisAt(report_.Require(at, "axis", what), "the symmetry axis (body frame)");
-    } else {
-      refuse("axis", "has no axis");
-    }
-    if (HasLength(c.shape)) {
-      c.length = PositiveValue(report_.Require(at, "length", what), kLength,
-                               c.shape == SceneContactShape::kCylinder
-                                   ? "the cylinder's length"
-                                   : "the distance between the capsule's end centres");
-    } else {
-      refuse("length", "has no length");
-    }
-    if (c.shape == SceneContactShape::kBox) {
-      const At s = report_.Require(at, "size", what);
-      c.size = Vector(s, kLength, "the box's edge lengths");
-      if (!(c.size.minCoeff() > 0)) {
-        report_.Fail(s, "every edge length of the box must be positive");
-      }
-    } else {
-      refuse("size", "has no size (only a box has)");
-    }
-    if (c.shape == SceneContactShape::kPoints) {
-      const At pts = report_.Require(at, "points", what);
-      report_.CheckSequence(pts, "a list of body points (names or [x, y, z])");
-      if (pts.node.size() == 0) report_.Fail(pts, "give at least one point");
-      for (size_t k = 0; k < pts.node.size(); ++k) {
-        const At p = pts.Item(k);
-        c.points_B.push_back(BodyPointAt(p, body));
-        c.point_names.push_back(p.node.IsScalar() ? p.node.Scalar() : std::string());
-      }
-    } else {
-      refuse("points", "has no point list (only shape points has)");
-    }
-    c.p_BoC_B =
-        at.Has("center") ? BodyPointAt(at.Child("center"), body) : body.mass_properties.p_BoBcm_B();
-
-    if (at.Has("with")) {
-      if (at.Has("plane")) {
-        report_.Fail(at.Child("with"), "give either 'plane' or 'with' (another body), not both");
-      }
-      if (c.shape != SceneContactShape::kSphere) {
-        report_.Fail(at.Child("with"),
-                     "contact between two bodies is for spheres: give shape sphere (and the "
-                     "other body's sphere with other_radius)");
-      }
-      c.with_plane = false;
-      c.other_body = BodyIndexAt(at.Child("with"), scene);
-      if (c.other_body == c.body) {
-        report_.Fail(at.Child("with"), "a body cannot touch itself; name another body");
-      }
-      const SceneBody& other = scene.bodies[static_cast<size_t>(c.other_body)];
-      c.other_radius = PositiveValue(report_.Require(at, "other_radius", what), kLength,
-                                     "the other body's sphere radius");
-      c.p_OoD_O = at.Has("other_center") ? BodyPointAt(at.Child("other_center"), other)
-                                         : other.mass_properties.p_BoBcm_B();
-    } else {
-      refuse("other_radius", "against a plane has no other body (see 'with')");
-      refuse("other_center", "against a plane has no other body (see 'with')");
-      if (!at.Has("plane")) {
-        report_.Fail(at, fmt::format("{} needs 'plane: {{point: [x, y, z], normal: [x, y, z]}}' "
-                                     "(a world plane) or 'with: BODY' (another body's sphere)",
-                                     what));
-      }
-      const At plane = at.Child("plane");
-      report_.CheckMap(plane, {"point", "normal"}, "a plane ({point, normal})");
-      if (plane.Has("point")) {
-        c.plane_point_W = Vector(plane.Child("point"), kLength, "a point of the plane");
-      }
-      c.plane_normal_W = AxisAt(report_.Require(plane, "normal", "a plane"), "the plane's normal");
-    }
-
-    if (at.Has("materials")) {
-      const At m = at.Child("materials");
-      if (!m.node.IsSequence() || m.node.size() != 2) {
-        report_.Fail(m,
-                     "expected two material names [body's, plane's or other body's], e.g. "
-                     "[steel, oak], as listed in 'material_pairs'");
-      }
-      const std::string a = report_.Text(m.Item(0), "a material name");
-      const std::string b = report_.Text(m.Item(1), "a material name");
-      const SceneMaterialPair* pair = nullptr;
-      std::vector<std::string> known;
-      for (const SceneMaterialPair& p : out.material_pairs) {
-        if (SamePair(p, a, b)) pair = &p;
-        known.push_back(fmt::format("{}/{}", p.a, p.b));
-        known.push_back(fmt::format("{}/{}", p.b, p.a));
-      }
-      if (!pair) {
-        const std::string asked = fmt::format("{}/{}", a, b);
-        std::vector<std::string> listed;
-        for (const SceneMaterialPair& p : out.material_pairs) {
-          listed.push_back(fmt::format("{}/{}", p.a, p.b));
-        }
-        report_.Fail(
-            m, fmt::format("no material pair {}{} in 'material_pairs'; {}", asked,
-                           DidYouMean(asked, known),
-                           listed.empty() ? "the scene defines none: add 'material_pairs:' with "
-                                            "the pair's mu_s, mu_k and restitution"
-                                          : fmt::format("pairs: {}", fmt::join(listed, ", "))));
-      }
-      c.mu_s = pair->mu_s;
-      c.mu_k = pair->mu_k;
-      c.mu_r = pair->mu_r;
-      c.restitution = pair->restitution;
-      c.restitution_law = pair->restitution_law;
-      c.materials = fmt::format("{}/{}", a, b);
-    }
-    ReadContactCoefficients(at, c.mu_s, c.mu_k, c.mu_r, c.restitution, c.restitution_law,
-                            at.Has("materials"));
-    out.contacts.push_back(c);
+    out.contacts.push_back(ReadContact(list.Item(i), i, scene, taken));
   }
+}
+
+SceneMaterialPair SceneReader::ReadMaterialPair(const At& at,
+                                                const std::vector<SceneMaterialPair>& pairs) {
+  report_.CheckMap(at, {"materials", "mu_s", "mu_k", "mu_r", "restitution", "restitution_law"},
+                   "a material pair");
+  const At names = report_.Require(at, "materials", "a material pair");
+  if (!names.node.IsSequence() || names.node.size() != 2) {
+    report_.Fail(names, "expected two material names, e.g. [steel, oak]");
+  }
+  SceneMaterialPair p;
+  p.a = report_.Text(names.Item(0), "a material name");
+  p.b = report_.Text(names.Item(1), "a material name");
+  for (const SceneMaterialPair& q : pairs) {
+    if (SamePair(q, p.a, p.b)) {
+      report_.Fail(names, fmt::format("the pair {}/{} is given twice", p.a, p.b));
+    }
+  }
+  ReadContactCoefficients(at, p.mu_s, p.mu_k, p.mu_r, p.restitution, p.restitution_law, false);
+  return p;
+}
+
+SceneContact SceneReader::ReadContact(const At& at, size_t i, const Scene& scene,
+                                      std::vector<std::string>& taken) {
+  report_.CheckMap(at,
+                   {"name", "body", "shape", "radius", "axis", "center", "length", "size", "points",
+                    "plane", "with", "other_radius", "other_center", "materials", "mu_s", "mu_k",
+                    "mu_r", "restitution", "restitution_law"},
+                   "a contact");
+  SceneContact c;
+  c.where = SpotAt(at);
+  c.name =
+      at.Has("name") ? report_.Text(at.Child("name"), "a name") : fmt::format("contact{}", i + 1);
+  if (std::find(taken.begin(), taken.end(), c.name) != taken.end()) {
+    report_.Fail(at.Has("name") ? at.Child("name") : at,
+                 fmt::format("the name '{}' is already used by a contact, joint, rolling "
+                             "contact or driver; names must be unique",
+                             c.name));
+  }
+  taken.push_back(c.name);
+  const std::string what = fmt::format("contact '{}'", c.name);
+  c.body = BodyIndexAt(report_.Require(at, "body", what), scene);
+  const SceneBody& body = scene.bodies[static_cast<size_t>(c.body)];
+
+  ReadContactShape(at, what, body, c);
+  ReadContactCounterpart(at, what, scene, c);
+  if (at.Has("materials")) {
+    ReadContactMaterials(at.Child("materials"), scene.dynamics.contacts.material_pairs, c);
+  }
+  ReadContactCoefficients(at, c.mu_s, c.mu_k, c.mu_r, c.restitution, c.restitution_law,
+                          at.Has("materials"));
+  return c;
+}
+
+void SceneReader::ReadContactShape(const At& at, const std::string& what, const SceneBody& body,
+                                   SceneContact& c) {
+  const At shape_at = report_.Require(at, "shape", what);
+  const std::string shape = report_.Text(shape_at, "a contact shape");
+  std::vector<std::string> shapes;
+  bool found = false;
+  for (SceneContactShape s : kShapes) {
+    shapes.emplace_back(SceneContactShapeName(s));
+    if (shape == SceneContactShapeName(s)) c.shape = s, found = true;
+  }
+  if (!found) {
+    report_.Fail(shape_at, fmt::format("unknown contact shape '{}'{}; shapes: {}", shape,
+                                       DidYouMean(shape, shapes), fmt::join(shapes, ", ")));
+  }
+  // Keys that belong to other shapes are errors, not silently ignored.
+  auto refuse = [&](const char* key, const char* why) {
+    if (at.Has(key)) report_.Fail(at.Child(key), fmt::format("a {} contact {}", shape, why));
+  };
+  if (HasRadius(c.shape)) {
+    c.radius = PositiveValue(report_.Require(at, "radius", what), kLength, "the radius");
+  } else {
+    refuse("radius", "has no radius");
+  }
+  if (HasAxis(c.shape)) {
+    c.axis_B = AxisAt(report_.Require(at, "axis", what), "the symmetry axis (body frame)");
+  } else {
+    refuse("axis", "has no axis");
+  }
+  if (HasLength(c.shape)) {
+    c.length = PositiveValue(report_.Require(at, "length", what), kLength,
+                             c.shape == SceneContactShape::kCylinder
+                                 ? "the cylinder's length"
+                                 : "the distance between the capsule's end centres");
+  } else {
+    refuse("length", "has no length");
+  }
+  if (c.shape == SceneContactShape::kBox) {
+    const At s = report_.Require(at, "size", what);
+    c.size = Vector(s, kLength, "the box's edge lengths");
+    if (!(c.size.minCoeff() > 0)) {
+      report_.Fail(s, "every edge length of the box must be positive");
+    }
+  } else {
+    refuse("size", "has no size (only a box has)");
+  }
+  if (c.shape == SceneContactShape::kPoints) {
+    const At pts = report_.Require(at, "points", what);
+    report_.CheckSequence(pts, "a list of body points (names or [x, y, z])");
+    if (pts.node.size() == 0) report_.Fail(pts, "give at least one point");
+    for (size_t k = 0; k < pts.node.size(); ++k) {
+      const At p = pts.Item(k);
+      c.points_B.push_back(BodyPointAt(p, body));
+      c.point_names.push_back(p.node.IsScalar() ? p.node.Scalar() : std::string());
+    }
+  } else {
+    refuse("points", "has no point list (only shape points has)");
+  }
+  c.p_BoC_B =
+      at.Has("center") ? BodyPointAt(at.Child("center"), body) : body.mass_properties.p_BoBcm_B();
+}
+
+void SceneReader::ReadContactCounterpart(const At& at, const std::string& what, const Scene& scene,
+                                         SceneContact& c) {
+  auto refuse = [&](const char* key, const char* why) {
+    if (at.Has(key)) {
+      report_.Fail(at.Child(key),
+                   fmt::format("a {} contact {}", SceneContactShapeName(c.shape), why));
+    }
+  };
+  if (at.Has("with")) {
+    if (at.Has("plane")) {
+      report_.Fail(at.Child("with"), "give either 'plane' or 'with' (another body), not both");
+    }
+    if (c.shape != SceneContactShape::kSphere) {
+      report_.Fail(at.Child("with"),
+                   "contact between two bodies is for spheres: give shape sphere (and the "
+                   "other body's sphere with other_radius)");
+    }
+    c.with_plane = false;
+    c.other_body = BodyIndexAt(at.Child("with"), scene);
+    if (c.other_body == c.body) {
+      report_.Fail(at.Child("with"), "a body cannot touch itself; name another body");
+    }
+    const SceneBody& other = scene.bodies[static_cast<size_t>(c.other_body)];
+    c.other_radius = PositiveValue(report_.Require(at, "other_radius", what), kLength,
+                                   "the other body's sphere radius");
+    c.p_OoD_O = at.Has("other_center") ? BodyPointAt(at.Child("other_center"), other)
+                                       : other.mass_properties.p_BoBcm_B();
+  } else {
+    refuse("other_radius", "against a plane has no other body (see 'with')");
+    refuse("other_center", "against a plane has no other body (see 'with')");
+    if (!at.Has("plane")) {
+      report_.Fail(at, fmt::format("{} needs 'plane: {{point: [x, y, z], normal: [x, y, z]}}' "
+                                   "(a world plane) or 'with: BODY' (another body's sphere)",
+                                   what));
+    }
+    const At plane = at.Child("plane");
+    report_.CheckMap(plane, {"point", "normal"}, "a plane ({point, normal})");
+    if (plane.Has("point")) {
+      c.plane_point_W = Vector(plane.Child("point"), kLength, "a point of the plane");
+    }
+    c.plane_normal_W = AxisAt(report_.Require(plane, "normal", "a plane"), "the plane's normal");
+  }
+}
+
+void SceneReader::ReadContactMaterials(const At& m, const std::vector<SceneMaterialPair>& pairs,
+                                       SceneContact& c) {
+  if (!m.node.IsSequence() || m.node.size() != 2) {
+    report_.Fail(m,
+                 "expected two material names [body's, plane's or other body's], e.g. "
+                 "[steel, oak], as listed in 'material_pairs'");
+  }
+  const std::string a = report_.Text(m.Item(0), "a material name");
+  const std::string b = report_.Text(m.Item(1), "a material name");
+  const SceneMaterialPair* pair = nullptr;
+  std::vector<std::string> known;
+  for (const SceneMaterialPair& p : pairs) {
+    if (SamePair(p, a, b)) pair = &p;
+    known.push_back(fmt::format("{}/{}", p.a, p.b));
+    known.push_back(fmt::format("{}/{}", p.b, p.a));
+  }
+  if (!pair) {
+    const std::string asked = fmt::format("{}/{}", a, b);
+    std::vector<std::string> listed;
+    for (const SceneMaterialPair& p : pairs) {
+      listed.push_back(fmt::format("{}/{}", p.a, p.b));
+    }
+    report_.Fail(m,
+                 fmt::format("no material pair {}{} in 'material_pairs'; {}", asked,
+                             DidYouMean(asked, known),
+                             listed.empty() ? "the scene defines none: add 'material_pairs:' with "
+                                              "the pair's mu_s, mu_k and restitution"
+                                            : fmt::format("pairs: {}", fmt::join(listed, ", "))));
+  }
+  c.mu_s = pair->mu_s;
+  c.mu_k = pair->mu_k;
+  c.mu_r = pair->mu_r;
+  c.restitution = pair->restitution;
+  c.restitution_law = pair->restitution_law;
+  c.materials = fmt::format("{}/{}", a, b);
 }
 
 }  // namespace scene_internal

@@ -468,6 +468,60 @@ void SceneReader::ReadOutput(const At& at, Scene& scene) {
 
 void SceneReader::ReadDynamics(const At& root, Scene& scene) {
   SceneDynamics& d = scene.dynamics;
+  DeclareStateVariables(scene);
+  if (root.Has("gravity")) ReadGravity(root.Child("gravity"), d);
+  ReadInitialStates(root, scene);
+  if (root.Has("project_initial")) {
+    const At at = root.Child("project_initial");
+    if (!at.node.IsScalar() || !YAML::convert<bool>::decode(at.node, d.project_initial)) {
+      report_.Fail(at, fmt::format("expected true or false, got {}", KindOf(at.node)));
+    }
+  }
+
+  ReadForces(root, scene);
+
+  if (root.Has("simulation")) {
+    d.simulation.where = KeySpotAt(root, "simulation");
+    ReadSimulation(root.Child("simulation"), d.simulation);
+  }
+
+  if (root.Has("events")) {
+    const At events = root.Child("events");
+    report_.CheckSequence(events, "a list of events");
+    for (size_t i = 0; i < events.node.size(); ++i)
+      d.events.push_back(ReadEvent(events.Item(i), i, scene));
+    if (!d.events.empty() && d.simulation.integrator != IntegratorKind::kDormandPrince5) {
+      report_.Fail(root.Child("simulation").Child("integrator"),
+                   "events are located only by the adaptive integrator (on its dense output); "
+                   "use 'integrator: adaptive' or remove the events");
+    }
+  }
+
+  if (root.Has("impulses")) {
+    const At list = root.Child("impulses");
+    report_.CheckSequence(list, "a list of impulses");
+    for (size_t i = 0; i < list.node.size(); ++i)
+      d.impulses.push_back(ReadImpulse(list.Item(i), scene));
+  }
+
+  if (root.Has("impacts")) {
+    const At list = root.Child("impacts");
+    report_.CheckSequence(list, "a list of impacts");
+    for (size_t i = 0; i < list.node.size(); ++i)
+      d.impacts.push_back(ReadImpact(list.Item(i), scene));
+  }
+
+  if (root.Has("output")) {
+    ReadOutput(root.Child("output"), scene);
+  } else {
+    d.columns = DefaultColumns(scene);
+  }
+}
+
+// The names expressions may use: t, every body's state variables, then the constraints'
+// reactions and the contact points' variables (StateVariableLayout's slots).
+void SceneReader::DeclareStateVariables(const Scene& scene) {
+  const SceneDynamics& d = scene.dynamics;
   state_variables_.clear();
   state_variable_names_.clear();
   state_variables_.emplace("t", 0);
@@ -508,22 +562,25 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
       state_variable_names_.push_back(name);
     }
   }
+}
 
-  if (root.Has("gravity")) {
-    const At g = root.Child("gravity");
-    d.has_gravity = true;
-    if (g.node.IsScalar() && g.node.Scalar() == "standard") {
-      // A planar scene's plane is x-y, so "down" is -y there.
-      d.g_W = planar_ ? Vec3(0, -kStandardGravity, 0) : Vec3(0, 0, -kStandardGravity);
-    } else if (g.node.IsSequence()) {
-      d.g_W = WorldVector(g, kAcceleration, "the gravitational acceleration");
-    } else {
-      report_.Fail(g, fmt::format("expected 'standard' (9.80665 m/s^2 along -z) or a vector "
-                                  "such as [0, 0, -9.81 m/s^2], got {}",
-                                  KindOf(g.node)));
-    }
+void SceneReader::ReadGravity(const At& g, SceneDynamics& d) {
+  d.has_gravity = true;
+  if (g.node.IsScalar() && g.node.Scalar() == "standard") {
+    // A planar scene's plane is x-y, so "down" is -y there.
+    d.g_W = planar_ ? Vec3(0, -kStandardGravity, 0) : Vec3(0, 0, -kStandardGravity);
+  } else if (g.node.IsSequence()) {
+    d.g_W = WorldVector(g, kAcceleration, "the gravitational acceleration");
+  } else {
+    report_.Fail(g, fmt::format("expected 'standard' (9.80665 m/s^2 along -z) or a vector "
+                                "such as [0, 0, -9.81 m/s^2], got {}",
+                                KindOf(g.node)));
   }
+}
 
+// Every body's `initial` (its position and where it is written, for messages).
+void SceneReader::ReadInitialStates(const At& root, Scene& scene) {
+  SceneDynamics& d = scene.dynamics;
   const At bodies = root.Child("bodies");
   d.initial.assign(scene.bodies.size(), SceneInitialState{});
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -536,13 +593,11 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
     if (body_at.Has("initial"))
       ReadInitial(body_at.Child("initial"), scene.bodies[b], d.initial[b]);
   }
-  if (root.Has("project_initial")) {
-    const At at = root.Child("project_initial");
-    if (!at.node.IsScalar() || !YAML::convert<bool>::decode(at.node, d.project_initial)) {
-      report_.Fail(at, fmt::format("expected true or false, got {}", KindOf(at.node)));
-    }
-  }
+}
 
+void SceneReader::ReadForces(const At& root, Scene& scene) {
+  SceneDynamics& d = scene.dynamics;
+  const std::vector<std::string> constraint_names = d.constraints.names();
   if (root.Has("forces")) {
     const At forces = root.Child("forces");
     report_.CheckSequence(forces, "a list of force elements");
@@ -562,75 +617,42 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
       d.forces.push_back(std::move(f));
     }
   }
+}
 
-  if (root.Has("simulation")) {
-    d.simulation.where = KeySpotAt(root, "simulation");
-    ReadSimulation(root.Child("simulation"), d.simulation);
+SceneImpulse SceneReader::ReadImpulse(const At& at, const Scene& scene) {
+  report_.CheckMap(at, {"time", "body", "point", "value", "frame"}, "an impulse");
+  SceneImpulse imp;
+  imp.t = Value(report_.Require(at, "time", "an impulse"), kTime, "the time");
+  if (imp.t < 0) report_.Fail(at.Child("time"), "the time must be >= 0");
+  imp.body = BodyIndexAt(report_.Require(at, "body", "an impulse"), scene);
+  const SceneBody& body = scene.bodies[static_cast<size_t>(imp.body)];
+  imp.p_BoP_B =
+      at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
+  imp.J = WorldVector(report_.Require(at, "value", "an impulse"), kImpulse, "an impulse");
+  if (at.Has("frame")) imp.frame = FrameAt(at.Child("frame"));
+  return imp;
+}
+
+SceneImpact SceneReader::ReadImpact(const At& at, const Scene& scene) {
+  report_.CheckMap(at, {"time", "target", "projectile", "exit_fraction"}, "an impact");
+  SceneImpact imp;
+  imp.t = Value(report_.Require(at, "time", "an impact"), kTime, "the time");
+  if (imp.t < 0) report_.Fail(at.Child("time"), "the time must be >= 0");
+  imp.target = BodyIndexAt(report_.Require(at, "target", "an impact"), scene);
+  imp.projectile = BodyIndexAt(report_.Require(at, "projectile", "an impact"), scene);
+  if (imp.target == imp.projectile) {
+    report_.Fail(at.Child("projectile"), "the projectile and the target are the same body");
   }
-
-  if (root.Has("events")) {
-    const At events = root.Child("events");
-    report_.CheckSequence(events, "a list of events");
-    for (size_t i = 0; i < events.node.size(); ++i)
-      d.events.push_back(ReadEvent(events.Item(i), i, scene));
-    if (!d.events.empty() && d.simulation.integrator != IntegratorKind::kDormandPrince5) {
-      report_.Fail(root.Child("simulation").Child("integrator"),
-                   "events are located only by the adaptive integrator (on its dense output); "
-                   "use 'integrator: adaptive' or remove the events");
+  if (at.Has("exit_fraction")) {
+    imp.exit_fraction = Value(at.Child("exit_fraction"), kDimensionless, "the exit fraction");
+    if (!(imp.exit_fraction >= 0 && imp.exit_fraction <= 1)) {
+      report_.Fail(at.Child("exit_fraction"),
+                   fmt::format("the exit fraction must be in [0, 1] (0: the projectile "
+                               "embeds; 1: it passes through unslowed), got {:.6g}",
+                               imp.exit_fraction));
     }
   }
-
-  if (root.Has("impulses")) {
-    const At list = root.Child("impulses");
-    report_.CheckSequence(list, "a list of impulses");
-    for (size_t i = 0; i < list.node.size(); ++i) {
-      const At at = list.Item(i);
-      report_.CheckMap(at, {"time", "body", "point", "value", "frame"}, "an impulse");
-      SceneImpulse imp;
-      imp.t = Value(report_.Require(at, "time", "an impulse"), kTime, "the time");
-      if (imp.t < 0) report_.Fail(at.Child("time"), "the time must be >= 0");
-      imp.body = BodyIndexAt(report_.Require(at, "body", "an impulse"), scene);
-      const SceneBody& body = scene.bodies[static_cast<size_t>(imp.body)];
-      imp.p_BoP_B =
-          at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
-      imp.J = WorldVector(report_.Require(at, "value", "an impulse"), kImpulse, "an impulse");
-      if (at.Has("frame")) imp.frame = FrameAt(at.Child("frame"));
-      d.impulses.push_back(imp);
-    }
-  }
-
-  if (root.Has("impacts")) {
-    const At list = root.Child("impacts");
-    report_.CheckSequence(list, "a list of impacts");
-    for (size_t i = 0; i < list.node.size(); ++i) {
-      const At at = list.Item(i);
-      report_.CheckMap(at, {"time", "target", "projectile", "exit_fraction"}, "an impact");
-      SceneImpact imp;
-      imp.t = Value(report_.Require(at, "time", "an impact"), kTime, "the time");
-      if (imp.t < 0) report_.Fail(at.Child("time"), "the time must be >= 0");
-      imp.target = BodyIndexAt(report_.Require(at, "target", "an impact"), scene);
-      imp.projectile = BodyIndexAt(report_.Require(at, "projectile", "an impact"), scene);
-      if (imp.target == imp.projectile) {
-        report_.Fail(at.Child("projectile"), "the projectile and the target are the same body");
-      }
-      if (at.Has("exit_fraction")) {
-        imp.exit_fraction = Value(at.Child("exit_fraction"), kDimensionless, "the exit fraction");
-        if (!(imp.exit_fraction >= 0 && imp.exit_fraction <= 1)) {
-          report_.Fail(at.Child("exit_fraction"),
-                       fmt::format("the exit fraction must be in [0, 1] (0: the projectile "
-                                   "embeds; 1: it passes through unslowed), got {:.6g}",
-                                   imp.exit_fraction));
-        }
-      }
-      d.impacts.push_back(imp);
-    }
-  }
-
-  if (root.Has("output")) {
-    ReadOutput(root.Child("output"), scene);
-  } else {
-    d.columns = DefaultColumns(scene);
-  }
+  return imp;
 }
 
 }  // namespace scene_internal

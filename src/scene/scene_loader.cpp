@@ -431,46 +431,7 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
   Vec3 p_BoPo_B = Vec3::Zero();
   Mat3 R_BP = Mat3::Identity();
   if (part.shape == "point" || part.shape == "custom") {
-    const bool custom = part.shape == "custom";
-    std::vector<std::string> allowed = {"name", "shape", "subtract", "mass", "position"};
-    if (custom) {
-      for (const char* k :
-           {"center_of_mass", "inertia", "axis", "rotation", "euler", "quaternion"}) {
-        allowed.emplace_back(k);
-      }
-    }
-    report_.CheckMap(at, allowed, fmt::format("a {} part", part.shape));
-    const std::string what = fmt::format("part '{}' ({})", part.name, part.shape);
-    const double mass = PositiveValue(report_.Require(at, "mass", what), kMass, "the mass");
-    part.mass_source = "mass";
-    if (!custom) {
-      local = MassProperties::PointMass(mass, Vec3::Zero());
-    } else {
-      const Vec3 com = at.Has("center_of_mass")
-                           ? Vector(at.Child("center_of_mass"), kLength, "the centre of mass")
-                           : Vec3::Zero();
-      const At inertia_at = report_.Require(at, "inertia", what);
-      report_.CheckMap(inertia_at, {"Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz"},
-                       "an inertia (about the centre of mass; products as tensor entries, "
-                       "Ixy = -∫xy dm)");
-      double I[6] = {0, 0, 0, 0, 0, 0};
-      const char* names[6] = {"Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz"};
-      for (int i = 0; i < 6; ++i) {
-        if (i < 3) {
-          I[i] = Value(report_.Require(inertia_at, names[i], "an inertia"), kInertia, names[i]);
-        } else if (inertia_at.Has(names[i])) {
-          I[i] = Value(inertia_at.Child(names[i]), kInertia, names[i]);
-        }
-      }
-      const RotationalInertia inertia(I[0], I[1], I[2], I[3], I[4], I[5]);
-      const std::string why = inertia.CheckPhysicallyValid();
-      if (!why.empty()) {
-        report_.Fail(inertia_at, fmt::format("{}: {} (values in kg*m^2)", what, why));
-      }
-      local = MassProperties(mass, com, inertia);
-      R_BP = ReadOrientation(at);
-    }
-    if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
+    local = ReadPointOrCustomPart(at, part, p_BoPo_B, R_BP);
   } else if (part.shape == "planar") {
     local = ReadPlanarPart(at, part, p_BoPo_B);
   } else if (part.shape == "mesh") {
@@ -478,75 +439,7 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
     if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
     R_BP = ReadOrientation(at);
   } else {
-    const ShapeEntry* shape = scene_internal::FindShape(part.shape);
-    if (!shape) {
-      std::vector<std::string> names = scene_internal::ShapeNames();
-      names.emplace_back("point");
-      names.emplace_back("custom");
-      names.emplace_back("mesh");
-      names.emplace_back("planar");
-      report_.Fail(shape_at, fmt::format("unknown shape '{}'{}; shapes: {}", part.shape,
-                                         DidYouMean(part.shape, names), fmt::join(names, ", ")));
-    }
-    part.shape = shape->name;
-    std::vector<std::string> allowed = kPartKeys;
-    for (const auto& d : shape->dimensions) allowed.emplace_back(d.key);
-    if (shape->axial_key) {
-      allowed.emplace_back("from");
-      allowed.emplace_back("to");
-    }
-    report_.CheckMap(at, allowed, fmt::format("a {} part", shape->name));
-    const std::string what = fmt::format("part '{}' ({})", part.name, shape->name);
-
-    const bool segment = at.Has("from") || at.Has("to");
-    if (segment) {
-      if (!at.Has("from") || !at.Has("to")) {
-        report_.Fail(at.Child(at.Has("from") ? "from" : "to"), "'from' and 'to' go together");
-      }
-      if (at.Has("position")) {
-        report_.Fail(at.Child("position"), "'from'/'to' already place the part; remove 'position'");
-      }
-    }
-    scene_internal::Dimensions dims;
-    for (const auto& d : shape->dimensions) {
-      if (segment && shape->axial_key == std::string_view(d.key)) {
-        if (at.Has(d.key)) {
-          report_.Fail(at.Child(d.key),
-                       fmt::format("'from'/'to' already give the {}; remove '{}'", d.key, d.key));
-        }
-        continue;
-      }
-      dims.values[d.key] = ReadDimension(report_.Require(at, d.key, what), d);
-    }
-    if (segment) {
-      const Vec3 from = Vector(at.Child("from"), kLength, "the start point");
-      const Vec3 to = Vector(at.Child("to"), kLength, "the end point");
-      const double length = (to - from).norm();
-      if (!(length > 0)) report_.Fail(at.Child("to"), "'from' and 'to' are the same point");
-      dims.values[shape->axial_key] = {length};
-      R_BP = RotationTakingZTo(to - from);
-      p_BoPo_B = shape->origin_at_from ? from : Vec3(0.5 * (from + to));
-      if (at.Has("axis") || at.Has("rotation") || at.Has("euler") || at.Has("quaternion")) {
-        report_.Fail(at, "'from'/'to' already orient the part; remove its orientation");
-      }
-    } else {
-      if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
-      R_BP = ReadOrientation(at);
-    }
-    std::unique_ptr<Shape> geometry;
-    try {
-      geometry = shape->make(dims);
-    } catch (const InputError& e) {
-      report_.Fail(at, fmt::format("{}: {}", what, e.what()));
-    }
-    try {
-      local = ReadShapeMass(at, body_at, *geometry, what, part);
-    } catch (const SceneError&) {
-      throw;
-    } catch (const InputError& e) {
-      // The mass properties themselves out of range (a mass that overflows to inf).
-      report_.Fail(at, fmt::format("{}: {}", what, e.what()));
-    }
+    local = ReadTableShapePart(at, shape_at, body_at, part, p_BoPo_B, R_BP);
   }
 
   if (at.Has("subtract")) {
@@ -560,6 +453,126 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
   part.mass_properties = local.ExpressedInParent(R_BP, p_BoPo_B);
   if (part.subtractive) part.mass_properties = part.mass_properties.Negated();
   return part;
+}
+
+MassProperties SceneReader::ReadPointOrCustomPart(const At& at, ScenePart& part, Vec3& p_BoPo_B,
+                                                  Mat3& R_BP) {
+  MassProperties local;
+  const bool custom = part.shape == "custom";
+  std::vector<std::string> allowed = {"name", "shape", "subtract", "mass", "position"};
+  if (custom) {
+    for (const char* k : {"center_of_mass", "inertia", "axis", "rotation", "euler", "quaternion"}) {
+      allowed.emplace_back(k);
+    }
+  }
+  report_.CheckMap(at, allowed, fmt::format("a {} part", part.shape));
+  const std::string what = fmt::format("part '{}' ({})", part.name, part.shape);
+  const double mass = PositiveValue(report_.Require(at, "mass", what), kMass, "the mass");
+  part.mass_source = "mass";
+  if (!custom) {
+    local = MassProperties::PointMass(mass, Vec3::Zero());
+  } else {
+    const Vec3 com = at.Has("center_of_mass")
+                         ? Vector(at.Child("center_of_mass"), kLength, "the centre of mass")
+                         : Vec3::Zero();
+    const At inertia_at = report_.Require(at, "inertia", what);
+    report_.CheckMap(inertia_at, {"Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz"},
+                     "an inertia (about the centre of mass; products as tensor entries, "
+                     "Ixy = -∫xy dm)");
+    double I[6] = {0, 0, 0, 0, 0, 0};
+    const char* names[6] = {"Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz"};
+    for (int i = 0; i < 6; ++i) {
+      if (i < 3) {
+        I[i] = Value(report_.Require(inertia_at, names[i], "an inertia"), kInertia, names[i]);
+      } else if (inertia_at.Has(names[i])) {
+        I[i] = Value(inertia_at.Child(names[i]), kInertia, names[i]);
+      }
+    }
+    const RotationalInertia inertia(I[0], I[1], I[2], I[3], I[4], I[5]);
+    const std::string why = inertia.CheckPhysicallyValid();
+    if (!why.empty()) {
+      report_.Fail(inertia_at, fmt::format("{}: {} (values in kg*m^2)", what, why));
+    }
+    local = MassProperties(mass, com, inertia);
+    R_BP = ReadOrientation(at);
+  }
+  if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
+  return local;
+}
+
+MassProperties SceneReader::ReadTableShapePart(const At& at, const At& shape_at, const At& body_at,
+                                               ScenePart& part, Vec3& p_BoPo_B, Mat3& R_BP) {
+  MassProperties local;
+  const ShapeEntry* shape = scene_internal::FindShape(part.shape);
+  if (!shape) {
+    std::vector<std::string> names = scene_internal::ShapeNames();
+    names.emplace_back("point");
+    names.emplace_back("custom");
+    names.emplace_back("mesh");
+    names.emplace_back("planar");
+    report_.Fail(shape_at, fmt::format("unknown shape '{}'{}; shapes: {}", part.shape,
+                                       DidYouMean(part.shape, names), fmt::join(names, ", ")));
+  }
+  part.shape = shape->name;
+  std::vector<std::string> allowed = kPartKeys;
+  for (const auto& d : shape->dimensions) allowed.emplace_back(d.key);
+  if (shape->axial_key) {
+    allowed.emplace_back("from");
+    allowed.emplace_back("to");
+  }
+  report_.CheckMap(at, allowed, fmt::format("a {} part", shape->name));
+  const std::string what = fmt::format("part '{}' ({})", part.name, shape->name);
+
+  const bool segment = at.Has("from") || at.Has("to");
+  if (segment) {
+    if (!at.Has("from") || !at.Has("to")) {
+      report_.Fail(at.Child(at.Has("from") ? "from" : "to"), "'from' and 'to' go together");
+    }
+    if (at.Has("position")) {
+      report_.Fail(at.Child("position"), "'from'/'to' already place the part; remove 'position'");
+    }
+  }
+  scene_internal::Dimensions dims;
+  for (const auto& d : shape->dimensions) {
+    if (segment && shape->axial_key == std::string_view(d.key)) {
+      if (at.Has(d.key)) {
+        report_.Fail(at.Child(d.key),
+                     fmt::format("'from'/'to' already give the {}; remove '{}'", d.key, d.key));
+      }
+      continue;
+    }
+    dims.values[d.key] = ReadDimension(report_.Require(at, d.key, what), d);
+  }
+  if (segment) {
+    const Vec3 from = Vector(at.Child("from"), kLength, "the start point");
+    const Vec3 to = Vector(at.Child("to"), kLength, "the end point");
+    const double length = (to - from).norm();
+    if (!(length > 0)) report_.Fail(at.Child("to"), "'from' and 'to' are the same point");
+    dims.values[shape->axial_key] = {length};
+    R_BP = RotationTakingZTo(to - from);
+    p_BoPo_B = shape->origin_at_from ? from : Vec3(0.5 * (from + to));
+    if (at.Has("axis") || at.Has("rotation") || at.Has("euler") || at.Has("quaternion")) {
+      report_.Fail(at, "'from'/'to' already orient the part; remove its orientation");
+    }
+  } else {
+    if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
+    R_BP = ReadOrientation(at);
+  }
+  std::unique_ptr<Shape> geometry;
+  try {
+    geometry = shape->make(dims);
+  } catch (const InputError& e) {
+    report_.Fail(at, fmt::format("{}: {}", what, e.what()));
+  }
+  try {
+    local = ReadShapeMass(at, body_at, *geometry, what, part);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const InputError& e) {
+    // The mass properties themselves out of range (a mass that overflows to inf).
+    report_.Fail(at, fmt::format("{}: {}", what, e.what()));
+  }
+  return local;
 }
 
 std::vector<double> SceneReader::ReadDimension(const At& at,

@@ -115,6 +115,28 @@ class CertificateBuilder {
   /// Drops the entries that can no longer matter (bounded memory on long runs).
   void Compact();
 
+  /// Steps of CheckState. Per body: the sums of all forces on it and of their moments about
+  /// its centre of mass, and the sums of their magnitudes (what round-off in the sums is
+  /// relative to).
+  struct BodyResultants {
+    std::vector<Vec3> F, M;
+    std::vector<double> F_size, M_size;
+  };
+  /// Adds force `f` at `p_W` (and moment `m`) on body `b` (nothing for the world).
+  void AddForce(const State& state, BodyResultants& r, int b, const Vec3& f, const Vec3& p_W);
+  void AddMoment(BodyResultants& r, int b, const Vec3& m);
+  /// Starts the resultants with the force stage's and adds the constraint reactions.
+  BodyResultants CollectForces(const Model& model, const State& state, const Data& data);
+  /// The contact checks (gap, normal force, Coulomb), adding the contact forces to `r`.
+  void CheckContacts(const Model& model, const State& state, const Data& data, CheckPhase phase,
+                     BodyResultants& r);
+  /// Newton–Euler per body against the resultants.
+  void CheckBalances(const Model& model, const State& state, const Data& data, CheckPhase phase,
+                     const BodyResultants& r);
+  /// The constraint residuals, row by row.
+  void CheckConstraintRows(const Model& model, const State& state, const Data& data,
+                           CheckPhase phase);
+
   CertificateTolerances tol_;
   std::vector<long long> counts_;
   std::vector<Entry> entries_;

@@ -2,7 +2,14 @@
 /// @file
 /// Data: a workspace of derived, recomputable quantities for one Model. Each field says which
 /// step fills it. Make it once with MakeData and reuse it: the hot loops never allocate.
+///
+/// A Data belongs to the Model it was made for: MakeData(model) records model.id(), and every
+/// algorithm that takes (model, ..., data) throws UsageError (error.h: a bug in the calling
+/// code, not bad input) when `data` was made for another Model (a copy of the Model too, or
+/// the same Model before a body, force element, constraint or contact was added). A copy of a
+/// Data belongs to the same Model as the original.
 
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -132,6 +139,9 @@ struct ContactProjectionWorkspace {
 };
 
 struct Data {
+  /// Model::id() of the Model MakeData made this Data for (0: not made by MakeData).
+  std::uint64_t model_id = 0;
+
   // --- Position and velocity stage: CalcKinematics(model, state, data) ---
   /// Rotation matrix of each body, R_WB (from the normalised quaternion).
   std::vector<Mat3> R_WB;
@@ -184,7 +194,12 @@ struct Data {
   ContactProjectionWorkspace contact_projection;
 };
 
-/// A Data sized for `model`.
+/// A Data sized for `model` (and bound to it).
 Data MakeData(const Model& model);
+
+/// Throws UsageError ("this Data was made for another Model; make one with MakeData(model)")
+/// unless `data` was made by MakeData(model). Every algorithm taking (model, ..., data) calls it
+/// first: one comparison.
+void CheckDataFor(const Model& model, const Data& data);
 
 }  // namespace chasles

@@ -4,6 +4,7 @@
 /// passed as `const Model&` to every algorithm). Maximal coordinates: each body moves freely
 /// unless a constraint (joint, rolling contact, prescribed motion) holds it.
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -16,8 +17,43 @@
 
 namespace chasles {
 
+/// The identity of a Model object (Model::id()): unique among the Models of the process. A
+/// copy is another Model and gets a new identity; a move hands the identity over and gives
+/// the moved-from Model a new one.
+class ModelIdentity {
+ public:
+  ModelIdentity() : value_(Next()) {}
+  ModelIdentity(const ModelIdentity&) : value_(Next()) {}
+  ModelIdentity(ModelIdentity&& other) noexcept : value_(other.value_) { other.value_ = Next(); }
+  ModelIdentity& operator=(const ModelIdentity& other) {
+    if (this != &other) value_ = Next();
+    return *this;
+  }
+  ModelIdentity& operator=(ModelIdentity&& other) noexcept {
+    if (this != &other) {
+      value_ = other.value_;
+      other.value_ = Next();
+    }
+    return *this;
+  }
+  std::uint64_t value() const { return value_; }
+  /// A new identity (the Model changed).
+  void Renew() { value_ = Next(); }
+
+ private:
+  /// The next value of a process-wide counter (thread-safe; never 0).
+  static std::uint64_t Next() noexcept;
+  std::uint64_t value_;
+};
+
 class Model {
  public:
+  /// Identity of this Model: a Data made by MakeData(model) stores it, and every algorithm
+  /// that takes (model, ..., data) checks that they match (see data.h). It is new for every
+  /// Model constructed or copied, kept by a move, and renewed by every Add* (a Data sized
+  /// before a body, force element, constraint or contact was added no longer fits).
+  std::uint64_t id() const { return id_.value(); }
+
   /// Adds a free body; returns its index. Throws InputError for a duplicate or empty name or
   /// invalid mass properties (see Body).
   BodyIndex AddBody(std::string name, const MassProperties& mass_properties);
@@ -78,6 +114,7 @@ class Model {
   std::vector<int> contact_offsets_;
   std::vector<int> point_owner_;
   int num_contact_points_ = 0;
+  ModelIdentity id_;
 };
 
 }  // namespace chasles

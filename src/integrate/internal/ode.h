@@ -16,13 +16,19 @@
 namespace chasles::internal {
 
 /// Throws InputError naming the first part of an evaluation at `state` that is not finite: a
-/// force element's force, moment or power, a constraint's reaction, a contact point's forces,
-/// a body's state, or (with `accelerations`) a body's acceleration; the message names it by
-/// its name (the scene layer adds its line) and gives the time. Does nothing when all are
-/// finite. Integration cannot recover from a non-finite value (every later step inherits it),
+/// body's state (CheckFiniteState), a force element's force, moment or power, a constraint's
+/// reaction, a contact point's forces, or (with `accelerations`) a body's acceleration; the message
+/// names it by its name (the scene layer adds its line) and gives the time. Does nothing when all
+/// are finite. Integration cannot recover from a non-finite value (every later step inherits it),
 /// so the run stops at the first one instead of shrinking its step to nothing.
 void CheckFiniteEvaluation(const Model& model, const State& state, const Data& data,
                            bool accelerations);
+
+/// Throws InputError naming the first body whose state at `state.t` is not finite, which of
+/// its quantities (position, orientation, velocity, angular velocity) and the time. Every
+/// integrator calls it on the state it ends a step with and on every state it hands out
+/// (samples, event states), so no non-finite state leaves Simulate.
+void CheckFiniteState(const Model& model, const State& state);
 
 inline constexpr int kBodySize = 13;
 inline constexpr int kForceSize = 8;

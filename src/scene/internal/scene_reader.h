@@ -87,6 +87,11 @@ class SceneReader {
   void ReadMaterials(const At& root);
   SceneBody ReadBody(const At& at, size_t index);
   ScenePart ReadPart(const At& at, size_t index, const At& body_at);
+  /// A `point` or `custom` part, and a part of a shape in the shape table (shape_table.cpp):
+  /// mass properties in the part frame P, with P's position and orientation in B.
+  MassProperties ReadPointOrCustomPart(const At& at, ScenePart& part, Vec3& p_BoPo_B, Mat3& R_BP);
+  MassProperties ReadTableShapePart(const At& at, const At& shape_at, const At& body_at,
+                                    ScenePart& part, Vec3& p_BoPo_B, Mat3& R_BP);
   std::vector<double> ReadDimension(const At& at, const scene_internal::DimensionKey& d);
   MassProperties ReadShapeMass(const At& at, const At& body_at, const Shape& geometry,
                                const std::string& what, ScenePart& part);
@@ -108,6 +113,13 @@ class SceneReader {
   /// Reads gravity, every body's `initial`, forces, events, impulses, impacts, simulation and
   /// output into scene.dynamics (the bodies are already read).
   void ReadDynamics(const At& root, Scene& scene);
+  /// Steps of ReadDynamics.
+  void DeclareStateVariables(const Scene& scene);
+  void ReadGravity(const At& g, SceneDynamics& dynamics);
+  void ReadInitialStates(const At& root, Scene& scene);
+  void ReadForces(const At& root, Scene& scene);
+  SceneImpulse ReadImpulse(const At& at, const Scene& scene);
+  SceneImpact ReadImpact(const At& at, const Scene& scene);
   void ReadInitial(const At& at, const SceneBody& body, SceneInitialState& initial);
   SceneForce ReadForce(const At& at, const Scene& scene, size_t index);
   SceneEvent ReadEvent(const At& at, size_t index, const Scene& scene);
@@ -131,6 +143,15 @@ class SceneReader {
   // Constraints (scene_constraints.cpp) ---------------------------------------------------
   /// Reads `joints`, `rolling`, `drivers` and `gears` into scene.dynamics.constraints.
   void ReadConstraints(const At& root, Scene& scene);
+  /// Entry `i` of `joints`, `rolling`, `drivers` or `gears` (its name added to `taken`).
+  SceneJoint ReadJoint(const At& at, size_t i, const Scene& scene, std::vector<std::string>& taken);
+  SceneRolling ReadRolling(const At& at, size_t i, const Scene& scene,
+                           std::vector<std::string>& taken);
+  SceneDriver ReadDriver(const At& at, size_t i, const Scene& scene,
+                         std::vector<std::string>& taken);
+  SceneGear ReadGear(const At& at, size_t i, const Scene& scene, std::vector<std::string>& taken);
+  /// Fails unless the gear's pitch circles touch at the initial configuration.
+  void CheckPitchCirclesTouch(const At& at, const SceneGear& gear);
   /// A body name or `world` (kWorld).
   int ParentIndexAt(const At& at, const Scene& scene);
   /// A unit direction from a vector of any length; fails for a zero vector.
@@ -163,6 +184,18 @@ class SceneReader {
   /// Reads `material_pairs` and `contacts` into scene.dynamics.contacts (after the
   /// constraints, whose names contacts must not reuse).
   void ReadContacts(const At& root, Scene& scene);
+  /// An entry of `material_pairs` (not one of `pairs`, those read before it).
+  SceneMaterialPair ReadMaterialPair(const At& at, const std::vector<SceneMaterialPair>& pairs);
+  /// Entry `i` of `contacts` (its name added to `taken`), and its steps: the shape and its
+  /// keys, the plane or other body, the material pair named at `m`.
+  SceneContact ReadContact(const At& at, size_t i, const Scene& scene,
+                           std::vector<std::string>& taken);
+  void ReadContactShape(const At& at, const std::string& what, const SceneBody& body,
+                        SceneContact& c);
+  void ReadContactCounterpart(const At& at, const std::string& what, const Scene& scene,
+                              SceneContact& c);
+  void ReadContactMaterials(const At& m, const std::vector<SceneMaterialPair>& pairs,
+                            SceneContact& c);
   /// mu_s, mu_k, mu_r, restitution and restitution_law of a contact or material pair,
   /// validated; with `have_defaults` the values passed in (a material pair's) are kept where a
   /// key is absent.
