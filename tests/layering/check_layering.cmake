@@ -1,21 +1,27 @@
 # Checks the layering of the library (docs/design.md): a layer's headers and sources include
 # only headers of its own layer or of layers below it, another layer's internal headers never,
 # and chasles/chasles.h (the umbrella) lists every public header of the layers below scene.
-#   cmake -DSOURCE_DIR=<repository> -P check_layering.cmake
+#   cmake -DSOURCE_DIR=<repository> [-DLAYERS=math,mass,...] -P check_layering.cmake
 # Prints each violation as "<file>: <what>" and fails when there is one.
 cmake_minimum_required(VERSION 3.22)
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "usage: cmake -DSOURCE_DIR=<repository> -P check_layering.cmake")
 endif()
 
-# The order of src/CMakeLists.txt; chasles/error.h and chasles/suggest.h belong to math.
-set(layers math mass model dynamics integrate analysis io scene)
+# The order of src/CMakeLists.txt (passed as LAYERS=math,mass,... by tests/layering);
+# chasles/error.h and chasles/suggest.h belong to the lowest.
+if(LAYERS)
+  string(REPLACE "," ";" layers "${LAYERS}")
+else()
+  set(layers math mass model dynamics integrate analysis io scene)
+endif()
 set(violations "")
 
 function(layer_files layer out)
   file(GLOB_RECURSE files LIST_DIRECTORIES false
        ${SOURCE_DIR}/include/chasles/${layer}/* ${SOURCE_DIR}/src/${layer}/*)
-  if(layer STREQUAL "math")
+  list(GET layers 0 lowest)
+  if(layer STREQUAL lowest)
     foreach(top error.h suggest.h)
       if(EXISTS ${SOURCE_DIR}/include/chasles/${top})
         list(APPEND files ${SOURCE_DIR}/include/chasles/${top})
@@ -69,16 +75,18 @@ foreach(layer ${layers})
   math(EXPR index "${index} + 1")
 endforeach()
 
-# The umbrella header lists every public header below scene.
+# The umbrella header lists every public header below the top layer (scene).
+list(GET layers 0 lowest)
+list(GET layers -1 top)
 set(umbrella ${SOURCE_DIR}/include/chasles/chasles.h)
 if(EXISTS ${umbrella})
   file(READ ${umbrella} umbrella_text)
   foreach(layer ${layers})
-    if(layer STREQUAL "scene")
+    if(layer STREQUAL top)
       continue()
     endif()
     file(GLOB headers RELATIVE ${SOURCE_DIR}/include ${SOURCE_DIR}/include/chasles/${layer}/*.h)
-    if(layer STREQUAL "math")
+    if(layer STREQUAL lowest)
       list(APPEND headers chasles/error.h chasles/suggest.h)
     endif()
     foreach(header ${headers})
