@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "assimp_reader.h"
 #include "chasles/io/mesh_reader.h"
 #include "chasles/mass/mesh_mass.h"
 #include "chasles/mass/triangle_mesh.h"
@@ -144,7 +145,7 @@ BENCHMARK(BM_ReadBinaryStlDirect)->Unit(benchmark::kMillisecond);
 
 void BM_ReadBinaryStlAssimp(benchmark::State& state) {
   const std::string& path = StlPath();
-  for (auto _ : state) benchmark::DoNotOptimize(internal::ReadWithAssimp(path).xyz.data());
+  for (auto _ : state) benchmark::DoNotOptimize(bench::ReadWithAssimp(path).xyz.data());
   state.SetItemsProcessed(state.iterations() * std::int64_t(Soup().triangle_count()));
 }
 BENCHMARK(BM_ReadBinaryStlAssimp)->Unit(benchmark::kMillisecond);
@@ -170,7 +171,7 @@ BENCHMARK(BM_EndToEndBinaryStl)->Unit(benchmark::kMillisecond);
 void BM_EndToEndBinaryStlViaAssimp(benchmark::State& state) {
   const std::string& path = StlPath();
   for (auto _ : state) {
-    const MeshFileData d = internal::ReadWithAssimp(path);
+    const MeshFileData d = bench::ReadWithAssimp(path);
     MeshRepairReport report;
     TriangleMesh m =
         BuildTriangleMesh(std::span<const float>(d.xyz), std::span<const std::uint32_t>(d.indices),

@@ -11,7 +11,7 @@ packages=(
   libfmt-dev           # formatting
   libboost-dev         # Boost.Math: quadrature, special functions (header-only)
   nlohmann-json3-dev   # JSON reports
-  libassimp-dev        # mesh import (OBJ, PLY, ASCII/binary STL)
+  libassimp-dev        # bench/ only: the comparison with chasles' own STL reader
   libgtest-dev libgmock-dev  # tests
   libbenchmark-dev     # benchmarks in bench/
   clang-format         # formatting check

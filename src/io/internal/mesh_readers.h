@@ -70,9 +70,4 @@ MeshFileData ReadMeshBytes(std::string_view bytes, const std::string& name);
 inline constexpr std::string_view kSupportedMeshFormats =
     ".stl (binary or ASCII), .obj, .ply (ASCII or binary), .off";
 
-/// Reads a file through assimp (triangulating polygons, applying node transforms). Not used
-/// by ReadMeshFile: assimp 5.2 aborts, hangs or allocates without bound on small malformed
-/// files. Kept for the benchmark's comparison of the binary STL readers only.
-MeshFileData ReadWithAssimp(const std::string& path);
-
 }  // namespace chasles::internal
