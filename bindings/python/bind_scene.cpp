@@ -10,7 +10,10 @@
 #include "chasles/scene/solve.h"
 #include "chasles/scene/study.h"
 
-#define RO(cls, field, doc) .def_readonly(#field, &cls::field, doc)
+// A read-only field; without a doc of its own it points at the C++ field, documented in its
+// header (chasles/scene/study.h, solve.h, scene.h, analysis/certificate.h).
+#define RO(cls, field, doc) \
+  .def_readonly(#field, &cls::field, *doc ? doc : "chasles::" #cls "::" #field " (C++ header)")
 
 namespace chasles::python {
 
@@ -81,15 +84,25 @@ void BindSceneClasses(py::module_& m) {
   py::class_<PyScene>(m, "Scene",
                       "A scene as read from a scene file (SI). Load with load_scene or "
                       "load_scene_string.")
-      .def_property_readonly("file", [](const PyScene& s) { return s.scene.file; })
-      .def_property_readonly("title", [](const PyScene& s) { return s.scene.title; })
-      .def_property_readonly("description", [](const PyScene& s) { return s.scene.description; })
+      .def_property_readonly(
+          "file", [](const PyScene& s) { return s.scene.file; },
+          "File name as given (or the name given to load_scene_string)")
+      .def_property_readonly(
+          "title", [](const PyScene& s) { return s.scene.title; }, "Title")
+      .def_property_readonly(
+          "description", [](const PyScene& s) { return s.scene.description; }, "Description")
       .def_property_readonly(
           "units", [](const PyScene& s) { return s.scene.units; },
           "The scene's unit choice (key `units`)")
-      .def_property_readonly("planar", [](const PyScene& s) { return s.scene.planar; })
-      .def_property_readonly("bodies", [](const PyScene& s) { return s.scene.bodies; })
-      .def_property_readonly("warnings", [](const PyScene& s) { return s.scene.warnings; })
+      .def_property_readonly(
+          "planar", [](const PyScene& s) { return s.scene.planar; },
+          "True for a planar scene (x-y plane)")
+      .def_property_readonly(
+          "bodies", [](const PyScene& s) { return s.scene.bodies; },
+          "The bodies (SceneBody), in the file's order")
+      .def_property_readonly(
+          "warnings", [](const PyScene& s) { return s.scene.warnings; },
+          "Things to know that are not errors")
       .def_property_readonly(
           "parameters",
           [](const PyScene& s) {
