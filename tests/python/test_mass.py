@@ -160,3 +160,47 @@ def test_example_8_1_scene_file():
     for name, mp in scene.mass_properties().items():
         assert mp.mass > 0
         assert mp.inertia.shape == (3, 3)
+
+
+def test_every_shape_factory_against_appendix_a():
+    # Unit-mass central moments (Appendix A), axis of symmetry along z.
+    m = 2.0
+    R, L, a, b, c = 0.3, 1.1, 0.4, 0.5, 0.6
+    cases = {
+        "rod": (chasles.rod(L), [L**2 / 12, L**2 / 12, 0.0]),
+        "ring": (chasles.ring(R), [R**2 / 2, R**2 / 2, R**2]),
+        "disk": (chasles.disk(R), [R**2 / 4, R**2 / 4, R**2 / 2]),
+        "plate": (chasles.plate(a, b), [b**2 / 12, a**2 / 12, (a**2 + b**2) / 12]),
+        "sphere": (chasles.sphere(R), [0.4 * R**2] * 3),
+        "spherical_shell": (chasles.spherical_shell(R), [2 / 3 * R**2] * 3),
+        "box": (chasles.box(a, b, c), [(b**2 + c**2) / 12, (a**2 + c**2) / 12, (a**2 + b**2) / 12]),
+        "ellipsoid": (chasles.ellipsoid(a, b, c), [(b**2 + c**2) / 5, (a**2 + c**2) / 5, (a**2 + b**2) / 5]),
+        # Tube: (Ri^2 + Ro^2) / 2 about z, (3 (Ri^2 + Ro^2) + h^2) / 12 across.
+        "tube": (chasles.tube(0.1, R, L), [(3 * (0.01 + R**2) + L**2) / 12] * 2 + [(0.01 + R**2) / 2]),
+        # Cone about its centroid (h/4 above the base): 3/10 R^2 about z, 3/20 R^2 + 3/80 h^2 across.
+        "cone": (chasles.cone(R, L), [3 / 20 * R**2 + 3 / 80 * L**2] * 2 + [3 / 10 * R**2]),
+        # Torus (major R, minor r): about z R^2 + 3/4 r^2, across R^2/2 + 5/8 r^2.
+        "torus": (chasles.torus(R, 0.1), [R**2 / 2 + 5 / 8 * 0.01] * 2 + [R**2 + 0.75 * 0.01]),
+    }
+    for name, (shape, moments) in cases.items():
+        assert shape.kind == name
+        assert_rel(np.diag(shape.unit_inertia()), moments)
+        assert_rel(shape.mass_properties(m).inertia, m * np.diag(moments))
+        assert name.split("_")[0] in shape.describe()
+    assert_rel(chasles.cone(R, L).centroid(), [0, 0, L / 4])
+
+
+def test_rotational_inertia_operations():
+    I = chasles.RotationalInertia(1.0, 2.0, 3.0)
+    # A quarter turn about z swaps the x and y moments: R I R^T.
+    Rz = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    assert_rel(I.re_expressed_in(Rz).matrix, np.diag([2.0, 1.0, 3.0]))
+    # Parallel axis: the centre of mass 2 m along x of P adds m d^2 to Iyy and Izz.
+    assert_rel(I.shift_from_center_of_mass(0.5, [2.0, 0, 0]).matrix, np.diag([1.0, 4.0, 5.0]))
+    assert_rel(I.radii_of_gyration(4.0), np.sqrt([0.25, 0.5, 0.75]))
+    assert I.check_physically_valid() == ""
+    assert_rel(chasles.RotationalInertia.from_matrix(np.diag([1.0, 2.0, 3.0])).matrix, I.matrix)
+    pa = I.principal_axes()
+    assert_rel(pa.moments, [1.0, 2.0, 3.0])
+    assert_rel(pa.axes, np.eye(3), scale=1.0)
+    assert chasles.parse_sweep("theta=0 deg:60 deg:7") == ("theta", "0 deg", "60 deg", 7)

@@ -225,3 +225,23 @@ def test_bad_model_input():
         chasles.AppliedForce("f", 0, [0, 0, 0], [1, 0, 0], "sideways")
     with pytest.raises(chasles.InputError):
         chasles.simulate(model, chasles.make_rest_state(model), t_end=-1.0)
+
+
+def test_central_gravity_and_fixed_step_integrators():
+    # Inverse-square gravity mu m / r^2 towards the centre: a = -mu / r^2 along r.
+    mu = 3.986e14
+    model = chasles.Model()
+    ball(model)
+    model.add_force_element(chasles.CentralGravity("earth", mu, [0, 0, 0]))
+    s = chasles.make_rest_state(model)
+    s.bodies[0].position = [7.0e6, 0, 0]
+    assert_rel(chasles.solve_instantaneous(model, s).bodies[0].acceleration, [-mu / 7.0e6**2, 0, 0])
+    # RK4 and the energy-momentum integrator on a free fall (exact for a quadratic).
+    model2 = chasles.Model()
+    ball(model2)
+    model2.add_force_element(chasles.UniformGravity("gravity", [0, 0, -G0]))
+    for kind in (chasles.Integrator.RK4, chasles.Integrator.ENERGY_MOMENTUM):
+        r = chasles.simulate(model2, chasles.make_rest_state(model2), t_end=0.5,
+                             output_interval=0.1, integrator=kind, fixed_step=0.01)
+        table = r.table(model2)
+        assert_rel(table["ball_z"], -0.5 * G0 * table["t"] ** 2)
