@@ -16,6 +16,15 @@ packages=(
   libbenchmark-dev     # benchmarks in bench/
   clang-format         # formatting check
   clang libclang-rt-dev  # libFuzzer, for scripts/fuzz.sh
+  python3-dev          # the Python module: Python's headers and library
+  pybind11-dev         # the Python module: C++ bindings (CMake package)
+  python3-pybind11     # the Python module: pybind11 for setup.py builds
+  python3-numpy        # the Python module's arrays
+  python3-pytest       # the Python tests (tests/python)
+  python3-pandas       # to_pandas() of the module's tables
+  python3-matplotlib   # the plot of docs/python.md
+  python3-pip          # pip install . of the module
+  python3-venv         # a virtual environment to install it into
 )
 
 missing=()

@@ -35,7 +35,7 @@ CLI::Validator PositiveFiniteNumber(const std::string& rule) {
       "POSITIVE");
 }
 
-Scene LoadScene(const SceneArgs& args) {
+SceneOptions SceneOptionsFrom(const SceneArgs& args) {
   SceneOptions options;
   options.max_scene_bytes = args.max_scene_bytes;
   for (const std::string& s : args.set) {
@@ -46,8 +46,19 @@ Scene LoadScene(const SceneArgs& args) {
     }
     options.parameter_overrides.emplace_back(s.substr(0, eq), s.substr(eq + 1));
   }
-  if (args.scene.empty()) return LoadSceneText(kDemoScene, "<built-in demonstration>", options);
-  return LoadSceneFile(args.scene, options);
+  return options;
+}
+
+std::function<Scene(const SceneOptions&)> SceneLoader(const SceneArgs& args) {
+  const std::string path = args.scene;
+  return [path](const SceneOptions& options) {
+    if (path.empty()) return LoadSceneText(kDemoScene, "<built-in demonstration>", options);
+    return LoadSceneFile(path, options);
+  };
+}
+
+Scene LoadScene(const SceneArgs& args) {
+  return SceneLoader(args)(SceneOptionsFrom(args));
 }
 
 void Emit(const std::string& output, const std::string& text) {

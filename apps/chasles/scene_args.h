@@ -2,6 +2,8 @@
 /// @file
 /// Loading the scene a command names (or the built-in one) with its --set overrides.
 
+#include <functional>
+
 #include "chasles/scene/scene.h"
 #include "commands.h"
 
@@ -12,6 +14,10 @@ void AddSceneArgs(CLI::App& cmd, SceneArgs& args);
 /// with exit 2 while the command line is parsed); `rule` says what is expected, e.g. "--until
 /// must be a positive time in seconds".
 CLI::Validator PositiveFiniteNumber(const std::string& rule);
+/// The scene options the arguments give (--set overrides, --max-scene-bytes).
+SceneOptions SceneOptionsFrom(const SceneArgs& args);
+/// Reads the scene the arguments name (or the built-in one) with the options it is given.
+std::function<Scene(const SceneOptions&)> SceneLoader(const SceneArgs& args);
 Scene LoadScene(const SceneArgs& args);
 /// Writes text to the file named (atomically) or to standard output when the name is empty.
 void Emit(const std::string& output, const std::string& text);

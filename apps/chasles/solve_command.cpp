@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,16 +16,13 @@
 #include "certificate_report.h"
 #include "chasles/analysis/certificate.h"
 #include "chasles/analysis/instantaneous.h"
-#include "chasles/analysis/momentum.h"
-#include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/error.h"
-#include "chasles/model/data.h"
 #include "chasles/model/model.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
+#include "chasles/scene/solve.h"
 #include "chasles/scene/study.h"
-#include "chasles/suggest.h"
 #include "commands.h"
 #include "progress.h"
 #include "report_guard.h"
@@ -40,143 +36,7 @@ nlohmann::json VecJson(const Vec3& v) {
   return {v.x(), v.y(), v.z()};
 }
 
-/// Kinetic energy and momenta of one body (or, with name "", of all of them) at the solved
-/// state, in W: T = ½ m v² + ½ ωᵀ I ω (eqs. 8.115, 8.116), p = m v, H about the centre of mass
-/// I ω and about the world origin H_O = H + p_cm × m v.
-struct Motion {
-  std::string name;
-  double T_trans = 0.0, T_rot = 0.0;
-  Vec3 P = Vec3::Zero();
-  /// About the body's own centre of mass; for the total, about the system's centre of mass.
-  Vec3 H_cm = Vec3::Zero();
-  Vec3 H_O = Vec3::Zero();
-};
-
-/// One contact point at the solved state, in the mode SelectContactModes chose.
-struct ContactReport {
-  /// The scene's name of the point ("floor", "incline_0", "rear") and its contact's name.
-  std::string point, contact;
-  ContactPointOutput out;
-  double mu_s = 0.0, mu_k = 0.0;
-  /// A round feature (sphere, rim): a sticking one rolls without slipping.
-  bool round = false;
-  /// "rolls" or "sticks" (sticking), "slides", "separated".
-  std::string Regime() const {
-    switch (out.mode) {
-      case ContactMode::kSticking:
-        return round ? "rolls" : "sticks";
-      case ContactMode::kSliding:
-        return "slides";
-      case ContactMode::kSeparated:
-        break;
-    }
-    return "separated";
-  }
-  /// |f| / N: the friction a sticking point needs (compare with mu_s), mu_k when sliding, 0
-  /// when separated.
-  double FrictionRatio() const {
-    if (out.mode == ContactMode::kSticking) return out.friction_needed;
-    if (out.mode == ContactMode::kSliding && out.normal_force > 0) {
-      return out.friction_force_W.norm() / out.normal_force;
-    }
-    return 0.0;
-  }
-};
-
-struct Solved {
-  InstantaneousSolution solution;
-  /// mu_s of each constraint (NaN when not a rolling contact with `mu_s`), Model order.
-  std::vector<double> mu_s;
-  /// Per body (Model order), then the total.
-  std::vector<Motion> motion;
-  Motion total;
-  /// A planar scene: reports in x, y and about z (a_x, a_y, alpha; Fx, Fy, Mz).
-  bool planar = false;
-  /// Contact points (scene order), in their chosen modes.
-  std::vector<ContactReport> contacts;
-  /// The solve's checks of its own answer (friction, N, gaps, residuals, Newton–Euler).
-  Certificate certificate;
-};
-
-void FillMuS(const Scene& scene, Solved& s) {
-  const SceneConstraints& c = scene.dynamics.constraints;
-  // A planar scene's plane constraints follow its own in Model order; their out-of-plane
-  // reactions are not physical for a planar body and are not reported.
-  s.solution.reactions.resize(c.names().size());
-  s.mu_s.assign(s.solution.reactions.size(), std::numeric_limits<double>::quiet_NaN());
-  for (size_t i = 0; i < c.rolling.size(); ++i) s.mu_s[c.joints.size() + i] = c.rolling[i].mu_s;
-}
-
-std::vector<Motion> CalcMotion(const Model& model, const State& state, Motion* total) {
-  std::vector<Motion> out;
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const BodyState& x = state.bodies[static_cast<size_t>(b)];
-    const Body& body = model.body(b);
-    Motion m;
-    m.name = body.name();
-    m.T_trans = 0.5 * body.mass() * x.v_WBcm_W.squaredNorm();
-    m.T_rot = 0.5 * x.w_WB_B.dot(body.I_BBcm_B() * x.w_WB_B);
-    m.P = body.mass() * x.v_WBcm_W;
-    m.H_cm = x.q_WB * Vec3(body.I_BBcm_B() * x.w_WB_B);
-    m.H_O = m.H_cm + x.p_WBcm.cross(m.P);
-    out.push_back(m);
-  }
-  total->T_trans = CalcTranslationalKineticEnergy(model, state);
-  total->T_rot = CalcRotationalKineticEnergy(model, state);
-  total->P = CalcLinearMomentum(model, state);
-  total->H_cm = CalcAngularMomentum(model, state, CalcSystemCenterOfMass(model, state));
-  total->H_O = CalcAngularMomentum(model, state, Vec3::Zero());
-  return out;
-}
-
-Solved SolveScene(const Scene& scene) {
-  try {
-    // The end time plays no part in an instantaneous solve.
-    Study study = BuildStudy(scene, 1.0);
-    State state = study.initial;
-    const Model& model = *study.model;
-    Data data = MakeData(model);
-    ProjectOntoConstraints(model, state, data);
-    if (model.num_contacts() > 0) {
-      // The modes at the initial state, chosen as a simulation starts (docs/contact.md, "Mode
-      // selection"): the LCP on the normal forces decides which points press, the friction
-      // check which of those stick; the accelerations and reactions below are in those modes.
-      // Impacts are not applied: a solve reports the state as given.
-      state.contacts.assign(static_cast<size_t>(model.num_contact_points()), ContactPointState{});
-      SelectContactModes(model, state);
-    }
-    Solved s{SolveInstantaneous(model, state), {}, {}, {}, scene.planar, {}, {}};
-    // Initial values the projection changed (`project_initial: true`) come first.
-    s.solution.warnings.insert(s.solution.warnings.begin(), study.warnings.begin(),
-                               study.warnings.end());
-    CertificateBuilder certificate;
-    certificate.CheckState(model, state, CheckPhase::kSolve);
-    s.certificate = certificate.Finish();
-    s.motion = CalcMotion(model, state, &s.total);
-    FillMuS(scene, s);
-    if (model.num_contacts() > 0) {
-      const std::vector<ContactPointOutput> outputs = CalcContactOutputs(model, state);
-      const std::vector<std::string> labels = scene.dynamics.contacts.point_labels();
-      for (int p = 0; p < model.num_contact_points(); ++p) {
-        const int c = model.contact_of_point(p);
-        const Contact& con = model.contact(c);
-        ContactReport r;
-        r.point = labels[static_cast<size_t>(p)];
-        r.contact = con.name();
-        r.out = outputs[static_cast<size_t>(p)];
-        r.mu_s = con.mu_s();
-        r.mu_k = con.mu_k();
-        r.round = con.feature(p - model.contact_point_offset(c)).kind != ContactFeatureKind::kPoint;
-        s.contacts.push_back(std::move(r));
-      }
-    }
-    return s;
-  } catch (const InputError& e) {
-    ThrowAtSceneEntry(scene, e);
-  }
-}
-
-nlohmann::json Json(const Solved& s) {
+nlohmann::json Json(const SceneSolution& s) {
   nlohmann::json j;
   j["t"] = s.solution.t;
   j["bodies"] = nlohmann::json::array();
@@ -218,20 +78,20 @@ nlohmann::json Json(const Solved& s) {
     }
     j["reactions"].push_back(x);
   }
-  const auto motion = [](const Motion& m) {
+  const auto motion = [](const SceneMotion& m) {
     return nlohmann::json{
         {"kinetic_energy", m.T_trans + m.T_rot},  {"kinetic_translational", m.T_trans},
         {"kinetic_rotational", m.T_rot},          {"linear_momentum", VecJson(m.P)},
         {"angular_momentum_cm", VecJson(m.H_cm)}, {"angular_momentum_origin", VecJson(m.H_O)}};
   };
   j["energy_momentum"] = {{"bodies", nlohmann::json::array()}, {"total", motion(s.total)}};
-  for (const Motion& m : s.motion) {
+  for (const SceneMotion& m : s.motion) {
     nlohmann::json b = motion(m);
     b["name"] = m.name;
     j["energy_momentum"]["bodies"].push_back(b);
   }
   j["contacts"] = nlohmann::json::array();
-  for (const ContactReport& c : s.contacts) {
+  for (const SceneContactReport& c : s.contacts) {
     j["contacts"].push_back({{"point", c.point},
                              {"contact", c.contact},
                              {"mode", ContactModeName(c.out.mode)},
@@ -277,14 +137,14 @@ struct ReportScales {
   double a = 0.0, alpha = 0.0, force = 0.0, moment = 0.0, p = 0.0, h = 0.0;
 };
 
-ReportScales CalcScales(const Solved& s) {
+ReportScales CalcScales(const SceneSolution& s) {
   ReportScales k;
   for (const auto& b : s.solution.bodies) {
     k.a = std::max(k.a, b.a_WBcm_W.stableNorm());
     k.alpha = std::max(k.alpha, b.alpha_WB_W.stableNorm());
   }
   double arm = 0.0;
-  for (const ContactReport& c : s.contacts) {
+  for (const SceneContactReport& c : s.contacts) {
     k.force = std::max({k.force, c.out.normal_force, c.out.friction_force_W.stableNorm()});
   }
   for (const auto& r : s.solution.reactions) {
@@ -294,14 +154,14 @@ ReportScales CalcScales(const Solved& s) {
   }
   // A moment's round-off comes from forces times lever arms as well as from other moments.
   k.moment = std::max(k.moment, k.force * arm);
-  for (const Motion& m : s.motion) {
+  for (const SceneMotion& m : s.motion) {
     k.p = std::max(k.p, m.P.stableNorm());
     k.h = std::max({k.h, m.H_cm.stableNorm(), m.H_O.stableNorm()});
   }
   return k;
 }
 
-std::string Text(const Scene& scene, const Solved& s) {
+std::string Text(const Scene& scene, const SceneSolution& s) {
   std::string out = fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
                                 scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
   out += fmt::format("Instantaneous solution at the initial state (SI, {})\n\nAccelerations\n",
@@ -346,7 +206,7 @@ std::string Text(const Scene& scene, const Solved& s) {
   if (!s.contacts.empty()) {
     out += "\nContacts (modes chosen at the initial state; friction on the body)\n";
   }
-  for (const ContactReport& c : s.contacts) {
+  for (const SceneContactReport& c : s.contacts) {
     out += fmt::format("  {}: {} ({})\n", c.point, c.Regime(), ContactModeName(c.out.mode));
     if (c.out.mode == ContactMode::kSeparated) {
       out += fmt::format("    gap {:.9g} m\n", c.out.gap);
@@ -363,7 +223,7 @@ std::string Text(const Scene& scene, const Solved& s) {
     }
   }
   out += "\nKinetic energy and momenta (H about each centre of mass, H_O about the origin)\n";
-  const auto motion = [&out, &k, &s](const Motion& m, const char* cm) {
+  const auto motion = [&out, &k, &s](const SceneMotion& m, const char* cm) {
     out += fmt::format("    T {:.9g} J (translational {:.9g} J, rotational {:.9g} J)\n",
                        m.T_trans + m.T_rot, m.T_trans, m.T_rot);
     if (s.planar) {
@@ -378,7 +238,7 @@ std::string Text(const Scene& scene, const Solved& s) {
     out += fmt::format("    H   {} kg*m^2/s (about {})\n", V(m.H_cm, k.h), cm);
     out += fmt::format("    H_O {} kg*m^2/s\n", V(m.H_O, k.h));
   };
-  for (const Motion& m : s.motion) {
+  for (const SceneMotion& m : s.motion) {
     out += fmt::format("  {}\n", m.name);
     motion(m, "its centre of mass");
   }
@@ -390,98 +250,6 @@ std::string Text(const Scene& scene, const Solved& s) {
   for (const auto& w : s.certificate.FailureMessages()) out += fmt::format("warning: {}\n", w);
   out += CertificateText(s.certificate);
   return out;
-}
-
-// The table's columns for one solution: per body a and alpha, per constraint F and M, and
-// for rolling N, |f| and f/N.
-void TableColumns(const Solved& s, std::vector<std::string>* names, std::vector<double>* values) {
-  auto add = [&](const std::string& name, double v) {
-    if (names) names->push_back(name);
-    if (values) values->push_back(v);
-  };
-  const char* xyz[] = {"x", "y", "z"};
-  if (s.planar) {
-    for (const auto& b : s.solution.bodies) {
-      add(b.name + "_ax", b.a_WBcm_W.x());
-      add(b.name + "_ay", b.a_WBcm_W.y());
-      add(b.name + "_alpha", b.alpha_WB_W.z());
-    }
-  }
-  for (const auto& b : s.solution.bodies) {
-    if (s.planar) break;
-    for (int k = 0; k < 3; ++k) add(b.name + "_a" + xyz[k], b.a_WBcm_W[k]);
-    for (int k = 0; k < 3; ++k) add(b.name + "_al" + xyz[k], b.alpha_WB_W[k]);
-  }
-  // Energy and momenta as the simulation's ledger columns names them: per body with the body's
-  // name first, H about its centre of mass, HO about the origin; then the totals (H about the
-  // system's centre of mass).
-  const auto motion = [&](const std::string& prefix, const Motion& m) {
-    add(prefix + "T_trans", m.T_trans);
-    add(prefix + "T_rot", m.T_rot);
-    add(prefix + "T", m.T_trans + m.T_rot);
-    for (int k = 0; k < 3; ++k) add(prefix + "P" + xyz[k], m.P[k]);
-    for (int k = 0; k < 3; ++k) add(prefix + "H" + xyz[k], m.H_cm[k]);
-    for (int k = 0; k < 3; ++k) add(prefix + "HO" + xyz[k], m.H_O[k]);
-  };
-  for (const Motion& m : s.motion) motion(m.name + "_", m);
-  motion("", s.total);
-  for (const auto& r : s.solution.reactions) {
-    if (s.planar) {
-      add(r.name + "_Fx", r.F_Jc_W.x());
-      add(r.name + "_Fy", r.F_Jc_W.y());
-      add(r.name + "_Mz", r.M_Jc_W.z());
-    }
-    for (int k = 0; k < 3 && !s.planar; ++k) add(r.name + "_F" + xyz[k], r.F_Jc_W[k]);
-    for (int k = 0; k < 3 && !s.planar; ++k) add(r.name + "_M" + xyz[k], r.M_Jc_W[k]);
-    if (r.is_rolling) {
-      add(r.name + "_N", r.normal_force);
-      add(r.name + "_f", r.friction_W.norm());
-      add(r.name + "_f_over_N", r.friction_needed);
-    }
-  }
-  // Contact points as the simulation's contact columns name them; mode 0 separated, 1 sliding,
-  // 2 sticking.
-  for (const ContactReport& c : s.contacts) {
-    add(c.point + "_mode", static_cast<double>(c.out.mode));
-    add(c.point + "_N", c.out.normal_force);
-    add(c.point + "_f", c.out.friction_force_W.norm());
-    add(c.point + "_f_over_N", c.FrictionRatio());
-  }
-}
-
-struct Sweep {
-  std::string name, start, stop;
-  int count = 0;
-};
-
-Sweep ParseSweep(const std::string& text) {
-  const auto fail = [&](const std::string& why) {
-    throw SceneError("command line", 0, 0, "--sweep", why);
-  };
-  const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) {
-    fail("expected NAME=START:STOP:COUNT, e.g. --sweep 'theta=0 deg:60 deg:7', got '" + text + "'");
-  }
-  Sweep s;
-  s.name = text.substr(0, eq);
-  const std::string rest = text.substr(eq + 1);
-  const auto c1 = rest.find(':');
-  const auto c2 = c1 == std::string::npos ? c1 : rest.find(':', c1 + 1);
-  if (c2 == std::string::npos || rest.find(':', c2 + 1) != std::string::npos) {
-    fail("expected NAME=START:STOP:COUNT (three fields after '='), got '" + text + "'");
-  }
-  s.start = rest.substr(0, c1);
-  s.stop = rest.substr(c1 + 1, c2 - c1 - 1);
-  const std::string count = rest.substr(c2 + 1);
-  try {
-    size_t used = 0;
-    s.count = std::stoi(count, &used);
-    if (used != count.size()) s.count = 0;
-  } catch (const std::exception&) {
-    s.count = 0;
-  }
-  if (s.count < 2) fail("COUNT must be a whole number >= 2, got '" + count + "'");
-  return s;
 }
 
 }  // namespace
@@ -526,14 +294,14 @@ int RunSolve(const SolveArgs& args) {
   }
   if (args.sweep.empty()) {
     const Scene scene = LoadScene(args.scene);
-    const Solved s = SolveScene(scene);
+    const SceneSolution s = SolveScene(scene);
     // Every value of either report is in the JSON form: checked there first, by name.
     const nlohmann::json j = Json(s);
     Emit("", args.format == "json" ? DumpJson(j, "the solve report")
                                    : (CheckFiniteJson(j, "the solve report"), Text(scene, s)));
     return args.strict && !s.certificate.passed() ? kExitCheckFailed : 0;
   }
-  const Sweep sweep = ParseSweep(args.sweep);
+  const SweepSpec sweep = ParseSweep(args.sweep, "command line", "--sweep");
   const std::int64_t max_rows = args.max_rows > 0 ? args.max_rows : kDefaultMaxRows;
   if (sweep.count > max_rows) {
     throw SceneError("command line", 0, 0, "--sweep",
@@ -541,50 +309,24 @@ int RunSolve(const SolveArgs& args) {
                                  "with --max-rows",
                                  sweep.count, max_rows));
   }
-  {
-    const Scene scene = LoadScene(args.scene);
-    std::vector<std::string> known;
-    for (const auto& p : scene.parameters) known.push_back(p.first);
-    if (std::find(known.begin(), known.end(), sweep.name) == known.end()) {
-      throw SceneError("command line", 0, 0, "--sweep",
-                       fmt::format("the scene has no parameter '{}'{}; parameters: {}", sweep.name,
-                                   DidYouMean(sweep.name, known), fmt::join(known, ", ")));
-    }
-  }
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> rows;
-  bool failed = false;
   if (!(args.progress_interval > 0) || !std::isfinite(args.progress_interval)) {
     throw InputError(fmt::format("--progress-interval must be a positive time in seconds, got {}",
                                  args.progress_interval));
   }
   Progress progress("solve --sweep", "", args.quiet, args.progress_interval);
-  for (int k = 0; k < sweep.count; ++k) {
-    progress.Update(k, sweep.count);
-    // The k-th value as an expression, so START and STOP keep their units.
-    SceneArgs a = args.scene;
-    a.set.push_back(fmt::format("{}=({}) + (({}) - ({})) * {} / {}", sweep.name, sweep.start,
-                                sweep.stop, sweep.start, k, sweep.count - 1));
-    const Scene scene = LoadScene(a);
-    double value = std::numeric_limits<double>::quiet_NaN();
-    for (const auto& [n, q] : scene.parameters) {
-      if (n == sweep.name) value = q.value;
-    }
-    const Solved s = SolveScene(scene);
-    // A failed check of one value: a warning on standard error (the table stays a table).
+  SweepOptions options;
+  options.progress = [&progress](int k, int count) { progress.Update(k, count); };
+  // A failed check of one value: a warning on standard error (the table stays a table).
+  options.on_solution = [&sweep](double value, const SceneSolution& s) {
     for (const std::string& w : s.certificate.FailureMessages()) {
       std::fprintf(stderr, "warning: %s = %.12g: %s\n", sweep.name.c_str(), value, w.c_str());
-      failed = true;
     }
-    std::vector<double> row = {value};
-    if (k == 0) {
-      names.push_back(sweep.name);
-      TableColumns(s, &names, &row);
-    } else {
-      TableColumns(s, nullptr, &row);
-    }
-    rows.push_back(std::move(row));
-  }
+  };
+  const SweepTable table =
+      SolveSweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), sweep, options);
+  const std::vector<std::string>& names = table.columns;
+  const std::vector<std::vector<double>>& rows = table.rows;
+  const bool failed = table.failed;
   CheckFiniteTable(names, rows, "the sweep table");
   if (args.format == "json") {
     nlohmann::json j = {{"parameter", sweep.name}, {"columns", names}, {"rows", rows}};

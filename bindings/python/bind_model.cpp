@@ -1,0 +1,307 @@
+// Model building: bodies, force elements (with Python callables), joints, rolling, contacts,
+// and the State.
+
+#include <memory>
+
+#include "bindings.h"
+#include "chasles/error.h"
+#include "chasles/model/constraints.h"
+#include "chasles/model/contact.h"
+#include "chasles/model/forces.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+
+namespace chasles::python {
+
+namespace {
+
+/// A Python callable fn(t, state) -> 3-vector as a VectorFunction. The callable is held by a
+/// shared pointer whose deleter takes the GIL, so the C++ side copies and destroys it without
+/// the GIL; each call takes the GIL (the simulation runs with it released). The time is read
+/// from the state (state.t), so the adapter fits a callback of (t, state) or of
+/// (model, state) alike.
+VectorFunction PythonVectorFunction(py::function fn) {
+  std::shared_ptr<py::function> f(new py::function(std::move(fn)), [](py::function* p) {
+    py::gil_scoped_acquire gil;
+    delete p;
+  });
+  return [f](const Model& /*model*/, const State& state) -> Vec3 {
+    py::gil_scoped_acquire gil;
+    return (*f)(state.t, state).cast<Vec3>();
+  };
+}
+
+VectorFrame FrameFrom(const std::string& frame) {
+  if (frame == "world") return VectorFrame::kWorld;
+  if (frame == "body") return VectorFrame::kBody;
+  throw InputError("frame must be 'world' or 'body', got '" + frame + "'");
+}
+
+void BindForces(py::module_& m) {
+  py::class_<ForceElement, std::shared_ptr<ForceElement>>(
+      m, "ForceElement", "Something that pushes on bodies; add it with Model.add_force_element.")
+      .def_property_readonly("name", &ForceElement::name)
+      .def_property_readonly("has_potential", &ForceElement::has_potential)
+      .def_property_readonly("is_dissipative", &ForceElement::is_dissipative);
+  py::class_<UniformGravity, ForceElement, std::shared_ptr<UniformGravity>>(
+      m, "UniformGravity", "Uniform gravity g [m/s^2] on every body, at its centre of mass.")
+      .def(py::init<std::string, const Vec3&>(), py::arg("name"), py::arg("g"))
+      .def_property_readonly("g", &UniformGravity::g_W);
+  py::class_<CentralGravity, ForceElement, std::shared_ptr<CentralGravity>>(
+      m, "CentralGravity", "Inverse-square gravity towards a fixed point: mu = G M [m^3/s^2].")
+      .def(py::init<std::string, double, const Vec3&>(), py::arg("name"), py::arg("mu"),
+           py::arg("centre"));
+  py::class_<AppliedForce, ForceElement, std::shared_ptr<AppliedForce>>(
+      m, "AppliedForce",
+      "A force at a point of a body (point from its frame origin, in B [m]). The force is a "
+      "constant 3-vector [N] or a callable fn(t, state) returning one; frame 'world' or "
+      "'body'.")
+      .def(py::init([](std::string name, BodyIndex body, const Vec3& point, const Vec3& force,
+                       const std::string& frame) {
+             return AppliedForce::Constant(std::move(name), body, point, force, FrameFrom(frame));
+           }),
+           py::arg("name"), py::arg("body"), py::arg("point"), py::arg("force"),
+           py::arg("frame") = "world")
+      .def(py::init([](std::string name, BodyIndex body, const Vec3& point, py::function force,
+                       const std::string& frame) {
+             return std::make_shared<AppliedForce>(std::move(name), body, point,
+                                                   PythonVectorFunction(std::move(force)),
+                                                   FrameFrom(frame));
+           }),
+           py::arg("name"), py::arg("body"), py::arg("point"), py::arg("force"),
+           py::arg("frame") = "world");
+  py::class_<AppliedMoment, ForceElement, std::shared_ptr<AppliedMoment>>(
+      m, "AppliedMoment",
+      "A pure moment [N*m] on a body: a constant 3-vector or a callable fn(t, state); frame "
+      "'world' or 'body'.")
+      .def(py::init(
+               [](std::string name, BodyIndex body, const Vec3& moment, const std::string& frame) {
+                 return AppliedMoment::Constant(std::move(name), body, moment, FrameFrom(frame));
+               }),
+           py::arg("name"), py::arg("body"), py::arg("moment"), py::arg("frame") = "world")
+      .def(py::init([](std::string name, BodyIndex body, py::function moment,
+                       const std::string& frame) {
+             return std::make_shared<AppliedMoment>(
+                 std::move(name), body, PythonVectorFunction(std::move(moment)), FrameFrom(frame));
+           }),
+           py::arg("name"), py::arg("body"), py::arg("moment"), py::arg("frame") = "world");
+  py::class_<SpringDamper, ForceElement, std::shared_ptr<SpringDamper>>(
+      m, "SpringDamper",
+      "Linear spring-damper between point P of body A and point Q of body B (or a world "
+      "point when body_b is WORLD): tension k (L - L0) + c dL/dt.")
+      .def(py::init<std::string, BodyIndex, const Vec3&, BodyIndex, const Vec3&, double, double,
+                    double>(),
+           py::arg("name"), py::arg("body_a"), py::arg("point_a"), py::arg("body_b"),
+           py::arg("point_b"), py::arg("rest_length"), py::arg("stiffness"),
+           py::arg("damping") = 0.0);
+  py::class_<LinearDrag, ForceElement, std::shared_ptr<LinearDrag>>(
+      m, "LinearDrag", "Viscous drag: F = -c v at the centre of mass, M = -c_w w.")
+      .def(py::init<std::string, BodyIndex, double, double>(), py::arg("name"), py::arg("body"),
+           py::arg("linear"), py::arg("angular") = 0.0);
+}
+
+void BindConstraints(py::module_& m) {
+  py::class_<AttachmentFrame>(m, "AttachmentFrame",
+                              "A frame on a body: origin from Bo in B [m] and axes R_BJ "
+                              "(columns; z is the joint axis); world pose for WORLD.")
+      .def(py::init([](const Vec3& p, const Mat3& R) {
+             return AttachmentFrame{p, R};
+           }),
+           py::arg("origin"), py::arg("rotation") = Mat3::Identity())
+      .def_readwrite("origin", &AttachmentFrame::p_BoJ_B)
+      .def_readwrite("rotation", &AttachmentFrame::R_BJ);
+  py::enum_<JointKind>(m, "JointKind", "Kinds of ideal joints (see constraints.h).")
+      .value("WELD", JointKind::kWeld)
+      .value("REVOLUTE", JointKind::kRevolute)
+      .value("PRISMATIC", JointKind::kPrismatic)
+      .value("SPHERICAL", JointKind::kSpherical)
+      .value("CYLINDRICAL", JointKind::kCylindrical)
+      .value("PLANAR", JointKind::kPlanar)
+      .value("POINT_ON_PLANE", JointKind::kPointOnPlane)
+      .value("POINT_ON_LINE", JointKind::kPointOnLine)
+      .value("REVOLUTE_IN_PLANE", JointKind::kRevoluteInPlane)
+      .value("PRISMATIC_IN_PLANE", JointKind::kPrismaticInPlane)
+      .value("WELD_IN_PLANE", JointKind::kWeldInPlane)
+      .value("POINT_ON_LINE_IN_PLANE", JointKind::kPointOnLineInPlane);
+  py::enum_<RollingShape>(m, "RollingShape", "Round shapes that roll on a plane.")
+      .value("SPHERE", RollingShape::kSphere)
+      .value("CYLINDER", RollingShape::kCylinder)
+      .value("DISK", RollingShape::kDisk)
+      .value("WHEEL_IN_PLANE", RollingShape::kWheelInPlane);
+  py::class_<Constraint, std::shared_ptr<Constraint>>(
+      m, "Constraint", "A joint, rolling contact or driver; add it with Model.add_constraint.")
+      .def_property_readonly("name", &Constraint::name)
+      .def_property_readonly("kind", &Constraint::kind)
+      .def_property_readonly("parent", &Constraint::parent)
+      .def_property_readonly("child", &Constraint::child)
+      .def_property_readonly("num_rows", &Constraint::num_rows);
+  py::class_<Joint, Constraint, std::shared_ptr<Joint>>(
+      m, "Joint", "An ideal joint between a parent (or WORLD) and a child, frames on both.")
+      .def(py::init<std::string, JointKind, BodyIndex, const AttachmentFrame&, BodyIndex,
+                    const AttachmentFrame&>(),
+           py::arg("name"), py::arg("kind"), py::arg("parent"), py::arg("parent_frame"),
+           py::arg("child"), py::arg("child_frame"));
+  py::class_<RollingContact, Constraint, std::shared_ptr<RollingContact>>(
+      m, "RollingContact",
+      "Rolling without slipping of a round body on a fixed world plane (through plane_point "
+      "with upward normal plane_normal). centre from Bo in B [m], axis in B, radius [m].")
+      .def(py::init<std::string, RollingShape, BodyIndex, const Vec3&, const Vec3&, double,
+                    const Vec3&, const Vec3&>(),
+           py::arg("name"), py::arg("shape"), py::arg("body"), py::arg("centre"), py::arg("axis"),
+           py::arg("radius"), py::arg("plane_point"), py::arg("plane_normal"));
+  m.def("attachment_frame_at_world_pose", &AttachmentFrameAtWorldPose, py::arg("model"),
+        py::arg("state"), py::arg("body"), py::arg("position"),
+        py::arg("rotation") = Mat3::Identity(),
+        "The frame on `body` (or WORLD) that coincides with the world pose at `state`.");
+  m.def("frame_with_z_axis", &FrameWithZAxis, py::arg("axis"),
+        "A rotation whose z column is the unit vector along `axis`.");
+}
+
+void BindContacts(py::module_& m) {
+  py::enum_<ContactShape>(m, "ContactShape", "Shapes of unilateral contacts.")
+      .value("SPHERE", ContactShape::kSphere)
+      .value("DISK_RIM", ContactShape::kDiskRim)
+      .value("DISK_FACE", ContactShape::kDiskFace)
+      .value("CYLINDER", ContactShape::kCylinder)
+      .value("BOX", ContactShape::kBox)
+      .value("POINT_SET", ContactShape::kPointSet)
+      .value("CAPSULE", ContactShape::kCapsule)
+      .value("SPHERE_SPHERE", ContactShape::kSphereSphere);
+  py::enum_<ContactMode>(m, "ContactMode", "Mode of a contact point.")
+      .value("SEPARATED", ContactMode::kSeparated)
+      .value("SLIDING", ContactMode::kSliding)
+      .value("STICKING", ContactMode::kSticking);
+  py::enum_<RestitutionLaw>(m, "RestitutionLaw", "How restitution ends an impact.")
+      .value("ENERGETIC", RestitutionLaw::kEnergetic)
+      .value("NEWTON", RestitutionLaw::kNewton)
+      .value("POISSON", RestitutionLaw::kPoisson);
+  py::class_<ContactSpec>(m, "ContactSpec",
+                          "A unilateral contact with Coulomb friction against a world plane "
+                          "(or another sphere); set the fields the shape reads, then "
+                          "Model.add_contact. Lengths from Bo in B [m].")
+      .def(py::init([](std::string name, ContactShape shape, BodyIndex body, py::kwargs kw) {
+             ContactSpec s;
+             s.name = std::move(name);
+             s.shape = shape;
+             s.body = body;
+             py::object self = py::cast(s);
+             for (auto item : kw) self.attr(item.first) = item.second;
+             return self.cast<ContactSpec>();
+           }),
+           py::arg("name"), py::arg("shape"), py::arg("body"),
+           "ContactSpec(name, shape, body, **fields): any field below as a keyword.")
+      .def_readwrite("name", &ContactSpec::name)
+      .def_readwrite("shape", &ContactSpec::shape)
+      .def_readwrite("body", &ContactSpec::body)
+      .def_readwrite("centre", &ContactSpec::p_BoC_B, "Centre of the shape from Bo in B [m]")
+      .def_readwrite("axis", &ContactSpec::axis_B, "Axis of a disk, cylinder, capsule (in B)")
+      .def_readwrite("radius", &ContactSpec::radius, "[m]")
+      .def_readwrite("length", &ContactSpec::length, "Cylinder or capsule segment length [m]")
+      .def_readwrite("half_extents", &ContactSpec::half_extents, "Box half extents [m]")
+      .def_readwrite("box_axes", &ContactSpec::R_BF, "Box axes in B (columns)")
+      .def_readwrite("points", &ContactSpec::points_B, "Point-set points from Bo in B [m]")
+      .def_readwrite("face_points", &ContactSpec::face_points)
+      .def_readwrite("other_body", &ContactSpec::other_body)
+      .def_readwrite("other_centre", &ContactSpec::p_OoC_O)
+      .def_readwrite("other_radius", &ContactSpec::other_radius)
+      .def_readwrite("plane_point", &ContactSpec::plane_point_W, "A point of the plane [m]")
+      .def_readwrite("plane_normal", &ContactSpec::plane_normal_W, "Plane normal towards the body")
+      .def_readwrite("mu_s", &ContactSpec::mu_s)
+      .def_readwrite("mu_k", &ContactSpec::mu_k)
+      .def_readwrite("mu_r", &ContactSpec::mu_r)
+      .def_readwrite("restitution", &ContactSpec::restitution)
+      .def_readwrite("restitution_law", &ContactSpec::restitution_law);
+}
+
+void BindState(py::module_& m) {
+  py::class_<BodyState>(m, "BodyState", "Motion of one body (SI, world frame W).")
+      .def_readwrite("position", &BodyState::p_WBcm, "Centre of mass in W [m]")
+      .def_property(
+          "quaternion", [](const BodyState& b) { return QuatArray(b.q_WB); },
+          [](BodyState& b, const Eigen::Vector4d& q) { b.q_WB = QuatFrom(q); },
+          "Orientation [w, x, y, z]")
+      .def_property_readonly(
+          "rotation", [](const BodyState& b) { return Mat3(b.q_WB.toRotationMatrix()); },
+          "R_WB (3x3)")
+      .def_readwrite("velocity", &BodyState::v_WBcm_W, "Velocity of the centre of mass [m/s]")
+      .def_readwrite("angular_velocity_body", &BodyState::w_WB_B, "Angular velocity in B [rad/s]")
+      .def_property_readonly(
+          "angular_velocity", [](const BodyState& b) { return Vec3(b.q_WB * b.w_WB_B); },
+          "Angular velocity in W [rad/s]");
+  py::class_<State>(m, "State", "Time and the motion of every body (make_rest_state makes one).")
+      .def_readwrite("t", &State::t, "Time [s]")
+      .def_property_readonly(
+          "bodies",
+          [](py::object self) {
+            State& s = self.cast<State&>();
+            py::list out;
+            for (BodyState& b : s.bodies) {
+              out.append(py::cast(&b, py::return_value_policy::reference_internal, self));
+            }
+            return out;
+          },
+          "The bodies' states (views into this State; Model order)")
+      .def(
+          "copy", [](const State& s) { return State(s); }, "A copy.");
+  m.def("make_rest_state", &MakeRestState, py::arg("model"),
+        "A state at t = 0 with every body at rest at the origin, identity orientation.");
+  m.def(
+      "set_body_pose",
+      [](const Model& model, int b, const Vec3& p, const Eigen::Vector4d& q, State& state) {
+        SetBodyPose(model, b, p, QuatFrom(q), state);
+      },
+      py::arg("model"), py::arg("body"), py::arg("origin"), py::arg("quaternion"), py::arg("state"),
+      "Places body's frame origin at `origin` with orientation [w, x, y, z].");
+  m.def("set_body_velocity", &SetBodyVelocity, py::arg("model"), py::arg("body"),
+        py::arg("origin_velocity"), py::arg("angular_velocity"), py::arg("state"),
+        "Sets the velocity of body's frame origin and its angular velocity (both in W).");
+  m.def("body_origin_position", &CalcBodyOriginPosition, py::arg("model"), py::arg("state"),
+        py::arg("body"), "Position of body's frame origin in W [m].");
+  m.def("validate_state", &ValidateState, py::arg("model"), py::arg("state"),
+        "Raises InputError when the state does not fit the model or is not finite.");
+}
+
+void BindModelClass(py::module_& m) {
+  m.attr("WORLD") = kWorld;
+  py::class_<Body>(m, "Body", "A free rigid body of a Model.")
+      .def_property_readonly("name", &Body::name)
+      .def_property_readonly("mass", &Body::mass, "[kg]")
+      .def_property_readonly("mass_properties", &Body::mass_properties)
+      .def_property_readonly("center_of_mass", &Body::p_BoBcm_B, "From Bo in B [m]")
+      .def_property_readonly("inertia", &Body::I_BBcm_B, "About the centre of mass in B");
+  py::class_<Model, std::shared_ptr<Model>>(
+      m, "Model", "Bodies, force elements, constraints and contacts of a system.")
+      .def(py::init<>())
+      .def("add_body", &Model::AddBody, py::arg("name"), py::arg("mass_properties"),
+           "Adds a free body; returns its index.")
+      .def(
+          "add_force_element",
+          [](Model& model, std::shared_ptr<ForceElement> e) { return model.AddForceElement(e); },
+          py::arg("element"), "Adds a force element; returns its index.")
+      .def(
+          "add_constraint",
+          [](Model& model, std::shared_ptr<Constraint> c) { return model.AddConstraint(c); },
+          py::arg("constraint"), "Adds a joint, rolling contact or driver; returns its index.")
+      .def("add_contact", &Model::AddContact, py::arg("spec"),
+           "Adds a unilateral contact; returns its index.")
+      .def_property_readonly("num_bodies", &Model::num_bodies)
+      .def_property_readonly("num_force_elements", &Model::num_force_elements)
+      .def_property_readonly("num_constraints", &Model::num_constraints)
+      .def_property_readonly("num_contacts", &Model::num_contacts)
+      .def_property_readonly("num_contact_points", &Model::num_contact_points)
+      .def("body", &Model::body, py::arg("index"), py::return_value_policy::reference_internal)
+      .def("find_body", &Model::FindBody, py::arg("name"))
+      .def("contact_point_name", &Model::contact_point_name, py::arg("point"));
+}
+
+}  // namespace
+
+void BindModel(py::module_& m) {
+  BindModelClass(m);
+  BindForces(m);
+  BindConstraints(m);
+  BindContacts(m);
+  BindState(m);
+}
+
+}  // namespace chasles::python

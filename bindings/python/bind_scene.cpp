@@ -1,0 +1,354 @@
+// Scenes: loading with overrides, mass properties, the instantaneous solve, the run
+// (RunStudy) and sweeps.
+
+#include <utility>
+
+#include "bindings.h"
+#include "chasles/scene/column_units.h"
+#include "chasles/scene/mesh_file.h"
+#include "chasles/scene/scene.h"
+#include "chasles/scene/solve.h"
+#include "chasles/scene/study.h"
+
+// A read-only field; without a doc of its own it points at the C++ field, documented in its
+// header (chasles/scene/study.h, solve.h, scene.h, analysis/certificate.h).
+#define RO(cls, field, doc) \
+  .def_readonly(#field, &cls::field, *doc ? doc : "chasles::" #cls "::" #field " (C++ header)")
+
+namespace chasles::python {
+
+namespace {
+
+/// A loaded scene and where it came from, so that a sweep can load it again with one more
+/// override.
+struct PyScene {
+  Scene scene;
+  std::string path;  // "" when loaded from text
+  std::string text;
+  std::string name;
+  SceneOptions options;
+
+  Scene Load(const SceneOptions& o) const {
+    return path.empty() ? LoadSceneText(text, name, o) : LoadSceneFile(path, o);
+  }
+};
+
+SceneOptions OptionsFrom(const py::object& set, size_t max_scene_bytes) {
+  SceneOptions o;
+  o.max_scene_bytes = max_scene_bytes;
+  if (set.is_none()) return o;
+  for (auto item : set.cast<py::dict>()) {
+    o.parameter_overrides.emplace_back(py::str(item.first), py::str(item.second));
+  }
+  return o;
+}
+
+PyScene LoadFile(const std::string& path, const py::object& set, size_t max_bytes) {
+  PyScene s;
+  s.path = path;
+  s.options = OptionsFrom(set, max_bytes);
+  py::gil_scoped_release release;
+  s.scene = s.Load(s.options);
+  return s;
+}
+
+PyScene LoadText(const std::string& text, const py::object& set, const std::string& name,
+                 size_t max_bytes) {
+  PyScene s;
+  s.text = text;
+  s.name = name;
+  s.options = OptionsFrom(set, max_bytes);
+  py::gil_scoped_release release;
+  s.scene = s.Load(s.options);
+  return s;
+}
+
+void BindSceneClasses(py::module_& m) {
+  py::class_<ScenePart>(m, "ScenePart", "One part of a scene body.") RO(ScenePart, name, "")
+      RO(ScenePart, shape, "Shape keyword") RO(ScenePart, subtractive, "A hole or cut-out")
+          RO(ScenePart, mass_source, "material name, 'density', 'field' or 'mass'")
+              RO(ScenePart, density, "[kg/m^3] or NaN")
+                  RO(ScenePart, mass_properties, "In the body frame") RO(ScenePart, notes, "")
+                      RO(ScenePart, line, "Line in the scene file");
+  py::class_<SceneBody>(m, "SceneBody", "A body of a scene: the sum of its parts.")
+      RO(SceneBody, name, "") RO(SceneBody, parts, "")
+          RO(SceneBody, mass_properties, "Mass, centre of mass and inertia, in the body frame")
+              .def_property_readonly(
+                  "points",
+                  [](const SceneBody& b) {
+                    py::dict d;
+                    for (const ScenePoint& p : b.points) d[py::str(p.name)] = py::cast(p.p_BoP_B);
+                    return d;
+                  },
+                  "Named points of the body: name -> position from Bo in B [m]");
+  py::class_<PyScene>(m, "Scene",
+                      "A scene as read from a scene file (SI). Load with load_scene or "
+                      "load_scene_string.")
+      .def_property_readonly(
+          "file", [](const PyScene& s) { return s.scene.file; },
+          "File name as given (or the name given to load_scene_string)")
+      .def_property_readonly(
+          "title", [](const PyScene& s) { return s.scene.title; }, "Title")
+      .def_property_readonly(
+          "description", [](const PyScene& s) { return s.scene.description; }, "Description")
+      .def_property_readonly(
+          "units", [](const PyScene& s) { return s.scene.units; },
+          "The scene's unit choice (key `units`)")
+      .def_property_readonly(
+          "planar", [](const PyScene& s) { return s.scene.planar; },
+          "True for a planar scene (x-y plane)")
+      .def_property_readonly(
+          "bodies", [](const PyScene& s) { return s.scene.bodies; },
+          "The bodies (SceneBody), in the file's order")
+      .def_property_readonly(
+          "warnings", [](const PyScene& s) { return s.scene.warnings; },
+          "Things to know that are not errors")
+      .def_property_readonly(
+          "parameters",
+          [](const PyScene& s) {
+            py::dict d;
+            for (const auto& [n, q] : s.scene.parameters) d[py::str(n)] = q.value;
+            return d;
+          },
+          "name -> SI value, in the file's order")
+      .def(
+          "mass_properties",
+          [](const PyScene& s) {
+            py::dict d;
+            for (const SceneBody& b : s.scene.bodies) d[py::str(b.name)] = b.mass_properties;
+            return d;
+          },
+          "body name -> MassProperties (what `chasles mass` reports)")
+      .def(
+          "point",
+          [](const PyScene& s, const std::string& text) {
+            return ReadPointOption(s.scene, text, "point");
+          },
+          py::arg("text"),
+          "A point written as in the scene ('[0, 0, 0.5 m]'), in the scene's units [m]");
+  m.def("load_scene", &LoadFile, py::arg("path"), py::arg("set") = py::none(),
+        py::arg("max_scene_bytes") = kDefaultMaxSceneBytes,
+        "Reads a scene file. `set` overrides parameters like the command line's --set: "
+        "{'theta': '30 deg'} (values are expressions with units; a bare number is a plain number). "
+        "Raises SceneError with file, line, column and key.");
+  m.def("load_scene_string", &LoadText, py::arg("text"), py::arg("set") = py::none(),
+        py::arg("name") = "<string>", py::arg("max_scene_bytes") = kDefaultMaxSceneBytes,
+        "Reads a scene from text; `name` stands for the file in errors.");
+  m.def(
+      "load_mesh_scene",
+      [](const std::string& path, const std::string& unit, const std::string& density,
+         const std::string& material, const std::string& mass, const std::string& mode,
+         const std::string& areal_density, const std::string& thickness) {
+        PyScene s;
+        s.path = path;
+        s.scene = LoadMeshAsScene(path, MeshCommandOptions{unit, mode, density, material, mass,
+                                                           areal_density, thickness});
+        return s;
+      },
+      py::arg("path"), py::kw_only(), py::arg("unit"), py::arg("density") = "",
+      py::arg("material") = "", py::arg("mass") = "", py::arg("mode") = "",
+      py::arg("areal_density") = "", py::arg("thickness") = "",
+      "A one-body scene made of a mesh file, options written as on the command line of "
+      "`chasles mass part.stl --unit mm --density 7850` ('7850 kg/m^3', 'steel', ...).");
+  m.def(
+      "study_column_units",
+      [](const PyScene& s, const std::vector<std::string>& columns) {
+        return StudyColumnUnits(s.scene, columns);
+      },
+      py::arg("scene"), py::arg("columns"), "SI unit of each run column of the scene.");
+}
+
+void BindCertificate(py::module_& m) {
+  py::class_<CheckResult>(m, "CheckResult", "One check of a run's or solve's own answer.")
+      RO(CheckResult, name, "") RO(CheckResult, description, "") RO(CheckResult, unit, "")
+          RO(CheckResult, count, "Values checked (0: did not apply)")
+              RO(CheckResult, worst, "The worst value") RO(CheckResult, tolerance, "")
+                  RO(CheckResult, where, "") RO(CheckResult, t, "")
+                      .def_property_readonly("passed", &CheckResult::passed);
+  py::class_<Certificate>(m, "Certificate", "The checks of an answer (analysis/certificate.h).")
+      RO(Certificate, checks, "")
+          .def_property_readonly("passed", &Certificate::passed)
+          .def("failure_messages", &Certificate::FailureMessages, "One sentence per failed check");
+}
+
+void BindSolve(py::module_& m) {
+  py::class_<SceneMotion>(m, "Motion", "Kinetic energy and momenta of a body (or all).")
+      RO(SceneMotion, name, "") RO(SceneMotion, T_trans, "[J]") RO(SceneMotion, T_rot, "[J]")
+          RO(SceneMotion, P, "Linear momentum [kg*m/s]")
+              RO(SceneMotion, H_cm, "Angular momentum about the centre of mass [kg*m^2/s]")
+                  RO(SceneMotion, H_O, "Angular momentum about the origin [kg*m^2/s]")
+                      .def_property_readonly(
+                          "T", [](const SceneMotion& x) { return x.T_trans + x.T_rot; },
+                          "Kinetic energy [J]");
+  py::class_<SceneContactReport>(m, "ContactReport", "A contact point at the solved state.")
+      RO(SceneContactReport, point, "") RO(SceneContactReport, contact, "") RO(
+          SceneContactReport, mu_s, "") RO(SceneContactReport, mu_k, "")
+          .def_property_readonly("mode", [](const SceneContactReport& c) { return c.out.mode; })
+          .def_property_readonly("regime", &SceneContactReport::Regime,
+                                 "'rolls', 'sticks', 'slides' or 'separated'")
+          .def_property_readonly("normal_force",
+                                 [](const SceneContactReport& c) { return c.out.normal_force; })
+          .def_property_readonly("friction",
+                                 [](const SceneContactReport& c) { return c.out.friction_force_W; })
+          .def_property_readonly("slip_velocity",
+                                 [](const SceneContactReport& c) { return c.out.slip_velocity_W; })
+          .def_property_readonly("gap", [](const SceneContactReport& c) { return c.out.gap; })
+          .def_property_readonly("point_W", [](const SceneContactReport& c) { return c.out.p_WC; })
+          .def_property_readonly("normal_W", [](const SceneContactReport& c) { return c.out.n_W; })
+          .def_property_readonly("friction_needed", &SceneContactReport::FrictionRatio,
+                                 "|f|/N (sticking: compare with mu_s)");
+  py::class_<SceneSolution>(m, "Solution", "What `chasles solve` reports for a scene.")
+      .def_property_readonly("t", [](const SceneSolution& s) { return s.solution.t; })
+      .def_property_readonly("bodies", [](const SceneSolution& s) { return s.solution.bodies; })
+      .def_property_readonly("reactions",
+                             [](const SceneSolution& s) { return s.solution.reactions; })
+          RO(SceneSolution, mu_s, "mu_s of each reaction (NaN unless rolling with mu_s)")
+              RO(SceneSolution, motion, "Per body") RO(SceneSolution, total, "All bodies")
+                  RO(SceneSolution, planar, "") RO(SceneSolution, contacts, "")
+                      RO(SceneSolution, certificate, "")
+      .def_property_readonly("rank", [](const SceneSolution& s) { return s.solution.rank; })
+      .def_property_readonly("num_rows", [](const SceneSolution& s) { return s.solution.num_rows; })
+      .def_property_readonly(
+          "warnings",
+          [](const SceneSolution& s) {
+            std::vector<std::string> w = s.solution.warnings;
+            for (const std::string& f : s.certificate.FailureMessages()) w.push_back(f);
+            return w;
+          },
+          "Warnings and failed checks")
+      .def("_row", [](const SceneSolution& s) {
+        std::vector<std::string> names, units;
+        std::vector<double> values;
+        SolutionTableRow(s, &names, &units, &values);
+        return py::make_tuple(names, units, values);
+      });
+  m.def(
+      "_solve",
+      [](const PyScene& s) {
+        py::gil_scoped_release release;
+        return SolveScene(s.scene);
+      },
+      py::arg("scene"));
+  py::class_<SweepTable>(m, "SweepTable", "A sweep's table (SI).") RO(SweepTable, parameter, "")
+      RO(SweepTable, columns, "") RO(SweepTable, units, "") RO(SweepTable, warnings, "")
+          RO(SweepTable, failed, "")
+              .def_property_readonly(
+                  "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); });
+  m.def(
+      "_sweep",
+      [](const PyScene& s, const std::string& name, const std::string& start,
+         const std::string& stop, int count) {
+        SweepSpec spec;
+        spec.name = name;
+        spec.start = start;
+        spec.stop = stop;
+        spec.count = count;
+        py::gil_scoped_release release;
+        return SolveSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, spec);
+      },
+      py::arg("scene"), py::arg("parameter"), py::arg("start"), py::arg("stop"), py::arg("count"));
+  m.def(
+      "parse_sweep",
+      [](const std::string& text) {
+        const SweepSpec s = ParseSweep(text);
+        return py::make_tuple(s.name, s.start, s.stop, s.count);
+      },
+      py::arg("text"), "NAME=START:STOP:COUNT -> (name, start, stop, count)");
+}
+
+void BindStudyParts(py::module_& m) {
+  py::class_<StudyBodyState>(m, "StudyBody", "Motion of one body at an instant.")
+      RO(StudyBodyState, name, "") RO(StudyBodyState, mass, "[kg]")
+          .def_readonly("position", &StudyBodyState::p_WBcm, "Centre of mass in W [m]")
+          .def_readonly("origin", &StudyBodyState::p_WBo, "Frame origin in W [m]")
+          .def_property_readonly("quaternion",
+                                 [](const StudyBodyState& b) { return QuatArray(b.q_WB); })
+          .def_readonly("velocity", &StudyBodyState::v_WBcm_W, "[m/s]")
+          .def_readonly("angular_velocity", &StudyBodyState::w_WB_W, "In W [rad/s]")
+          .def_readonly("angular_velocity_body", &StudyBodyState::w_WB_B, "In B [rad/s]")
+              RO(StudyBodyState, theta, "Planar: angle about z [rad] (NaN otherwise)");
+  // A run's reactions are the same records as solve's (StudyReaction is ReactionReport,
+  // bound as chasles.Reaction in bind_simulate.cpp).
+  py::class_<StudyContactPoint>(m, "StudyContactPoint", "A contact point at an instant.")
+      RO(StudyContactPoint, point, "") RO(StudyContactPoint, mode, "")
+          RO(StudyContactPoint, normal_force, "[N]")
+              .def_readonly("friction", &StudyContactPoint::friction_force_W, "[N]")
+              .def_readonly("slip_velocity", &StudyContactPoint::slip_velocity_W, "[m/s]")
+                  RO(StudyContactPoint, gap, "[m]") RO(StudyContactPoint, friction_work, "[J]")
+                      RO(StudyContactPoint, rolling_work, "[J]")
+                          RO(StudyContactPoint, impact_work, "[J]");
+  py::class_<StudySnapshot>(m, "Snapshot", "Bodies, reactions and contacts at an instant.") RO(
+      StudySnapshot, bodies, "") RO(StudySnapshot, reactions, "") RO(StudySnapshot, contacts, "");
+  py::class_<StudyEvent>(m, "Event", "A scene event located during the run.")
+      RO(StudyEvent, name, "") RO(StudyEvent, t, "[s]") RO(StudyEvent, stopped, "")
+          RO(StudyEvent, snapshot, "");
+  py::class_<StudyJump>(m, "Jump", "An impulse or impact applied during the run.")
+      RO(StudyJump, kind, "") RO(StudyJump, description, "") RO(StudyJump, t, "")
+          RO(StudyJump, energy_before, "[J]") RO(StudyJump, energy_after, "[J]")
+              .def_readonly("velocity_after", &StudyJump::v_after_W)
+              .def_readonly("angular_velocity_after", &StudyJump::w_after_W);
+  py::class_<StudyContactEvent>(m, "StudyContactEvent", "A contact mode change.")
+      RO(StudyContactEvent, t, "[s]") RO(StudyContactEvent, point, "")
+          RO(StudyContactEvent, contact, "")
+              .def_readonly("from_mode", &StudyContactEvent::from)
+              .def_readonly("to_mode", &StudyContactEvent::to) RO(StudyContactEvent, reason, "");
+  py::class_<StudyImpact>(m, "StudyImpact", "An impact at a contact point.") RO(StudyImpact, t, "")
+      RO(StudyImpact, point, "") RO(StudyImpact, approach_speed, "[m/s]")
+          RO(StudyImpact, normal_impulse, "[N*s]") RO(StudyImpact, energy_lost, "[J]")
+              RO(StudyImpact, accumulation, "") RO(StudyImpact, rest_time, "")
+                  RO(StudyImpact, jam, "") RO(StudyImpact, restitution_law, "");
+  py::class_<StudyLedger>(m, "Ledger", "The work-energy ledger at the end of the run.") RO(
+      StudyLedger, kinetic_translational, "[J]") RO(StudyLedger, kinetic_rotational, "[J]")
+      RO(StudyLedger, potential, "[J]") RO(StudyLedger, energy, "[J]") RO(
+          StudyLedger, energy_initial, "[J]") RO(StudyLedger, work_nonconservative, "[J]")
+          RO(StudyLedger, work_by_force, "[(name, J)]") RO(StudyLedger, work_by_constraint, "") RO(
+              StudyLedger, friction_work, "[J]") RO(StudyLedger, rolling_work, "[J]")
+              RO(StudyLedger, impact_work, "[J]") RO(StudyLedger, dissipated, "[J]") RO(
+                  StudyLedger, jumps, "[J]") RO(StudyLedger, residual, "E - E0 - W_nc - jumps [J]")
+                  RO(StudyLedger, energy_scale, "[J]")
+                      .def_readonly("linear_momentum", &StudyLedger::linear_momentum_W)
+                      .def_readonly("angular_momentum_cm", &StudyLedger::angular_momentum_Scm_W)
+                      .def_readonly("angular_momentum_origin", &StudyLedger::angular_momentum_Wo_W);
+}
+
+void BindStudy(py::module_& m) {
+  py::class_<StudyResult>(m, "StudyResult", "The result of a scene's run (RunStudy).")
+      RO(StudyResult, columns, "") RO(StudyResult, events, "") RO(StudyResult, jumps, "")
+          RO(StudyResult, contact_events, "") RO(StudyResult, impacts, "")
+              RO(StudyResult, final_contacts, "") RO(StudyResult, t_end, "")
+                  RO(StudyResult, stopped_by_event, "") RO(StudyResult, final_bodies, "")
+                      RO(StudyResult, final_reactions, "") RO(StudyResult, ledger, "")
+                          RO(StudyResult, integrator, "") RO(StudyResult, stats, "")
+                              RO(StudyResult, notes, "") RO(StudyResult, warnings, "")
+                                  RO(StudyResult, certificate, "")
+                                      .def_property_readonly("data", [](const StudyResult& r) {
+                                        return TableArray(r.rows, r.columns.size());
+                                      });
+  m.def(
+      "_run_study",
+      [](const PyScene& s, double until, std::int64_t max_steps, std::int64_t max_rows,
+         double timeout, double min_step) {
+        StudyOptions o;
+        o.until = until;
+        o.max_steps = max_steps;
+        o.max_rows = max_rows;
+        o.timeout = timeout;
+        o.min_step = min_step;
+        py::gil_scoped_release release;
+        return RunStudy(s.scene, o);
+      },
+      py::arg("scene"), py::arg("until"), py::arg("max_steps"), py::arg("max_rows"),
+      py::arg("timeout"), py::arg("min_step"));
+}
+
+}  // namespace
+
+void BindScene(py::module_& m) {
+  BindCertificate(m);
+  BindSceneClasses(m);
+  BindSolve(m);
+  BindStudyParts(m);
+  BindStudy(m);
+}
+
+}  // namespace chasles::python

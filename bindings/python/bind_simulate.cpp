@@ -1,0 +1,180 @@
+// The model-level analyses: the instantaneous solve and Simulate.
+
+#include "bindings.h"
+#include "chasles/analysis/instantaneous.h"
+#include "chasles/integrate/simulate.h"
+#include "chasles/model/model.h"
+
+namespace chasles::python {
+
+namespace {
+
+void BindInstantaneous(py::module_& m) {
+  py::class_<BodyAccelerationReport>(m, "BodyAcceleration", "Accelerations of one body.")
+      .def_readonly("name", &BodyAccelerationReport::name)
+      .def_readonly("acceleration", &BodyAccelerationReport::a_WBcm_W,
+                    "Of the centre of mass, in W [m/s^2]")
+      .def_readonly("angular_acceleration", &BodyAccelerationReport::alpha_WB_W, "In W [rad/s^2]")
+      .def_readonly("angular_acceleration_body", &BodyAccelerationReport::alpha_WB_B,
+                    "In B [rad/s^2]")
+      .def("__repr__", [](const BodyAccelerationReport& b) {
+        return py::str("BodyAcceleration('{}', acceleration={}, angular_acceleration={})")
+            .format(b.name, py::cast(b.a_WBcm_W), py::cast(b.alpha_WB_W));
+      });
+  py::class_<ReactionReport>(m, "Reaction",
+                             "The force and moment a constraint's parent (or the world) exerts "
+                             "on its child at the joint or contact point.")
+      .def_readonly("name", &ReactionReport::name)
+      .def_readonly("kind", &ReactionReport::kind)
+      .def_readonly("parent", &ReactionReport::parent)
+      .def_readonly("child", &ReactionReport::child)
+      .def_readonly("point", &ReactionReport::p_WJ, "Joint or contact point in W [m]")
+      .def_readonly("force", &ReactionReport::F_Jc_W, "In W [N]")
+      .def_readonly("moment", &ReactionReport::M_Jc_W, "About the point, in W [N*m]")
+      .def_readonly("force_body", &ReactionReport::F_Jc_B, "In the child's frame [N]")
+      .def_readonly("moment_body", &ReactionReport::M_Jc_B, "In the child's frame [N*m]")
+      .def_readonly("multipliers", &ReactionReport::lambda, "Of its rows [N or N*m]")
+      .def_readonly("power", &ReactionReport::power, "[W]")
+      .def_readonly("is_rolling", &ReactionReport::is_rolling)
+      .def_readonly("normal_force", &ReactionReport::normal_force, "Rolling: N [N]")
+      .def_readonly("friction", &ReactionReport::friction_W, "Rolling: friction in W [N]")
+      .def_readonly("friction_needed", &ReactionReport::friction_needed,
+                    "Rolling: |f|/N, the least mu_s rolling needs")
+      .def("__repr__", [](const ReactionReport& r) {
+        return py::str("Reaction('{}', {}, force={}, moment={})")
+            .format(r.name, r.kind, py::cast(r.F_Jc_W), py::cast(r.M_Jc_W));
+      });
+  py::class_<InstantaneousSolution>(m, "InstantaneousSolution",
+                                    "Accelerations and reactions at one state.")
+      .def_readonly("t", &InstantaneousSolution::t)
+      .def_readonly("bodies", &InstantaneousSolution::bodies)
+      .def_readonly("reactions", &InstantaneousSolution::reactions)
+      .def_readonly("rank", &InstantaneousSolution::rank)
+      .def_readonly("num_rows", &InstantaneousSolution::num_rows)
+      .def_readonly("warnings", &InstantaneousSolution::warnings);
+  m.def(
+      "solve_instantaneous",
+      [](const Model& model, const State& state, double tolerance) {
+        py::gil_scoped_release release;
+        return SolveInstantaneous(model, state, InstantaneousOptions{tolerance});
+      },
+      py::arg("model"), py::arg("state"), py::arg("tolerance") = 1e-8,
+      "Accelerations of every body and reactions of every constraint at `state` (which must "
+      "satisfy the constraints to `tolerance`).");
+}
+
+void BindOptions(py::module_& m) {
+  py::enum_<IntegratorKind>(m, "Integrator", "Integrators of simulate().")
+      .value("DORMAND_PRINCE", IntegratorKind::kDormandPrince5)
+      .value("RK4", IntegratorKind::kRk4)
+      .value("ENERGY_MOMENTUM", IntegratorKind::kEnergyMomentum);
+  py::class_<SimulationOptions>(m, "SimulationOptions", "Settings of simulate().")
+      .def(py::init([](double t_end, double output_interval, IntegratorKind integrator, double rtol,
+                       double atol, double fixed_step) {
+             SimulationOptions o;
+             o.t_end = t_end;
+             o.output_interval = output_interval;
+             o.integrator = integrator;
+             o.adaptive.rtol = rtol;
+             o.adaptive.atol = atol;
+             o.fixed_step = fixed_step;
+             return o;
+           }),
+           py::arg("t_end"), py::arg("output_interval") = 0.0,
+           py::arg("integrator") = IntegratorKind::kDormandPrince5, py::arg("rtol") = 1e-9,
+           py::arg("atol") = 1e-12, py::arg("fixed_step") = 1e-3)
+      .def_readwrite("t_end", &SimulationOptions::t_end, "End time [s]")
+      .def_readwrite("output_interval", &SimulationOptions::output_interval,
+                     "Spacing of samples [s]; 0: initial and final only")
+      .def_readwrite("integrator", &SimulationOptions::integrator)
+      .def_readwrite("fixed_step", &SimulationOptions::fixed_step, "[s] (RK4, energy-momentum)")
+      .def_property(
+          "rtol", [](const SimulationOptions& o) { return o.adaptive.rtol; },
+          [](SimulationOptions& o, double v) { o.adaptive.rtol = v; }, "Relative tolerance")
+      .def_property(
+          "atol", [](const SimulationOptions& o) { return o.adaptive.atol; },
+          [](SimulationOptions& o, double v) { o.adaptive.atol = v; }, "Absolute tolerance")
+      .def_property(
+          "max_step", [](const SimulationOptions& o) { return o.adaptive.max_step; },
+          [](SimulationOptions& o, double v) { o.adaptive.max_step = v; }, "Largest step [s]");
+}
+
+/// Samples as a table: t, then per body its centre of mass, quaternion, velocity and angular
+/// velocity in B (the names of a scene run's columns).
+py::tuple SamplesTable(const SimulationResult& r, const Model& model) {
+  std::vector<std::string> names = {"t"};
+  std::vector<std::string> units = {"s"};
+  const char* suffix[] = {"x",  "y",  "z",  "qw",  "qx",  "qy", "qz",
+                          "vx", "vy", "vz", "wbx", "wby", "wbz"};
+  const char* unit[] = {"m",   "m",   "m",   "",      "",      "",     "",
+                        "m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s"};
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    for (int k = 0; k < 13; ++k) {
+      names.push_back(model.body(b).name() + "_" + suffix[k]);
+      units.push_back(unit[k]);
+    }
+  }
+  std::vector<std::vector<double>> rows;
+  for (const State& s : r.samples) {
+    std::vector<double> row = {s.t};
+    for (const BodyState& b : s.bodies) {
+      row.insert(row.end(), {b.p_WBcm.x(), b.p_WBcm.y(), b.p_WBcm.z(), b.q_WB.w(), b.q_WB.x(),
+                             b.q_WB.y(), b.q_WB.z(), b.v_WBcm_W.x(), b.v_WBcm_W.y(), b.v_WBcm_W.z(),
+                             b.w_WB_B.x(), b.w_WB_B.y(), b.w_WB_B.z()});
+    }
+    rows.push_back(std::move(row));
+  }
+  return py::make_tuple(names, units, TableArray(rows, names.size()));
+}
+
+void BindResult(py::module_& m) {
+  py::class_<IntegratorStats>(m, "IntegratorStats", "Work counters of a run.")
+      .def_readonly("steps", &IntegratorStats::steps)
+      .def_readonly("rejected_steps", &IntegratorStats::rejected_steps)
+      .def_readonly("function_evaluations", &IntegratorStats::function_evaluations);
+  py::class_<EventRecord>(m, "EventRecord", "A located event.")
+      .def_readonly("name", &EventRecord::name)
+      .def_readonly("t", &EventRecord::t)
+      .def_readonly("state", &EventRecord::state);
+  py::class_<ContactEvent>(m, "ContactEvent", "A mode change of one contact point.")
+      .def_readonly("t", &ContactEvent::t)
+      .def_readonly("point", &ContactEvent::point)
+      .def_readonly("from_mode", &ContactEvent::from)
+      .def_readonly("to_mode", &ContactEvent::to)
+      .def_property_readonly("reason", [](const ContactEvent& e) {
+        return std::string(ContactEventReasonName(e.reason));
+      });
+  py::class_<ImpactRecord>(m, "ImpactRecord", "One impact at a contact point.")
+      .def_readonly("t", &ImpactRecord::t)
+      .def_readonly("point", &ImpactRecord::point)
+      .def_readonly("approach_speed", &ImpactRecord::approach_speed)
+      .def_readonly("normal_impulse", &ImpactRecord::normal_impulse)
+      .def_readonly("energy_lost", &ImpactRecord::energy_lost);
+  py::class_<SimulationResult>(m, "SimulationResult", "Samples, events and counters of a run.")
+      .def_readonly("samples", &SimulationResult::samples, "States at the output times")
+      .def_readonly("final_state", &SimulationResult::final_state)
+      .def_readonly("events", &SimulationResult::events)
+      .def_readonly("stopped_by_event", &SimulationResult::stopped_by_event)
+      .def_readonly("stats", &SimulationResult::stats)
+      .def_readonly("contact_events", &SimulationResult::contact_events)
+      .def_readonly("impacts", &SimulationResult::impacts)
+      .def_readonly("warnings", &SimulationResult::warnings)
+      .def("_table", &SamplesTable, py::arg("model"));
+  m.def(
+      "_simulate",
+      [](const Model& model, const State& initial, const SimulationOptions& options) {
+        py::gil_scoped_release release;
+        return Simulate(model, initial, options);
+      },
+      py::arg("model"), py::arg("initial"), py::arg("options"));
+}
+
+}  // namespace
+
+void BindSimulate(py::module_& m) {
+  BindInstantaneous(m);
+  BindOptions(m);
+  BindResult(m);
+}
+
+}  // namespace chasles::python

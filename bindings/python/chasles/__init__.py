@@ -1,0 +1,220 @@
+"""chasles: rigid-body kinetics from Python.
+
+Load a scene (``load_scene``, ``load_scene_string``), read its mass properties, solve the
+instantaneous problem (``solve``), run it (``run``) or sweep a parameter (``sweep``); or build
+a ``Model`` of bodies, force elements, joints and contacts and call ``solve_instantaneous``
+and ``simulate``. Everything is SI; vectors and matrices are numpy arrays; quaternions are
+``[w, x, y, z]``. Tables (``Table``, ``Run``) carry column names and units and convert to
+pandas with ``to_pandas()``. Bad input raises ``InputError`` (a ``ValueError``) or its
+subclass ``SceneError`` with ``file``, ``line``, ``column`` and ``key``. See docs/python.md.
+"""
+
+import math as _math
+
+import numpy as _np
+
+from ._chasles import *  # noqa: F401,F403  (the compiled bindings)
+from ._chasles import (  # noqa: F401
+    InputError,
+    LimitError,
+    SceneError,
+    Scene,
+    Solution,
+    SimulationOptions,
+    SimulationResult,
+    _run_study,
+    _simulate,
+    _solve,
+    _sweep,
+    parse_sweep,
+    study_column_units,
+)
+
+class Table:
+    """Named columns of numbers with their SI units.
+
+    ``columns`` (names), ``units`` (one per column, ``""`` for pure numbers), ``data`` (a 2-D
+    numpy array, one row per sample). ``table["name"]`` is one column as a 1-D array;
+    ``to_pandas()`` gives a DataFrame (pandas must be installed).
+    """
+
+    def __init__(self, columns, units, data):
+        self.columns = list(columns)
+        self.units = list(units)
+        self.data = _np.asarray(data, dtype=float).reshape(-1, len(self.columns))
+        if len(self.units) != len(self.columns):
+            raise ValueError("one unit per column is needed")
+
+    def __getitem__(self, name):
+        """The column called ``name`` as a 1-D numpy array (KeyError naming the columns)."""
+        try:
+            return self.data[:, self.columns.index(name)]
+        except ValueError:
+            raise KeyError(
+                f"no column {name!r}; columns: {', '.join(self.columns)}") from None
+
+    def __contains__(self, name):
+        return name in self.columns
+
+    def __len__(self):
+        """Number of rows."""
+        return self.data.shape[0]
+
+    def unit(self, name):
+        """The SI unit of column ``name``."""
+        self[name]  # raises KeyError for an unknown name
+        return self.units[self.columns.index(name)]
+
+    def to_pandas(self):
+        """The table as a pandas DataFrame; the units are in ``df.attrs["units"]``.
+
+        Raises ImportError when pandas is not installed.
+        """
+        try:
+            import pandas
+        except ImportError as e:
+            raise ImportError(
+                "Table.to_pandas() needs pandas (Debian: apt install python3-pandas; "
+                "pip: pip install pandas)") from e
+        df = pandas.DataFrame(self.data, columns=self.columns)
+        df.attrs["units"] = dict(zip(self.columns, self.units))
+        return df
+
+    def __repr__(self):
+        return f"{type(self).__name__}({len(self)} rows, columns={self.columns!r})"
+
+
+class Run(Table):
+    """The result of a scene's run (``run``): the output table plus the rest of StudyResult.
+
+    Attributes besides the table: ``events``, ``jumps``, ``contact_events`` (the contact
+    timeline), ``impacts``, ``final_contacts``, ``final_bodies``, ``final_reactions``,
+    ``ledger``, ``certificate``, ``notes``, ``warnings``, ``t_end``, ``stopped_by_event``,
+    ``integrator``, ``stats``; ``result`` is the StudyResult itself.
+    """
+
+    def __init__(self, scene, result):
+        super().__init__(result.columns, study_column_units(scene, result.columns), result.data)
+        self.result = result
+        for name in ("events", "jumps", "contact_events", "impacts", "final_contacts",
+                     "final_bodies", "final_reactions", "ledger", "certificate", "notes",
+                     "warnings", "t_end", "stopped_by_event", "integrator", "stats"):
+            setattr(self, name, getattr(result, name))
+
+    def event(self, name):
+        """The first event called ``name`` (KeyError when none fired)."""
+        for e in self.events:
+            if e.name == name:
+                return e
+        raise KeyError(f"no event {name!r}; events: {[e.name for e in self.events]}")
+
+
+class Sweep(Table):
+    """A sweep's table (``sweep``): the parameter's SI value first, then the solve's columns.
+
+    ``parameter`` names the swept parameter; ``warnings`` lists the failed checks.
+    """
+
+    def __init__(self, table):
+        super().__init__(table.columns, table.units, table.data)
+        self.parameter = table.parameter
+        self.warnings = list(table.warnings)
+        self.failed = table.failed
+
+
+def _quantity(value):
+    """A sweep bound as scene text: strings as they are, numbers in full precision."""
+    return value if isinstance(value, str) else repr(float(value))
+
+
+def solve(scene):
+    """The instantaneous problem of ``scene`` at its initial state (``chasles solve``).
+
+    Returns a Solution: ``bodies`` (accelerations), ``reactions``, ``contacts``,
+    ``motion`` / ``total`` (energy, momenta), ``certificate``, ``warnings``; ``table()``
+    gives the sweep-table row as a one-row Table.
+    """
+    return _solve(scene)
+
+
+def _solution_table(self):
+    """This solution as a one-row Table (the columns of a sweep, without the parameter)."""
+    names, units, values = self._row()
+    return Table(names, units, [values])
+
+
+def _find(items, name, attr, what):
+    for x in items:
+        if getattr(x, attr) == name:
+            return x
+    raise KeyError(f"no {what} {name!r}; {what}s: {[getattr(x, attr) for x in items]}")
+
+
+Solution.table = _solution_table
+Solution.body = lambda self, name: _find(self.bodies, name, "name", "body")
+Solution.body.__doc__ = "The accelerations of the body called ``name``."
+Solution.reaction = lambda self, name: _find(self.reactions, name, "name", "reaction")
+Solution.reaction.__doc__ = "The reaction of the constraint called ``name``."
+Solution.contact = lambda self, point: _find(self.contacts, point, "point", "contact point")
+Solution.contact.__doc__ = "The contact point called ``point``."
+
+
+def run(scene, until=None, max_steps=0, max_rows=0, timeout=None, min_step=None):
+    """Runs the scene's study (``chasles simulate``) and returns a Run.
+
+    ``until`` [s] overrides the scene's end time; ``max_steps``, ``max_rows`` (0: the
+    scene's), ``timeout`` [s] and ``min_step`` [s] (None: the scene's) limit the work
+    (LimitError when reached).
+    """
+    nan = _math.nan
+    result = _run_study(scene, nan if until is None else float(until), int(max_steps),
+                        int(max_rows), nan if timeout is None else float(timeout),
+                        nan if min_step is None else float(min_step))
+    return Run(scene, result)
+
+
+def sweep(scene, parameter, start=None, stop=None, count=None):
+    """Solves ``scene`` over ``count`` values of ``parameter`` from ``start`` to ``stop``.
+
+    Like ``chasles solve --sweep``: ``sweep(scene, "theta", "10 deg", "50 deg", 5)`` or
+    ``sweep(scene, "theta=10 deg:50 deg:5")``. Bounds are expressions with units as in the
+    scene file (a bare number is a plain number, e.g. an angle in radians). The scene is read again for each
+    value with its own overrides plus this one. Returns a Sweep table.
+    """
+    if start is None and stop is None and count is None:
+        parameter, start, stop, count = parse_sweep(parameter)
+    if start is None or stop is None or count is None:
+        raise TypeError("sweep needs start, stop and count (or one 'NAME=START:STOP:COUNT')")
+    return Sweep(_sweep(scene, parameter, _quantity(start), _quantity(stop), int(count)))
+
+
+def simulate(model, initial, options=None, **kwargs):
+    """Runs ``model`` from the State ``initial`` and returns a SimulationResult.
+
+    Pass a SimulationOptions, or its fields as keywords (``t_end``, ``output_interval``,
+    ``integrator``, ``rtol``, ``atol``, ``fixed_step``). ``result.table(model)`` gives the
+    samples as a Table (t, then per body x, y, z, qw..qz, vx..vz, wbx..wbz). Python force
+    callables are called with the GIL held; the integration itself releases it.
+    """
+    if options is None:
+        options = SimulationOptions(**kwargs)
+    elif kwargs:
+        raise TypeError("give either options or keywords, not both")
+    return _simulate(model, initial, options)
+
+
+def _simulation_table(self, model):
+    """The samples as a Table: t, then per body position, quaternion, velocity, w in B."""
+    names, units, data = self._table(model)
+    return Table(names, units, data)
+
+
+SimulationResult.table = _simulation_table
+
+
+def mass_properties(scene):
+    """Mass properties of every body of ``scene`` (``chasles mass``): name -> MassProperties."""
+    return scene.mass_properties()
+
+
+__all__ = sorted(name for name in dir() if not name.startswith("_"))

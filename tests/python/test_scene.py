@@ -1,0 +1,233 @@
+"""Scenes from Python: loading with overrides, solve, run, sweep and errors, against the
+chapter's closed forms derived here."""
+
+import math
+
+import numpy as np
+import pytest
+
+import chasles
+from conftest import G0, assert_rel, example
+
+# Example 8.3: a uniform solid cylinder (m, R) rolls without slipping down a plane at theta.
+# With friction f up the slope and normal force N: m a = m g sin(theta) - f, I alpha = f R,
+# I = m R^2 / 2, a = alpha R  give  a = (2/3) g sin(theta), f = m g sin(theta) / 3,
+# N = m g cos(theta), f / N = tan(theta) / 3. The plane's normal is n = (sin, 0, cos) and
+# downhill is d = (cos, 0, -sin); rolling about y: v = R w_y d, so alpha_y = a / R.
+M, R = 5.0, 0.1
+
+
+def cylinder_closed_form(theta):
+    a = 2.0 / 3.0 * G0 * math.sin(theta)
+    d = np.array([math.cos(theta), 0.0, -math.sin(theta)])
+    return a, d
+
+
+def test_example_8_3_solve():
+    scene = chasles.load_scene(example("example-8.3-cylinder-incline.yaml"))
+    assert scene.title.startswith("Example 8.3")
+    assert_rel(scene.parameters["theta"], math.radians(30))
+    s = chasles.solve(scene)
+    theta = math.radians(30)
+    a, d = cylinder_closed_form(theta)
+    body = s.body("cylinder")
+    assert_rel(body.acceleration, a * d)
+    assert_rel(body.angular_acceleration, [0.0, a / R, 0.0])
+    r = s.reaction("contact")
+    assert r.is_rolling
+    assert_rel(r.normal_force, M * G0 * math.cos(theta))
+    assert_rel(np.linalg.norm(r.friction), M * G0 * math.sin(theta) / 3)
+    assert_rel(r.friction_needed, math.tan(theta) / 3)
+    # The whole reaction: F = m a - m g (Newton's second law on the cylinder).
+    assert_rel(r.force, M * a * d - M * np.array([0, 0, -G0]))
+    assert_rel(s.mu_s[0], 0.25)
+    # At rest: no kinetic energy; the certificate passed.
+    assert s.total.T == 0.0
+    assert s.certificate.passed
+    assert s.warnings == []
+    row = s.table()
+    assert_rel(row["contact_f_over_N"][0], math.tan(theta) / 3)
+    assert row.unit("contact_N") == "N"
+    assert row.unit("cylinder_ax") == "m/s^2"
+
+
+def test_example_8_3_with_override_slips_past_the_limit():
+    # tan(theta)/3 = mu_s = 0.25 at theta = atan(0.75) = 36.87 deg: at 40 deg rolling needs
+    # more friction than mu_s.
+    scene = chasles.load_scene(example("example-8.3-cylinder-incline.yaml"),
+                               set={"theta": "40 deg", "m": "2 kg"})
+    assert_rel(scene.parameters["m"], 2.0)
+    r = chasles.solve(scene).reaction("contact")
+    assert_rel(r.friction_needed, math.tan(math.radians(40)) / 3)
+    assert r.friction_needed > 0.25
+    assert_rel(r.normal_force, 2.0 * G0 * math.cos(math.radians(40)))
+
+
+def test_example_8_3_run():
+    scene = chasles.load_scene(example("example-8.3-cylinder-incline.yaml"))
+    run = chasles.run(scene)
+    theta = math.radians(30)
+    a, d = cylinder_closed_form(theta)
+    t = run["t"]
+    assert t[0] == 0.0
+    assert_rel(t[-1], 0.5)
+    assert_rel(run.t_end, 0.5)
+    # From rest: x(t) = x0 + a t^2 / 2 along d (a polynomial the integrator follows exactly),
+    # v = a t d, w_y = a t / R.
+    x0 = R * np.array([math.sin(theta), 0.0, math.cos(theta)])
+    for k in ("x", "y", "z"):
+        i = "xyz".index(k)
+        assert_rel(run["cylinder_" + k], x0[i] + 0.5 * a * t**2 * d[i], scale=R)
+        assert_rel(run["cylinder_v" + k], a * t * d[i], scale=a * 0.5)
+    assert_rel(run["cylinder_wy"], a * t / R, scale=a * 0.5 / R)
+    assert run.unit("cylinder_x") == "m"
+    assert run.unit("cylinder_wy") == "rad/s"
+    assert run.unit("T") == "J"
+    assert run.unit("contact_Fx") == "N"
+    # Energy is conserved by rolling: the ledger's residual is integration error only.
+    assert abs(run.ledger.residual) <= 1e-9 * run.ledger.energy_scale
+    assert run.certificate.passed
+    assert [r.name for r in run.final_reactions] == ["contact"]
+    assert_rel(run.final_reactions[0].force, M * a * d - M * np.array([0, 0, -G0]))
+    assert run.stats.steps > 0
+    df = run.to_pandas()
+    assert list(df.columns) == run.columns
+    assert df.attrs["units"]["cylinder_x"] == "m"
+    assert_rel(df["cylinder_x"].to_numpy(), run["cylinder_x"])
+
+
+def test_spinning_ball_problem_8_26():
+    # Problems 8.26/8.27: a ball spinning at w0 about y, at rest, set on the floor. Its
+    # contact point slides backward (v_C = w0 y x (-R z) = -R w0 x), so kinetic friction
+    # mu_k m g pushes it forward: a = mu_k g, alpha_y = -5 mu_k g / (2 R) (I = 2/5 m R^2).
+    # Sliding ends when v = R w: mu_k g t = R (w0 - 5 mu_k g t / (2R)), t* = 2 R w0 / (7 mu_k g),
+    # with v* = (2/7) R w0 and w* = (2/7) w0; then it rolls at constant speed.
+    scene = chasles.load_scene(example("problem-8.26-spinning-ball.yaml"))
+    R = 9 / 8 * 0.0254
+    w0 = 100 * 2 * math.pi / 60
+    t_star = 0.025
+    mu_k = 2 * R * w0 / (7 * G0 * t_star)
+    assert_rel(scene.parameters["mu_k"], mu_k)
+    s = chasles.solve(scene)
+    c = s.contact("floor")
+    assert c.regime == "slides"
+    assert c.mode == chasles.ContactMode.SLIDING
+    m = 0.17
+    assert_rel(c.normal_force, m * G0)
+    assert_rel(c.friction, [mu_k * m * G0, 0, 0])
+    assert_rel(s.body("ball").acceleration, [mu_k * G0, 0, 0])
+    assert_rel(s.body("ball").angular_acceleration, [0, -5 * mu_k * G0 / (2 * R), 0])
+
+    run = chasles.run(scene)
+    # The contact timeline: sliding from the start, sticking (rolling) from t*.
+    events = [(e.from_mode, e.to_mode) for e in run.contact_events]
+    assert events[0][1] == "sliding"
+    stick = [e for e in run.contact_events if e.to_mode == "sticking"]
+    assert len(stick) == 1
+    assert_rel(stick[0].t, 2 * R * w0 / (7 * mu_k * G0))
+    assert_rel(stick[0].t, t_star)
+    ball = run.final_bodies[0]
+    assert_rel(ball.velocity, [2 / 7 * R * w0, 0, 0])
+    assert_rel(ball.angular_velocity, [0, 2 / 7 * w0, 0])
+    # Energy lost to friction: T0 - T_end = (1/2)(2/5 m R^2) w0^2 - (7/10) m v*^2.
+    I = 0.4 * m * R**2
+    lost = 0.5 * I * w0**2 - 0.7 * m * (2 / 7 * R * w0) ** 2
+    assert_rel(-run.ledger.friction_work, lost)
+    assert run.final_contacts[0].mode == "sticking"
+    assert run.unit("floor_N") == "N" and run.unit("floor_slip") == "m/s"
+
+
+def test_sweep_example_8_3():
+    scene = chasles.load_scene(example("example-8.3-cylinder-incline.yaml"))
+    table = chasles.sweep(scene, "theta", "10 deg", "50 deg", 5)
+    assert table.parameter == "theta"
+    assert table.columns[0] == "theta"
+    thetas = np.radians([10, 20, 30, 40, 50])
+    assert_rel(table["theta"], thetas)
+    # Rolling assumed at every angle: f/N = tan(theta)/3, N = m g cos(theta),
+    # |a| = (2/3) g sin(theta).
+    assert_rel(table["contact_f_over_N"], np.tan(thetas) / 3)
+    assert_rel(table["contact_N"], M * G0 * np.cos(thetas))
+    a = 2 / 3 * G0 * np.sin(thetas)
+    assert_rel(table["cylinder_ax"], a * np.cos(thetas))
+    assert_rel(table["cylinder_az"], -a * np.sin(thetas))
+    assert table.unit("contact_N") == "N"
+    assert table.unit("contact_f_over_N") == ""
+    assert table.warnings == []
+    same = chasles.sweep(scene, "theta=10 deg:50 deg:5")
+    assert np.array_equal(same.data, table.data)
+    # Bare numbers are plain numbers (an angle in radians).
+    numeric = chasles.sweep(scene, "theta", 0.1, 0.2, 2)
+    assert_rel(numeric["theta"], [0.1, 0.2])
+
+
+def test_scene_from_string_and_errors():
+    text = """chasles: 1
+parameters: {h: 2 m}
+bodies:
+  - name: ball
+    parts: [{shape: sphere, radius: 0.1 m, mass: 1 kg}]
+    initial: {position: [0, 0, h]}
+gravity: standard
+simulation: {until: 0.5 s, tolerance: 1e-12, output_interval: 0.1 s}
+"""
+    scene = chasles.load_scene_string(text, set={"h": "3 m"}, name="drop.yaml")
+    assert scene.file == "drop.yaml"
+    run = chasles.run(scene)
+    # Free fall from rest: z = h - g t^2 / 2.
+    assert_rel(run["ball_z"], 3.0 - 0.5 * G0 * run["t"] ** 2)
+    assert_rel(run["t"], np.arange(6) * 0.1, scale=0.5)
+    # A bad value: SceneError with file, line, column and key.
+    with pytest.raises(chasles.SceneError) as e:
+        chasles.load_scene_string(text.replace("radius: 0.1 m", "radius: -0.1 m"), name="bad.yaml")
+    err = e.value
+    assert isinstance(err, chasles.InputError) and isinstance(err, ValueError)
+    assert err.file == "bad.yaml"
+    assert err.line == 5
+    assert err.column > 0
+    assert "radius" in err.key
+    assert str(err).startswith(f"bad.yaml:5:{err.column}:")
+    # An override of an unknown parameter.
+    with pytest.raises(chasles.SceneError) as e:
+        chasles.load_scene_string(text, set={"hh": "1 m"})
+    assert "hh" in str(e.value)
+    # A sweep of an unknown parameter names the sweep.
+    with pytest.raises(chasles.SceneError) as e:
+        chasles.sweep(scene, "height", "1 m", "2 m", 3)
+    assert e.value.key == "sweep" and "height" in str(e.value)
+    with pytest.raises(chasles.SceneError):
+        chasles.sweep(scene, "h=1 m:2 m")
+    with pytest.raises(chasles.InputError):
+        chasles.load_scene("/nonexistent/scene.yaml")
+    # A limit on the run's work is bad input at the scene's `simulation` entry.
+    with pytest.raises(chasles.SceneError) as e:
+        chasles.run(scene, max_steps=1)
+    assert e.value.key == "simulation" and "limit of 1 integration steps" in str(e.value)
+    # A bare number is a plain number: a position needs its unit.
+    with pytest.raises(chasles.SceneError) as e:
+        chasles.load_scene_string(text, set={"h": 3})
+    assert "length" in str(e.value)
+    with pytest.raises(KeyError):
+        run["no_such_column"]
+    with pytest.raises(chasles.InputError):
+        chasles.study_column_units(scene, ["no_such_column"])
+
+
+def test_events_in_a_run():
+    text = """chasles: 1
+bodies:
+  - name: ball
+    parts: [{shape: sphere, radius: 0.1 m, mass: 1 kg}]
+    initial: {position: [0, 0, 2 m]}
+gravity: standard
+events:
+  - {name: half, when: ball_z, crosses: 1 m, direction: falling, action: stop}
+simulation: {until: 5 s, tolerance: 1e-12}
+"""
+    run = chasles.run(chasles.load_scene_string(text))
+    # z = 2 - g t^2 / 2 reaches 1 m at t = sqrt(2 / g).
+    assert run.stopped_by_event
+    e = run.event("half")
+    assert_rel(e.t, math.sqrt(2 / G0))
+    assert_rel(e.snapshot.bodies[0].velocity, [0, 0, -G0 * math.sqrt(2 / G0)])
+    assert_rel(run.t_end, math.sqrt(2 / G0))
