@@ -89,7 +89,7 @@ int main() {
   options.adaptive.atol = 1e-14;
   EventSpec vertical;
   vertical.name = "vertical";
-  vertical.g = [b](double, const State& s) { return s.bodies[b].p_WBcm.x(); };
+  vertical.g = [b](const Model&, const State& s) { return s.bodies[b].p_WBcm.x(); };
   vertical.direction = EventDirection::kFalling;
   vertical.action = EventAction::kStop;
   options.events.push_back(vertical);
