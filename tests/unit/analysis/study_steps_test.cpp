@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <utility>
 
 #include "analysis/internal/study_steps.h"
 #include "chasles/analysis/study.h"
@@ -97,6 +99,43 @@ TEST(StudySteps, EmbeddingConservesMomentumAndKeepsTheProjectileWhereItWas) {
   EXPECT_TRUE(test::MatNear(I_c * s.bodies[0].w_WB_B, H, 1e-12));
   // A second impact of the same pair is an error.
   EXPECT_THROW(ApplyStudyImpact({0.0, 0, 1, 0.0}, def.build_model, seg, s), InputError);
+}
+
+TEST(StudySteps, RandomEmbeddingsConserveLinearAndAngularMomentumAboutTheOrigin) {
+  // Seeded: any two spinning, moving bodies that become one keep P = Σ m v and
+  // H_O = Σ (p × m v + R I Rᵀ ω) (no external impulse; eqs. 8.126-8.128).
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.1, 2.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    StudyDefinition def;
+    def.bodies = {{"target", Box(pos(rng) * 3, pos(rng), pos(rng), pos(rng))},
+                  {"projectile", Box(pos(rng), pos(rng), pos(rng), pos(rng))}};
+    def.build_model = FreeBodies;
+    Segment seg = FirstSegment(def);
+    State s = MakeRestState(*seg.model);
+    for (BodyState& b : s.bodies) {
+      b.p_WBcm = Vec3(u(rng), u(rng), u(rng));
+      b.q_WB = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+      b.v_WBcm_W = Vec3(u(rng), u(rng), u(rng)) * 10;
+      b.w_WB_B = Vec3(u(rng), u(rng), u(rng)) * 10;
+    }
+    const auto momenta = [](const Model& model, const State& st) {
+      Vec3 P = Vec3::Zero(), H = Vec3::Zero();
+      for (int b = 0; b < model.num_bodies(); ++b) {
+        const BodyState& x = st.bodies[static_cast<size_t>(b)];
+        const double m = model.body(b).mass();
+        const Mat3 R = x.q_WB.toRotationMatrix();
+        P += m * x.v_WBcm_W;
+        H += x.p_WBcm.cross(m * x.v_WBcm_W) + R * (model.body(b).I_BBcm_B().matrix() * x.w_WB_B);
+      }
+      return std::pair{P, H};
+    };
+    const auto [P0, H0] = momenta(*seg.model, s);
+    ApplyStudyImpact({0.0, 0, 1, 0.0}, def.build_model, seg, s);
+    const auto [P1, H1] = momenta(*seg.model, s);
+    EXPECT_TRUE(test::MatNear(P1, P0, 1e-12, P0.norm() + 1)) << "trial " << trial;
+    EXPECT_TRUE(test::MatNear(H1, H0, 1e-12, H0.norm() + 1)) << "trial " << trial;
+  }
 }
 
 TEST(StudySteps, PassThroughGivesTheTargetTheMomentumLost) {
