@@ -52,18 +52,6 @@ double CalcMechanicalEnergy(const Model& model, const State& state) {
          V;
 }
 
-const char* IntegratorName(IntegratorKind kind) {
-  switch (kind) {
-    case IntegratorKind::kDormandPrince5:
-      return "adaptive Dormand-Prince 5(4)";
-    case IntegratorKind::kRk4:
-      return "RK4 (fixed step)";
-    case IntegratorKind::kEnergyMomentum:
-      return "energy-momentum (fixed step)";
-  }
-  return "";
-}
-
 namespace study_internal {
 
 namespace {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <utility>
 
 #include <fmt/format.h>
@@ -129,7 +130,9 @@ class HybridRun {
 
   SimulationResult Run(const State& initial) {
     State s = Start(initial);
-    DormandPrince5Integrator dp(model_, o_.adaptive);
+    // Contacts need dense output (Simulate refuses a fixed-step integrator for them).
+    const std::unique_ptr<Integrator> integrator = MakeIntegrator(model_, o_, s.t);
+    Integrator& integ = *integrator;
     const size_t ne = o_.events.size();
     ug_prev_.assign(ne, 0.0);
     ug_new_.assign(ne, 0.0);
@@ -138,33 +141,33 @@ class HybridRun {
     }
     scratch_ = s;
     while (s.t < o_.t_end) {
-      dp.Initialize(s);
-      Stretch st = BeginStretch(dp, s);
+      integ.Initialize(s);
+      Stretch st = BeginStretch(integ, s);
       bool restart = false;
-      while (dp.t() < o_.t_end && !restart) {
-        dp.Step(o_.t_end);
-        if (o_.on_step) o_.on_step(dp.t());
-        EvalFunctions(model_, dp.state(), st.fns, data_, st.g1);
+      while (integ.t() < o_.t_end && !restart) {
+        integ.Step(o_.t_end);
+        if (o_.on_step) o_.on_step(integ.t());
+        EvalFunctions(model_, integ.state(), st.fns, data_, st.g1);
         NormalVelocities(st.fns, st.vn1);
-        const auto [t_c, which] = FindContactEvent(dp, st);
-        const double t_stop = LocateUserEvents(dp, t_c);
-        const double t_out_end = std::min({dp.t(), t_c, t_stop});
-        EmitUpTo(dp, t_out_end, scratch_);
+        const auto [t_c, which] = FindContactEvent(integ, st);
+        const double t_stop = LocateUserEvents(integ, t_c);
+        const double t_out_end = std::min({integ.t(), t_c, t_stop});
+        EmitUpTo(integ, t_out_end, scratch_);
         if (std::isfinite(t_stop)) {
-          StopAtUserEvent(dp, t_stop);
+          StopAtUserEvent(integ, t_stop);
           return std::move(r_);
         }
         if (which >= 0) {
-          if (SwitchModes(dp, s, t_c, st.fns[static_cast<size_t>(which)])) return std::move(r_);
+          if (SwitchModes(integ, s, t_c, st.fns[static_cast<size_t>(which)])) return std::move(r_);
           restart = true;
         } else {
           st.g0 = st.g1;
           st.vn0 = st.vn1;
           ug_prev_ = ug_new_;
-          s = dp.state();
+          s = integ.state();
         }
       }
-      AddStats(dp);
+      AddStats(integ);
     }
     r_.final_state = s;
     Emit(s);
@@ -222,19 +225,19 @@ class HybridRun {
     }
   }
 
-  // The event functions of the modes of `s` and their values at the restart (dp initialised
+  // The event functions of the modes of `s` and their values at the restart (integ initialised
   // at `s`).
-  Stretch BeginStretch(const DormandPrince5Integrator& dp, const State& s) {
+  Stretch BeginStretch(const Integrator& integ, const State& s) {
     Stretch st;
     st.fns = EventFunctions(model_, s);
-    EvalFunctions(model_, dp.state(), st.fns, data_, st.g0);
+    EvalFunctions(model_, integ.state(), st.fns, data_, st.g0);
     NormalVelocities(st.fns, st.vn0);
     // A function that is zero (or round-off below) where the run restarts has its crossing
     // there, not in a later step: a sticking point left exactly at its friction limit, a
     // slip that started from zero, a normal force that is zero. It is armed: if it then
     // falls below its round-off band before rising out of it, the event is at the restart
     // (without this the crossing would never be seen, since it never was positive).
-    st.t_restart = dp.t();
+    st.t_restart = integ.t();
     st.band.resize(st.fns.size());
     st.armed.assign(st.fns.size(), 0);
     for (size_t i = 0; i < st.fns.size(); ++i) {
@@ -246,11 +249,11 @@ class HybridRun {
 
   // Earliest contact event in the step just taken: its time and the index of its function
   // (infinity and -1: none).
-  std::pair<double, int> FindContactEvent(DormandPrince5Integrator& dp, Stretch& st) {
+  std::pair<double, int> FindContactEvent(Integrator& integ, Stretch& st) {
     double t_c = std::numeric_limits<double>::infinity();
     int which = -1;
     for (size_t i = 0; i < st.fns.size(); ++i) {
-      const double t = EventTime(dp, st, i);
+      const double t = EventTime(integ, st, i);
       if (t < t_c) t_c = t, which = static_cast<int>(i);
     }
     return {t_c, which};
@@ -258,11 +261,11 @@ class HybridRun {
 
   // Time of the crossing of event function `i` in the step [ta, tb] just taken (infinity:
   // none).
-  double EventTime(DormandPrince5Integrator& dp, Stretch& st, size_t i) {
+  double EventTime(Integrator& integ, Stretch& st, size_t i) {
     constexpr double kNone = std::numeric_limits<double>::infinity();
     const std::vector<ContactFn>& fns = st.fns;
     const std::vector<double>&g0 = st.g0, &g1 = st.g1, &vn0 = st.vn0, &vn1 = st.vn1;
-    const double ta = dp.t_previous(), tb = dp.t();
+    const double ta = integ.t_previous(), tb = integ.t();
     if (st.armed[i]) {
       if (g1[i] < -st.band[i]) return st.t_restart;
       if (g1[i] > st.band[i]) st.armed[i] = 0;
@@ -270,7 +273,7 @@ class HybridRun {
     }
     std::vector<double> gv;
     auto g = [&](double t) {
-      dp.Interpolate(t, scratch_);
+      integ.Interpolate(t, scratch_);
       EvalFunctions(model_, scratch_, {fns[i]}, data_, gv);
       return gv[0];
     };
@@ -319,15 +322,15 @@ class HybridRun {
 
   // User events in the step just taken, up to the contact event at t_c: records them and
   // returns the time of the earliest that stops the run (infinity: none).
-  double LocateUserEvents(DormandPrince5Integrator& dp, double t_c) {
-    const double ta = dp.t_previous(), tb = dp.t();
+  double LocateUserEvents(Integrator& integ, double t_c) {
+    const double ta = integ.t_previous(), tb = integ.t();
     double t_stop = std::numeric_limits<double>::infinity();
     for (size_t e = 0; e < o_.events.size(); ++e) {
       if (!o_.events[e].g) continue;  // a contact-mode event (RecordModeEvents)
-      ug_new_[e] = o_.events[e].g(model_, dp.state());
+      ug_new_[e] = o_.events[e].g(model_, integ.state());
       if (!internal::Crosses(o_.events[e].direction, ug_prev_[e], ug_new_[e])) continue;
       auto g = [&](double t) {
-        dp.Interpolate(t, scratch_);
+        integ.Interpolate(t, scratch_);
         return o_.events[e].g(model_, scratch_);
       };
       const double t =
@@ -337,7 +340,7 @@ class HybridRun {
       rec.event = static_cast<int>(e);
       rec.name = o_.events[e].name;
       rec.t = t;
-      dp.Interpolate(t, rec.state);
+      integ.Interpolate(t, rec.state);
       r_.events.push_back(std::move(rec));
       if (o_.events[e].action == EventAction::kStop) t_stop = std::min(t_stop, t);
     }
@@ -347,19 +350,19 @@ class HybridRun {
   }
 
   // Ends the run at a user event that stops it, at t_stop.
-  void StopAtUserEvent(const DormandPrince5Integrator& dp, double t_stop) {
+  void StopAtUserEvent(const Integrator& integ, double t_stop) {
     // Drop records after the stop.
     while (!r_.events.empty() && r_.events.back().t > t_stop) r_.events.pop_back();
     r_.final_state = r_.events.back().state;
     r_.stopped_by_event = true;
     Emit(r_.final_state);
-    AddStats(dp);
+    AddStats(integ);
   }
 
   // The contact event of `fn` at t_c: moves `s` there and makes the transition. True when a
   // contact-mode event stops the run (the result is then complete).
-  bool SwitchModes(DormandPrince5Integrator& dp, State& s, double t_c, const ContactFn& fn) {
-    dp.Interpolate(t_c, s);
+  bool SwitchModes(Integrator& integ, State& s, double t_c, const ContactFn& fn) {
+    integ.Interpolate(t_c, s);
     s.t = t_c;
     const State before = o_.on_transition ? s : State{};
     const size_t first_change = r_.contact_events.size();
@@ -370,7 +373,7 @@ class HybridRun {
       r_.final_state = s;
       r_.stopped_by_event = true;
       Emit(s);
-      AddStats(dp);
+      AddStats(integ);
       return true;
     }
     for (size_t e = 0; e < o_.events.size(); ++e) {
@@ -391,12 +394,12 @@ class HybridRun {
     if (o_.store_samples) r_.samples.push_back(s);
   }
 
-  void EmitUpTo(DormandPrince5Integrator& dp, double t_end, State& scratch) {
+  void EmitUpTo(Integrator& integ, double t_end, State& scratch) {
     if (!(o_.output_interval > 0.0)) return;
     while (true) {
       const double t = t0_ + static_cast<double>(k_) * o_.output_interval;
       if (t > t_end || t >= o_.t_end) break;
-      dp.Interpolate(t, scratch);
+      integ.Interpolate(t, scratch);
       Emit(scratch);
       ++k_;
     }
@@ -419,8 +422,8 @@ class HybridRun {
     return stop;
   }
 
-  void AddStats(const DormandPrince5Integrator& dp) {
-    const IntegratorStats& st = dp.stats();
+  void AddStats(const Integrator& integ) {
+    const IntegratorStats& st = integ.stats();
     r_.stats.steps += st.steps - last_.steps;
     r_.stats.rejected_steps += st.rejected_steps - last_.rejected_steps;
     r_.stats.function_evaluations += st.function_evaluations - last_.function_evaluations;

@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include <fmt/format.h>
 
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/error.h"
-#include "chasles/integrate/energy_momentum.h"
-#include "chasles/integrate/rk4.h"
 #include "integrate/internal/event_root.h"
 #include "integrate/internal/hybrid.h"
 
@@ -70,57 +69,65 @@ class Sampler {
   double t0_;
 };
 
-SimulationResult RunAdaptive(const Model& model, const State& initial, const SimulationOptions& o) {
+// The events that cross zero in the last step, located on the dense output, earliest first;
+// the run stops at the first kStop one (returns its time; +inf when none stops it).
+double RecordEvents(const Model& model, const SimulationOptions& o, Integrator& integ,
+                    std::vector<double>& g_prev, SimulationResult& r, State& scratch) {
+  struct Hit {
+    double t;
+    size_t e;
+  };
+  const size_t ne = o.events.size();
+  const double t0 = integ.t_previous(), t1 = integ.t();
+  std::vector<Hit> hits;
+  std::vector<double> g_new(ne);
+  for (size_t e = 0; e < ne; ++e) {
+    g_new[e] = o.events[e].g(model, integ.state());
+    if (!internal::Crosses(o.events[e].direction, g_prev[e], g_new[e])) continue;
+    auto g = [&](double t) {
+      integ.Interpolate(t, scratch);
+      return o.events[e].g(model, scratch);
+    };
+    hits.push_back(
+        {internal::LocateEventTime(g, t0, g_prev[e], t1, g_new[e], o.event_time_tolerance), e});
+  }
+  g_prev = g_new;
+  std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.t < b.t; });
+  for (const Hit& h : hits) {
+    EventRecord rec;
+    rec.event = static_cast<int>(h.e);
+    rec.name = o.events[h.e].name;
+    rec.t = h.t;
+    integ.Interpolate(h.t, rec.state);
+    r.events.push_back(std::move(rec));
+    if (o.events[h.e].action == EventAction::kStop) return h.t;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+// A model without contacts: one integrator (MakeIntegrator) stepped to the end or to a
+// stopping event. A fixed-step integrator is stepped to each output time in turn (it lands on
+// it); a dense one to the end, with the outputs and events taken from its dense output.
+SimulationResult RunSmooth(const Model& model, const State& initial, const SimulationOptions& o) {
   SimulationResult r;
   Sampler sampler(o, r, initial.t);
-  DormandPrince5Integrator dp(model, o.adaptive);
-  dp.Initialize(initial);
-  sampler.Emit(dp.state());
-  const size_t ne = o.events.size();
-  std::vector<double> g_prev(ne);
-  for (size_t e = 0; e < ne; ++e) g_prev[e] = o.events[e].g(model, dp.state());
+  std::unique_ptr<Integrator> integ = MakeIntegrator(model, o, initial.t);
+  integ->Initialize(initial);
+  sampler.Emit(integ->state());
+  std::vector<double> g_prev(o.events.size());
+  for (size_t e = 0; e < o.events.size(); ++e) g_prev[e] = o.events[e].g(model, integ->state());
   long long k = 1;
-  State scratch = dp.state();
-  while (dp.t() < o.t_end) {
-    dp.Step(o.t_end);
-    if (o.on_step) o.on_step(dp.t());
-    const double t0 = dp.t_previous(), t1 = dp.t();
-    // Events in this step, earliest first.
-    struct Hit {
-      double t;
-      size_t e;
-    };
-    std::vector<Hit> hits;
-    std::vector<double> g_new(ne);
-    for (size_t e = 0; e < ne; ++e) {
-      g_new[e] = o.events[e].g(model, dp.state());
-      if (!internal::Crosses(o.events[e].direction, g_prev[e], g_new[e])) continue;
-      auto g = [&](double t) {
-        dp.Interpolate(t, scratch);
-        return o.events[e].g(model, scratch);
-      };
-      hits.push_back(
-          {internal::LocateEventTime(g, t0, g_prev[e], t1, g_new[e], o.event_time_tolerance), e});
-    }
-    std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.t < b.t; });
-    double t_stop = std::numeric_limits<double>::infinity();
-    for (const Hit& h : hits) {
-      EventRecord rec;
-      rec.event = static_cast<int>(h.e);
-      rec.name = o.events[h.e].name;
-      rec.t = h.t;
-      dp.Interpolate(h.t, rec.state);
-      r.events.push_back(std::move(rec));
-      if (o.events[h.e].action == EventAction::kStop) {
-        t_stop = h.t;
-        break;
-      }
-    }
+  State scratch = integ->state();
+  while (integ->t() < o.t_end) {
+    const bool to_output = !integ->has_dense_output() && o.output_interval > 0.0;
+    integ->Step(to_output ? std::min(sampler.OutputTime(k), o.t_end) : o.t_end);
+    if (o.on_step) o.on_step(integ->t());
+    const double t_stop = RecordEvents(model, o, *integ, g_prev, r, scratch);
     // Output samples up to the end of the step (or the stop).
-    const double t_out_end = std::min(t1, t_stop);
+    const double t_out_end = std::min(integ->t(), t_stop);
     if (o.output_interval > 0.0) {
       while (sampler.OutputTime(k) <= t_out_end && sampler.OutputTime(k) < o.t_end) {
-        dp.Interpolate(sampler.OutputTime(k), scratch);
+        integ->Interpolate(sampler.OutputTime(k), scratch);
         sampler.Emit(scratch);
         ++k;
       }
@@ -129,46 +136,13 @@ SimulationResult RunAdaptive(const Model& model, const State& initial, const Sim
       r.final_state = r.events.back().state;
       r.stopped_by_event = true;
       sampler.Emit(r.final_state);
-      r.stats = dp.stats();
+      r.stats = integ->stats();
       return r;
     }
-    g_prev = g_new;
   }
-  r.final_state = dp.state();
+  r.final_state = integ->state();
   sampler.Emit(r.final_state);
-  r.stats = dp.stats();
-  return r;
-}
-
-template <typename Integrator>
-SimulationResult RunFixed(const Model& model, const State& initial, const SimulationOptions& o) {
-  SimulationResult r;
-  Sampler sampler(o, r, initial.t);
-  Integrator integ(model);
-  State s = initial;
-  sampler.Emit(s);
-  const double t0 = initial.t;
-  const double span = o.output_interval > 0.0 ? o.output_interval : o.t_end - t0;
-  const auto n_per = static_cast<long long>(std::ceil(span / o.fixed_step - 1e-9));
-  const double h = span / static_cast<double>(std::max(1LL, n_per));
-  long long k = 1;
-  while (true) {
-    const double t_seg_end = std::min(t0 + static_cast<double>(k) * span, o.t_end);
-    const double seg = t_seg_end - s.t;
-    const auto n = std::max(1LL, static_cast<long long>(std::ceil(seg / h - 1e-9)));
-    const double hs = seg / static_cast<double>(n);
-    for (long long i = 0; i < n; ++i) {
-      integ.Step(s, hs);
-      if (o.on_step) o.on_step(s.t);
-    }
-    s.t = t_seg_end;  // no drift of the time grid by round-off
-    if (t_seg_end >= o.t_end) break;
-    sampler.Emit(s);
-    ++k;
-  }
-  r.final_state = s;
-  sampler.Emit(s);
-  r.stats = integ.stats();
+  r.stats = integ->stats();
   return r;
 }
 
@@ -228,14 +202,7 @@ SimulationResult Simulate(const Model& model, const State& initial,
     Data data = MakeData(model);
     ProjectOntoConstraints(model, start, data);
   }
-  switch (options.integrator) {
-    case IntegratorKind::kRk4:
-      return RunFixed<Rk4Integrator>(model, start, options);
-    case IntegratorKind::kEnergyMomentum:
-      return RunFixed<EnergyMomentumIntegrator>(model, start, options);
-    default:
-      return RunAdaptive(model, start, options);
-  }
+  return RunSmooth(model, start, options);
 }
 
 }  // namespace chasles

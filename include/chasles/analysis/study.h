@@ -356,7 +356,4 @@ StudyResult RunStudy(const StudyDefinition& definition);
 /// Mechanical energy T + V of the whole Model at `state` [J].
 double CalcMechanicalEnergy(const Model& model, const State& state);
 
-/// Name of an integrator ("adaptive Dormand-Prince 5(4)", ...).
-const char* IntegratorName(IntegratorKind kind);
-
 }  // namespace chasles

@@ -18,6 +18,7 @@
 #include <limits>
 #include <memory>
 
+#include "chasles/integrate/integrator.h"
 #include "chasles/integrate/stats.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
@@ -46,35 +47,32 @@ struct AdaptiveOptions {
   bool project_contacts = true;
 };
 
-class DormandPrince5Integrator {
+class DormandPrince5Integrator final : public Integrator {
  public:
   /// `model` must outlive the integrator. Throws InputError for bad tolerances.
   DormandPrince5Integrator(const Model& model, const AdaptiveOptions& options);
-  ~DormandPrince5Integrator();
-  DormandPrince5Integrator(const DormandPrince5Integrator&) = delete;
-  DormandPrince5Integrator& operator=(const DormandPrince5Integrator&) = delete;
+  ~DormandPrince5Integrator() override;
 
   /// Starts (or restarts, e.g. after an impulse changed the state) from `state`.
-  void Initialize(const State& state);
+  void Initialize(const State& state) override;
   /// Takes one accepted step, not past `t_limit`; rejected attempts are retried inside.
   /// Afterwards the dense output covers [t_previous(), t()].
-  void Step(double t_limit);
+  void Step(double t_limit) override;
   /// Takes one step of exactly `h` [s] without error control (for convergence studies).
   void StepFixed(double h);
 
   /// The state at the end of the last step.
-  const State& state() const { return state_; }
+  const State& state() const override { return state_; }
   /// Time at the start of the last step [s].
-  double t_previous() const { return t_prev_; }
-  /// Time at the end of the last step [s].
-  double t() const { return state_.t; }
+  double t_previous() const override { return t_prev_; }
   /// Dense output: the state at `t` in [t_previous(), t()] (quaternions normalised; projected
   /// onto the constraints and the active contact rows, as the step ends are), written into
   /// `out` (resized to the model).
-  void Interpolate(double t, State& out);
+  void Interpolate(double t, State& out) override;
+  bool has_dense_output() const override { return true; }
   /// Step size the controller proposes next [s].
   double next_step() const { return h_next_; }
-  const IntegratorStats& stats() const { return stats_; }
+  const IntegratorStats& stats() const override { return stats_; }
 
  private:
   struct Work;

@@ -13,18 +13,18 @@
 
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/integrate/dormand_prince.h"
+#include "chasles/integrate/integrator.h"
 #include "chasles/integrate/stats.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
 
 namespace chasles {
-
-enum class IntegratorKind { kDormandPrince5, kRk4, kEnergyMomentum };
 
 /// Which zero crossings of g count: g going from < 0 to >= 0 (kRising), from > 0 to <= 0
 /// (kFalling), or both.
@@ -196,5 +196,12 @@ std::vector<ContactModeInterval> CalcModeTimeline(const SimulationResult& result
 /// and so are the output samples and event states taken from the dense output.
 SimulationResult Simulate(const Model& model, const State& initial,
                           const SimulationOptions& options);
+
+/// The integrator Simulate steps for `options` on a run starting at `t_start`: the
+/// Dormand–Prince integrator with `options.adaptive`, or a fixed-step one whose step is
+/// `options.fixed_step` shortened to divide the output interval (the whole run when it is 0)
+/// evenly. `model` must outlive it. Throws InputError for a fixed step that is not positive.
+std::unique_ptr<Integrator> MakeIntegrator(const Model& model, const SimulationOptions& options,
+                                           double t_start);
 
 }  // namespace chasles
