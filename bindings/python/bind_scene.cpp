@@ -4,6 +4,9 @@
 #include <utility>
 
 #include "bindings.h"
+#include "chasles/io/json_report.h"
+#include "chasles/io/simulation_report.h"
+#include "chasles/io/solve_json.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/mesh_file.h"
 #include "chasles/scene/scene.h"
@@ -215,6 +218,10 @@ void BindSolve(py::module_& m) {
             return w;
           },
           "Warnings and failed checks")
+      .def(
+          "to_json",
+          [](const SolveReport& s) { return DumpJson(SolveJson(s), "the solve report"); },
+          "The JSON report, as `chasles solve --format json` prints it")
       .def("_row", [](const SolveReport& s) {
         std::vector<std::string> names, units;
         std::vector<double> values;
@@ -232,7 +239,12 @@ void BindSolve(py::module_& m) {
       RO(SweepTable, columns, "") RO(SweepTable, units, "") RO(SweepTable, warnings, "")
           RO(SweepTable, failed, "")
               .def_property_readonly(
-                  "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); });
+                  "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); })
+              .def(
+                  "to_json",
+                  [](const SweepTable& t) { return DumpJson(SweepJson(t), "the sweep table"); },
+                  "The table as `chasles solve --sweep ... --format json` prints it")
+              .def("to_csv", &SweepCsv, "The table as `chasles solve --sweep ...` prints it");
   m.def(
       "_sweep",
       [](const PyScene& s, const std::string& name, const std::string& start,
@@ -312,17 +324,24 @@ void BindStudyParts(py::module_& m) {
 
 void BindStudy(py::module_& m) {
   py::class_<StudyResult>(m, "StudyResult", "The result of a scene's run (RunStudy).")
-      RO(StudyResult, columns, "") RO(StudyResult, events, "") RO(StudyResult, jumps, "")
-          RO(StudyResult, contact_events, "") RO(StudyResult, impacts, "")
-              RO(StudyResult, final_contacts, "") RO(StudyResult, t_end, "")
-                  RO(StudyResult, stopped_by_event, "") RO(StudyResult, final_bodies, "")
-                      RO(StudyResult, final_reactions, "") RO(StudyResult, ledger, "")
-                          RO(StudyResult, integrator, "") RO(StudyResult, stats, "")
-                              RO(StudyResult, notes, "") RO(StudyResult, warnings, "")
-                                  RO(StudyResult, certificate, "")
-                                      .def_property_readonly("data", [](const StudyResult& r) {
-                                        return TableArray(r.rows, r.columns.size());
-                                      });
+      RO(StudyResult, columns, "") RO(StudyResult, events, "") RO(StudyResult, jumps, "") RO(
+          StudyResult, contact_events, "") RO(StudyResult, impacts, "")
+          RO(StudyResult, final_contacts, "") RO(StudyResult, t_end, "") RO(
+              StudyResult, stopped_by_event, "") RO(StudyResult, final_bodies, "")
+              RO(StudyResult, final_reactions, "") RO(StudyResult, ledger, "") RO(
+                  StudyResult, integrator, "") RO(StudyResult, stats, "") RO(StudyResult, notes, "")
+                  RO(StudyResult, warnings, "") RO(StudyResult, certificate, "")
+                      .def_property_readonly(
+                          "data",
+                          [](const StudyResult& r) { return TableArray(r.rows, r.columns.size()); })
+                      .def("to_csv", &SimulationCsv, "The CSV file `chasles simulate` writes");
+  m.def(
+      "_run_json",
+      [](const PyScene& s, const StudyResult& r, const std::string& csv_path) {
+        const ReportHeader header{s.scene.file, s.scene.title, s.scene.planar, s.scene.warnings};
+        return DumpJson(SimulationJson(r, header, csv_path), "the JSON summary");
+      },
+      py::arg("scene"), py::arg("result"), py::arg("csv_path"));
   m.def(
       "_run_study",
       [](const PyScene& s, double until, std::int64_t max_steps, std::int64_t max_rows,
