@@ -1,15 +1,18 @@
 #include <cmath>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "chasles/io/json_report.h"
+#include "chasles/scene/mass_report.h"
 #include "chasles/scene/mesh_file.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/units.h"
 #include "commands.h"
-#include "report_guard.h"
 #include "scene_args.h"
 
 namespace chasles::cli {
@@ -18,10 +21,6 @@ namespace {
 
 constexpr Dimension kDensityDim{-3, 1, 0};
 constexpr Dimension kInertiaDim{2, 1, 0};
-
-const char* const kConvention =
-    "Inertia matrices are the tensor [I]: moments on the diagonal, products as tensor entries "
-    "Ixy = -∫xy dm, so that H = [I] ω.";
 
 /// What the report shows, in the units asked for.
 struct Presenter {
@@ -73,18 +72,6 @@ void MatrixText(std::string& out, const Mat3& m, const std::string& indent) {
   }
 }
 
-nlohmann::json VecJson(const Vec3& v) {
-  return {v.x(), v.y(), v.z()};
-}
-nlohmann::json MatJson(const Mat3& m) {
-  return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
-}
-
-struct ReportPoint {
-  std::string name;
-  Vec3 p_BoP_B;
-};
-
 struct Frame {
   bool given = false;
   std::string text;
@@ -92,11 +79,12 @@ struct Frame {
 };
 
 std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& args,
-                       const std::vector<ReportPoint>& extra, const Frame& frame) {
+                       const std::vector<MassReportPoint>& extra, const Frame& frame) {
   std::string out;
   out += fmt::format("chasles mass: {}\n", scene.title.empty() ? scene.file : scene.title);
   if (!scene.title.empty()) out += fmt::format("Scene: {}\n", scene.file);
-  out += fmt::format("Units: length {}, mass {}, inertia {}.\n{}\n", P.L, P.M, P.I, kConvention);
+  out += fmt::format("Units: length {}, mass {}, inertia {}.\n{}\n", P.L, P.M, P.I,
+                     kInertiaConvention);
   for (const SceneBody& body : scene.bodies) {
     const MassProperties& mp = body.mass_properties;
     const double Lscale =
@@ -165,10 +153,7 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
                        VecText(P.Lengths(k_body), P.Length(k_scale)), P.L);
     out += fmt::format("                      about the principal axes: {} {}\n",
                        VecText(P.Lengths(k_principal), P.Length(k_scale)), P.L);
-    std::vector<ReportPoint> points;
-    for (const auto& p : body.points) points.push_back({p.name, p.p_BoP_B});
-    points.insert(points.end(), extra.begin(), extra.end());
-    for (const ReportPoint& p : points) {
+    for (const MassReportPoint& p : MassReportPoints(body, extra)) {
       out += fmt::format("  Inertia about point {} = {} {}, body axes [{}]\n", p.name,
                          VecText(P.Lengths(p.p_BoP_B), P.Length(Lscale)), P.L, P.I);
       MatrixText(out, P.InertiaMatrix(mp.CalcInertiaAbout(p.p_BoP_B).matrix()), "    ");
@@ -180,72 +165,6 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
   }
   for (const auto& w : scene.warnings) out += fmt::format("\nwarning: {}\n", w);
   return out;
-}
-
-nlohmann::json JsonReport(const Scene& scene, const Presenter& P,
-                          const std::vector<ReportPoint>& extra, const Frame& frame) {
-  nlohmann::json j;
-  j["scene"] = scene.file;
-  j["title"] = scene.title;
-  j["units"] = {{"length", P.L}, {"mass", P.M}, {"inertia", P.I}, {"density", P.rho}};
-  j["inertia_convention"] = kConvention;
-  j["parameters"] = nlohmann::json::object();
-  for (const auto& [name, q] : scene.parameters) {
-    j["parameters"][name] = {{"value_si", q.value}, {"dimension", q.dim.Formula()}};
-  }
-  j["bodies"] = nlohmann::json::array();
-  for (const SceneBody& body : scene.bodies) {
-    const MassProperties& mp = body.mass_properties;
-    const RotationalInertia& Icm = mp.I_BBcm_B();
-    const PrincipalAxes pa = Icm.CalcPrincipalAxes();
-    nlohmann::json b;
-    b["name"] = body.name;
-    b["mass"] = P.Mass(mp.mass());
-    b["center_of_mass"] = VecJson(P.Lengths(mp.p_BoBcm_B()));
-    b["inertia_about_center_of_mass"] = MatJson(P.InertiaMatrix(Icm.matrix()));
-    b["principal_moments"] =
-        VecJson(Vec3(P.Inertia(pa.moments[0]), P.Inertia(pa.moments[1]), P.Inertia(pa.moments[2])));
-    b["principal_axes"] = {VecJson(pa.axes.col(0)), VecJson(pa.axes.col(1)),
-                           VecJson(pa.axes.col(2))};
-    b["radii_of_gyration"] = {
-        {"body_axes", VecJson(P.Lengths(Icm.CalcRadiiOfGyration(mp.mass())))},
-        {"principal_axes",
-         VecJson(P.Lengths(RotationalInertia(pa.moments[0], pa.moments[1], pa.moments[2])
-                               .CalcRadiiOfGyration(mp.mass())))}};
-    b["points"] = nlohmann::json::array();
-    std::vector<ReportPoint> points;
-    for (const auto& p : body.points) points.push_back({p.name, p.p_BoP_B});
-    points.insert(points.end(), extra.begin(), extra.end());
-    for (const ReportPoint& p : points) {
-      b["points"].push_back(
-          {{"name", p.name},
-           {"position", VecJson(P.Lengths(p.p_BoP_B))},
-           {"inertia", MatJson(P.InertiaMatrix(mp.CalcInertiaAbout(p.p_BoP_B).matrix()))}});
-    }
-    if (frame.given) {
-      b["frame"] = {{"rotation_body_from_frame", MatJson(frame.R_BF)},
-                    {"inertia_about_center_of_mass",
-                     MatJson(P.InertiaMatrix(Icm.ReExpressedIn(frame.R_BF.transpose()).matrix()))}};
-    }
-    b["parts"] = nlohmann::json::array();
-    for (const ScenePart& p : body.parts) {
-      const MassProperties& q = p.mass_properties;
-      nlohmann::json pj = {
-          {"name", p.name},
-          {"shape", p.shape},
-          {"subtractive", p.subtractive},
-          {"mass_source", p.mass_source},
-          {"mass", P.Mass(q.mass())},
-          {"center_of_mass", VecJson(P.Lengths(q.p_BoBcm_B()))},
-          {"inertia_about_center_of_mass", MatJson(P.InertiaMatrix(q.I_BBcm_B().matrix()))},
-          {"notes", p.notes}};
-      if (std::isfinite(p.density)) pj["density"] = P.units.FromSI(p.density, kDensityDim);
-      b["parts"].push_back(pj);
-    }
-    j["bodies"].push_back(b);
-  }
-  j["warnings"] = scene.warnings;
-  return j;
 }
 
 }  // namespace
@@ -309,13 +228,10 @@ namespace {
 /// The inertia about a point P (parallel-axis theorem, eqs. 8.24-8.29: I_P = I_cm + m (d² 1 -
 /// d dᵀ), d from the centre of mass to P) overflows when m d² passes the largest double; say
 /// so by name rather than print inf and nan.
-void CheckPointInertias(const Scene& scene, const std::vector<ReportPoint>& extra) {
+void CheckPointInertias(const Scene& scene, const std::vector<MassReportPoint>& extra) {
   for (const SceneBody& body : scene.bodies) {
     const MassProperties& mp = body.mass_properties;
-    std::vector<ReportPoint> points;
-    for (const auto& p : body.points) points.push_back({p.name, p.p_BoP_B});
-    points.insert(points.end(), extra.begin(), extra.end());
-    for (const ReportPoint& p : points) {
+    for (const MassReportPoint& p : MassReportPoints(body, extra)) {
       const Mat3 I = mp.CalcInertiaAbout(p.p_BoP_B).matrix();
       if (I.allFinite()) continue;
       const double d = (p.p_BoP_B - mp.p_BoBcm_B()).stableNorm();
@@ -356,7 +272,7 @@ Scene LoadMassInput(const MassArgs& args) {
 int RunMass(const MassArgs& args) {
   const Scene scene = LoadMassInput(args);
   const Presenter P(UnitSystem::Parse(args.units.empty() ? scene.units : args.units));
-  std::vector<ReportPoint> extra;
+  std::vector<MassReportPoint> extra;
   for (const std::string& a : args.about) {
     extra.push_back({"'" + a + "'", ReadPointOption(scene, a, "--about")});
   }
@@ -368,7 +284,8 @@ int RunMass(const MassArgs& args) {
     frame.R_BF = ReadRotationOption(scene, args.frame, "--frame");
   }
   // Every value of either report is in the JSON form: checked there first, by name.
-  const nlohmann::json j = JsonReport(scene, P, extra, frame);
+  const nlohmann::json j = MassReportJson(
+      scene, P.units, extra, frame.given ? std::optional<Mat3>(frame.R_BF) : std::nullopt);
   const std::string report = args.format == "json" ? DumpJson(j, "the mass report")
                                                    : (CheckFiniteJson(j, "the mass report"),
                                                       TextReport(scene, P, args, extra, frame));

@@ -5,193 +5,24 @@
 #include <string>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "certificate_report.h"
 #include "chasles/error.h"
+#include "chasles/io/json_report.h"
 #include "chasles/io/output_set.h"
+#include "chasles/io/simulation_report.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
 #include "chasles/scene/units.h"
 #include "commands.h"
 #include "progress.h"
-#include "report_guard.h"
 #include "run_limits.h"
 #include "scene_args.h"
 
 namespace chasles::cli {
 
 namespace {
-
-nlohmann::json VecJson(const Vec3& v) {
-  return {v.x(), v.y(), v.z()};
-}
-
-std::string CsvName(const std::string& name) {
-  if (name.find_first_of(",\"\n") == std::string::npos) return name;
-  std::string q = "\"";
-  for (char c : name) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::string Csv(const StudyResult& r) {
-  std::string out;
-  for (size_t i = 0; i < r.columns.size(); ++i) {
-    out += (i ? "," : "") + CsvName(r.columns[i]);
-  }
-  out += '\n';
-  for (const auto& row : r.rows) {
-    for (size_t i = 0; i < row.size(); ++i) {
-      // Shortest text that reads back as the same double.
-      if (i) out += ',';
-      out += fmt::format("{}", row[i]);
-    }
-    out += '\n';
-  }
-  return out;
-}
-
-/// Bodies, reactions and contact points at one instant (SI, world frame).
-nlohmann::json SnapshotJson(const Scene& scene, const StudySnapshot& snap) {
-  nlohmann::json bodies = nlohmann::json::array();
-  for (const auto& b : snap.bodies) {
-    const Eigen::Vector4d q = QuatToWxyz(b.q_WB);
-    bodies.push_back({{"name", b.name},
-                      {"mass", b.mass},
-                      {"center_of_mass", VecJson(b.p_WBcm)},
-                      {"origin", VecJson(b.p_WBo)},
-                      {"quaternion", {q[0], q[1], q[2], q[3]}},
-                      {"velocity", VecJson(b.v_WBcm_W)},
-                      {"angular_velocity", VecJson(b.w_WB_W)},
-                      {"angular_velocity_body", VecJson(b.w_WB_B)}});
-    if (scene.planar) {
-      // The planar state (x, y of the centre of mass, θ continuous from the initial one).
-      bodies.back()["planar"] = {{"x", b.p_WBcm.x()},    {"y", b.p_WBcm.y()},
-                                 {"theta", b.theta},     {"vx", b.v_WBcm_W.x()},
-                                 {"vy", b.v_WBcm_W.y()}, {"omega", b.w_WB_W.z()}};
-    }
-  }
-  nlohmann::json reactions = nlohmann::json::array();
-  for (const auto& x : snap.reactions) {
-    reactions.push_back({{"name", x.name},
-                         {"kind", x.kind},
-                         {"point", VecJson(x.p_WJ)},
-                         {"force", VecJson(x.F_Jc_W)},
-                         {"moment", VecJson(x.M_Jc_W)},
-                         {"force_body", VecJson(x.F_Jc_B)},
-                         {"moment_body", VecJson(x.M_Jc_B)},
-                         {"power", x.power}});
-    if (scene.planar) {
-      reactions.back()["planar"] = {
-          {"Fx", x.F_Jc_W.x()}, {"Fy", x.F_Jc_W.y()}, {"Mz", x.M_Jc_W.z()}};
-    }
-  }
-  nlohmann::json contacts = nlohmann::json::array();
-  for (const auto& c : snap.contacts) {
-    contacts.push_back({{"point", c.point},
-                        {"mode", c.mode},
-                        {"normal_force", c.normal_force},
-                        {"friction_force", VecJson(c.friction_force_W)},
-                        {"slip_velocity", VecJson(c.slip_velocity_W)},
-                        {"gap", c.gap},
-                        {"friction_work", c.friction_work},
-                        {"rolling_work", c.rolling_work},
-                        {"impact_work", c.impact_work}});
-  }
-  nlohmann::json j = {{"bodies", bodies}, {"reactions", reactions}};
-  if (!snap.contacts.empty()) j["contacts"] = contacts;
-  return j;
-}
-
-nlohmann::json Json(const Scene& scene, const StudyResult& r, const std::string& csv_path) {
-  nlohmann::json j;
-  j["scene"] = scene.file;
-  j["title"] = scene.title;
-  j["units"] = "SI";
-  j["planar"] = scene.planar;
-  j["csv"] = csv_path;
-  j["columns"] = r.columns;
-  j["t_end"] = r.t_end;
-  j["stopped_by_event"] = r.stopped_by_event;
-  j["events"] = nlohmann::json::array();
-  for (const auto& e : r.events) {
-    j["events"].push_back({{"name", e.name},
-                           {"t", e.t},
-                           {"stopped", e.stopped},
-                           {"state", SnapshotJson(scene, e.snapshot)}});
-  }
-  j["jumps"] = nlohmann::json::array();
-  for (const auto& x : r.jumps) {
-    j["jumps"].push_back({{"kind", x.kind},
-                          {"description", x.description},
-                          {"t", x.t},
-                          {"energy_before", x.energy_before},
-                          {"energy_after", x.energy_after},
-                          {"energy_change", x.energy_after - x.energy_before},
-                          {"velocity_after", VecJson(x.v_after_W)},
-                          {"angular_velocity_after", VecJson(x.w_after_W)}});
-  }
-  j["final"] = SnapshotJson(scene, {r.final_bodies, r.final_reactions, r.final_contacts});
-  j["final"]["t"] = r.t_end;
-  j["contact_events"] = nlohmann::json::array();
-  for (const auto& e : r.contact_events) {
-    j["contact_events"].push_back({{"t", e.t},
-                                   {"point", e.point},
-                                   {"contact", e.contact},
-                                   {"from", e.from},
-                                   {"to", e.to},
-                                   {"reason", e.reason}});
-  }
-  j["impacts"] = nlohmann::json::array();
-  for (const auto& x : r.impacts) {
-    j["impacts"].push_back({{"t", x.t},
-                            {"point", x.point},
-                            {"approach_speed", x.approach_speed},
-                            {"normal_impulse", x.normal_impulse},
-                            {"energy_lost", x.energy_lost},
-                            {"accumulation", x.accumulation},
-                            {"jam", x.jam},
-                            {"restitution_law", x.restitution_law}});
-    if (x.frictionless_fallback) j["impacts"].back()["frictionless_fallback"] = true;
-    if (x.accumulation) j["impacts"].back()["rest_time"] = x.rest_time;
-  }
-  const StudyLedger& L = r.ledger;
-  nlohmann::json work = nlohmann::json::object();
-  for (const auto& [name, w] : L.work_by_force) work[name] = w;
-  nlohmann::json constraint_work = nlohmann::json::object();
-  for (const auto& [name, w] : L.work_by_constraint) constraint_work[name] = w;
-  j["ledger"] = {{"kinetic_translational", L.kinetic_translational},
-                 {"kinetic_rotational", L.kinetic_rotational},
-                 {"potential", L.potential},
-                 {"energy", L.energy},
-                 {"energy_initial", L.energy_initial},
-                 {"work_nonconservative", L.work_nonconservative},
-                 {"work_by_force", work},
-                 {"work_by_constraint", constraint_work},
-                 {"friction_work", L.friction_work},
-                 {"rolling_work", L.rolling_work},
-                 {"impact_work", L.impact_work},
-                 {"dissipated", L.dissipated},
-                 {"jumps", L.jumps},
-                 {"residual", L.residual},
-                 {"energy_scale", L.energy_scale},
-                 {"relative_residual", L.energy_scale > 0 ? L.residual / L.energy_scale : 0.0},
-                 {"linear_momentum", VecJson(L.linear_momentum_W)},
-                 {"angular_momentum_cm", VecJson(L.angular_momentum_Scm_W)},
-                 {"angular_momentum_origin", VecJson(L.angular_momentum_Wo_W)}};
-  j["integrator"] = {{"name", r.integrator},
-                     {"steps", r.stats.steps},
-                     {"rejected_steps", r.stats.rejected_steps},
-                     {"function_evaluations", r.stats.function_evaluations}};
-  j["notes"] = r.notes;
-  std::vector<std::string> warnings = scene.warnings;
-  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-  for (const std::string& w : r.certificate.FailureMessages()) warnings.push_back(w);
-  j["warnings"] = warnings;
-  j["checks"] = CertificateJson(r.certificate);
-  return j;
-}
 
 // Values of the text report in the units asked for (the scene's own by default). Adding 0.0
 // turns a negative zero (a zero force times -1) into the 0 a reader expects.
@@ -254,13 +85,13 @@ constexpr Dimension kRateDim{0, 0, -1};
 constexpr Dimension kEnergyDim{2, 1, -2};
 constexpr Dimension kMomentumDim{1, 1, -1};
 constexpr Dimension kAngularMomentumDim{2, 1, -1};
+constexpr Dimension kForceDim{1, 1, -2};
+constexpr Dimension kMomentDim{2, 1, -2};
 
 /// The state at an event, concisely: per body position, velocity and angular velocity (world
 /// frame), per reaction force and moment, per contact point mode, N and friction.
 std::string SnapshotText(const Scene& scene, const StudySnapshot& snap, const Show& show,
                          const ReportScales& k) {
-  constexpr Dimension kForceDim{1, 1, -2};
-  constexpr Dimension kMomentDim{2, 1, -2};
   std::string out;
   for (size_t i = 0; i < snap.bodies.size(); ++i) {
     const auto& b = snap.bodies[i];
@@ -292,108 +123,111 @@ std::string SnapshotText(const Scene& scene, const StudySnapshot& snap, const Sh
   return out;
 }
 
-std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& units,
-                 const std::string& csv_path, const std::string& json_path) {
-  const Show show{units};
-  const auto time = [&](double t) { return show(t, kTimeDim); };
-  // Energy and torque share a dimension; in SI the energy's own name is the joule.
-  const bool joules = units.FormatUnit(kEnergyDim) == "N*m";
-  const auto energy = [&](double e) {
+/// How the sections of the text report print times and energies. Energy and torque share a
+/// dimension; in SI the energy's own name is the joule.
+struct TextUnits {
+  Show show;
+  bool joules;
+  explicit TextUnits(const UnitSystem& units)
+      : show{units}, joules(units.FormatUnit(kEnergyDim) == "N*m") {}
+  std::string Time(double t) const { return show(t, kTimeDim); }
+  std::string Energy(double e) const {
     return joules ? fmt::format("{:.9g} J", Finite(e, "an energy of the report"))
                   : show(e, kEnergyDim);
-  };
+  }
+};
+
+/// Items first to last, or, past head + tail + 1 of them, the first `head`, a line saying how
+/// many more the JSON summary has (`what`: "event", "change", "impact"), and the last `tail`:
+/// a long run can record thousands.
+template <typename T, typename F>
+std::string Abridged(const std::vector<T>& items, size_t head, size_t tail, const char* what,
+                     F line) {
   std::string out;
-  out += fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
-                     scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
-  out +=
-      fmt::format("Simulated to t = {}{} (report in {} units; CSV and JSON in SI)\n", time(r.t_end),
-                  r.stopped_by_event ? ", stopped by an event" : "", units.spec());
-  if (!r.events.empty()) {
-    out += "\nEvents\n";
-    // A long run can record thousands: show the first and the last few, the JSON has all.
-    constexpr size_t kHead = 10, kTail = 3;
-    const size_t n = r.events.size();
-    for (size_t i = 0; i < n; ++i) {
-      if (n > kHead + kTail + 1 && i == kHead) {
-        out +=
-            fmt::format("  ... {} more (every event is in the JSON summary)\n", n - kHead - kTail);
-        i = n - kTail - 1;
-        continue;
-      }
-      const auto& e = r.events[i];
-      out += fmt::format("  {:<24} t = {}{}\n", e.name, show(e.t, kTimeDim),
-                         e.stopped ? "  (stop)" : "");
-      out += SnapshotText(scene, e.snapshot, show, CalcReportScales(r));
+  const size_t n = items.size();
+  for (size_t i = 0; i < n; ++i) {
+    if (n > head + tail + 1 && i == head) {
+      out +=
+          fmt::format("  ... {} more (every {} is in the JSON summary)\n", n - head - tail, what);
+      i = n - tail - 1;
+      continue;
     }
+    out += line(items[i]);
   }
-  if (!r.jumps.empty()) {
-    out += "\nImpulses and impacts\n";
-    for (const auto& x : r.jumps) {
-      out += fmt::format("  t = {}: {}; energy {} -> {} (change {})\n", time(x.t), x.description,
-                         energy(x.energy_before), energy(x.energy_after),
-                         energy(x.energy_after - x.energy_before));
-      out += fmt::format("    afterwards: v = {}, w = {}\n", show(x.v_after_W, kVelocityDim),
-                         show(x.w_after_W, kRateDim, Angular::kYes));
-    }
+  return out;
+}
+
+std::string EventsText(const Scene& scene, const StudyResult& r, const Show& show) {
+  if (r.events.empty()) return "";
+  return "\nEvents\n" + Abridged(r.events, 10, 3, "event", [&](const StudyEvent& e) {
+           return fmt::format("  {:<24} t = {}{}\n", e.name, show(e.t, kTimeDim),
+                              e.stopped ? "  (stop)" : "") +
+                  SnapshotText(scene, e.snapshot, show, CalcReportScales(r));
+         });
+}
+
+std::string JumpsText(const StudyResult& r, const TextUnits& u) {
+  if (r.jumps.empty()) return "";
+  std::string out = "\nImpulses and impacts\n";
+  for (const auto& x : r.jumps) {
+    out += fmt::format("  t = {}: {}; energy {} -> {} (change {})\n", u.Time(x.t), x.description,
+                       u.Energy(x.energy_before), u.Energy(x.energy_after),
+                       u.Energy(x.energy_after - x.energy_before));
+    out += fmt::format("    afterwards: v = {}, w = {}\n", u.show(x.v_after_W, kVelocityDim),
+                       u.show(x.w_after_W, kRateDim, Angular::kYes));
   }
-  if (!r.contact_events.empty()) {
-    out += "\nContact modes (time, contact point: from -> to, why)\n";
-    constexpr size_t kHead = 20, kTail = 5;
-    const size_t n = r.contact_events.size();
-    for (size_t i = 0; i < n; ++i) {
-      if (n > kHead + kTail + 1 && i == kHead) {
-        out +=
-            fmt::format("  ... {} more (every change is in the JSON summary)\n", n - kHead - kTail);
-        i = n - kTail - 1;
-        continue;
-      }
-      const auto& e = r.contact_events[i];
-      if (e.from == e.to) {
-        out += fmt::format("  t = {}  {}: {} ({})\n", time(e.t), e.point, e.to, e.reason);
-      } else {
-        out += fmt::format("  t = {}  {}: {} -> {} ({})\n", time(e.t), e.point, e.from, e.to,
-                           e.reason);
-      }
-    }
+  return out;
+}
+
+std::string ContactEventsText(const StudyResult& r, const TextUnits& u) {
+  if (r.contact_events.empty()) return "";
+  return "\nContact modes (time, contact point: from -> to, why)\n" +
+         Abridged(r.contact_events, 20, 5, "change", [&](const StudyContactEvent& e) {
+           if (e.from == e.to) {
+             return fmt::format("  t = {}  {}: {} ({})\n", u.Time(e.t), e.point, e.to, e.reason);
+           }
+           return fmt::format("  t = {}  {}: {} -> {} ({})\n", u.Time(e.t), e.point, e.from, e.to,
+                              e.reason);
+         });
+}
+
+std::string ImpactText(const StudyImpact& x, const TextUnits& u) {
+  std::string out =
+      fmt::format("  t = {}  {}: approach speed {}, energy lost {}{}\n", u.Time(x.t), x.point,
+                  u.show(x.approach_speed, kVelocityDim), u.Energy(x.energy_lost),
+                  x.jam ? "" : fmt::format(" ({} restitution)", x.restitution_law));
+  if (x.jam) {
+    out +=
+        "    a jam: the slip had no consistent contact forces (Painlevé) and was stopped "
+        "by this impulse (see the warnings)\n";
   }
-  if (!r.impacts.empty()) {
-    out += fmt::format("\nImpacts at contacts: {}\n", r.impacts.size());
-    constexpr size_t kHead = 10, kTail = 3;
-    const size_t n = r.impacts.size();
-    for (size_t i = 0; i < n; ++i) {
-      if (n > kHead + kTail + 1 && i == kHead) {
-        out +=
-            fmt::format("  ... {} more (every impact is in the JSON summary)\n", n - kHead - kTail);
-        i = n - kTail - 1;
-        continue;
-      }
-      const auto& x = r.impacts[i];
-      out += fmt::format("  t = {}  {}: approach speed {}, energy lost {}{}\n", time(x.t), x.point,
-                         show(x.approach_speed, kVelocityDim), energy(x.energy_lost),
-                         x.jam ? "" : fmt::format(" ({} restitution)", x.restitution_law));
-      if (x.jam) {
-        out +=
-            "    a jam: the slip had no consistent contact forces (Painlevé) and was stopped "
-            "by this impulse (see the warnings)\n";
-      }
-      if (x.frictionless_fallback) {
-        out +=
-            "    warning: the impulse with friction would have raised the kinetic energy (the "
-            "restitution law allows it); the frictionless impulse was used\n";
-      }
-      if (x.accumulation) {
-        out += fmt::format(
-            "    the bounces shrink by the ratio e: this impact is made plastic; the remaining "
-            "bounces (their sum) end at t = {}\n",
-            time(x.rest_time));
-      }
-    }
+  if (x.frictionless_fallback) {
+    out +=
+        "    warning: the impulse with friction would have raised the kinetic energy (the "
+        "restitution law allows it); the frictionless impulse was used\n";
   }
-  out += scene.planar
-             ? "\nFinal state (planar, x-y plane: centre of mass, angle and rates about z)\n"
-             : "\nFinal state (centre of mass, velocity and angular velocity in the world "
-               "frame)\n";
-  const ReportScales k = CalcReportScales(r);
+  if (x.accumulation) {
+    out += fmt::format(
+        "    the bounces shrink by the ratio e: this impact is made plastic; the remaining "
+        "bounces (their sum) end at t = {}\n",
+        u.Time(x.rest_time));
+  }
+  return out;
+}
+
+std::string ImpactsText(const StudyResult& r, const TextUnits& u) {
+  if (r.impacts.empty()) return "";
+  return fmt::format("\nImpacts at contacts: {}\n", r.impacts.size()) +
+         Abridged(r.impacts, 10, 3, "impact",
+                  [&](const StudyImpact& x) { return ImpactText(x, u); });
+}
+
+std::string FinalStateText(const Scene& scene, const StudyResult& r, const Show& show,
+                           const ReportScales& k) {
+  std::string out =
+      scene.planar
+          ? "\nFinal state (planar, x-y plane: centre of mass, angle and rates about z)\n"
+          : "\nFinal state (centre of mass, velocity and angular velocity in the world frame)\n";
   for (size_t i = 0; i < r.final_bodies.size(); ++i) {
     const auto& b = r.final_bodies[i];
     const double v_s = k.body_speed[i], w_s = k.body_rate[i];
@@ -424,64 +258,95 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
         show(b.v_WBcm_W, kVelocityDim, Angular::kNo, v_s),
         show(b.w_WB_W, kRateDim, Angular::kYes, w_s), show(b.w_WB_B, kRateDim, Angular::kYes, w_s));
   }
-  if (!r.final_reactions.empty()) {
-    out += "\nReactions at the end (on the child at the joint point, world frame)\n";
-    constexpr Dimension kForceDim{1, 1, -2};
-    constexpr Dimension kMomentDim{2, 1, -2};
-    for (const auto& x : r.final_reactions) {
-      if (scene.planar) {
-        out += fmt::format("  {} ({}) at [{}, {}]\n    force [{}, {}]\n    moment {}\n", x.name,
-                           x.kind, show(x.p_WJ.x(), kLength), show(x.p_WJ.y(), kLength),
-                           show(x.F_Jc_W.x(), kForceDim), show(x.F_Jc_W.y(), kForceDim),
-                           show(x.M_Jc_W.z(), kMomentDim));
-        continue;
-      }
-      out += fmt::format("  {} ({}) at {}\n    force {}\n    moment {}\n", x.name, x.kind,
-                         show(x.p_WJ, kLength, Angular::kNo, k.length),
-                         show(x.F_Jc_W, kForceDim, Angular::kNo, k.force),
-                         show(x.M_Jc_W, kMomentDim, Angular::kNo, k.moment));
+  return out;
+}
+
+std::string EndReactionsText(const Scene& scene, const StudyResult& r, const Show& show,
+                             const ReportScales& k) {
+  if (r.final_reactions.empty()) return "";
+  std::string out = "\nReactions at the end (on the child at the joint point, world frame)\n";
+  for (const auto& x : r.final_reactions) {
+    if (scene.planar) {
+      out += fmt::format("  {} ({}) at [{}, {}]\n    force [{}, {}]\n    moment {}\n", x.name,
+                         x.kind, show(x.p_WJ.x(), kLength), show(x.p_WJ.y(), kLength),
+                         show(x.F_Jc_W.x(), kForceDim), show(x.F_Jc_W.y(), kForceDim),
+                         show(x.M_Jc_W.z(), kMomentDim));
+      continue;
     }
+    out += fmt::format("  {} ({}) at {}\n    force {}\n    moment {}\n", x.name, x.kind,
+                       show(x.p_WJ, kLength, Angular::kNo, k.length),
+                       show(x.F_Jc_W, kForceDim, Angular::kNo, k.force),
+                       show(x.M_Jc_W, kMomentDim, Angular::kNo, k.moment));
   }
-  if (!r.final_contacts.empty()) {
-    out += "\nContacts at the end (forces on the body, world frame)\n";
-    constexpr Dimension kForceDim{1, 1, -2};
-    for (const auto& c : r.final_contacts) {
-      out += fmt::format("  {}: {}, N = {}, friction {}, slip {}, gap {}\n", c.point, c.mode,
-                         show(c.normal_force, kForceDim),
-                         show(c.friction_force_W, kForceDim, Angular::kNo, k.force),
-                         show(c.slip_velocity_W, kVelocityDim, Angular::kNo, k.speed),
-                         show(std::abs(c.gap) <= 1e-12 * k.length ? 0.0 : c.gap, kLength));
-    }
+  return out;
+}
+
+std::string EndContactsText(const StudyResult& r, const Show& show, const ReportScales& k) {
+  if (r.final_contacts.empty()) return "";
+  std::string out = "\nContacts at the end (forces on the body, world frame)\n";
+  for (const auto& c : r.final_contacts) {
+    out += fmt::format("  {}: {}, N = {}, friction {}, slip {}, gap {}\n", c.point, c.mode,
+                       show(c.normal_force, kForceDim),
+                       show(c.friction_force_W, kForceDim, Angular::kNo, k.force),
+                       show(c.slip_velocity_W, kVelocityDim, Angular::kNo, k.speed),
+                       show(std::abs(c.gap) <= 1e-12 * k.length ? 0.0 : c.gap, kLength));
   }
+  return out;
+}
+
+std::string LedgerText(const StudyResult& r, const TextUnits& u) {
   const StudyLedger& L = r.ledger;
-  out += "\nLedger (from t = 0)\n";
+  std::string out = "\nLedger (from t = 0)\n";
   out += fmt::format("  kinetic energy      {} (translation {}, rotation {})\n",
-                     energy(L.kinetic_translational + L.kinetic_rotational),
-                     energy(L.kinetic_translational), energy(L.kinetic_rotational));
-  out += fmt::format("  potential energy    {}\n", energy(L.potential));
-  out += fmt::format("  mechanical energy   {} (initially {})\n", energy(L.energy),
-                     energy(L.energy_initial));
-  out += fmt::format("  non-conservative work {}\n", energy(L.work_nonconservative));
-  for (const auto& [name, w] : L.work_by_force)
-    out += fmt::format("    {:<20} {}\n", name, energy(w));
-  for (const auto& [name, w] : L.work_by_constraint)
-    out += fmt::format("    {:<20} {} (constraint)\n", name, energy(w));
-  if (!r.final_contacts.empty()) {
-    out += fmt::format("    {:<20} {}\n", "friction (sliding)", energy(L.friction_work));
-    if (L.rolling_work != 0) {
-      out += fmt::format("    {:<20} {}\n", "rolling resistance", energy(L.rolling_work));
-    }
-    out += fmt::format("    {:<20} {}\n", "impacts", energy(L.impact_work));
+                     u.Energy(L.kinetic_translational + L.kinetic_rotational),
+                     u.Energy(L.kinetic_translational), u.Energy(L.kinetic_rotational));
+  out += fmt::format("  potential energy    {}\n", u.Energy(L.potential));
+  out += fmt::format("  mechanical energy   {} (initially {})\n", u.Energy(L.energy),
+                     u.Energy(L.energy_initial));
+  out += fmt::format("  non-conservative work {}\n", u.Energy(L.work_nonconservative));
+  for (const auto& [name, w] : L.work_by_force) {
+    out += fmt::format("    {:<20} {}\n", name, u.Energy(w));
   }
-  out += fmt::format("  dissipated          {}\n", energy(L.dissipated));
-  if (!r.jumps.empty()) out += fmt::format("  impulses and impacts {}\n", energy(L.jumps));
+  for (const auto& [name, w] : L.work_by_constraint) {
+    out += fmt::format("    {:<20} {} (constraint)\n", name, u.Energy(w));
+  }
+  if (!r.final_contacts.empty()) {
+    out += fmt::format("    {:<20} {}\n", "friction (sliding)", u.Energy(L.friction_work));
+    if (L.rolling_work != 0) {
+      out += fmt::format("    {:<20} {}\n", "rolling resistance", u.Energy(L.rolling_work));
+    }
+    out += fmt::format("    {:<20} {}\n", "impacts", u.Energy(L.impact_work));
+  }
+  out += fmt::format("  dissipated          {}\n", u.Energy(L.dissipated));
+  if (!r.jumps.empty()) out += fmt::format("  impulses and impacts {}\n", u.Energy(L.jumps));
   out += fmt::format(
-      "  balance residual    {} ({:.2e} of the energy scale {})\n", energy(L.residual),
-      L.energy_scale > 0 ? std::abs(L.residual) / L.energy_scale : 0.0, energy(L.energy_scale));
-  out += fmt::format("  linear momentum     {}\n", show(L.linear_momentum_W, kMomentumDim));
+      "  balance residual    {} ({:.2e} of the energy scale {})\n", u.Energy(L.residual),
+      L.energy_scale > 0 ? std::abs(L.residual) / L.energy_scale : 0.0, u.Energy(L.energy_scale));
+  out += fmt::format("  linear momentum     {}\n", u.show(L.linear_momentum_W, kMomentumDim));
   out += fmt::format("  angular momentum    {} about the centre of mass, {} about the origin\n",
-                     show(L.angular_momentum_Scm_W, kAngularMomentumDim),
-                     show(L.angular_momentum_Wo_W, kAngularMomentumDim));
+                     u.show(L.angular_momentum_Scm_W, kAngularMomentumDim),
+                     u.show(L.angular_momentum_Wo_W, kAngularMomentumDim));
+  return out;
+}
+
+std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& units,
+                 const std::string& csv_path, const std::string& json_path) {
+  const TextUnits u(units);
+  const ReportScales k = CalcReportScales(r);
+  std::string out;
+  out += fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
+                     scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
+  out +=
+      fmt::format("Simulated to t = {}{} (report in {} units; CSV and JSON in SI)\n",
+                  u.Time(r.t_end), r.stopped_by_event ? ", stopped by an event" : "", units.spec());
+  out += EventsText(scene, r, u.show);
+  out += JumpsText(r, u);
+  out += ContactEventsText(r, u);
+  out += ImpactsText(r, u);
+  out += FinalStateText(scene, r, u.show, k);
+  out += EndReactionsText(scene, r, u.show, k);
+  out += EndContactsText(r, u.show, k);
+  out += LedgerText(r, u);
   out += fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n", r.integrator,
                      r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
   for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);
@@ -563,12 +428,15 @@ int RunSimulate(const SimulateArgs& args) {
   const std::string json_path = (dir / (stem + ".json")).string();
   // Every output is made and checked (no non-finite number) before any file appears; then
   // the CSV and the JSON appear together or not at all (output_set.h).
-  CheckFiniteTable(r.columns, r.rows, "the CSV time series");
-  const std::string json_text = DumpJson(Json(scene, r, csv_path), "the JSON summary");
+  const std::string csv_text = SimulationCsv(r);
+  const std::string json_text = DumpJson(
+      SimulationJson(r, ReportHeader{scene.file, scene.title, scene.planar, scene.warnings},
+                     csv_path),
+      "the JSON summary");
   const std::string report =
       args.format == "json" ? json_text : Text(scene, r, units, csv_path, json_path);
   OutputSet files;
-  files.Add(csv_path, Csv(r));
+  files.Add(csv_path, csv_text);
   files.Add(json_path, json_text);
   files.Commit();
   Emit("", report);

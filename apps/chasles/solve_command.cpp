@@ -18,6 +18,8 @@
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/error.h"
+#include "chasles/io/json_report.h"
+#include "chasles/io/solve_json.h"
 #include "chasles/model/model.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
@@ -25,96 +27,11 @@
 #include "chasles/scene/study.h"
 #include "commands.h"
 #include "progress.h"
-#include "report_guard.h"
 #include "scene_args.h"
 
 namespace chasles::cli {
 
 namespace {
-
-nlohmann::json VecJson(const Vec3& v) {
-  return {v.x(), v.y(), v.z()};
-}
-
-nlohmann::json Json(const SceneSolution& s) {
-  nlohmann::json j;
-  j["t"] = s.solution.t;
-  j["bodies"] = nlohmann::json::array();
-  for (const auto& b : s.solution.bodies) {
-    j["bodies"].push_back({{"name", b.name},
-                           {"acceleration", VecJson(b.a_WBcm_W)},
-                           {"angular_acceleration", VecJson(b.alpha_WB_W)},
-                           {"angular_acceleration_body", VecJson(b.alpha_WB_B)}});
-    if (s.planar) {
-      // Chapter eqs. 8.41-8.43: a_x, a_y of the centre of mass and alpha about z.
-      j["bodies"].back()["planar"] = {
-          {"a_x", b.a_WBcm_W.x()}, {"a_y", b.a_WBcm_W.y()}, {"alpha", b.alpha_WB_W.z()}};
-    }
-  }
-  j["reactions"] = nlohmann::json::array();
-  for (size_t i = 0; i < s.solution.reactions.size(); ++i) {
-    const ReactionReport& r = s.solution.reactions[i];
-    nlohmann::json x = {{"name", r.name},
-                        {"kind", r.kind},
-                        {"point", VecJson(r.p_WJ)},
-                        {"force", VecJson(r.F_Jc_W)},
-                        {"moment", VecJson(r.M_Jc_W)},
-                        {"force_body", VecJson(r.F_Jc_B)},
-                        {"moment_body", VecJson(r.M_Jc_B)},
-                        {"multipliers", r.lambda},
-                        {"power", r.power}};
-    if (s.planar) {
-      x["planar"] = {{"Fx", r.F_Jc_W.x()}, {"Fy", r.F_Jc_W.y()}, {"Mz", r.M_Jc_W.z()}};
-    }
-    if (r.is_rolling) {
-      x["normal_force"] = r.normal_force;
-      x["friction"] = VecJson(r.friction_W);
-      x["friction_magnitude"] = r.friction_W.norm();
-      x["friction_needed"] = r.friction_needed;
-      if (!std::isnan(s.mu_s[i])) {
-        x["mu_s"] = s.mu_s[i];
-        x["rolls"] = r.friction_needed <= s.mu_s[i];
-      }
-    }
-    j["reactions"].push_back(x);
-  }
-  const auto motion = [](const SceneMotion& m) {
-    return nlohmann::json{
-        {"kinetic_energy", m.T_trans + m.T_rot},  {"kinetic_translational", m.T_trans},
-        {"kinetic_rotational", m.T_rot},          {"linear_momentum", VecJson(m.P)},
-        {"angular_momentum_cm", VecJson(m.H_cm)}, {"angular_momentum_origin", VecJson(m.H_O)}};
-  };
-  j["energy_momentum"] = {{"bodies", nlohmann::json::array()}, {"total", motion(s.total)}};
-  for (const SceneMotion& m : s.motion) {
-    nlohmann::json b = motion(m);
-    b["name"] = m.name;
-    j["energy_momentum"]["bodies"].push_back(b);
-  }
-  j["contacts"] = nlohmann::json::array();
-  for (const SceneContactReport& c : s.contacts) {
-    j["contacts"].push_back({{"point", c.point},
-                             {"contact", c.contact},
-                             {"mode", ContactModeName(c.out.mode)},
-                             {"regime", c.Regime()},
-                             {"normal_force", c.out.normal_force},
-                             {"friction", VecJson(c.out.friction_force_W)},
-                             {"friction_magnitude", c.out.friction_force_W.norm()},
-                             {"friction_needed", c.FrictionRatio()},
-                             {"mu_s", c.mu_s},
-                             {"mu_k", c.mu_k},
-                             {"slip_velocity", VecJson(c.out.slip_velocity_W)},
-                             {"gap", c.out.gap},
-                             {"point_W", VecJson(c.out.p_WC)},
-                             {"normal_W", VecJson(c.out.n_W)}});
-  }
-  j["planar"] = s.planar;
-  j["rank"] = s.solution.rank;
-  j["rows"] = s.solution.num_rows;
-  j["warnings"] = s.solution.warnings;
-  for (const std::string& w : s.certificate.FailureMessages()) j["warnings"].push_back(w);
-  j["checks"] = CertificateJson(s.certificate);
-  return j;
-}
 
 // A vector for the report: components that are round-off against the vector's own size
 // (1e-12 of it) show as 0, so a student reads [2.83, 0, -1.63], not [2.83, -2.5e-32, -1.63].
@@ -137,14 +54,14 @@ struct ReportScales {
   double a = 0.0, alpha = 0.0, force = 0.0, moment = 0.0, p = 0.0, h = 0.0;
 };
 
-ReportScales CalcScales(const SceneSolution& s) {
+ReportScales CalcScales(const SolveReport& s) {
   ReportScales k;
   for (const auto& b : s.solution.bodies) {
     k.a = std::max(k.a, b.a_WBcm_W.stableNorm());
     k.alpha = std::max(k.alpha, b.alpha_WB_W.stableNorm());
   }
   double arm = 0.0;
-  for (const SceneContactReport& c : s.contacts) {
+  for (const ContactPointReport& c : s.contacts) {
     k.force = std::max({k.force, c.out.normal_force, c.out.friction_force_W.stableNorm()});
   }
   for (const auto& r : s.solution.reactions) {
@@ -154,14 +71,14 @@ ReportScales CalcScales(const SceneSolution& s) {
   }
   // A moment's round-off comes from forces times lever arms as well as from other moments.
   k.moment = std::max(k.moment, k.force * arm);
-  for (const SceneMotion& m : s.motion) {
+  for (const BodyMotionReport& m : s.motion) {
     k.p = std::max(k.p, m.P.stableNorm());
     k.h = std::max({k.h, m.H_cm.stableNorm(), m.H_O.stableNorm()});
   }
   return k;
 }
 
-std::string Text(const Scene& scene, const SceneSolution& s) {
+std::string Text(const Scene& scene, const SolveReport& s) {
   std::string out = fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
                                 scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
   out += fmt::format("Instantaneous solution at the initial state (SI, {})\n\nAccelerations\n",
@@ -206,7 +123,7 @@ std::string Text(const Scene& scene, const SceneSolution& s) {
   if (!s.contacts.empty()) {
     out += "\nContacts (modes chosen at the initial state; friction on the body)\n";
   }
-  for (const SceneContactReport& c : s.contacts) {
+  for (const ContactPointReport& c : s.contacts) {
     out += fmt::format("  {}: {} ({})\n", c.point, c.Regime(), ContactModeName(c.out.mode));
     if (c.out.mode == ContactMode::kSeparated) {
       out += fmt::format("    gap {:.9g} m\n", c.out.gap);
@@ -223,7 +140,7 @@ std::string Text(const Scene& scene, const SceneSolution& s) {
     }
   }
   out += "\nKinetic energy and momenta (H about each centre of mass, H_O about the origin)\n";
-  const auto motion = [&out, &k, &s](const SceneMotion& m, const char* cm) {
+  const auto motion = [&out, &k, &s](const BodyMotionReport& m, const char* cm) {
     out += fmt::format("    T {:.9g} J (translational {:.9g} J, rotational {:.9g} J)\n",
                        m.T_trans + m.T_rot, m.T_trans, m.T_rot);
     if (s.planar) {
@@ -238,7 +155,7 @@ std::string Text(const Scene& scene, const SceneSolution& s) {
     out += fmt::format("    H   {} kg*m^2/s (about {})\n", V(m.H_cm, k.h), cm);
     out += fmt::format("    H_O {} kg*m^2/s\n", V(m.H_O, k.h));
   };
-  for (const SceneMotion& m : s.motion) {
+  for (const BodyMotionReport& m : s.motion) {
     out += fmt::format("  {}\n", m.name);
     motion(m, "its centre of mass");
   }
@@ -294,9 +211,9 @@ int RunSolve(const SolveArgs& args) {
   }
   if (args.sweep.empty()) {
     const Scene scene = LoadScene(args.scene);
-    const SceneSolution s = SolveScene(scene);
+    const SolveReport s = SolveScene(scene);
     // Every value of either report is in the JSON form: checked there first, by name.
-    const nlohmann::json j = Json(s);
+    const nlohmann::json j = SolveJson(s);
     Emit("", args.format == "json" ? DumpJson(j, "the solve report")
                                    : (CheckFiniteJson(j, "the solve report"), Text(scene, s)));
     return args.strict && !s.certificate.passed() ? kExitCheckFailed : 0;
@@ -317,31 +234,16 @@ int RunSolve(const SolveArgs& args) {
   SweepOptions options;
   options.progress = [&progress](int k, int count) { progress.Update(k, count); };
   // A failed check of one value: a warning on standard error (the table stays a table).
-  options.on_solution = [&sweep](double value, const SceneSolution& s) {
+  options.on_solution = [&sweep](double value, const SolveReport& s) {
     for (const std::string& w : s.certificate.FailureMessages()) {
       std::fprintf(stderr, "warning: %s = %.12g: %s\n", sweep.name.c_str(), value, w.c_str());
     }
   };
   const SweepTable table =
       SolveSweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), sweep, options);
-  const std::vector<std::string>& names = table.columns;
-  const std::vector<std::vector<double>>& rows = table.rows;
-  const bool failed = table.failed;
-  CheckFiniteTable(names, rows, "the sweep table");
-  if (args.format == "json") {
-    nlohmann::json j = {{"parameter", sweep.name}, {"columns", names}, {"rows", rows}};
-    Emit("", DumpJson(j, "the sweep table"));
-    return args.strict && failed ? kExitCheckFailed : 0;
-  }
-  std::string out = fmt::format("# {} swept (SI values); one row per value\n", sweep.name);
-  for (size_t c = 0; c < names.size(); ++c) out += fmt::format("{}{}", c ? "," : "", names[c]);
-  out += "\n";
-  for (const auto& row : rows) {
-    for (size_t c = 0; c < row.size(); ++c) out += fmt::format("{}{:.12g}", c ? "," : "", row[c]);
-    out += "\n";
-  }
-  Emit("", out);
-  return args.strict && failed ? kExitCheckFailed : 0;
+  CheckFiniteTable(table.columns, table.rows, "the sweep table");
+  Emit("", args.format == "json" ? DumpJson(SweepJson(table), "the sweep table") : SweepCsv(table));
+  return args.strict && table.failed ? kExitCheckFailed : 0;
 }
 
 }  // namespace chasles::cli

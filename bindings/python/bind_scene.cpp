@@ -4,6 +4,9 @@
 #include <utility>
 
 #include "bindings.h"
+#include "chasles/io/json_report.h"
+#include "chasles/io/simulation_report.h"
+#include "chasles/io/solve_json.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/mesh_file.h"
 #include "chasles/scene/scene.h"
@@ -172,51 +175,54 @@ void BindCertificate(py::module_& m) {
 }
 
 void BindSolve(py::module_& m) {
-  py::class_<SceneMotion>(m, "Motion", "Kinetic energy and momenta of a body (or all).")
-      RO(SceneMotion, name, "") RO(SceneMotion, T_trans, "[J]") RO(SceneMotion, T_rot, "[J]")
-          RO(SceneMotion, P, "Linear momentum [kg*m/s]")
-              RO(SceneMotion, H_cm, "Angular momentum about the centre of mass [kg*m^2/s]")
-                  RO(SceneMotion, H_O, "Angular momentum about the origin [kg*m^2/s]")
+  py::class_<BodyMotionReport>(m, "Motion", "Kinetic energy and momenta of a body (or all).")
+      RO(BodyMotionReport, name, "") RO(BodyMotionReport, T_trans, "[J]")
+          RO(BodyMotionReport, T_rot, "[J]") RO(BodyMotionReport, P, "Linear momentum [kg*m/s]")
+              RO(BodyMotionReport, H_cm, "Angular momentum about the centre of mass [kg*m^2/s]")
+                  RO(BodyMotionReport, H_O, "Angular momentum about the origin [kg*m^2/s]")
                       .def_property_readonly(
-                          "T", [](const SceneMotion& x) { return x.T_trans + x.T_rot; },
+                          "T", [](const BodyMotionReport& x) { return x.T_trans + x.T_rot; },
                           "Kinetic energy [J]");
-  py::class_<SceneContactReport>(m, "ContactReport", "A contact point at the solved state.")
-      RO(SceneContactReport, point, "") RO(SceneContactReport, contact, "") RO(
-          SceneContactReport, mu_s, "") RO(SceneContactReport, mu_k, "")
-          .def_property_readonly("mode", [](const SceneContactReport& c) { return c.out.mode; })
-          .def_property_readonly("regime", &SceneContactReport::Regime,
+  py::class_<ContactPointReport>(m, "ContactReport", "A contact point at the solved state.")
+      RO(ContactPointReport, point, "") RO(ContactPointReport, contact, "") RO(
+          ContactPointReport, mu_s, "") RO(ContactPointReport, mu_k, "")
+          .def_property_readonly("mode", [](const ContactPointReport& c) { return c.out.mode; })
+          .def_property_readonly("regime", &ContactPointReport::Regime,
                                  "'rolls', 'sticks', 'slides' or 'separated'")
           .def_property_readonly("normal_force",
-                                 [](const SceneContactReport& c) { return c.out.normal_force; })
+                                 [](const ContactPointReport& c) { return c.out.normal_force; })
           .def_property_readonly("friction",
-                                 [](const SceneContactReport& c) { return c.out.friction_force_W; })
+                                 [](const ContactPointReport& c) { return c.out.friction_force_W; })
           .def_property_readonly("slip_velocity",
-                                 [](const SceneContactReport& c) { return c.out.slip_velocity_W; })
-          .def_property_readonly("gap", [](const SceneContactReport& c) { return c.out.gap; })
-          .def_property_readonly("point_W", [](const SceneContactReport& c) { return c.out.p_WC; })
-          .def_property_readonly("normal_W", [](const SceneContactReport& c) { return c.out.n_W; })
-          .def_property_readonly("friction_needed", &SceneContactReport::FrictionRatio,
+                                 [](const ContactPointReport& c) { return c.out.slip_velocity_W; })
+          .def_property_readonly("gap", [](const ContactPointReport& c) { return c.out.gap; })
+          .def_property_readonly("point_W", [](const ContactPointReport& c) { return c.out.p_WC; })
+          .def_property_readonly("normal_W", [](const ContactPointReport& c) { return c.out.n_W; })
+          .def_property_readonly("friction_needed", &ContactPointReport::FrictionRatio,
                                  "|f|/N (sticking: compare with mu_s)");
-  py::class_<SceneSolution>(m, "Solution", "What `chasles solve` reports for a scene.")
-      .def_property_readonly("t", [](const SceneSolution& s) { return s.solution.t; })
-      .def_property_readonly("bodies", [](const SceneSolution& s) { return s.solution.bodies; })
-      .def_property_readonly("reactions",
-                             [](const SceneSolution& s) { return s.solution.reactions; })
-          RO(SceneSolution, mu_s, "mu_s of each reaction (NaN unless rolling with mu_s)")
-              RO(SceneSolution, motion, "Per body") RO(SceneSolution, total, "All bodies")
-                  RO(SceneSolution, planar, "") RO(SceneSolution, contacts, "")
-                      RO(SceneSolution, certificate, "")
-      .def_property_readonly("rank", [](const SceneSolution& s) { return s.solution.rank; })
-      .def_property_readonly("num_rows", [](const SceneSolution& s) { return s.solution.num_rows; })
+  py::class_<SolveReport>(m, "Solution", "What `chasles solve` reports for a scene.")
+      .def_property_readonly("t", [](const SolveReport& s) { return s.solution.t; })
+      .def_property_readonly("bodies", [](const SolveReport& s) { return s.solution.bodies; })
+      .def_property_readonly("reactions", [](const SolveReport& s) { return s.solution.reactions; })
+          RO(SolveReport, mu_s, "mu_s of each reaction (NaN unless rolling with mu_s)")
+              RO(SolveReport, motion, "Per body") RO(SolveReport, total, "All bodies")
+                  RO(SolveReport, planar, "") RO(SolveReport, contacts, "")
+                      RO(SolveReport, certificate, "")
+      .def_property_readonly("rank", [](const SolveReport& s) { return s.solution.rank; })
+      .def_property_readonly("num_rows", [](const SolveReport& s) { return s.solution.num_rows; })
       .def_property_readonly(
           "warnings",
-          [](const SceneSolution& s) {
+          [](const SolveReport& s) {
             std::vector<std::string> w = s.solution.warnings;
             for (const std::string& f : s.certificate.FailureMessages()) w.push_back(f);
             return w;
           },
           "Warnings and failed checks")
-      .def("_row", [](const SceneSolution& s) {
+      .def(
+          "to_json",
+          [](const SolveReport& s) { return DumpJson(SolveJson(s), "the solve report"); },
+          "The JSON report, as `chasles solve --format json` prints it")
+      .def("_row", [](const SolveReport& s) {
         std::vector<std::string> names, units;
         std::vector<double> values;
         SolutionTableRow(s, &names, &units, &values);
@@ -233,7 +239,12 @@ void BindSolve(py::module_& m) {
       RO(SweepTable, columns, "") RO(SweepTable, units, "") RO(SweepTable, warnings, "")
           RO(SweepTable, failed, "")
               .def_property_readonly(
-                  "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); });
+                  "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); })
+              .def(
+                  "to_json",
+                  [](const SweepTable& t) { return DumpJson(SweepJson(t), "the sweep table"); },
+                  "The table as `chasles solve --sweep ... --format json` prints it")
+              .def("to_csv", &SweepCsv, "The table as `chasles solve --sweep ...` prints it");
   m.def(
       "_sweep",
       [](const PyScene& s, const std::string& name, const std::string& start,
@@ -313,17 +324,24 @@ void BindStudyParts(py::module_& m) {
 
 void BindStudy(py::module_& m) {
   py::class_<StudyResult>(m, "StudyResult", "The result of a scene's run (RunStudy).")
-      RO(StudyResult, columns, "") RO(StudyResult, events, "") RO(StudyResult, jumps, "")
-          RO(StudyResult, contact_events, "") RO(StudyResult, impacts, "")
-              RO(StudyResult, final_contacts, "") RO(StudyResult, t_end, "")
-                  RO(StudyResult, stopped_by_event, "") RO(StudyResult, final_bodies, "")
-                      RO(StudyResult, final_reactions, "") RO(StudyResult, ledger, "")
-                          RO(StudyResult, integrator, "") RO(StudyResult, stats, "")
-                              RO(StudyResult, notes, "") RO(StudyResult, warnings, "")
-                                  RO(StudyResult, certificate, "")
-                                      .def_property_readonly("data", [](const StudyResult& r) {
-                                        return TableArray(r.rows, r.columns.size());
-                                      });
+      RO(StudyResult, columns, "") RO(StudyResult, events, "") RO(StudyResult, jumps, "") RO(
+          StudyResult, contact_events, "") RO(StudyResult, impacts, "")
+          RO(StudyResult, final_contacts, "") RO(StudyResult, t_end, "") RO(
+              StudyResult, stopped_by_event, "") RO(StudyResult, final_bodies, "")
+              RO(StudyResult, final_reactions, "") RO(StudyResult, ledger, "") RO(
+                  StudyResult, integrator, "") RO(StudyResult, stats, "") RO(StudyResult, notes, "")
+                  RO(StudyResult, warnings, "") RO(StudyResult, certificate, "")
+                      .def_property_readonly(
+                          "data",
+                          [](const StudyResult& r) { return TableArray(r.rows, r.columns.size()); })
+                      .def("to_csv", &SimulationCsv, "The CSV file `chasles simulate` writes");
+  m.def(
+      "_run_json",
+      [](const PyScene& s, const StudyResult& r, const std::string& csv_path) {
+        const ReportHeader header{s.scene.file, s.scene.title, s.scene.planar, s.scene.warnings};
+        return DumpJson(SimulationJson(r, header, csv_path), "the JSON summary");
+      },
+      py::arg("scene"), py::arg("result"), py::arg("csv_path"));
   m.def(
       "_run_study",
       [](const PyScene& s, double until, std::int64_t max_steps, std::int64_t max_rows,

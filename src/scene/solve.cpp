@@ -12,6 +12,7 @@
 
 #include "chasles/analysis/momentum.h"
 #include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/contact_solve.h"
 #include "chasles/error.h"
 #include "chasles/model/data.h"
 #include "chasles/model/model.h"
@@ -21,29 +22,9 @@
 
 namespace chasles {
 
-std::string SceneContactReport::Regime() const {
-  switch (out.mode) {
-    case ContactMode::kSticking:
-      return round ? "rolls" : "sticks";
-    case ContactMode::kSliding:
-      return "slides";
-    case ContactMode::kSeparated:
-      break;
-  }
-  return "separated";
-}
-
-double SceneContactReport::FrictionRatio() const {
-  if (out.mode == ContactMode::kSticking) return out.friction_needed;
-  if (out.mode == ContactMode::kSliding && out.normal_force > 0) {
-    return out.friction_force_W.norm() / out.normal_force;
-  }
-  return 0.0;
-}
-
 namespace {
 
-void FillMuS(const Scene& scene, SceneSolution& s) {
+void FillMuS(const Scene& scene, SolveReport& s) {
   const SceneConstraints& c = scene.dynamics.constraints;
   // A planar scene's plane constraints follow its own in Model order; their out-of-plane
   // reactions are not physical for a planar body and are not reported.
@@ -52,12 +33,13 @@ void FillMuS(const Scene& scene, SceneSolution& s) {
   for (size_t i = 0; i < c.rolling.size(); ++i) s.mu_s[c.joints.size() + i] = c.rolling[i].mu_s;
 }
 
-std::vector<SceneMotion> CalcMotion(const Model& model, const State& state, SceneMotion* total) {
-  std::vector<SceneMotion> out;
+std::vector<BodyMotionReport> CalcMotion(const Model& model, const State& state,
+                                         BodyMotionReport* total) {
+  std::vector<BodyMotionReport> out;
   for (int b = 0; b < model.num_bodies(); ++b) {
     const BodyState& x = state.bodies[static_cast<size_t>(b)];
     const Body& body = model.body(b);
-    SceneMotion m;
+    BodyMotionReport m;
     m.name = body.name();
     m.T_trans = 0.5 * body.mass() * x.v_WBcm_W.squaredNorm();
     m.T_rot = 0.5 * x.w_WB_B.dot(body.I_BBcm_B() * x.w_WB_B);
@@ -74,15 +56,15 @@ std::vector<SceneMotion> CalcMotion(const Model& model, const State& state, Scen
   return out;
 }
 
-std::vector<SceneContactReport> ContactReports(const Scene& scene, const Model& model,
+std::vector<ContactPointReport> ContactReports(const Scene& scene, const Model& model,
                                                const State& state) {
-  std::vector<SceneContactReport> reports;
+  std::vector<ContactPointReport> reports;
   const std::vector<ContactPointOutput> outputs = CalcContactOutputs(model, state);
   const std::vector<std::string> labels = scene.dynamics.contacts.point_labels();
   for (int p = 0; p < model.num_contact_points(); ++p) {
     const int c = model.contact_of_point(p);
     const Contact& con = model.contact(c);
-    SceneContactReport r;
+    ContactPointReport r;
     r.point = labels[static_cast<size_t>(p)];
     r.contact = con.name();
     r.out = outputs[static_cast<size_t>(p)];
@@ -96,7 +78,7 @@ std::vector<SceneContactReport> ContactReports(const Scene& scene, const Model& 
 
 }  // namespace
 
-SceneSolution SolveScene(const Scene& scene) {
+SolveReport SolveScene(const Scene& scene) {
   try {
     // The end time plays no part in an instantaneous solve.
     Study study = BuildStudy(scene, 1.0);
@@ -112,7 +94,7 @@ SceneSolution SolveScene(const Scene& scene) {
       state.contacts.assign(static_cast<size_t>(model.num_contact_points()), ContactPointState{});
       SelectContactModes(model, state);
     }
-    SceneSolution s;
+    SolveReport s;
     s.solution = SolveInstantaneous(model, state);
     s.planar = scene.planar;
     // Initial values the projection changed (`project_initial: true`) come first.
@@ -127,63 +109,6 @@ SceneSolution SolveScene(const Scene& scene) {
     return s;
   } catch (const InputError& e) {
     ThrowAtSceneEntry(scene, e);
-  }
-}
-
-void SolutionTableRow(const SceneSolution& s, std::vector<std::string>* names,
-                      std::vector<std::string>* units, std::vector<double>* values) {
-  auto add = [&](const std::string& name, const char* unit, double v) {
-    if (names) names->push_back(name);
-    if (units) units->push_back(unit);
-    if (values) values->push_back(v);
-  };
-  const char* xyz[] = {"x", "y", "z"};
-  if (s.planar) {
-    for (const auto& b : s.solution.bodies) {
-      add(b.name + "_ax", "m/s^2", b.a_WBcm_W.x());
-      add(b.name + "_ay", "m/s^2", b.a_WBcm_W.y());
-      add(b.name + "_alpha", "rad/s^2", b.alpha_WB_W.z());
-    }
-  }
-  for (const auto& b : s.solution.bodies) {
-    if (s.planar) break;
-    for (int k = 0; k < 3; ++k) add(b.name + "_a" + xyz[k], "m/s^2", b.a_WBcm_W[k]);
-    for (int k = 0; k < 3; ++k) add(b.name + "_al" + xyz[k], "rad/s^2", b.alpha_WB_W[k]);
-  }
-  // Energy and momenta as the simulation's ledger columns names them: per body with the body's
-  // name first, H about its centre of mass, HO about the origin; then the totals (H about the
-  // system's centre of mass).
-  const auto motion = [&](const std::string& prefix, const SceneMotion& m) {
-    add(prefix + "T_trans", "J", m.T_trans);
-    add(prefix + "T_rot", "J", m.T_rot);
-    add(prefix + "T", "J", m.T_trans + m.T_rot);
-    for (int k = 0; k < 3; ++k) add(prefix + "P" + xyz[k], "kg*m/s", m.P[k]);
-    for (int k = 0; k < 3; ++k) add(prefix + "H" + xyz[k], "kg*m^2/s", m.H_cm[k]);
-    for (int k = 0; k < 3; ++k) add(prefix + "HO" + xyz[k], "kg*m^2/s", m.H_O[k]);
-  };
-  for (const SceneMotion& m : s.motion) motion(m.name + "_", m);
-  motion("", s.total);
-  for (const auto& r : s.solution.reactions) {
-    if (s.planar) {
-      add(r.name + "_Fx", "N", r.F_Jc_W.x());
-      add(r.name + "_Fy", "N", r.F_Jc_W.y());
-      add(r.name + "_Mz", "N*m", r.M_Jc_W.z());
-    }
-    for (int k = 0; k < 3 && !s.planar; ++k) add(r.name + "_F" + xyz[k], "N", r.F_Jc_W[k]);
-    for (int k = 0; k < 3 && !s.planar; ++k) add(r.name + "_M" + xyz[k], "N*m", r.M_Jc_W[k]);
-    if (r.is_rolling) {
-      add(r.name + "_N", "N", r.normal_force);
-      add(r.name + "_f", "N", r.friction_W.norm());
-      add(r.name + "_f_over_N", "", r.friction_needed);
-    }
-  }
-  // Contact points as the simulation's contact columns name them; mode 0 separated, 1 sliding,
-  // 2 sticking.
-  for (const SceneContactReport& c : s.contacts) {
-    add(c.point + "_mode", "", static_cast<double>(c.out.mode));
-    add(c.point + "_N", "N", c.out.normal_force);
-    add(c.point + "_f", "N", c.out.friction_force_W.norm());
-    add(c.point + "_f_over_N", "", c.FrictionRatio());
   }
 }
 
@@ -252,7 +177,7 @@ SweepTable SolveSweep(const std::function<Scene(const SceneOptions&)>& load,
     for (const auto& [n, q] : scene.parameters) {
       if (n == spec.name) value = q.value;
     }
-    const SceneSolution s = SolveScene(scene);
+    const SolveReport s = SolveScene(scene);
     if (sweep_options.on_solution) sweep_options.on_solution(value, s);
     for (const std::string& w : s.certificate.FailureMessages()) {
       table.warnings.push_back(fmt::format("{} = {:.12g}: {}", spec.name, value, w));

@@ -22,6 +22,7 @@ from ._chasles import (  # noqa: F401
     Solution,
     SimulationOptions,
     SimulationResult,
+    _run_json,
     _run_study,
     _simulate,
     _solve,
@@ -90,16 +91,27 @@ class Run(Table):
     Attributes besides the table: ``events``, ``jumps``, ``contact_events`` (the contact
     timeline), ``impacts``, ``final_contacts``, ``final_bodies``, ``final_reactions``,
     ``ledger``, ``certificate``, ``notes``, ``warnings``, ``t_end``, ``stopped_by_event``,
-    ``integrator``, ``stats``; ``result`` is the StudyResult itself.
+    ``integrator``, ``stats``; ``result`` is the StudyResult itself. ``to_csv()`` and
+    ``to_json()`` give the two files ``chasles simulate`` writes.
     """
 
     def __init__(self, scene, result):
         super().__init__(result.columns, study_column_units(scene, result.columns), result.data)
         self.result = result
+        self._scene = scene
         for name in ("events", "jumps", "contact_events", "impacts", "final_contacts",
                      "final_bodies", "final_reactions", "ledger", "certificate", "notes",
                      "warnings", "t_end", "stopped_by_event", "integrator", "stats"):
             setattr(self, name, getattr(result, name))
+
+    def to_csv(self):
+        """The CSV time series, as ``chasles simulate`` writes it (text)."""
+        return self.result.to_csv()
+
+    def to_json(self, csv_path=""):
+        """The JSON summary, as ``chasles simulate`` writes it (text); ``csv_path`` is
+        recorded under ``"csv"``."""
+        return _run_json(self._scene, self.result, csv_path)
 
     def event(self, name):
         """The first event called ``name`` (KeyError when none fired)."""
@@ -113,13 +125,23 @@ class Sweep(Table):
     """A sweep's table (``sweep``): the parameter's SI value first, then the solve's columns.
 
     ``parameter`` names the swept parameter; ``warnings`` lists the failed checks.
+    ``to_csv()`` and ``to_json()`` give the table as ``chasles solve --sweep`` prints it.
     """
 
     def __init__(self, table):
         super().__init__(table.columns, table.units, table.data)
+        self._table = table
         self.parameter = table.parameter
         self.warnings = list(table.warnings)
         self.failed = table.failed
+
+    def to_csv(self):
+        """The table as ``chasles solve --sweep`` prints it (text)."""
+        return self._table.to_csv()
+
+    def to_json(self):
+        """The table as ``chasles solve --sweep ... --format json`` prints it (text)."""
+        return self._table.to_json()
 
 
 def _quantity(value):

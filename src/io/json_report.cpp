@@ -1,4 +1,6 @@
-#include "report_guard.h"
+// The finite-number guard of every report (chasles/io/json_report.h).
+
+#include "chasles/io/json_report.h"
 
 #include <cmath>
 
@@ -6,7 +8,7 @@
 
 #include "chasles/error.h"
 
-namespace chasles::cli {
+namespace chasles {
 
 namespace {
 
@@ -93,4 +95,12 @@ double Finite(double v, std::string_view what) {
   return v;
 }
 
-}  // namespace chasles::cli
+nlohmann::json VecJson(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+nlohmann::json MatJson(const Mat3& m) {
+  return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
+}
+
+}  // namespace chasles

@@ -1,0 +1,97 @@
+#pragma once
+/// @file
+/// What an instantaneous solve reports (chapter 8.2-8.3; `chasles solve`, the scene layer's
+/// SolveScene): every body's acceleration and every constraint's reaction, the kinetic energy
+/// and momenta, each contact point in its chosen mode, and the solve's checks of its own
+/// answer; and the table a sweep of one parameter makes of such reports. Plain results: no
+/// scene, no units (SI throughout). The io layer writes them as the program's JSON and CSV
+/// (chasles/io/solve_json.h).
+
+#include <string>
+#include <vector>
+
+#include "chasles/analysis/certificate.h"
+#include "chasles/analysis/instantaneous.h"
+#include "chasles/math/types.h"
+#include "chasles/model/contact.h"
+#include "chasles/model/data.h"
+
+namespace chasles {
+
+/// Kinetic energy and momenta of one body (or, for the total, of all of them) at the solved
+/// state (eqs. 8.115, 8.116): T = ½ m v² + ½ ωᵀ I ω, p = m v, H about the centre of mass
+/// I ω and about the world origin H_O = H + p_cm × m v.
+struct BodyMotionReport {
+  /// Body name ("" for the total).
+  std::string name;
+  /// Translational and rotational kinetic energy [J].
+  double T_trans = 0.0, T_rot = 0.0;
+  /// Linear momentum in W [kg·m/s].
+  Vec3 P = Vec3::Zero();
+  /// Angular momentum about the body's own centre of mass (for the total, about the system's
+  /// centre of mass), in W [kg·m²/s].
+  Vec3 H_cm = Vec3::Zero();
+  /// Angular momentum about the world origin, in W [kg·m²/s].
+  Vec3 H_O = Vec3::Zero();
+};
+
+/// One contact point at the solved state, in the mode SelectContactModes chose.
+struct ContactPointReport {
+  /// The point's name ("floor", "incline_0", "rear") and its contact's name.
+  std::string point, contact;
+  /// Mode, normal and friction force, slip velocity, gap, point and normal in W.
+  ContactPointOutput out;
+  /// The contact's coefficients of static and kinetic friction.
+  double mu_s = 0.0, mu_k = 0.0;
+  /// A round feature (sphere, rim): a sticking one rolls without slipping.
+  bool round = false;
+  /// "rolls" or "sticks" (sticking), "slides", "separated".
+  std::string Regime() const;
+  /// |f| / N: the friction a sticking point needs (compare with mu_s), mu_k when sliding, 0
+  /// when separated.
+  double FrictionRatio() const;
+};
+
+/// Everything an instantaneous solve reports.
+struct SolveReport {
+  /// Accelerations, reactions (a planar scene's plane constraints left out), rank, warnings
+  /// (e.g. initial values changed by a projection onto the constraints).
+  InstantaneousSolution solution;
+  /// mu_s of each reaction (NaN when not a rolling contact with `mu_s`), in reaction order.
+  std::vector<double> mu_s;
+  /// Per body (Model order).
+  std::vector<BodyMotionReport> motion;
+  /// All bodies together.
+  BodyMotionReport total;
+  /// A planar problem: reports in x, y and about z (a_x, a_y, alpha; Fx, Fy, Mz).
+  bool planar = false;
+  /// Contact points in their chosen modes.
+  std::vector<ContactPointReport> contacts;
+  /// The solve's checks of its own answer (friction, N, gaps, residuals, Newton–Euler).
+  Certificate certificate;
+};
+
+/// One row of a sweep table: the report's values in table order, with their names and SI
+/// units ("m/s^2", "N", ...) when the pointers are given. Per body a and alpha (planar: a_x,
+/// a_y, alpha), the kinetic energy and momenta per body and in total (named as the
+/// simulation's ledger columns), per constraint F and M (planar: Fx, Fy, Mz) and for rolling
+/// N, |f| and f/N, per contact point mode (0 separated, 1 sliding, 2 sticking), N, |f|, f/N.
+void SolutionTableRow(const SolveReport& s, std::vector<std::string>* names,
+                      std::vector<std::string>* units, std::vector<double>* values);
+
+/// A sweep's result: one row per value of the swept parameter, the parameter first (SI).
+struct SweepTable {
+  /// The swept parameter's name.
+  std::string parameter;
+  /// Column names: the parameter, then SolutionTableRow's names.
+  std::vector<std::string> columns;
+  /// SI unit of each column ("" for pure numbers and angles in rad).
+  std::vector<std::string> units;
+  std::vector<std::vector<double>> rows;
+  /// Failed checks, one per failed check of one value: "theta = 0.5: ...".
+  std::vector<std::string> warnings;
+  /// True when a check failed at some value.
+  bool failed = false;
+};
+
+}  // namespace chasles

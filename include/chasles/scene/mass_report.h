@@ -1,0 +1,46 @@
+#pragma once
+/// @file
+/// The JSON report of `chasles mass`: every body's mass, centre of mass, central inertia
+/// tensor, principal moments and axes, radii of gyration, inertia about its named points (and
+/// any others asked for) and in a rotated frame, and every part's own mass properties, in the
+/// units asked for. It reads the Scene's bodies, parts and parameters (this layer); the
+/// finite-number check and the dump are the io layer's DumpJson (chasles/io/json_report.h).
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "chasles/math/types.h"
+#include "chasles/scene/scene.h"
+#include "chasles/scene/units.h"
+
+namespace chasles {
+
+/// The sign convention of every inertia matrix of the report (its "inertia_convention").
+extern const char* const kInertiaConvention;
+
+/// A point about which the report gives a body's inertia (parallel-axis theorem, eqs.
+/// 8.24-8.29).
+struct MassReportPoint {
+  /// As the report names it ("pivot", "'[0, 0, 0.5 m]'").
+  std::string name;
+  /// From the body origin, in body axes [m].
+  Vec3 p_BoP_B = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+};
+
+/// The body's own points (its `points:` entries) followed by `extra` (e.g. --about).
+std::vector<MassReportPoint> MassReportPoints(const SceneBody& body,
+                                              const std::vector<MassReportPoint>& extra);
+
+/// The report: "scene", "title", "units" (length, mass, inertia, density), "inertia_convention",
+/// "parameters" (SI value and dimension), "bodies" (each with "points" from MassReportPoints,
+/// "frame" when R_BF is given: the central inertia in frame F, R_BF its orientation in the
+/// body, and "parts"), "warnings". Values in `units`.
+nlohmann::json MassReportJson(const Scene& scene, const UnitSystem& units,
+                              const std::vector<MassReportPoint>& extra = {},
+                              const std::optional<Mat3>& R_BF = std::nullopt);
+
+}  // namespace chasles

@@ -1,0 +1,200 @@
+// The files of `chasles simulate` (chasles/io/simulation_report.h).
+
+#include "chasles/io/simulation_report.h"
+
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "chasles/io/certificate_json.h"
+#include "chasles/io/json_report.h"
+#include "chasles/math/quaternion.h"
+#include "io/internal/csv_field.h"
+
+namespace chasles {
+
+std::string SimulationCsv(const StudyResult& r) {
+  CheckFiniteTable(r.columns, r.rows, "the CSV time series");
+  std::string out;
+  for (size_t i = 0; i < r.columns.size(); ++i) {
+    if (i) out += ',';
+    out += internal::CsvField(r.columns[i]);
+  }
+  out += '\n';
+  for (const auto& row : r.rows) {
+    for (size_t i = 0; i < row.size(); ++i) {
+      // Shortest text that reads back as the same double.
+      if (i) out += ',';
+      out += fmt::format("{}", row[i]);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+nlohmann::json SnapshotJson(const StudySnapshot& snap, bool planar) {
+  nlohmann::json bodies = nlohmann::json::array();
+  for (const auto& b : snap.bodies) {
+    const Eigen::Vector4d q = QuatToWxyz(b.q_WB);
+    bodies.push_back({{"name", b.name},
+                      {"mass", b.mass},
+                      {"center_of_mass", VecJson(b.p_WBcm)},
+                      {"origin", VecJson(b.p_WBo)},
+                      {"quaternion", {q[0], q[1], q[2], q[3]}},
+                      {"velocity", VecJson(b.v_WBcm_W)},
+                      {"angular_velocity", VecJson(b.w_WB_W)},
+                      {"angular_velocity_body", VecJson(b.w_WB_B)}});
+    if (planar) {
+      // The planar state (x, y of the centre of mass, θ continuous from the initial one).
+      bodies.back()["planar"] = {{"x", b.p_WBcm.x()},    {"y", b.p_WBcm.y()},
+                                 {"theta", b.theta},     {"vx", b.v_WBcm_W.x()},
+                                 {"vy", b.v_WBcm_W.y()}, {"omega", b.w_WB_W.z()}};
+    }
+  }
+  nlohmann::json reactions = nlohmann::json::array();
+  for (const auto& x : snap.reactions) {
+    reactions.push_back({{"name", x.name},
+                         {"kind", x.kind},
+                         {"point", VecJson(x.p_WJ)},
+                         {"force", VecJson(x.F_Jc_W)},
+                         {"moment", VecJson(x.M_Jc_W)},
+                         {"force_body", VecJson(x.F_Jc_B)},
+                         {"moment_body", VecJson(x.M_Jc_B)},
+                         {"power", x.power}});
+    if (planar) {
+      reactions.back()["planar"] = {
+          {"Fx", x.F_Jc_W.x()}, {"Fy", x.F_Jc_W.y()}, {"Mz", x.M_Jc_W.z()}};
+    }
+  }
+  nlohmann::json contacts = nlohmann::json::array();
+  for (const auto& c : snap.contacts) {
+    contacts.push_back({{"point", c.point},
+                        {"mode", c.mode},
+                        {"normal_force", c.normal_force},
+                        {"friction_force", VecJson(c.friction_force_W)},
+                        {"slip_velocity", VecJson(c.slip_velocity_W)},
+                        {"gap", c.gap},
+                        {"friction_work", c.friction_work},
+                        {"rolling_work", c.rolling_work},
+                        {"impact_work", c.impact_work}});
+  }
+  nlohmann::json j = {{"bodies", bodies}, {"reactions", reactions}};
+  if (!snap.contacts.empty()) j["contacts"] = contacts;
+  return j;
+}
+
+namespace {
+
+nlohmann::json JumpsJson(const std::vector<StudyJump>& jumps) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& x : jumps) {
+    out.push_back({{"kind", x.kind},
+                   {"description", x.description},
+                   {"t", x.t},
+                   {"energy_before", x.energy_before},
+                   {"energy_after", x.energy_after},
+                   {"energy_change", x.energy_after - x.energy_before},
+                   {"velocity_after", VecJson(x.v_after_W)},
+                   {"angular_velocity_after", VecJson(x.w_after_W)}});
+  }
+  return out;
+}
+
+nlohmann::json ContactEventsJson(const std::vector<StudyContactEvent>& events) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& e : events) {
+    out.push_back({{"t", e.t},
+                   {"point", e.point},
+                   {"contact", e.contact},
+                   {"from", e.from},
+                   {"to", e.to},
+                   {"reason", e.reason}});
+  }
+  return out;
+}
+
+nlohmann::json ImpactsJson(const std::vector<StudyImpact>& impacts) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& x : impacts) {
+    out.push_back({{"t", x.t},
+                   {"point", x.point},
+                   {"approach_speed", x.approach_speed},
+                   {"normal_impulse", x.normal_impulse},
+                   {"energy_lost", x.energy_lost},
+                   {"accumulation", x.accumulation},
+                   {"jam", x.jam},
+                   {"restitution_law", x.restitution_law}});
+    if (x.frictionless_fallback) out.back()["frictionless_fallback"] = true;
+    if (x.accumulation) out.back()["rest_time"] = x.rest_time;
+  }
+  return out;
+}
+
+/// The energy/work/momentum ledger from t = 0 (chasles/analysis/study.h, StudyLedger).
+nlohmann::json LedgerJson(const StudyLedger& L) {
+  nlohmann::json work = nlohmann::json::object();
+  for (const auto& [name, w] : L.work_by_force) work[name] = w;
+  nlohmann::json constraint_work = nlohmann::json::object();
+  for (const auto& [name, w] : L.work_by_constraint) constraint_work[name] = w;
+  return {{"kinetic_translational", L.kinetic_translational},
+          {"kinetic_rotational", L.kinetic_rotational},
+          {"potential", L.potential},
+          {"energy", L.energy},
+          {"energy_initial", L.energy_initial},
+          {"work_nonconservative", L.work_nonconservative},
+          {"work_by_force", work},
+          {"work_by_constraint", constraint_work},
+          {"friction_work", L.friction_work},
+          {"rolling_work", L.rolling_work},
+          {"impact_work", L.impact_work},
+          {"dissipated", L.dissipated},
+          {"jumps", L.jumps},
+          {"residual", L.residual},
+          {"energy_scale", L.energy_scale},
+          {"relative_residual", L.energy_scale > 0 ? L.residual / L.energy_scale : 0.0},
+          {"linear_momentum", VecJson(L.linear_momentum_W)},
+          {"angular_momentum_cm", VecJson(L.angular_momentum_Scm_W)},
+          {"angular_momentum_origin", VecJson(L.angular_momentum_Wo_W)}};
+}
+
+}  // namespace
+
+nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
+                              const std::string& csv_path) {
+  nlohmann::json j;
+  j["scene"] = header.scene_file;
+  j["title"] = header.title;
+  j["units"] = "SI";
+  j["planar"] = header.planar;
+  j["csv"] = csv_path;
+  j["columns"] = r.columns;
+  j["t_end"] = r.t_end;
+  j["stopped_by_event"] = r.stopped_by_event;
+  j["events"] = nlohmann::json::array();
+  for (const auto& e : r.events) {
+    j["events"].push_back({{"name", e.name},
+                           {"t", e.t},
+                           {"stopped", e.stopped},
+                           {"state", SnapshotJson(e.snapshot, header.planar)}});
+  }
+  j["jumps"] = JumpsJson(r.jumps);
+  j["final"] = SnapshotJson({r.final_bodies, r.final_reactions, r.final_contacts}, header.planar);
+  j["final"]["t"] = r.t_end;
+  j["contact_events"] = ContactEventsJson(r.contact_events);
+  j["impacts"] = ImpactsJson(r.impacts);
+  j["ledger"] = LedgerJson(r.ledger);
+  j["integrator"] = {{"name", r.integrator},
+                     {"steps", r.stats.steps},
+                     {"rejected_steps", r.stats.rejected_steps},
+                     {"function_evaluations", r.stats.function_evaluations}};
+  j["notes"] = r.notes;
+  std::vector<std::string> warnings = header.warnings;
+  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+  for (const std::string& w : r.certificate.FailureMessages()) warnings.push_back(w);
+  j["warnings"] = warnings;
+  j["checks"] = CertificateJson(r.certificate);
+  return j;
+}
+
+}  // namespace chasles

@@ -1,0 +1,116 @@
+// What `chasles solve` prints (chasles/io/solve_json.h).
+
+#include "chasles/io/solve_json.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "chasles/io/certificate_json.h"
+#include "chasles/io/json_report.h"
+#include "chasles/model/contact.h"
+#include "io/internal/csv_field.h"
+
+namespace chasles {
+
+nlohmann::json SolveJson(const SolveReport& s) {
+  nlohmann::json j;
+  j["t"] = s.solution.t;
+  j["bodies"] = nlohmann::json::array();
+  for (const auto& b : s.solution.bodies) {
+    j["bodies"].push_back({{"name", b.name},
+                           {"acceleration", VecJson(b.a_WBcm_W)},
+                           {"angular_acceleration", VecJson(b.alpha_WB_W)},
+                           {"angular_acceleration_body", VecJson(b.alpha_WB_B)}});
+    if (s.planar) {
+      // Chapter eqs. 8.41-8.43: a_x, a_y of the centre of mass and alpha about z.
+      j["bodies"].back()["planar"] = {
+          {"a_x", b.a_WBcm_W.x()}, {"a_y", b.a_WBcm_W.y()}, {"alpha", b.alpha_WB_W.z()}};
+    }
+  }
+  j["reactions"] = nlohmann::json::array();
+  for (size_t i = 0; i < s.solution.reactions.size(); ++i) {
+    const ReactionReport& r = s.solution.reactions[i];
+    nlohmann::json x = {{"name", r.name},
+                        {"kind", r.kind},
+                        {"point", VecJson(r.p_WJ)},
+                        {"force", VecJson(r.F_Jc_W)},
+                        {"moment", VecJson(r.M_Jc_W)},
+                        {"force_body", VecJson(r.F_Jc_B)},
+                        {"moment_body", VecJson(r.M_Jc_B)},
+                        {"multipliers", r.lambda},
+                        {"power", r.power}};
+    if (s.planar) {
+      x["planar"] = {{"Fx", r.F_Jc_W.x()}, {"Fy", r.F_Jc_W.y()}, {"Mz", r.M_Jc_W.z()}};
+    }
+    if (r.is_rolling) {
+      x["normal_force"] = r.normal_force;
+      x["friction"] = VecJson(r.friction_W);
+      x["friction_magnitude"] = r.friction_W.norm();
+      x["friction_needed"] = r.friction_needed;
+      if (!std::isnan(s.mu_s[i])) {
+        x["mu_s"] = s.mu_s[i];
+        x["rolls"] = r.friction_needed <= s.mu_s[i];
+      }
+    }
+    j["reactions"].push_back(x);
+  }
+  const auto motion = [](const BodyMotionReport& m) {
+    return nlohmann::json{
+        {"kinetic_energy", m.T_trans + m.T_rot},  {"kinetic_translational", m.T_trans},
+        {"kinetic_rotational", m.T_rot},          {"linear_momentum", VecJson(m.P)},
+        {"angular_momentum_cm", VecJson(m.H_cm)}, {"angular_momentum_origin", VecJson(m.H_O)}};
+  };
+  j["energy_momentum"] = {{"bodies", nlohmann::json::array()}, {"total", motion(s.total)}};
+  for (const BodyMotionReport& m : s.motion) {
+    nlohmann::json b = motion(m);
+    b["name"] = m.name;
+    j["energy_momentum"]["bodies"].push_back(b);
+  }
+  j["contacts"] = nlohmann::json::array();
+  for (const ContactPointReport& c : s.contacts) {
+    j["contacts"].push_back({{"point", c.point},
+                             {"contact", c.contact},
+                             {"mode", ContactModeName(c.out.mode)},
+                             {"regime", c.Regime()},
+                             {"normal_force", c.out.normal_force},
+                             {"friction", VecJson(c.out.friction_force_W)},
+                             {"friction_magnitude", c.out.friction_force_W.norm()},
+                             {"friction_needed", c.FrictionRatio()},
+                             {"mu_s", c.mu_s},
+                             {"mu_k", c.mu_k},
+                             {"slip_velocity", VecJson(c.out.slip_velocity_W)},
+                             {"gap", c.out.gap},
+                             {"point_W", VecJson(c.out.p_WC)},
+                             {"normal_W", VecJson(c.out.n_W)}});
+  }
+  j["planar"] = s.planar;
+  j["rank"] = s.solution.rank;
+  j["rows"] = s.solution.num_rows;
+  j["warnings"] = s.solution.warnings;
+  for (const std::string& w : s.certificate.FailureMessages()) j["warnings"].push_back(w);
+  j["checks"] = CertificateJson(s.certificate);
+  return j;
+}
+
+nlohmann::json SweepJson(const SweepTable& table) {
+  return {{"parameter", table.parameter}, {"columns", table.columns}, {"rows", table.rows}};
+}
+
+std::string SweepCsv(const SweepTable& table) {
+  CheckFiniteTable(table.columns, table.rows, "the sweep table");
+  std::string out = fmt::format("# {} swept (SI values); one row per value\n", table.parameter);
+  for (size_t c = 0; c < table.columns.size(); ++c) {
+    out += fmt::format("{}{}", c ? "," : "", internal::CsvField(table.columns[c]));
+  }
+  out += "\n";
+  for (const auto& row : table.rows) {
+    for (size_t c = 0; c < row.size(); ++c) out += fmt::format("{}{:.12g}", c ? "," : "", row[c]);
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace chasles

@@ -1,0 +1,122 @@
+// The JSON report of `chasles mass` (chasles/scene/mass_report.h).
+
+#include "chasles/scene/mass_report.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "chasles/io/json_report.h"
+#include "chasles/mass/mass_properties.h"
+#include "chasles/mass/rotational_inertia.h"
+
+namespace chasles {
+
+const char* const kInertiaConvention =
+    "Inertia matrices are the tensor [I]: moments on the diagonal, products as tensor entries "
+    "Ixy = -∫xy dm, so that H = [I] ω.";
+
+namespace {
+
+constexpr Dimension kDensityDim{-3, 1, 0};
+constexpr Dimension kInertiaDim{2, 1, 0};
+
+/// Values in the report's units.
+struct Convert {
+  const UnitSystem& units;
+  double Mass(double v) const { return units.FromSI(v, kMass); }
+  double Inertia(double v) const { return units.FromSI(v, kInertiaDim); }
+  Vec3 Lengths(const Vec3& v) const {
+    return Vec3(units.FromSI(v.x(), kLength), units.FromSI(v.y(), kLength),
+                units.FromSI(v.z(), kLength));
+  }
+  Mat3 InertiaMatrix(const Mat3& m) const {
+    return m.unaryExpr([this](double v) { return Inertia(v); });
+  }
+};
+
+nlohmann::json PartJson(const ScenePart& p, const Convert& P) {
+  const MassProperties& q = p.mass_properties;
+  nlohmann::json pj = {
+      {"name", p.name},
+      {"shape", p.shape},
+      {"subtractive", p.subtractive},
+      {"mass_source", p.mass_source},
+      {"mass", P.Mass(q.mass())},
+      {"center_of_mass", VecJson(P.Lengths(q.p_BoBcm_B()))},
+      {"inertia_about_center_of_mass", MatJson(P.InertiaMatrix(q.I_BBcm_B().matrix()))},
+      {"notes", p.notes}};
+  if (std::isfinite(p.density)) pj["density"] = P.units.FromSI(p.density, kDensityDim);
+  return pj;
+}
+
+nlohmann::json BodyJson(const SceneBody& body, const Convert& P,
+                        const std::vector<MassReportPoint>& extra,
+                        const std::optional<Mat3>& R_BF) {
+  const MassProperties& mp = body.mass_properties;
+  const RotationalInertia& Icm = mp.I_BBcm_B();
+  const PrincipalAxes pa = Icm.CalcPrincipalAxes();
+  nlohmann::json b;
+  b["name"] = body.name;
+  b["mass"] = P.Mass(mp.mass());
+  b["center_of_mass"] = VecJson(P.Lengths(mp.p_BoBcm_B()));
+  b["inertia_about_center_of_mass"] = MatJson(P.InertiaMatrix(Icm.matrix()));
+  b["principal_moments"] =
+      VecJson(Vec3(P.Inertia(pa.moments[0]), P.Inertia(pa.moments[1]), P.Inertia(pa.moments[2])));
+  b["principal_axes"] = {VecJson(pa.axes.col(0)), VecJson(pa.axes.col(1)), VecJson(pa.axes.col(2))};
+  b["radii_of_gyration"] = {
+      {"body_axes", VecJson(P.Lengths(Icm.CalcRadiiOfGyration(mp.mass())))},
+      {"principal_axes",
+       VecJson(P.Lengths(RotationalInertia(pa.moments[0], pa.moments[1], pa.moments[2])
+                             .CalcRadiiOfGyration(mp.mass())))}};
+  b["points"] = nlohmann::json::array();
+  for (const MassReportPoint& p : MassReportPoints(body, extra)) {
+    b["points"].push_back(
+        {{"name", p.name},
+         {"position", VecJson(P.Lengths(p.p_BoP_B))},
+         {"inertia", MatJson(P.InertiaMatrix(mp.CalcInertiaAbout(p.p_BoP_B).matrix()))}});
+  }
+  if (R_BF) {
+    // The central inertia re-expressed in F: I_F = R_FB I_B R_FBᵀ with R_FB = R_BFᵀ.
+    b["frame"] = {{"rotation_body_from_frame", MatJson(*R_BF)},
+                  {"inertia_about_center_of_mass",
+                   MatJson(P.InertiaMatrix(Icm.ReExpressedIn(R_BF->transpose()).matrix()))}};
+  }
+  b["parts"] = nlohmann::json::array();
+  for (const ScenePart& p : body.parts) b["parts"].push_back(PartJson(p, P));
+  return b;
+}
+
+}  // namespace
+
+std::vector<MassReportPoint> MassReportPoints(const SceneBody& body,
+                                              const std::vector<MassReportPoint>& extra) {
+  std::vector<MassReportPoint> points;
+  for (const auto& p : body.points) points.push_back({p.name, p.p_BoP_B});
+  points.insert(points.end(), extra.begin(), extra.end());
+  return points;
+}
+
+nlohmann::json MassReportJson(const Scene& scene, const UnitSystem& units,
+                              const std::vector<MassReportPoint>& extra,
+                              const std::optional<Mat3>& R_BF) {
+  const Convert P{units};
+  nlohmann::json j;
+  j["scene"] = scene.file;
+  j["title"] = scene.title;
+  j["units"] = {{"length", units.FormatUnit(kLength)},
+                {"mass", units.FormatUnit(kMass)},
+                {"inertia", units.FormatUnit(kInertiaDim)},
+                {"density", units.FormatUnit(kDensityDim)}};
+  j["inertia_convention"] = kInertiaConvention;
+  j["parameters"] = nlohmann::json::object();
+  for (const auto& [name, q] : scene.parameters) {
+    j["parameters"][name] = {{"value_si", q.value}, {"dimension", q.dim.Formula()}};
+  }
+  j["bodies"] = nlohmann::json::array();
+  for (const SceneBody& body : scene.bodies) j["bodies"].push_back(BodyJson(body, P, extra, R_BF));
+  j["warnings"] = scene.warnings;
+  return j;
+}
+
+}  // namespace chasles

@@ -1,0 +1,53 @@
+"""The reports a Python program gets (to_json, to_csv) are the text the program writes: the
+same io-layer writers make both (docs/python.md, "Reports")."""
+
+import json
+import os
+import subprocess
+
+import pytest
+
+from conftest import example
+
+CLI = os.environ.get("CHASLES_CLI")
+needs_cli = pytest.mark.skipif(not CLI, reason="CHASLES_CLI (the chasles program) not given")
+INCLINE = example("example-8.3-cylinder-incline.yaml")
+
+
+def cli(*args, cwd=None):
+    out = subprocess.run([CLI, *args], cwd=cwd, capture_output=True, text=True, check=True)
+    return out.stdout
+
+
+def test_solution_json_holds_the_solutions_own_values(chasles):
+    s = chasles.solve(chasles.load_scene(INCLINE))
+    j = json.loads(s.to_json())
+    assert [b["name"] for b in j["bodies"]] == [b.name for b in s.bodies]
+    assert j["bodies"][0]["acceleration"] == list(s.bodies[0].acceleration)
+    assert [r["name"] for r in j["reactions"]] == [r.name for r in s.reactions]
+    assert j["rank"] == s.rank
+    assert j["checks"]["passed"] == s.certificate.passed
+
+
+@needs_cli
+def test_solution_json_is_what_the_program_prints(chasles):
+    s = chasles.solve(chasles.load_scene(INCLINE))
+    assert s.to_json() == cli("solve", INCLINE, "--format", "json")
+
+
+@needs_cli
+def test_sweep_csv_and_json_are_what_the_program_prints(chasles):
+    t = chasles.sweep(chasles.load_scene(INCLINE), "theta=10 deg:50 deg:5")
+    assert t.to_csv() == cli("solve", INCLINE, "--sweep", "theta=10 deg:50 deg:5", "--quiet")
+    assert t.to_json() == cli("solve", INCLINE, "--sweep", "theta=10 deg:50 deg:5", "--quiet",
+                              "--format", "json")
+
+
+@needs_cli
+def test_run_csv_and_json_are_the_files_the_program_writes(chasles, tmp_path):
+    cli("simulate", INCLINE, "--quiet", "--out", str(tmp_path))
+    csv_path = tmp_path / "example-8.3-cylinder-incline.csv"
+    json_path = tmp_path / "example-8.3-cylinder-incline.json"
+    run = chasles.run(chasles.load_scene(INCLINE))
+    assert run.to_csv() == csv_path.read_text()
+    assert run.to_json(str(csv_path)) == json_path.read_text()
