@@ -15,20 +15,19 @@ namespace chasles::python {
 
 namespace {
 
-/// A Python callable fn(t, state) -> 3-vector as a VectorFunction. The callable is held by a
-/// shared pointer whose deleter takes the GIL, so the C++ side copies and destroys it without
-/// the GIL; each call takes the GIL (the simulation runs with it released). The time is read
-/// from the state (state.t), so the adapter fits a callback of (t, state) or of
-/// (model, state) alike.
+/// A Python callable fn(t, state) -> 3-vector as a VectorFunction (GilSafe). The time is read
+/// from the state (state.t).
 VectorFunction PythonVectorFunction(py::function fn) {
-  std::shared_ptr<py::function> f(new py::function(std::move(fn)), [](py::function* p) {
-    py::gil_scoped_acquire gil;
-    delete p;
-  });
-  return [f](const Model& /*model*/, const State& state) -> Vec3 {
-    py::gil_scoped_acquire gil;
-    return (*f)(state.t, state).cast<Vec3>();
-  };
+  return GilSafe<Vec3, const Model&, const State&>(
+      std::move(fn), [](const py::function& f, const Model& /*model*/, const State& state) {
+        return f(state.t, state).cast<Vec3>();
+      });
+}
+
+/// A Python callable fn(t) -> float as one function of a TimeFunction.
+std::function<double(double)> PythonTimeFunction(py::function fn) {
+  return GilSafe<double, double>(
+      std::move(fn), [](const py::function& f, double t) { return f(t).cast<double>(); });
 }
 
 VectorFrame FrameFrom(const std::string& frame) {
@@ -149,6 +148,56 @@ void BindConstraints(py::module_& m) {
                     const Vec3&, const Vec3&>(),
            py::arg("name"), py::arg("shape"), py::arg("body"), py::arg("centre"), py::arg("axis"),
            py::arg("radius"), py::arg("plane_point"), py::arg("plane_normal"));
+  py::enum_<GearKind>(m, "GearKind", "How two pitch circles mesh.")
+      .value("EXTERNAL", GearKind::kExternal)
+      .value("INTERNAL", GearKind::kInternal)
+      .value("FACE", GearKind::kFace);
+  py::class_<PitchCircle>(m, "PitchCircle", "A gear's pitch circle on its body.")
+      .def(py::init([](const Vec3& centre, const Vec3& axis, double radius) {
+             PitchCircle c;
+             c.p_BoO_B = centre;
+             c.axis_B = axis;
+             c.radius = radius;
+             return c;
+           }),
+           py::arg("centre"), py::arg("axis"), py::arg("radius"),
+           "centre from Bo in B (in W on the world) [m], unit axis in B, pitch radius [m]")
+      .def_readwrite("centre", &PitchCircle::p_BoO_B, "Centre from Bo, in B [m]")
+      .def_readwrite("axis", &PitchCircle::axis_B, "Unit axis, in B")
+      .def_readwrite("radius", &PitchCircle::radius, "Pitch radius [m]");
+  py::class_<GearMesh, Constraint, std::shared_ptr<GearMesh>>(
+      m, "GearMesh",
+      "Two gears in mesh: their pitch circles roll on each other without slipping. "
+      "keep_contact adds the row that keeps the pitch circles touching (leave it out when "
+      "bearings fix the centre distance). Multipliers: the mesh force [N] (and the separating "
+      "force).")
+      .def(py::init<std::string, GearKind, BodyIndex, const PitchCircle&, BodyIndex,
+                    const PitchCircle&, bool>(),
+           py::arg("name"), py::arg("kind"), py::arg("parent"), py::arg("parent_circle"),
+           py::arg("child"), py::arg("child_circle"), py::arg("keep_contact") = false);
+  py::class_<TimeFunction>(m, "TimeFunction",
+                           "A prescribed f(t) with its rate and acceleration (for drivers).")
+      .def(py::init([](py::function value, py::function rate, py::function acceleration) {
+             return TimeFunction{PythonTimeFunction(std::move(value)),
+                                 PythonTimeFunction(std::move(rate)),
+                                 PythonTimeFunction(std::move(acceleration))};
+           }),
+           py::arg("value"), py::arg("rate"), py::arg("acceleration"),
+           "Three callables of t: f(t) [m or rad], its rate and its acceleration.")
+      .def_static("quadratic", &TimeFunction::Quadratic, py::arg("f0"), py::arg("f1"),
+                  py::arg("f2"), "f = f0 + f1 t + f2 t^2 / 2");
+  py::enum_<DriverKind>(m, "DriverKind", "What a PrescribedMotion drives.")
+      .value("TRANSLATION", DriverKind::kTranslation)
+      .value("ROTATION", DriverKind::kRotation);
+  py::class_<PrescribedMotion, Constraint, std::shared_ptr<PrescribedMotion>>(
+      m, "PrescribedMotion",
+      "A driver: the child's J origin along the parent's z axis (TRANSLATION), or the angle "
+      "from a_x to b_x about a_z (ROTATION, with a revolute joint on z), follows f(t). Its "
+      "multiplier is the force [N] or moment [N m] the driver supplies.")
+      .def(py::init<std::string, DriverKind, BodyIndex, const AttachmentFrame&, BodyIndex,
+                    const AttachmentFrame&, TimeFunction>(),
+           py::arg("name"), py::arg("kind"), py::arg("parent"), py::arg("parent_frame"),
+           py::arg("child"), py::arg("child_frame"), py::arg("f"));
   m.def("attachment_frame_at_world_pose", &AttachmentFrameAtWorldPose, py::arg("model"),
         py::arg("state"), py::arg("body"), py::arg("position"),
         py::arg("rotation") = Mat3::Identity(),

@@ -68,6 +68,32 @@ void BindOptions(py::module_& m) {
       .value("DORMAND_PRINCE", IntegratorKind::kDormandPrince5)
       .value("RK4", IntegratorKind::kRk4)
       .value("ENERGY_MOMENTUM", IntegratorKind::kEnergyMomentum);
+  py::enum_<EventDirection>(m, "EventDirection", "Which zero crossings of g count.")
+      .value("RISING", EventDirection::kRising)
+      .value("FALLING", EventDirection::kFalling)
+      .value("EITHER", EventDirection::kEither);
+  py::enum_<EventAction>(m, "EventAction", "What happens at an event.")
+      .value("STOP", EventAction::kStop)
+      .value("RECORD", EventAction::kRecord);
+  py::class_<EventSpec>(m, "EventSpec",
+                        "An event: a zero crossing of g(t, state) located on the dense output "
+                        "(Dormand-Prince only) to SimulationOptions.event_time_tolerance.")
+      .def(py::init([](std::string name, py::function g, EventDirection direction,
+                       EventAction action) {
+             EventSpec e;
+             e.name = std::move(name);
+             e.g = GilSafe<double, const Model&, const State&>(
+                 std::move(g), [](const py::function& f, const Model& /*model*/,
+                                  const State& state) { return f(state.t, state).cast<double>(); });
+             e.direction = direction;
+             e.action = action;
+             return e;
+           }),
+           py::arg("name"), py::arg("g"), py::arg("direction") = EventDirection::kEither,
+           py::arg("action") = EventAction::kStop)
+      .def_readonly("name", &EventSpec::name)
+      .def_readonly("direction", &EventSpec::direction)
+      .def_readonly("action", &EventSpec::action);
   py::class_<SimulationOptions>(m, "SimulationOptions", "Settings of simulate().")
       .def(py::init([](double t_end, double output_interval, IntegratorKind integrator, double rtol,
                        double atol, double fixed_step) {
@@ -96,7 +122,11 @@ void BindOptions(py::module_& m) {
           [](SimulationOptions& o, double v) { o.adaptive.atol = v; }, "Absolute tolerance")
       .def_property(
           "max_step", [](const SimulationOptions& o) { return o.adaptive.max_step; },
-          [](SimulationOptions& o, double v) { o.adaptive.max_step = v; }, "Largest step [s]");
+          [](SimulationOptions& o, double v) { o.adaptive.max_step = v; }, "Largest step [s]")
+      .def_readwrite("events", &SimulationOptions::events,
+                     "Events to locate (a list of EventSpec; Dormand-Prince only)")
+      .def_readwrite("event_time_tolerance", &SimulationOptions::event_time_tolerance,
+                     "Width of the final bracket around an event time [s]");
 }
 
 /// Samples as a table: t, then per body its centre of mass, quaternion, velocity and angular
@@ -135,6 +165,7 @@ void BindResult(py::module_& m) {
   py::class_<EventRecord>(m, "EventRecord", "A located event.")
       .def_readonly("name", &EventRecord::name)
       .def_readonly("t", &EventRecord::t)
+      .def_readonly("event", &EventRecord::event, "Index into SimulationOptions.events")
       .def_readonly("state", &EventRecord::state);
   py::class_<ContactEvent>(m, "ContactEvent", "A mode change of one contact point.")
       .def_readonly("t", &ContactEvent::t)

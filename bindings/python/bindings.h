@@ -3,7 +3,10 @@
 /// Shared declarations of the Python bindings (one Bind... per file, called by module.cpp) and
 /// small conversions between chasles' types and numpy.
 
+#include <functional>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <pybind11/eigen.h>
@@ -31,5 +34,21 @@ Quat QuatFrom(const Eigen::Vector4d& wxyz);
 /// Rows of equal length as a 2-D numpy array (rows x columns); `columns` gives the width of
 /// an empty table.
 py::array_t<double> TableArray(const std::vector<std::vector<double>>& rows, size_t columns);
+
+/// A Python callable as a std::function the library may call with the GIL released (the
+/// simulation runs so): each call takes the GIL, and the callable is held by a shared pointer
+/// whose deleter takes it too, so the C++ side copies and destroys it freely. `convert` turns
+/// the C++ arguments into the Python call and its result back.
+template <typename R, typename... Args, typename Convert>
+std::function<R(Args...)> GilSafe(py::function fn, Convert convert) {
+  std::shared_ptr<py::function> f(new py::function(std::move(fn)), [](py::function* p) {
+    py::gil_scoped_acquire gil;
+    delete p;
+  });
+  return [f, convert](Args... args) -> R {
+    py::gil_scoped_acquire gil;
+    return convert(*f, args...);
+  };
+}
 
 }  // namespace chasles::python

@@ -214,12 +214,16 @@ def simulate(model, initial, options=None, **kwargs):
     """Runs ``model`` from the State ``initial`` and returns a SimulationResult.
 
     Pass a SimulationOptions, or its fields as keywords (``t_end``, ``output_interval``,
-    ``integrator``, ``rtol``, ``atol``, ``fixed_step``). ``result.table(model)`` gives the
-    samples as a Table (t, then per body x, y, z, qw..qz, vx..vz, wbx..wbz). Python force
-    callables are called with the GIL held; the integration itself releases it.
+    ``integrator``, ``rtol``, ``atol``, ``fixed_step``, and ``events``: a list of EventSpec).
+    ``result.table(model)`` gives the samples as a Table (t, then per body x, y, z, qw..qz,
+    vx..vz, wbx..wbz). Python force, driver and event callables are called with the GIL
+    held; the integration itself releases it.
     """
     if options is None:
+        events = kwargs.pop("events", None)
         options = SimulationOptions(**kwargs)
+        if events is not None:
+            options.events = list(events)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
     return _simulate(model, initial, options)
