@@ -224,7 +224,9 @@ TEST(ParticleAndRod, RodAgainstWallAndFloorLeavesTheWallAtTwoThirds) {
     EXPECT_NEAR(sol.bodies[0].alpha_WB_W.z(), -thdd, 1e-12 * kG / L) << th;
     EXPECT_NEAR(sol.reactions[0].F_Jc_W.x(), m * xdd, 1e-12 * m * kG) << th;
     EXPECT_TRUE(Near(sol.reactions[1].F_Jc_W.y(), m * kG + m * ydd, 1e-12)) << th;
-    if (th == th_leave) EXPECT_NEAR(sol.reactions[0].F_Jc_W.x(), 0.0, 1e-12 * m * kG);
+    if (th == th_leave) {
+      EXPECT_NEAR(sol.reactions[0].F_Jc_W.x(), 0.0, 1e-12 * m * kG);
+    }
   }
 }
 
