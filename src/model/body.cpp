@@ -1,5 +1,7 @@
 #include "chasles/model/body.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "chasles/error.h"
@@ -13,16 +15,36 @@ Body::Body(std::string name, const MassProperties& mp)
   mass_ = mp.mass();
   p_BoBcm_B_ = mp.p_BoBcm_B();
   I_BBcm_B_ = mp.I_BBcm_B().matrix();
-  // Validate() accepts a zero principal moment (the slender-rod limit); the Euler equations
-  // need I⁻¹, so a free body must have all three moments positive.
-  const double I_min = mp.I_BBcm_B().CalcPrincipalAxes().moments.minCoeff();
-  if (!(I_min > 1e-12 * I_BBcm_B_.trace())) {
-    throw InputError(fmt::format(
-        "{}: smallest principal moment of inertia is {:.6g} kg·m² (trace {:.6g}); a free body "
-        "needs all three positive to have a defined spin: give the rod or plate a thickness",
-        what, I_min, I_BBcm_B_.trace()));
+  // Validate() accepts zero principal moments (the slender-rod and point-mass limits). With
+  // principal axes e_k and moments I_k, I⁺ = Σ_{I_k > 0} e_k e_kᵀ / I_k and the projector onto
+  // the rotations with inertia P = Σ_{I_k > 0} e_k e_kᵀ (docs/design.md). A zero moment puts
+  // all the mass on a line through Bcm (I_k = Σ m d_k², d_k the distance from axis k), so the
+  // count is 0, 1 or 3: two zero moments force the third to 0 too.
+  const PrincipalAxes pa = mp.I_BBcm_B().CalcPrincipalAxes();
+  const double I_max = pa.moments.maxCoeff();
+  // Zero to rounding: of the moments, and of the parallel-axis shift m |p_BoBcm|² that moved a
+  // point mass given off Bo to its own centre.
+  const double zero = 1e-12 * std::max(I_max, mass_ * p_BoBcm_B_.squaredNorm());
+  I_inv_.setZero();
+  P_free_.setZero();
+  num_zero_moments_ = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 e = pa.axes.col(k);
+    if (pa.moments[k] > zero) {
+      I_inv_ += e * e.transpose() / pa.moments[k];
+      P_free_ += e * e.transpose();
+    } else {
+      ++num_zero_moments_;
+    }
   }
-  I_inv_ = I_BBcm_B_.inverse();
+  if (num_zero_moments_ == 2) {
+    // Only through rounding of a degenerate tensor; a physical one has 0, 1 or 3.
+    throw InputError(fmt::format(
+        "{}: two principal moments of inertia are zero and the third is {:.6g} kg·m², which no "
+        "mass distribution has; give the inertia of a rod (one zero moment) or a point mass",
+        what, I_max));
+  }
+  if (num_zero_moments_ == 0) I_inv_ = I_BBcm_B_.inverse();
 }
 
 }  // namespace chasles

@@ -1,10 +1,12 @@
 #include "chasles/model/model.h"
 
+#include <algorithm>
 #include <atomic>
 
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "chasles/model/constraints.h"
 
 namespace chasles {
 
@@ -64,6 +66,34 @@ int Model::AddConstraint(std::shared_ptr<const Constraint> constraint) {
           constraint->name(), b, num_bodies(), num_bodies() - 1, kWorld));
     }
   }
+  // A particle has no orientation among its degrees of freedom (docs/design.md, "Particles and
+  // slender bodies"): a joint acts on it only at its own position, and nothing that needs it
+  // to turn (rolling, a gear) may hold it.
+  const auto particle_attachment = [&](BodyIndex b, const AttachmentFrame& X) {
+    if (b == kWorld || !body(b).is_particle()) return;
+    const Vec3 d = X.p_BoJ_B - body(b).p_BoBcm_B();
+    const double scale = std::max(X.p_BoJ_B.norm(), body(b).p_BoBcm_B().norm());
+    if (d.norm() > 1e-9 * scale) {
+      throw InputError(fmt::format(
+          "constraint '{}': body '{}' is a point mass and the joint point is {:.6g} m from it; "
+          "a point mass has no rotation to carry a point elsewhere: put the joint at the point "
+          "mass, or hang the point mass from a body",
+          constraint->name(), body(b).name(), d.norm()));
+    }
+  };
+  if (const auto* joint = dynamic_cast<const Joint*>(constraint.get())) {
+    particle_attachment(constraint->parent(), joint->X_PJ());
+    particle_attachment(constraint->child(), joint->X_CJ());
+  } else {
+    for (BodyIndex b : {constraint->parent(), constraint->child()}) {
+      if (b != kWorld && body(b).is_particle()) {
+        throw InputError(fmt::format(
+            "constraint '{}' ({}): body '{}' is a point mass, which cannot roll or turn; give "
+            "it a shape with inertia",
+            constraint->name(), constraint->kind(), body(b).name()));
+      }
+    }
+  }
   const int rows = constraint->num_rows();
   if (rows < 1 || rows > kMaxConstraintRows) {
     throw InputError(fmt::format("constraint '{}' has {} rows; 1 to {} are supported",
@@ -114,6 +144,26 @@ int Model::AddContact(const ContactSpec& spec) {
     }
   }
   contacts_.emplace_back(*this, spec);
+  const Contact& added = contacts_.back();
+  for (BodyIndex b : {added.body(), added.other_body()}) {
+    if (b == kWorld || !body(b).is_particle()) continue;
+    for (int k = 0; k < added.num_points(); ++k) {
+      const ContactFeature& f = b == added.body() ? added.feature(k) : ContactFeature{};
+      const double off = b == added.body() ? f.p_BcmF_B.norm() : added.p_OcmC_O().norm();
+      const double r = b == added.body() ? f.radius : spec.other_radius;
+      if (off > 0.0 || r > 0.0) {
+        const std::string name = contacts_.back().name();
+        contacts_.pop_back();
+        throw InputError(fmt::format(
+            "contact '{}': body '{}' is a point mass (no rotational inertia), and the contact "
+            "{}; a point mass touches only at its own position: use 'points' at it, or give "
+            "the body a shape (e.g. a sphere part)",
+            name, body(b).name(),
+            r > 0.0 ? fmt::format("has a radius of {:.6g} m", r)
+                    : fmt::format("point is {:.6g} m from it", off)));
+      }
+    }
+  }
   id_.Renew();
   contact_offsets_.push_back(num_contact_points_);
   const int n = contacts_.back().num_points();

@@ -489,14 +489,16 @@ void CheckPhysicalInputs(const Scene& scene, double t_end) {
     const double m = b.mass_properties.mass();
     const double tr = b.mass_properties.I_BBcm_B().Trace();
     const bool m_ok = m >= kMinBodyScale && m <= kMaxBodyScale;
-    if (!m_ok || !(tr >= kMinBodyScale && tr <= kMaxBodyScale)) {
+    // A particle (all its mass at one point) has no inertia at all: tr = 0 is exact.
+    if (!m_ok || !(tr == 0.0 || (tr >= kMinBodyScale && tr <= kMaxBodyScale))) {
       throw SceneError(
           scene.file, b.where.line, b.where.column, b.where.key,
-          fmt::format("body '{}': its {} is {:.6g} {}; a body in motion needs a "
-                      "mass and an inertia (trace) between {:g} and {:g} in SI, so "
-                      "that forces divided by them stay finite",
-                      b.name, m_ok ? "moment of inertia (trace)" : "mass", m_ok ? tr : m,
-                      m_ok ? "kg*m^2" : "kg", kMinBodyScale, kMaxBodyScale));
+          fmt::format(
+              "body '{}': its {} is {:.6g} {}; a body in motion needs a "
+              "mass and an inertia (trace, or 0 for a point mass) between {:g} and {:g} in SI, so "
+              "that forces divided by them stay finite",
+              b.name, m_ok ? "moment of inertia (trace)" : "mass", m_ok ? tr : m,
+              m_ok ? "kg*m^2" : "kg", kMinBodyScale, kMaxBodyScale));
     }
   }
   for (const SceneDriver& d : scene.dynamics.constraints.drivers) {
@@ -647,6 +649,26 @@ State InitialState(const Scene& scene, const Model& model) {
     SetBodyPose(model, i, in.p_WBo, in.q_WB, s);
     // v_Bo = v_P - w × (R p_BoP).
     const Vec3 v_WBo = in.v_WP_W - in.w_WB_W.cross(in.q_WB * in.p_BoP_B);
+    // The spin about a zero-moment axis is not a degree of freedom (docs/design.md, "Particles
+    // and slender bodies"): the body keeps it at its initial value, which must be 0.
+    const Body& body = model.body(i);
+    if (body.num_zero_moments() > 0) {
+      const Vec3 w_B = in.q_WB.conjugate() * in.w_WB_W;
+      const Vec3 w_frozen = w_B - body.free_rotation_B() * w_B;
+      if (w_frozen.norm() > 1e-12 * w_B.norm()) {
+        const SceneBody& sb = scene.bodies[b];
+        throw SceneError(
+            scene.file, sb.where.line, sb.where.column, sb.where.key,
+            fmt::format("body '{}': {}; its initial angular velocity has {:.6g} rad/s about "
+                        "the zero-inertia {}: give an angular velocity {}",
+                        sb.name,
+                        body.is_particle() ? "a point mass has no rotational inertia"
+                                           : "all its mass lies on a line (a zero principal "
+                                             "moment)",
+                        w_frozen.norm(), body.is_particle() ? "directions" : "axis",
+                        body.is_particle() ? "of 0" : "perpendicular to that line"));
+      }
+    }
     SetBodyVelocity(model, i, v_WBo, in.w_WB_W, s);
   }
   return s;

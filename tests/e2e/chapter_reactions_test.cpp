@@ -181,6 +181,26 @@ TEST(RollingDiskSection83, SolveGivesNAndRAtSeveralPrecessionRates) {
   }
 }
 
+// The same motion with the axle a slender rod of its own (a zero moment about OA) on the
+// spherical pivot and the disk on a revolute about it: the floor's force on the disk is N and
+// the pivot's force on the axle R, exactly as for the lumped assembly (eq. 8.109, 8.111).
+TEST(RollingDiskSection83, AxleAsItsOwnRodGivesTheSameNAndR) {
+  const RollingDisk d;
+  const Table t =
+      Sweep("examples/section-8.3-disk-and-axle-bodies.yaml", "Omega=1 rad/s:10 rad/s:4");
+  ASSERT_EQ(t.rows, 4u);
+  for (size_t k = 0; k < t.rows; ++k) {
+    const double W = 1.0 + 3.0 * static_cast<double>(k);
+    const double scale = d.Scale(W);
+    EXPECT_NEAR(t.col.at("floor_Fz")[k], d.N(W), kSolve * scale) << "Omega = " << W;
+    EXPECT_NEAR(t.col.at("floor_Fx")[k], 0.0, kSolve * scale);
+    EXPECT_NEAR(t.col.at("floor_Fy")[k], 0.0, kSolve * scale);
+    const Vec3 R = Column3(t, "pivot_F", k);
+    EXPECT_LT((R - d.R(W)).norm(), kSolve * scale)
+        << "Omega = " << W << ": R = " << R.transpose() << ", expected " << d.R(W).transpose();
+  }
+}
+
 TEST(RollingDiskSection83, SimulationKeepsTheSteadyMotion) {
   const RollingDisk d;
   const double W = 4.0;  // the scene's Omega

@@ -185,9 +185,10 @@ TEST(Simulate, Section85CubeStruckAtACorner) {
 
 // Bullet embeds: momentum about the composite centre of mass (see the example's comment).
 TEST(Simulate, BulletEmbedsInAFreeBlock) {
-  const double M = 2, a = 0.3, b = 0.1, m = 0.02, r = 0.004, v = 400, d = 0.1;
+  // The bullet is a particle: no (2/5) m r² of its own in I_c.
+  const double M = 2, a = 0.3, b = 0.1, m = 0.02, v = 400, d = 0.1;
   const double vc = m * v / (M + m), e = m * d / (M + m);
-  const double Ic = M * (a * a + b * b) / 12 + M * e * e + 0.4 * m * r * r + m * (d - e) * (d - e);
+  const double Ic = M * (a * a + b * b) / 12 + M * e * e + m * (d - e) * (d - e);
   const double w = (d - e) * m * v / Ic;
   const double lost = 0.5 * m * v * v - 0.5 * (M + m) * vc * vc - 0.5 * Ic * w * w;
   const auto j = Simulate("examples/bullet-embeds-in-block.yaml");

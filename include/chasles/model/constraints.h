@@ -47,6 +47,9 @@ class Joint final : public Constraint {
         BodyIndex child, const AttachmentFrame& X_CJ);
   /// Which joint this is.
   JointKind joint_kind() const { return kind_; }
+  /// The joint frame on the parent and on the child.
+  const AttachmentFrame& X_PJ() const { return X_PJ_; }
+  const AttachmentFrame& X_CJ() const { return X_CJ_; }
   int num_rows() const override;
   std::string kind() const override { return JointKindName(kind_); }
   void Evaluate(const Model& model, const State& state, const Data& data,

@@ -28,11 +28,21 @@ TEST(Model, RejectsDuplicateBodyAndUnknownIndex) {
   EXPECT_THAT([&] { m.FindBody("b"); }, ThrowsMessage<InputError>(HasSubstr("the bodies are: a")));
 }
 
-TEST(Model, RejectsSlenderRodAndNegativeStiffness) {
+TEST(Model, TakesSlenderRodsAndPointMassesRejectsNegativeStiffness) {
   Model m;
-  EXPECT_THAT(
-      [&] { m.AddBody("rod", MassProperties(1.0, Vec3::Zero(), RotationalInertia(0, 1, 1))); },
-      ThrowsMessage<InputError>(HasSubstr("give the rod or plate a thickness")));
+  // A rod (one zero moment) and a point mass (three) are bodies; a tensor with two zero moments
+  // and a positive third is no mass distribution (the triangle inequality I_3 <= I_1 + I_2).
+  const BodyIndex rod =
+      m.AddBody("rod", MassProperties(1.0, Vec3::Zero(), RotationalInertia(0, 1, 1)));
+  const BodyIndex point =
+      m.AddBody("point", MassProperties(1.0, Vec3::Zero(), RotationalInertia(0, 0, 0)));
+  EXPECT_EQ(m.body(rod).num_zero_moments(), 1);
+  EXPECT_FALSE(m.body(rod).is_particle());
+  EXPECT_EQ(m.body(point).num_zero_moments(), 3);
+  EXPECT_TRUE(m.body(point).is_particle());
+  EXPECT_THROW(
+      m.AddBody("impossible", MassProperties(1.0, Vec3::Zero(), RotationalInertia(0, 0, 1))),
+      InputError);
   EXPECT_THAT(
       [&] { SpringDamper("s", 0, Vec3::Zero(), kWorld, Vec3::Zero(), 1.0, -5.0, 0.0); },
       ThrowsMessage<InputError>(HasSubstr("stiffness is -5 N/m; it must be a finite number >= 0")));
