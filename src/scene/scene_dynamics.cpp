@@ -262,42 +262,9 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
                                 force ? "a force" : "a moment");
     if (at.Has("frame")) f.frame = FrameAt(at.Child("frame"));
   } else if (type == "cable") {
-    report_.CheckMap(at, {"type", "name", "body", "point", "winch", "tension"}, "a cable element");
-    f.type = SceneForce::Type::kCable;
-    f.body = BodyIndexAt(report_.Require(at, "body", what), scene);
-    const SceneBody& body = scene.bodies[static_cast<size_t>(f.body)];
-    f.p_BoP_B =
-        at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
-    f.p_WQ = WorldVector(report_.Require(at, "winch", what), kLength, "the winch's world point");
-    f.scalar = StateExpression(report_.Require(at, "tension", what), kForce, "the tension");
-    if (f.scalar.is_constant() && f.scalar.Evaluate({}) < 0) {
-      report_.Fail(at.Child("tension"), "the tension must be >= 0: a cable can only pull");
-    }
+    ReadCable(at, scene, what, f);
   } else if (type == "joint_torque") {
-    report_.CheckMap(at, {"type", "name", "joint", "value"}, "a joint_torque element");
-    f.type = SceneForce::Type::kJointTorque;
-    const At joint_at = report_.Require(at, "joint", what);
-    const std::string joint = report_.Text(joint_at, "a joint name");
-    const std::vector<SceneJoint>& joints = scene.dynamics.constraints.joints;
-    std::vector<std::string> names;
-    for (size_t j = 0; j < joints.size(); ++j) {
-      const JointKind k = joints[j].kind;
-      if (k != JointKind::kRevolute && k != JointKind::kCylindrical &&
-          k != JointKind::kRevoluteInPlane) {
-        continue;
-      }
-      if (joints[j].name == joint) f.joint = static_cast<int>(j);
-      names.push_back(joints[j].name);
-    }
-    if (f.joint < 0) {
-      report_.Fail(joint_at,
-                   fmt::format("the scene has no revolute or cylindrical joint '{}'{}; "
-                               "a joint torque acts about such a joint's axis{}{}",
-                               joint, DidYouMean(joint, names),
-                               names.empty() ? "" : "; joints: ", fmt::join(names, ", ")));
-    }
-    f.body = joints[static_cast<size_t>(f.joint)].child;
-    f.scalar = StateExpression(report_.Require(at, "value", what), kTorque, "a torque");
+    ReadJointTorque(at, scene, what, f);
   } else if (type == "spring") {
     report_.CheckMap(at, {"type", "name", "from", "to", "rest_length", "stiffness", "damping"},
                      "a spring element");
@@ -353,6 +320,50 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
                                                DidYouMean(type, types), fmt::join(types, ", ")));
   }
   return f;
+}
+
+// A cable from a body point to a fixed world point (the winch), pulling with a tension >= 0.
+void SceneReader::ReadCable(const At& at, const Scene& scene, const std::string& what,
+                            SceneForce& f) {
+  report_.CheckMap(at, {"type", "name", "body", "point", "winch", "tension"}, "a cable element");
+  f.type = SceneForce::Type::kCable;
+  f.body = BodyIndexAt(report_.Require(at, "body", what), scene);
+  const SceneBody& body = scene.bodies[static_cast<size_t>(f.body)];
+  f.p_BoP_B =
+      at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
+  f.p_WQ = WorldVector(report_.Require(at, "winch", what), kLength, "the winch's world point");
+  f.scalar = StateExpression(report_.Require(at, "tension", what), kForce, "the tension");
+  if (f.scalar.is_constant() && f.scalar.Evaluate({}) < 0) {
+    report_.Fail(at.Child("tension"), "the tension must be >= 0: a cable can only pull");
+  }
+}
+
+// A torque across a revolute or cylindrical joint, about its axis (+ on the child).
+void SceneReader::ReadJointTorque(const At& at, const Scene& scene, const std::string& what,
+                                  SceneForce& f) {
+  report_.CheckMap(at, {"type", "name", "joint", "value"}, "a joint_torque element");
+  f.type = SceneForce::Type::kJointTorque;
+  const At joint_at = report_.Require(at, "joint", what);
+  const std::string joint = report_.Text(joint_at, "a joint name");
+  const std::vector<SceneJoint>& joints = scene.dynamics.constraints.joints;
+  std::vector<std::string> names;
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const JointKind k = joints[j].kind;
+    if (k != JointKind::kRevolute && k != JointKind::kCylindrical &&
+        k != JointKind::kRevoluteInPlane) {
+      continue;
+    }
+    if (joints[j].name == joint) f.joint = static_cast<int>(j);
+    names.push_back(joints[j].name);
+  }
+  if (f.joint < 0) {
+    report_.Fail(joint_at, fmt::format("the scene has no revolute or cylindrical joint '{}'{}; "
+                                       "a joint torque acts about such a joint's axis{}{}",
+                                       joint, DidYouMean(joint, names),
+                                       names.empty() ? "" : "; joints: ", fmt::join(names, ", ")));
+  }
+  f.body = joints[static_cast<size_t>(f.joint)].child;
+  f.scalar = StateExpression(report_.Require(at, "value", what), kTorque, "a torque");
 }
 
 SceneEvent SceneReader::ReadEvent(const At& at, size_t index, const Scene& scene) {

@@ -246,5 +246,31 @@ forces:
   EXPECT_NEAR(ToVec(j.at("bodies").at(0).at("angular_acceleration")).norm(), 0.0, kRel);
 }
 
+// A joint torque in a planar scene acts about z: a rod (m, I_cm, centre of mass d from the
+// pin) driven by tau from rest without gravity: alpha = tau / (I_cm + m d²) (parallel axes),
+// the pin supplies the centre's tangential acceleration m alpha d along y.
+TEST(Drives, JointTorqueInAPlanarScene) {
+  const double m = 2, I_cm = 1.0 / 6.0, d = 0.5, tau = 3;
+  const std::filesystem::path file = OutDir("drives") / "planar-motor.yaml";
+  std::ofstream(file) << R"(
+planar: true
+bodies:
+  - name: rod
+    parts:
+      - {shape: planar, mass: 2 kg, inertia_z: 1/6 kg*m^2, center_of_mass: [0.5 m, 0]}
+joints:
+  - {name: pin, type: revolute, parent: world, child: rod, at: [0, 0]}
+forces:
+  - {type: joint_torque, name: motor, joint: pin, value: 3 N*m}
+)";
+  const CliResult r = RunCli("solve " + Quote(file.string()) + " --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double alpha = tau / (I_cm + m * d * d);
+  EXPECT_NEAR(j.at("bodies").at(0).at("planar").at("alpha").get<double>(), alpha, kRel * alpha);
+  EXPECT_NEAR(j.at("reactions").at(0).at("planar").at("Fy").get<double>(), m * alpha * d,
+              kRel * m * alpha);
+}
+
 }  // namespace
 }  // namespace chasles::test
