@@ -89,12 +89,17 @@ double CentralGravity::CalcPotentialEnergy(const Model& model, const State& stat
 // ---------------------------------------------------------------------------------------
 AppliedForce::AppliedForce(std::string name, BodyIndex body, const Vec3& p_BoP_B,
                            VectorFunction force, VectorFrame frame)
+    : AppliedForce(std::move(name), body, p_BoP_B, VectorFrame::kBody, std::move(force), frame) {}
+
+AppliedForce::AppliedForce(std::string name, BodyIndex body, const Vec3& p_P,
+                           VectorFrame point_frame, VectorFunction force, VectorFrame frame)
     : ForceElement(std::move(name)),
       body_(body),
-      p_BoP_B_(p_BoP_B),
+      p_P_(p_P),
+      point_frame_(point_frame),
       force_(std::move(force)),
       frame_(frame) {
-  RequireFinite(this->name(), "point of application", p_BoP_B);
+  RequireFinite(this->name(), "point of application", p_P);
   RequireFunction(this->name(), force_);
 }
 
@@ -112,7 +117,81 @@ double AppliedForce::AddForces(const Model& model, const State& state, const Dat
   const Mat3& R = data.R_WB[i];
   const Vec3 f = force_(model, state);
   const Vec3 F_W = frame_ == VectorFrame::kWorld ? f : Vec3(R * f);
-  out.AddForceAtPoint(body_, R * model.body(body_).PointFromCenterOfMass(p_BoP_B_), F_W);
+  // A world point: the material point of the body at p_WP now, p_BcmP = p_WP - p_WBcm.
+  const Vec3 p_BcmP_W = point_frame_ == VectorFrame::kWorld
+                            ? Vec3(p_P_ - state.bodies[i].p_WBcm)
+                            : Vec3(R * model.body(body_).PointFromCenterOfMass(p_P_));
+  out.AddForceAtPoint(body_, p_BcmP_W, F_W);
+  return out.power();
+}
+
+// ---------------------------------------------------------------------------------------
+CableForce::CableForce(std::string name, BodyIndex body, const Vec3& p_BoP_B, const Vec3& p_WQ,
+                       ScalarFunction tension)
+    : ForceElement(std::move(name)),
+      body_(body),
+      p_BoP_B_(p_BoP_B),
+      p_WQ_(p_WQ),
+      tension_(std::move(tension)) {
+  RequireFinite(this->name(), "body point", p_BoP_B);
+  RequireFinite(this->name(), "world point", p_WQ);
+  if (!tension_)
+    throw InputError(fmt::format("force element '{}': no tension given", this->name()));
+}
+
+double CableForce::AddForces(const Model& model, const State& state, const Data& data,
+                             WrenchAccumulator& out) const {
+  const auto i = static_cast<size_t>(body_);
+  const Vec3 p_BcmP_W = data.R_WB[i] * model.body(body_).PointFromCenterOfMass(p_BoP_B_);
+  const Vec3 d = p_WQ_ - (state.bodies[i].p_WBcm + p_BcmP_W);
+  const double L = d.norm();
+  const double T = tension_(model, state);
+  if (!(T >= 0.0)) {
+    throw InputError(fmt::format(
+        "force element '{}': the cable's tension is {:.6g} N at t = {:.6g} s; a cable can only "
+        "pull (tension >= 0)",
+        name(), T, state.t));
+  }
+  // At P = Q the direction is undefined: the cable has no length left to pull along.
+  if (L == 0.0) return 0.0;
+  out.AddForceAtPoint(body_, p_BcmP_W, (T / L) * d);
+  return out.power();
+}
+
+// ---------------------------------------------------------------------------------------
+JointTorque::JointTorque(std::string name, BodyIndex parent, BodyIndex child, const Vec3& axis_P,
+                         ScalarFunction torque)
+    : ForceElement(std::move(name)),
+      parent_(parent),
+      child_(child),
+      axis_P_(axis_P),
+      torque_(std::move(torque)) {
+  RequireFinite(this->name(), "axis", axis_P);
+  if (axis_P.norm() == 0.0) {
+    throw InputError(fmt::format("force element '{}': the joint axis is zero", this->name()));
+  }
+  axis_P_.normalize();
+  if (!torque_) throw InputError(fmt::format("force element '{}': no torque given", this->name()));
+  if (child == kWorld || child == parent) {
+    throw InputError(
+        fmt::format("force element '{}': a joint torque needs a child body other than its parent",
+                    this->name()));
+  }
+}
+
+std::vector<BodyIndex> JointTorque::bodies() const {
+  if (parent_ == kWorld) return {child_};
+  return {parent_, child_};
+}
+
+double JointTorque::AddForces(const Model& model, const State& state, const Data& data,
+                              WrenchAccumulator& out) const {
+  const Vec3 a_W =
+      parent_ == kWorld ? axis_P_ : Vec3(data.R_WB[static_cast<size_t>(parent_)] * axis_P_);
+  const Vec3 M_W = torque_(model, state) * a_W;
+  out.AddMoment(child_, M_W);
+  if (parent_ != kWorld) out.AddMoment(parent_, -M_W);
+  // Power tau a·(w_child - w_parent): the accumulator sums M·w over both bodies.
   return out.power();
 }
 

@@ -229,9 +229,11 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
   }
   SceneForce f;
   f.where = SpotAt(at);
-  const std::string type = report_.Text(report_.Require(at, "type", "a force element"),
-                                        "force, moment, spring, drag or central_gravity");
-  const std::vector<std::string> types = {"force", "moment", "spring", "drag", "central_gravity"};
+  const std::string type =
+      report_.Text(report_.Require(at, "type", "a force element"),
+                   "force, moment, spring, drag, central_gravity, cable or joint_torque");
+  const std::vector<std::string> types = {"force",           "moment", "spring",      "drag",
+                                          "central_gravity", "cable",  "joint_torque"};
   f.name = at.Has("name") ? report_.Text(at.Child("name"), "a name")
                           : fmt::format("{} {}", type, index + 1);
   const std::string what = fmt::format("{} '{}'", type, f.name);
@@ -243,14 +245,26 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
     f.type = force ? SceneForce::Type::kForce : SceneForce::Type::kMoment;
     f.body = BodyIndexAt(report_.Require(at, "body", what), scene);
     const SceneBody& body = scene.bodies[static_cast<size_t>(f.body)];
-    f.p_BoP_B =
-        at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
+    if (force && at.Has("point") && at.Child("point").node.IsMap()) {
+      // {world: [x, y, z]}: a point fixed in the world (the material point there now).
+      const At p = at.Child("point");
+      report_.CheckMap(p, {"world"}, "a world point ({world: [x, y, z]})");
+      f.p_BoP_B = WorldVector(report_.Require(p, "world", what), kLength, "a world point");
+      f.point_frame = VectorFrame::kWorld;
+    } else {
+      f.p_BoP_B =
+          at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
+    }
     f.value = planar_
                   ? PlanarStateVector(report_.Require(at, "value", what), force ? kForce : kTorque,
                                       force ? "a force" : "a moment", !force)
                   : StateVector(report_.Require(at, "value", what), force ? kForce : kTorque,
                                 force ? "a force" : "a moment");
     if (at.Has("frame")) f.frame = FrameAt(at.Child("frame"));
+  } else if (type == "cable") {
+    ReadCable(at, scene, what, f);
+  } else if (type == "joint_torque") {
+    ReadJointTorque(at, scene, what, f);
   } else if (type == "spring") {
     report_.CheckMap(at, {"type", "name", "from", "to", "rest_length", "stiffness", "damping"},
                      "a spring element");
@@ -306,6 +320,50 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
                                                DidYouMean(type, types), fmt::join(types, ", ")));
   }
   return f;
+}
+
+// A cable from a body point to a fixed world point (the winch), pulling with a tension >= 0.
+void SceneReader::ReadCable(const At& at, const Scene& scene, const std::string& what,
+                            SceneForce& f) {
+  report_.CheckMap(at, {"type", "name", "body", "point", "winch", "tension"}, "a cable element");
+  f.type = SceneForce::Type::kCable;
+  f.body = BodyIndexAt(report_.Require(at, "body", what), scene);
+  const SceneBody& body = scene.bodies[static_cast<size_t>(f.body)];
+  f.p_BoP_B =
+      at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
+  f.p_WQ = WorldVector(report_.Require(at, "winch", what), kLength, "the winch's world point");
+  f.scalar = StateExpression(report_.Require(at, "tension", what), kForce, "the tension");
+  if (f.scalar.is_constant() && f.scalar.Evaluate({}) < 0) {
+    report_.Fail(at.Child("tension"), "the tension must be >= 0: a cable can only pull");
+  }
+}
+
+// A torque across a revolute or cylindrical joint, about its axis (+ on the child).
+void SceneReader::ReadJointTorque(const At& at, const Scene& scene, const std::string& what,
+                                  SceneForce& f) {
+  report_.CheckMap(at, {"type", "name", "joint", "value"}, "a joint_torque element");
+  f.type = SceneForce::Type::kJointTorque;
+  const At joint_at = report_.Require(at, "joint", what);
+  const std::string joint = report_.Text(joint_at, "a joint name");
+  const std::vector<SceneJoint>& joints = scene.dynamics.constraints.joints;
+  std::vector<std::string> names;
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const JointKind k = joints[j].kind;
+    if (k != JointKind::kRevolute && k != JointKind::kCylindrical &&
+        k != JointKind::kRevoluteInPlane) {
+      continue;
+    }
+    if (joints[j].name == joint) f.joint = static_cast<int>(j);
+    names.push_back(joints[j].name);
+  }
+  if (f.joint < 0) {
+    report_.Fail(joint_at, fmt::format("the scene has no revolute or cylindrical joint '{}'{}; "
+                                       "a joint torque acts about such a joint's axis{}{}",
+                                       joint, DidYouMean(joint, names),
+                                       names.empty() ? "" : "; joints: ", fmt::join(names, ", ")));
+  }
+  f.body = joints[static_cast<size_t>(f.joint)].child;
+  f.scalar = StateExpression(report_.Require(at, "value", what), kTorque, "a torque");
 }
 
 SceneEvent SceneReader::ReadEvent(const At& at, size_t index, const Scene& scene) {
@@ -566,13 +624,22 @@ void SceneReader::DeclareStateVariables(const Scene& scene) {
 
 void SceneReader::ReadGravity(const At& g, SceneDynamics& d) {
   d.has_gravity = true;
+  // "Down" is -z, or -y in a planar scene (its plane is x-y).
+  const Vec3 down = planar_ ? Vec3(0, -1, 0) : Vec3(0, 0, -1);
   if (g.node.IsScalar() && g.node.Scalar() == "standard") {
-    // A planar scene's plane is x-y, so "down" is -y there.
-    d.g_W = planar_ ? Vec3(0, -kStandardGravity, 0) : Vec3(0, 0, -kStandardGravity);
+    d.g_W = kStandardGravity * down;
+  } else if (g.node.IsScalar()) {
+    // A magnitude g > 0 along "down"; the sign is the direction's, so a negative value
+    // (gravity pointing up) must be written as a vector.
+    d.g_W = PositiveValue(g, kAcceleration,
+                          "the magnitude of the gravitational acceleration (a vector such as "
+                          "[0, 0, 9.81 m/s^2] points it anywhere)") *
+            down;
   } else if (g.node.IsSequence()) {
     d.g_W = WorldVector(g, kAcceleration, "the gravitational acceleration");
   } else {
-    report_.Fail(g, fmt::format("expected 'standard' (9.80665 m/s^2 along -z) or a vector "
+    report_.Fail(g, fmt::format("expected 'standard' (9.80665 m/s^2 along -z), a magnitude such "
+                                "as 9.81 m/s^2 (along -z, -y in a planar scene) or a vector "
                                 "such as [0, 0, -9.81 m/s^2], got {}",
                                 KindOf(g.node)));
   }

@@ -131,6 +131,15 @@ VectorFunction MakeVectorFunction(std::shared_ptr<const SceneMap> map,
   };
 }
 
+ScalarFunction MakeScalarFunction(std::shared_ptr<const SceneMap> map, const Expression& value) {
+  const int count = value.variable_count();
+  return [map, value, count](const Model& model, const State& state) -> double {
+    std::vector<double> variables;
+    FillVariables(model, state, *map, count, variables);
+    return value.Evaluate(variables);
+  };
+}
+
 State InitialState(const Scene& scene, const Model& model);
 
 /// Name of the constraint that holds scene body `b` of a planar scene in its plane (after the
@@ -285,20 +294,44 @@ Model BuildModel(const Scene& scene, const std::vector<NamedBody>& bodies,
   for (const SceneForce& f : d.forces) {
     const BodyPlacement* pl = f.body >= 0 ? &map->map.place[static_cast<size_t>(f.body)] : nullptr;
     switch (f.type) {
-      case SceneForce::Type::kForce:
+      case SceneForce::Type::kForce: {
+        const Vec3 p = f.point_frame == VectorFrame::kWorld ? f.p_BoP_B : point(f.body, f.p_BoP_B);
+        const Mat3 R = f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity();
+        VectorFunction value;
         if (f.value.is_constant()) {
-          const Vec3 v = f.value.Evaluate({0.0});
-          model.AddForceElement(AppliedForce::Constant(
-              f.name, pl->model_body, point(f.body, f.p_BoP_B),
-              f.frame == VectorFrame::kBody ? Vec3(pl->R_MB * v) : v, f.frame));
+          const Vec3 v = R * f.value.Evaluate({0.0});
+          value = [v](const Model&, const State&) { return v; };
         } else {
-          model.AddForceElement(std::make_shared<AppliedForce>(
-              f.name, pl->model_body, point(f.body, f.p_BoP_B),
-              MakeVectorFunction(map, f.value,
-                                 f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity()),
-              f.frame));
+          value = MakeVectorFunction(map, f.value, R);
         }
+        model.AddForceElement(std::make_shared<AppliedForce>(f.name, pl->model_body, p,
+                                                             f.point_frame, value, f.frame));
         break;
+      }
+      case SceneForce::Type::kCable:
+        model.AddForceElement(std::make_shared<CableForce>(f.name, pl->model_body,
+                                                           point(f.body, f.p_BoP_B), f.p_WQ,
+                                                           MakeScalarFunction(map, f.scalar)));
+        break;
+      case SceneForce::Type::kJointTorque: {
+        // The joint's axis is given in W at the initial configuration; the torque turns it
+        // with the parent: a_P = R_WP(0)ᵀ a_W.
+        const SceneJoint& j = d.constraints.joints[static_cast<size_t>(f.joint)];
+        const int parent =
+            j.parent == kWorld ? kWorld : map->map.place[static_cast<size_t>(j.parent)].model_body;
+        Vec3 axis_P = j.axis_W;
+        if (parent != kWorld) {
+          const State s0 = InitialState(scene, model);
+          axis_P = s0.bodies[static_cast<size_t>(parent)]
+                       .q_WB.normalized()
+                       .toRotationMatrix()
+                       .transpose() *
+                   j.axis_W;
+        }
+        model.AddForceElement(std::make_shared<JointTorque>(f.name, parent, pl->model_body, axis_P,
+                                                            MakeScalarFunction(map, f.scalar)));
+        break;
+      }
       case SceneForce::Type::kMoment:
         if (f.value.is_constant()) {
           const Vec3 v = f.value.Evaluate({0.0});

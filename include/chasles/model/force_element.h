@@ -25,6 +25,10 @@ struct ForceElementOutput;
 /// Python), so scratch space lives on the caller's stack or in Data.
 using VectorFunction = std::function<Vec3(const Model& model, const State& state)>;
 
+/// A scalar function of the state (time state.t), e.g. a cable's tension [N] or a joint's
+/// drive torque [N·m]; the same rules as VectorFunction.
+using ScalarFunction = std::function<double(const Model& model, const State& state)>;
+
 /// In which frame a callback's vector is expressed: fixed in the world, or turning with the
 /// body it acts on (a thruster).
 enum class VectorFrame { kWorld, kBody };

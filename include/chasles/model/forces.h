@@ -47,11 +47,22 @@ class CentralGravity final : public ForceElement {
 
 /// A force at a point P of one body, F = f(t, state), expressed in W or in B. Non-conservative
 /// (no potential): its work is integrated along the solution.
+///
+/// The point P is fixed in the body (a thruster, a rope tied to it), or fixed in the world
+/// (`point_frame` kWorld: a pusher held still, a fixed guide the body slides past): then the
+/// force acts at whichever material point of the body is at P at that instant, its moment
+/// about Bcm is (p_WP - p_WBcm) × F and its power F·v_P with v_P = v_Bcm + w × (p_WP - p_WBcm)
+/// the velocity of that material point (Greenwood, Principles of Dynamics, 2nd ed., sec. 4.2:
+/// the power of a force is F dotted with the velocity of the material point it acts on).
 class AppliedForce final : public ForceElement {
  public:
   /// `p_BoP_B` is P's position from the body's frame origin, in B [m].
   AppliedForce(std::string name, BodyIndex body, const Vec3& p_BoP_B, VectorFunction force,
                VectorFrame frame);
+  /// `p_P` is P: from the body's frame origin in B (`point_frame` kBody), or P's world
+  /// position (`point_frame` kWorld) [m]; `frame` the frame the force is expressed in.
+  AppliedForce(std::string name, BodyIndex body, const Vec3& p_P, VectorFrame point_frame,
+               VectorFunction force, VectorFrame frame);
   /// A constant force [N] expressed in `frame`.
   static std::shared_ptr<AppliedForce> Constant(std::string name, BodyIndex body,
                                                 const Vec3& p_BoP_B, const Vec3& force,
@@ -61,9 +72,49 @@ class AppliedForce final : public ForceElement {
 
  private:
   BodyIndex body_;
-  Vec3 p_BoP_B_;
+  Vec3 p_P_;
+  VectorFrame point_frame_;
   VectorFunction force_;
   VectorFrame frame_;
+};
+
+/// A cable from a point P of one body to a fixed point Q of the world (a winch, a pulley
+/// whose axle is fixed): tension T = f(t, state) >= 0 pulls P towards Q, F = T (p_WQ - p_WP) /
+/// |p_WQ - p_WP|, so the line of action turns with the body as P moves. The tension is given,
+/// not the length (a winch that holds a length is a constraint); a negative T (a cable cannot
+/// push) is an error when evaluated. Non-conservative: its work is integrated.
+class CableForce final : public ForceElement {
+ public:
+  /// `p_BoP_B` is P from the body's frame origin, in B [m]; `p_WQ` the world point [m].
+  CableForce(std::string name, BodyIndex body, const Vec3& p_BoP_B, const Vec3& p_WQ,
+             ScalarFunction tension);
+  double AddForces(const Model&, const State&, const Data&, WrenchAccumulator&) const override;
+  std::vector<BodyIndex> bodies() const override { return {body_}; }
+
+ private:
+  BodyIndex body_;
+  Vec3 p_BoP_B_, p_WQ_;
+  ScalarFunction tension_;
+};
+
+/// A torque across a joint (a motor, a drive shaft, a brake): tau = f(t, state) [N·m] about
+/// the joint's axis a, +tau a on the child and -tau a on the parent (Newton's third law for a
+/// couple: the pair exerts no net moment on the two bodies together). The axis is fixed in
+/// the parent (along the revolute joint it acts across). Its power is
+/// tau a·(w_child - w_parent), the rate of work across the joint.
+class JointTorque final : public ForceElement {
+ public:
+  /// `axis_P` the joint axis in the parent's frame (in W when `parent` is kWorld), any
+  /// non-zero length; positive tau turns the child about it relative to the parent.
+  JointTorque(std::string name, BodyIndex parent, BodyIndex child, const Vec3& axis_P,
+              ScalarFunction torque);
+  double AddForces(const Model&, const State&, const Data&, WrenchAccumulator&) const override;
+  std::vector<BodyIndex> bodies() const override;
+
+ private:
+  BodyIndex parent_, child_;
+  Vec3 axis_P_;
+  ScalarFunction torque_;
 };
 
 /// A pure moment (couple) on one body, M = f(t, state) [N·m], expressed in W or in B.

@@ -79,7 +79,7 @@ struct SceneVectorExpression {
 
 /// One entry of `forces`.
 struct SceneForce {
-  enum class Type { kForce, kMoment, kSpring, kDrag, kCentralGravity };
+  enum class Type { kForce, kMoment, kSpring, kDrag, kCentralGravity, kCable, kJointTorque };
   Type type = Type::kForce;
   /// Unique name (reports, ledger columns "W_<name>").
   std::string name;
@@ -87,8 +87,17 @@ struct SceneForce {
   SceneSpot where;
   /// Body acted on (scene index), or for a spring its first end.
   int body = -1;
-  /// Point of application from Bo in B [m] (force; spring's first end).
+  /// Point of application from Bo in B [m] (force; spring's first end; cable's body end), or
+  /// a world point [m] when `point_frame` is kWorld (force only).
   Vec3 p_BoP_B = Vec3::Zero();
+  /// kWorld: the force acts at the material point currently at the world point p_BoP_B.
+  VectorFrame point_frame = VectorFrame::kBody;
+  /// Cable's tension [N] or joint torque [N·m] as an expression.
+  Expression scalar;
+  /// Cable: the fixed world point it runs to [m].
+  Vec3 p_WQ = Vec3::Zero();
+  /// Joint torque: the joint it acts across (index into SceneConstraints::joints).
+  int joint = -1;
   /// Force [N] or moment [N·m] as expressions.
   SceneVectorExpression value;
   /// Frame the value is expressed in (force, moment).

@@ -121,6 +121,8 @@ class SceneReader {
   SceneImpulse ReadImpulse(const At& at, const Scene& scene);
   SceneImpact ReadImpact(const At& at, const Scene& scene);
   void ReadInitial(const At& at, const SceneBody& body, SceneInitialState& initial);
+  void ReadCable(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
+  void ReadJointTorque(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
   SceneForce ReadForce(const At& at, const Scene& scene, size_t index);
   SceneEvent ReadEvent(const At& at, size_t index, const Scene& scene);
   /// The `contact` and `change` of a contact-mode event (scene_events.cpp).

@@ -141,6 +141,36 @@ bodies:
   EXPECT_TRUE(MatNear(a.I_BBcm_B().matrix(), b.I_BBcm_B().matrix(), 1e-10));
 }
 
+TEST(SceneLoader, GravityAsAMagnitudePointsDown) {
+  // A magnitude g points along -z (down); in a planar scene along -y. 32.2 ft/s^2 is
+  // 32.2 * 0.3048 m/s^2 exactly.
+  const char* body = "bodies:\n  - parts: [{shape: sphere, radius: 1 cm, mass: 1 kg}]\n";
+  const Scene s = LoadSceneText(std::string("gravity: 32.2 ft/s^2\n") + body, "t.yaml");
+  EXPECT_TRUE(s.dynamics.has_gravity);
+  EXPECT_TRUE(MatNear(s.dynamics.g_W, Vec3(0, 0, -32.2 * 0.3048), kExact));
+  const Scene p = LoadSceneText(
+      "planar: true\ngravity: 9.81\nbodies:\n  - parts: [{shape: planar, mass: 1 kg, "
+      "inertia_z: 1 kg*m^2}]\n",
+      "t.yaml");
+  EXPECT_TRUE(MatNear(p.dynamics.g_W, Vec3(0, -9.81, 0), kExact));
+  // The same as the vector form.
+  const Scene v = LoadSceneText(std::string("gravity: [0, 0, -32.2 ft/s^2]\n") + body, "t.yaml");
+  EXPECT_EQ(v.dynamics.g_W, s.dynamics.g_W);
+}
+
+TEST(SceneLoader, GravityMagnitudeMustBePositiveAcceleration) {
+  const char* body = "bodies:\n  - parts: [{shape: sphere, radius: 1 cm, mass: 1 kg}]\n";
+  for (const char* g : {"-9.81 m/s^2", "0 m/s^2", "9.81 m/s", "9.81 N"}) {
+    try {
+      LoadSceneText(std::string("gravity: ") + g + "\n" + body, "t.yaml");
+      ADD_FAILURE() << g;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.line(), 1) << g;
+      EXPECT_EQ(e.key(), "gravity") << g;
+    }
+  }
+}
+
 TEST(SceneLoader, ErrorsCarryPosition) {
   try {
     LoadSceneText("bodies:\n  - parts:\n      - {shape: sphere, radius: 2 kg, mass: 1 kg}\n",
