@@ -21,6 +21,8 @@ namespace {
 
 constexpr Dimension kDensityDim{-3, 1, 0};
 constexpr Dimension kInertiaDim{2, 1, 0};
+constexpr Dimension kAreaDim{2, 0, 0};
+constexpr Dimension kVolumeDim{3, 0, 0};
 
 /// What the report shows, in the units asked for.
 struct Presenter {
@@ -72,6 +74,31 @@ void MatrixText(std::string& out, const Mat3& m, const std::string& indent) {
   }
 }
 
+/// The inertia I_P about a point P of a body of mass `mass`, its principal moments and axes
+/// and its radii of gyration about the axes through P.
+void PointInertiaText(std::string& out, const Presenter& P, const RotationalInertia& I_P,
+                      double mass) {
+  // I_P (parallel-axis theorem, eqs. 8.24-8.29), its eigenvalues and eigenvectors, and
+  // k = sqrt(I/m) (eq. 8.19) about the axes through P.
+  MatrixText(out, P.InertiaMatrix(I_P.matrix()), "    ");
+  const PrincipalAxes pp = I_P.CalcPrincipalAxes();
+  const double Ps = P.Inertia(I_P.Trace());
+  out += fmt::format("    Principal moments   {}, {}, {} {}\n", Num(P.Inertia(pp.moments[0]), Ps),
+                     Num(P.Inertia(pp.moments[1]), Ps), Num(P.Inertia(pp.moments[2]), Ps), P.I);
+  out += fmt::format("    Principal axes      e1 = {}, e2 = {}, e3 = {}  (body axes)\n",
+                     VecText(pp.axes.col(0), 1), VecText(pp.axes.col(1), 1),
+                     VecText(pp.axes.col(2), 1));
+  const double kp_scale = std::sqrt(std::abs(I_P.Trace() / mass));
+  out += fmt::format("    Radii of gyration   about body axes through the point: {} {}\n",
+                     VecText(P.Lengths(I_P.CalcRadiiOfGyration(mass)), P.Length(kp_scale)), P.L);
+  out +=
+      fmt::format("                        about the principal axes through the point: {} {}\n",
+                  VecText(P.Lengths(RotationalInertia(pp.moments[0], pp.moments[1], pp.moments[2])
+                                        .CalcRadiiOfGyration(mass)),
+                          P.Length(kp_scale)),
+                  P.L);
+}
+
 struct Frame {
   bool given = false;
   std::string text;
@@ -117,6 +144,12 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
           detail = p.mass_source;
         }
         for (const auto& n : p.notes) detail += (detail.empty() ? "" : "; ") + n;
+        if (!std::isnan(p.volume)) {
+          detail += fmt::format(
+              "{}volume {} {}, surface area {} {}", detail.empty() ? "" : "; ",
+              Num(P.units.FromSI(p.volume, kVolumeDim), 0), P.units.FormatUnit(kVolumeDim),
+              Num(P.units.FromSI(p.surface_area, kAreaDim), 0), P.units.FormatUnit(kAreaDim));
+        }
         if (!detail.empty()) out += fmt::format("  {:<{}}  {}\n", "", w, detail);
         // The part's own central inertia, in body axes: the six tensor entries on one line.
         const Mat3 Ip = P.InertiaMatrix(q.I_BBcm_B().matrix());
@@ -132,6 +165,20 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
     out += fmt::format("  Mass                {} {}\n", Num(P.Mass(mp.mass()), 0), P.M);
     out += fmt::format("  Centre of mass      {} {}  (from the body origin, body axes)\n",
                        VecText(P.Lengths(mp.p_BoBcm_B()), P.Length(Lscale)), P.L);
+    // Volume (a cut's subtracted) and the surface area where it is exact (one part).
+    const BodyMeasures measures = CalcBodyMeasures(body);
+    out +=
+        fmt::format("  Volume              {}\n",
+                    std::isnan(measures.volume)
+                        ? measures.volume_note
+                        : fmt::format("{} {}", Num(P.units.FromSI(measures.volume, kVolumeDim), 0),
+                                      P.units.FormatUnit(kVolumeDim)));
+    out += fmt::format(
+        "  Surface area        {}\n",
+        std::isnan(measures.surface_area)
+            ? measures.surface_area_note
+            : fmt::format("{} {}", Num(P.units.FromSI(measures.surface_area, kAreaDim), 0),
+                          P.units.FormatUnit(kAreaDim)));
     out += fmt::format("  Inertia about the centre of mass, body axes [{}]\n", P.I);
     MatrixText(out, P.InertiaMatrix(Icm.matrix()), "    ");
     const PrincipalAxes pa = Icm.CalcPrincipalAxes();
@@ -156,7 +203,7 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
     for (const MassReportPoint& p : MassReportPoints(body, extra)) {
       out += fmt::format("  Inertia about point {} = {} {}, body axes [{}]\n", p.name,
                          VecText(P.Lengths(p.p_BoP_B), P.Length(Lscale)), P.L, P.I);
-      MatrixText(out, P.InertiaMatrix(mp.CalcInertiaAbout(p.p_BoP_B).matrix()), "    ");
+      PointInertiaText(out, P, mp.CalcInertiaAbout(p.p_BoP_B), mp.mass());
     }
     if (frame.given) {
       out += fmt::format("  Inertia about the centre of mass in frame {} [{}]\n", frame.text, P.I);

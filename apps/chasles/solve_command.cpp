@@ -51,7 +51,8 @@ std::string V(const Vec3& v, double scale = 0.0) {
 
 /// The scales of the report's quantities: the largest of each kind over bodies and reactions.
 struct ReportScales {
-  double a = 0.0, alpha = 0.0, force = 0.0, moment = 0.0, p = 0.0, h = 0.0;
+  double a = 0.0, alpha = 0.0, force = 0.0, moment = 0.0, p = 0.0, h = 0.0, v = 0.0, w = 0.0,
+         hdot = 0.0;
 };
 
 ReportScales CalcScales(const SolveReport& s) {
@@ -74,8 +75,66 @@ ReportScales CalcScales(const SolveReport& s) {
   for (const BodyMotionReport& m : s.motion) {
     k.p = std::max(k.p, m.P.stableNorm());
     k.h = std::max({k.h, m.H_cm.stableNorm(), m.H_O.stableNorm()});
+    k.v = std::max(k.v, m.v_WBcm_W.stableNorm());
+    k.w = std::max(k.w, m.w_WB_W.stableNorm());
+    k.hdot = std::max({k.hdot, m.Hdot_cm.stableNorm(), m.Hdot_O.stableNorm(), k.moment});
+    for (const PointMotionReport& p : m.points) {
+      k.v = std::max(k.v, p.v_WP_W.stableNorm());
+      k.a = std::max(k.a, p.a_WP_W.stableNorm());
+    }
   }
   return k;
+}
+
+/// The velocities, the named points' velocities and accelerations and dH/dt of every body.
+std::string KinematicsText(const SolveReport& s, const ReportScales& k) {
+  std::string out;
+  // ΣM = dH/dt (eq. 8.30): the Checks section's angular momentum balance compares the
+  // moments on each body with this dH_cm/dt.
+  out +=
+      "\nVelocities, named points and dH/dt (about each centre of mass; dH_O/dt about the "
+      "origin)\n";
+  for (const BodyMotionReport& m : s.motion) {
+    out += fmt::format("  {}\n", m.name);
+    if (s.planar) {
+      out += fmt::format("    v_x   {:.9g} m/s\n    v_y   {:.9g} m/s\n    omega {:.9g} rad/s\n",
+                         Clean(m.v_WBcm_W.x(), k.v), Clean(m.v_WBcm_W.y(), k.v),
+                         Clean(m.w_WB_W.z(), k.w));
+    } else {
+      out += fmt::format("    v_cm  {} m/s\n    omega {} rad/s\n", V(m.v_WBcm_W, k.v),
+                         V(m.w_WB_W, k.w));
+    }
+    for (const PointMotionReport& p : m.points) {
+      if (s.planar) {
+        out += fmt::format(
+            "    point {} at [{:.9g}, {:.9g}] m: v [{:.9g}, {:.9g}] m/s, a [{:.9g}, {:.9g}] "
+            "m/s^2\n",
+            p.name, p.p_WP.x(), p.p_WP.y(), Clean(p.v_WP_W.x(), k.v), Clean(p.v_WP_W.y(), k.v),
+            Clean(p.a_WP_W.x(), k.a), Clean(p.a_WP_W.y(), k.a));
+      } else {
+        out += fmt::format("    point {} at {} m\n      v {} m/s\n      a {} m/s^2\n", p.name,
+                           V(p.p_WP), V(p.v_WP_W, k.v), V(p.a_WP_W, k.a));
+      }
+    }
+    if (s.planar) {
+      out += fmt::format("    dH_z/dt  {:.9g} N*m\n    dH_Oz/dt {:.9g} N*m\n",
+                         Clean(m.Hdot_cm.z(), k.hdot), Clean(m.Hdot_O.z(), k.hdot));
+    } else {
+      out += fmt::format("    dH/dt   {} N*m\n    dH_O/dt {} N*m\n", V(m.Hdot_cm, k.hdot),
+                         V(m.Hdot_O, k.hdot));
+    }
+  }
+  if (s.motion.size() > 1) {
+    out += "  all bodies (dH/dt about the system's centre of mass)\n";
+    if (s.planar) {
+      out += fmt::format("    dH_z/dt  {:.9g} N*m\n    dH_Oz/dt {:.9g} N*m\n",
+                         Clean(s.total.Hdot_cm.z(), k.hdot), Clean(s.total.Hdot_O.z(), k.hdot));
+    } else {
+      out += fmt::format("    dH/dt   {} N*m\n    dH_O/dt {} N*m\n", V(s.total.Hdot_cm, k.hdot),
+                         V(s.total.Hdot_O, k.hdot));
+    }
+  }
+  return out;
 }
 
 std::string Text(const Scene& scene, const SolveReport& s) {
@@ -163,6 +222,7 @@ std::string Text(const Scene& scene, const SolveReport& s) {
     out += "  all bodies\n";
     motion(s.total, "the system's centre of mass");
   }
+  out += KinematicsText(s, k);
   for (const auto& w : s.solution.warnings) out += fmt::format("warning: {}\n", w);
   for (const auto& w : s.certificate.FailureMessages()) out += fmt::format("warning: {}\n", w);
   out += CertificateText(s.certificate);

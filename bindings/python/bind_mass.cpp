@@ -129,6 +129,8 @@ void BindShapes(py::module_& m) {
           "Type name as a scene writes it, e.g. 'cylinder'")
       .def("describe", &Shape::Describe, "e.g. 'cylinder (radius 0.1 m, length 0.5 m)'")
       .def("measure", &Shape::CalcMeasure, "Length [m], area [m^2] or volume [m^3]")
+      .def("surface_area", &Shape::CalcSurfaceArea,
+           "Area of the bounding surface [m^2] (a surface: its area; a curve: 0)")
       .def("centroid", &Shape::CalcCentroid, "Centroid in the shape's frame [m]")
       .def(
           "unit_inertia", [](const Shape& s) { return s.CalcUnitInertia().matrix(); },

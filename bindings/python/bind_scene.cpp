@@ -175,14 +175,30 @@ void BindCertificate(py::module_& m) {
 }
 
 void BindSolve(py::module_& m) {
+  py::class_<PointMotionReport>(m, "PointMotion",
+                                "A named body point at the solved state (in W, SI).")
+      RO(PointMotionReport, name, "")
+          .def_readonly("position", &PointMotionReport::p_WP, "[m]")
+          .def_readonly("velocity", &PointMotionReport::v_WP_W, "v_cm + w x r [m/s]")
+          .def_readonly("acceleration", &PointMotionReport::a_WP_W,
+                        "a_cm + alpha x r + w x (w x r) [m/s^2]");
   py::class_<BodyMotionReport>(m, "Motion", "Kinetic energy and momenta of a body (or all).")
       RO(BodyMotionReport, name, "") RO(BodyMotionReport, T_trans, "[J]")
           RO(BodyMotionReport, T_rot, "[J]") RO(BodyMotionReport, P, "Linear momentum [kg*m/s]")
-              RO(BodyMotionReport, H_cm, "Angular momentum about the centre of mass [kg*m^2/s]")
-                  RO(BodyMotionReport, H_O, "Angular momentum about the origin [kg*m^2/s]")
-                      .def_property_readonly(
-                          "T", [](const BodyMotionReport& x) { return x.T_trans + x.T_rot; },
-                          "Kinetic energy [J]");
+              RO(BodyMotionReport, H_cm, "Angular momentum about the centre of mass [kg*m^2/s]") RO(
+                  BodyMotionReport, H_O, "Angular momentum about the origin [kg*m^2/s]")
+                  .def_readonly("Hdot_cm", &BodyMotionReport::Hdot_cm,
+                                "dH/dt about the centre of mass (I alpha + w x I w) [N*m]")
+                  .def_readonly("Hdot_O", &BodyMotionReport::Hdot_O, "dH/dt about the origin [N*m]")
+                  .def_readonly("angular_velocity", &BodyMotionReport::w_WB_W,
+                                "In W [rad/s] (bodies only)")
+                  .def_readonly("velocity", &BodyMotionReport::v_WBcm_W,
+                                "Of the centre of mass [m/s] (bodies only)")
+                  .def_readonly("points", &BodyMotionReport::points,
+                                "The body's named points (bodies only)")
+                  .def_property_readonly(
+                      "T", [](const BodyMotionReport& x) { return x.T_trans + x.T_rot; },
+                      "Kinetic energy [J]");
   py::class_<ContactPointReport>(m, "ContactReport", "A contact point at the solved state.")
       RO(ContactPointReport, point, "") RO(ContactPointReport, contact, "") RO(
           ContactPointReport, mu_s, "") RO(ContactPointReport, mu_k, "")

@@ -47,6 +47,21 @@ void SolutionTableRow(const SolveReport& s, std::vector<std::string>* names,
     for (int k = 0; k < 3; ++k) add(b.name + "_a" + xyz[k], "m/s^2", b.a_WBcm_W[k]);
     for (int k = 0; k < 3; ++k) add(b.name + "_al" + xyz[k], "rad/s^2", b.alpha_WB_W[k]);
   }
+  // Velocities, the named points' velocities and accelerations, and dH/dt (about the centre of
+  // mass "dH", about O "dHO"); planar: x and y of vectors in the plane, z of ω and dH/dt.
+  const std::vector<int> in_plane = s.planar ? std::vector<int>{0, 1} : std::vector<int>{0, 1, 2};
+  const std::vector<int> normal = s.planar ? std::vector<int>{2} : std::vector<int>{0, 1, 2};
+  for (const BodyMotionReport& m : s.motion) {
+    for (int k : in_plane) add(m.name + "_v" + xyz[k], "m/s", m.v_WBcm_W[k]);
+    for (int k : normal)
+      add(m.name + (s.planar ? "_omega" : std::string("_w") + xyz[k]), "rad/s", m.w_WB_W[k]);
+    for (const PointMotionReport& p : m.points) {
+      for (int k : in_plane) add(m.name + "_" + p.name + "_v" + xyz[k], "m/s", p.v_WP_W[k]);
+      for (int k : in_plane) add(m.name + "_" + p.name + "_a" + xyz[k], "m/s^2", p.a_WP_W[k]);
+    }
+    for (int k : normal) add(m.name + "_dH" + xyz[k], "N*m", m.Hdot_cm[k]);
+    for (int k : normal) add(m.name + "_dHO" + xyz[k], "N*m", m.Hdot_O[k]);
+  }
   // Energy and momenta as the simulation's ledger columns names them: per body with the body's
   // name first, H about its centre of mass, HO about the origin; then the totals (H about the
   // system's centre of mass).
@@ -60,6 +75,8 @@ void SolutionTableRow(const SolveReport& s, std::vector<std::string>* names,
   };
   for (const BodyMotionReport& m : s.motion) motion(m.name + "_", m);
   motion("", s.total);
+  for (int k : normal) add(std::string("dH") + xyz[k], "N*m", s.total.Hdot_cm[k]);
+  for (int k : normal) add(std::string("dHO") + xyz[k], "N*m", s.total.Hdot_O[k]);
   for (const auto& r : s.solution.reactions) {
     if (s.planar) {
       add(r.name + "_Fx", "N", r.F_Jc_W.x());

@@ -55,6 +55,8 @@ Segment FirstSegment(const StudyDefinition& definition) {
   for (size_t b = 0; b < definition.bodies.size(); ++b) {
     seg.map.place.push_back({static_cast<int>(b), Mat3::Identity(), Vec3::Zero()});
     seg.map.p_BoBcm_B.push_back(definition.bodies[b].mass_properties.p_BoBcm_B());
+    seg.map.mass.push_back(definition.bodies[b].mass_properties.mass());
+    seg.map.I_BBcm_B.push_back(definition.bodies[b].mass_properties.I_BBcm_B().matrix());
   }
   seg.model = std::make_shared<const Model>(definition.build_model(seg.bodies, seg.map));
   if (seg.model->num_bodies() != static_cast<int>(seg.bodies.size())) {

@@ -80,6 +80,89 @@ int BodyQuantityIndex(std::string_view q) {
   return it == kBodyQuantities.end() ? -1 : static_cast<int>(it - kBodyQuantities.begin());
 }
 
+/// A body point's velocity and acceleration ("pvx", "pax", ... of StudyColumn::p_BoP_B), the
+/// body's own energy and momenta and dH/dt, in the order of BodyKineticsValue's table.
+constexpr std::array<std::string_view, 24> kBodyKinetics = {
+    "pvx", "pvy", "pvz", "pax", "pay", "paz", "T_trans", "T_rot", "T",   "Px",   "Py",   "Pz",
+    "Hx",  "Hy",  "Hz",  "HOx", "HOy", "HOz", "dHx",     "dHy",   "dHz", "dHOx", "dHOy", "dHOz"};
+
+int BodyKineticsIndex(std::string_view q) {
+  const auto it = std::find(kBodyKinetics.begin(), kBodyKinetics.end(), q);
+  return it == kBodyKinetics.end() ? -1 : static_cast<int>(it - kBodyKinetics.begin());
+}
+
+/// Whether a body column needs the accelerations (a, α, a point's a, dH/dt).
+bool BodyColumnNeedsAccelerations(std::string_view q) {
+  return q[0] == 'a' || q.substr(0, 2) == "pa" || q.substr(0, 2) == "dH";
+}
+
+/// The value of a kBodyKinetics quantity of user body `c.body` (exact for a part of a
+/// composite: it moves with its model body M).
+double BodyKineticsValue(const StudyColumn& c, const Model& model, const BodyMap& map,
+                         const State& s, const Data& data) {
+  const auto ub = static_cast<size_t>(c.body);
+  if (ub >= map.mass.size() || ub >= map.I_BBcm_B.size()) {
+    throw InputError(
+        fmt::format("output column '{}': the body map carries no mass properties", c.name));
+  }
+  const MappedBodyMotion m = CalcMappedBodyMotion(model, s, map, c.body);
+  const std::string& q = c.quantity;
+  const Vec3& w = m.w_WB_W;
+  Vec3 al_W = Vec3::Zero(), a_cm = Vec3::Zero();
+  if (BodyColumnNeedsAccelerations(q)) {
+    // α of M, and a of the user body's centre of mass: a_Mcm + α × r + ω × (ω × r).
+    const auto mb = static_cast<size_t>(map.place[ub].model_body);
+    al_W = data.R_WB[mb] * data.wdot_WB_B[mb];
+    const Vec3 r = m.p_WBcm - s.bodies[mb].p_WBcm;
+    a_cm = data.a_WBcm_W[mb] + al_W.cross(r) + w.cross(w.cross(r));
+  }
+  // The point P: r from the centre of mass, v_P = v + ω × r, a_P = a + α × r + ω × (ω × r).
+  Vec3 v_P = Vec3::Zero(), a_P = Vec3::Zero();
+  if (q[0] == 'p') {
+    const Vec3 r = m.R_WB * (c.p_BoP_B - map.p_BoBcm_B[ub]);
+    v_P = m.v_WBcm_W + w.cross(r);
+    a_P = a_cm + al_W.cross(r) + w.cross(w.cross(r));
+  }
+  // The body's own T = ½ m v² + ½ ωᵀ I ω, P = m v, H = I ω about its centre of mass and
+  // H_O = H + r_cm × P (eqs. 8.115, 8.116); dH/dt = R (I α + ω × I ω) in body axes (the left
+  // sides of Euler's equations, eqs. 8.75-8.81) and dH_O/dt = dH/dt + r_cm × m a_cm.
+  const double mass = map.mass[ub];
+  const Mat3& I = map.I_BBcm_B[ub];
+  const Vec3 w_B = m.R_WB.transpose() * w;
+  const Vec3 al_B = m.R_WB.transpose() * al_W;
+  const Vec3 P = mass * m.v_WBcm_W;
+  const Vec3 H = m.R_WB * Vec3(I * w_B);
+  const Vec3 HO = H + m.p_WBcm.cross(P);
+  const Vec3 dH = m.R_WB * Vec3(I * al_B + w_B.cross(Vec3(I * w_B)));
+  const Vec3 dHO = dH + m.p_WBcm.cross(mass * a_cm);
+  const std::array<double, kBodyKinetics.size()> values = {
+      v_P.x(),
+      v_P.y(),
+      v_P.z(),
+      a_P.x(),
+      a_P.y(),
+      a_P.z(),
+      0.5 * mass * m.v_WBcm_W.squaredNorm(),
+      0.5 * w_B.dot(I * w_B),
+      0.5 * mass * m.v_WBcm_W.squaredNorm() + 0.5 * w_B.dot(I * w_B),
+      P.x(),
+      P.y(),
+      P.z(),
+      H.x(),
+      H.y(),
+      H.z(),
+      HO.x(),
+      HO.y(),
+      HO.z(),
+      dH.x(),
+      dH.y(),
+      dH.z(),
+      dHO.x(),
+      dHO.y(),
+      dHO.z()};
+  return values[static_cast<size_t>(BodyKineticsIndex(q))];
+}
+
 }  // namespace
 
 void CloseSegment(const Model& model, const State& state, LedgerCarry& carry) {
@@ -113,11 +196,12 @@ double ThetaTracker::At(int b, const Mat3& R_WB, double omega, double t) const {
 RowMaker::RowMaker(std::vector<StudyColumn> columns, ThetaTracker& theta)
     : columns_(std::move(columns)), theta_(theta) {
   for (const StudyColumn& c : columns_) {
-    if (c.body >= 0 && BodyQuantityIndex(c.quantity) < 0) {
+    if (c.body >= 0 && BodyQuantityIndex(c.quantity) < 0 && BodyKineticsIndex(c.quantity) < 0) {
       throw InputError(
           fmt::format("output column '{}': unknown body quantity '{}'", c.name, c.quantity));
     }
-    if ((c.body >= 0 && c.quantity[0] == 'a') || c.group == "reactions" || c.group == "contacts") {
+    if ((c.body >= 0 && BodyColumnNeedsAccelerations(c.quantity)) || c.group == "reactions" ||
+        c.group == "contacts") {
       needs_accelerations_ = true;
     }
   }
@@ -141,6 +225,10 @@ std::vector<double> RowMaker::Row(const Model& model, const BodyMap& map, const 
   std::vector<double> row;
   row.reserve(columns_.size());
   for (const StudyColumn& c : columns_) {
+    if (c.body >= 0 && BodyKineticsIndex(c.quantity) >= 0) {
+      row.push_back(BodyKineticsValue(c, model, map, s, data));
+      continue;
+    }
     row.push_back(c.body >= 0 ? BodyValue(c, model, map, s, data)
                               : LedgerValue(c, model, s, L, carry, data));
   }

@@ -64,10 +64,37 @@ nlohmann::json SolveJson(const SolveReport& s) {
         {"angular_momentum_cm", VecJson(m.H_cm)}, {"angular_momentum_origin", VecJson(m.H_O)}};
   };
   j["energy_momentum"] = {{"bodies", nlohmann::json::array()}, {"total", motion(s.total)}};
+  j["energy_momentum"]["total"]["angular_momentum_rate_cm"] = VecJson(s.total.Hdot_cm);
+  j["energy_momentum"]["total"]["angular_momentum_rate_origin"] = VecJson(s.total.Hdot_O);
   for (const BodyMotionReport& m : s.motion) {
     nlohmann::json b = motion(m);
     b["name"] = m.name;
+    b["angular_momentum_rate_cm"] = VecJson(m.Hdot_cm);
+    b["angular_momentum_rate_origin"] = VecJson(m.Hdot_O);
     j["energy_momentum"]["bodies"].push_back(b);
+  }
+  // Per body: ω and v_cm at the solved state, each named point's position, velocity and
+  // acceleration, and dH/dt about the centre of mass and about O (SolveReport's motion).
+  j["kinematics"] = nlohmann::json::array();
+  for (size_t i = 0; i < s.motion.size(); ++i) {
+    const BodyMotionReport& m = s.motion[i];
+    nlohmann::json b = {{"name", m.name},
+                        {"angular_velocity", VecJson(m.w_WB_W)},
+                        {"velocity", VecJson(m.v_WBcm_W)},
+                        {"angular_momentum_rate_cm", VecJson(m.Hdot_cm)},
+                        {"angular_momentum_rate_origin", VecJson(m.Hdot_O)},
+                        {"points", nlohmann::json::array()}};
+    if (i < s.solution.bodies.size()) {
+      b["acceleration"] = VecJson(s.solution.bodies[i].a_WBcm_W);
+      b["angular_acceleration"] = VecJson(s.solution.bodies[i].alpha_WB_W);
+    }
+    for (const PointMotionReport& p : m.points) {
+      b["points"].push_back({{"name", p.name},
+                             {"position", VecJson(p.p_WP)},
+                             {"velocity", VecJson(p.v_WP_W)},
+                             {"acceleration", VecJson(p.a_WP_W)}});
+    }
+    j["kinematics"].push_back(b);
   }
   j["contacts"] = nlohmann::json::array();
   for (const ContactPointReport& c : s.contacts) {

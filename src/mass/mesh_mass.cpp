@@ -200,6 +200,19 @@ double DensityFromOptions(const MeshMassOptions& o, const std::string& what) {
   return o.thickness * o.density;
 }
 
+/// The sum of the triangles' areas ½ |(b - a) × (c - a)| (compensated: Neumaier).
+double CalcMeshSurfaceArea(const TriangleMesh& mesh) {
+  double sum = 0.0, carry = 0.0;
+  for (const TriangleIndices& t : mesh.triangles) {
+    const Vec3& a = mesh.vertices[t[0]];
+    const double x = 0.5 * (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a).norm();
+    const double next = sum + x;
+    carry += std::abs(sum) >= std::abs(x) ? (sum - next) + x : (x - next) + sum;
+    sum = next;
+  }
+  return sum + carry;
+}
+
 MeshMassResult Finish(TriangleMesh& mesh, const MeshMassOptions& opts, double density,
                       const std::string& what, MeshMassReport report) {
   auto t0 = std::chrono::steady_clock::now();
@@ -215,6 +228,7 @@ MeshMassResult Finish(TriangleMesh& mesh, const MeshMassOptions& opts, double de
   const bool shell = opts.mode == MeshMassMode::kShell;
   const MeshIntegrals integrals = shell ? CalcShellIntegrals(mesh) : CalcSolidIntegrals(mesh);
   (shell ? report.area : report.volume) = integrals.measure;
+  report.surface_area = shell ? integrals.measure : CalcMeshSurfaceArea(mesh);
   if (!(integrals.measure > 0.0)) {
     throw InputError(fmt::format("{}: the mesh has zero {}", what, shell ? "area" : "volume"));
   }

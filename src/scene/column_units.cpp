@@ -31,6 +31,18 @@ std::map<std::string, std::string> ColumnUnitTable(const Scene& scene) {
   std::map<std::string, std::string> units = {{"t", "s"}};
   for (const SceneBody& b : scene.bodies) {
     for (const auto& [suffix, unit] : body_suffix) units[b.name + "_" + suffix] = unit;
+    for (const char* s : {"T_trans", "T_rot", "T"}) units[b.name + "_" + s] = "J";
+    for (const char* s : {"Px", "Py", "Pz"}) units[b.name + "_" + s] = "kg*m/s";
+    for (const char* s : {"Hx", "Hy", "Hz", "HOx", "HOy", "HOz"}) {
+      units[b.name + "_" + s] = "kg*m^2/s";
+    }
+    for (const char* s : {"dHx", "dHy", "dHz", "dHOx", "dHOy", "dHOz"}) {
+      units[b.name + "_" + s] = "N*m";
+    }
+    for (const ScenePoint& p : b.points) {
+      for (const char* s : {"vx", "vy", "vz"}) units[b.name + "_" + p.name + "_" + s] = "m/s";
+      for (const char* s : {"ax", "ay", "az"}) units[b.name + "_" + p.name + "_" + s] = "m/s^2";
+    }
   }
   for (const char* s : {"T_trans", "T_rot", "T", "V", "E", "W_nc", "W_friction", "W_rolling",
                         "W_impacts", "dissipated", "jumps", "residual"}) {

@@ -20,6 +20,13 @@ namespace {
 
 constexpr Dimension kDensityDim{-3, 1, 0};
 constexpr Dimension kInertiaDim{2, 1, 0};
+constexpr Dimension kAreaDim{2, 0, 0};
+constexpr Dimension kVolumeDim{3, 0, 0};
+
+/// A value in `dim`, or null (NaN: not given).
+nlohmann::json OrNull(const UnitSystem& units, double v, const Dimension& dim) {
+  return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(units.FromSI(v, dim));
+}
 
 /// Values in the report's units.
 struct Convert {
@@ -45,9 +52,27 @@ nlohmann::json PartJson(const ScenePart& p, const Convert& P) {
       {"mass", P.Mass(q.mass())},
       {"center_of_mass", VecJson(P.Lengths(q.p_BoBcm_B()))},
       {"inertia_about_center_of_mass", MatJson(P.InertiaMatrix(q.I_BBcm_B().matrix()))},
+      {"volume", OrNull(P.units, p.volume, kVolumeDim)},
+      {"surface_area", OrNull(P.units, p.surface_area, kAreaDim)},
       {"notes", p.notes}};
   if (std::isfinite(p.density)) pj["density"] = P.units.FromSI(p.density, kDensityDim);
   return pj;
+}
+
+/// "principal_moments" (ascending), "principal_axes" (unit, in body axes) and
+/// "radii_of_gyration" (k = sqrt(I/m), eq. 8.19, about the body axes and about the principal
+/// axes through the same point) of inertia `I` of a body of mass `mass`.
+void AddPrincipalJson(nlohmann::json& j, const RotationalInertia& I, double mass,
+                      const Convert& P) {
+  const PrincipalAxes pa = I.CalcPrincipalAxes();
+  j["principal_moments"] =
+      VecJson(Vec3(P.Inertia(pa.moments[0]), P.Inertia(pa.moments[1]), P.Inertia(pa.moments[2])));
+  j["principal_axes"] = {VecJson(pa.axes.col(0)), VecJson(pa.axes.col(1)), VecJson(pa.axes.col(2))};
+  j["radii_of_gyration"] = {
+      {"body_axes", VecJson(P.Lengths(I.CalcRadiiOfGyration(mass)))},
+      {"principal_axes",
+       VecJson(P.Lengths(RotationalInertia(pa.moments[0], pa.moments[1], pa.moments[2])
+                             .CalcRadiiOfGyration(mass)))}};
 }
 
 nlohmann::json BodyJson(const SceneBody& body, const Convert& P,
@@ -55,26 +80,28 @@ nlohmann::json BodyJson(const SceneBody& body, const Convert& P,
                         const std::optional<Mat3>& R_BF) {
   const MassProperties& mp = body.mass_properties;
   const RotationalInertia& Icm = mp.I_BBcm_B();
-  const PrincipalAxes pa = Icm.CalcPrincipalAxes();
   nlohmann::json b;
   b["name"] = body.name;
   b["mass"] = P.Mass(mp.mass());
   b["center_of_mass"] = VecJson(P.Lengths(mp.p_BoBcm_B()));
   b["inertia_about_center_of_mass"] = MatJson(P.InertiaMatrix(Icm.matrix()));
-  b["principal_moments"] =
-      VecJson(Vec3(P.Inertia(pa.moments[0]), P.Inertia(pa.moments[1]), P.Inertia(pa.moments[2])));
-  b["principal_axes"] = {VecJson(pa.axes.col(0)), VecJson(pa.axes.col(1)), VecJson(pa.axes.col(2))};
-  b["radii_of_gyration"] = {
-      {"body_axes", VecJson(P.Lengths(Icm.CalcRadiiOfGyration(mp.mass())))},
-      {"principal_axes",
-       VecJson(P.Lengths(RotationalInertia(pa.moments[0], pa.moments[1], pa.moments[2])
-                             .CalcRadiiOfGyration(mp.mass())))}};
+  AddPrincipalJson(b, Icm, mp.mass(), P);
+  const BodyMeasures measures = CalcBodyMeasures(body);
+  b["volume"] = OrNull(P.units, measures.volume, kVolumeDim);
+  b["surface_area"] = OrNull(P.units, measures.surface_area, kAreaDim);
+  if (!measures.volume_note.empty()) b["volume_note"] = measures.volume_note;
+  if (!measures.surface_area_note.empty()) b["surface_area_note"] = measures.surface_area_note;
   b["points"] = nlohmann::json::array();
   for (const MassReportPoint& p : MassReportPoints(body, extra)) {
-    b["points"].push_back(
-        {{"name", p.name},
-         {"position", VecJson(P.Lengths(p.p_BoP_B))},
-         {"inertia", MatJson(P.InertiaMatrix(mp.CalcInertiaAbout(p.p_BoP_B).matrix()))}});
+    // I_P by the parallel-axis theorem (eqs. 8.24-8.29); its principal moments and axes are
+    // the eigenvalues and eigenvectors of I_P, and k = sqrt(I/m) (eq. 8.19) about the axes
+    // through P.
+    const RotationalInertia I_P = mp.CalcInertiaAbout(p.p_BoP_B);
+    nlohmann::json pj = {{"name", p.name},
+                         {"position", VecJson(P.Lengths(p.p_BoP_B))},
+                         {"inertia", MatJson(P.InertiaMatrix(I_P.matrix()))}};
+    AddPrincipalJson(pj, I_P, mp.mass(), P);
+    b["points"].push_back(pj);
   }
   if (R_BF) {
     // The central inertia re-expressed in F: I_F = R_FB I_B R_FBᵀ with R_FB = R_BFᵀ.
@@ -88,6 +115,30 @@ nlohmann::json BodyJson(const SceneBody& body, const Convert& P,
 }
 
 }  // namespace
+
+BodyMeasures CalcBodyMeasures(const SceneBody& body) {
+  BodyMeasures m;
+  // Volume: the parts' own volumes, a cut's subtracted (curves, surfaces and points have none).
+  m.volume = 0.0;
+  for (const ScenePart& p : body.parts) {
+    if (std::isnan(p.volume)) {
+      m.volume = std::numeric_limits<double>::quiet_NaN();
+      m.volume_note = "n/a: part '" + p.name + "' (" + p.shape + ") has no geometry";
+      break;
+    }
+    m.volume += p.subtractive ? -p.volume : p.volume;
+  }
+  // Surface area: exact only for one part; parts may share or cut faces.
+  if (body.parts.size() == 1 && !std::isnan(body.parts[0].surface_area)) {
+    m.surface_area = body.parts[0].surface_area;
+  } else if (body.parts.size() == 1) {
+    m.surface_area_note =
+        "n/a: part '" + body.parts[0].name + "' (" + body.parts[0].shape + ") has no geometry";
+  } else {
+    m.surface_area_note = "n/a: parts may share or cut faces";
+  }
+  return m;
+}
 
 std::vector<MassReportPoint> MassReportPoints(const SceneBody& body,
                                               const std::vector<MassReportPoint>& extra) {
@@ -104,10 +155,10 @@ nlohmann::json MassReportJson(const Scene& scene, const UnitSystem& units,
   nlohmann::json j;
   j["scene"] = scene.file;
   j["title"] = scene.title;
-  j["units"] = {{"length", units.FormatUnit(kLength)},
-                {"mass", units.FormatUnit(kMass)},
-                {"inertia", units.FormatUnit(kInertiaDim)},
-                {"density", units.FormatUnit(kDensityDim)}};
+  j["units"] = {
+      {"length", units.FormatUnit(kLength)},      {"mass", units.FormatUnit(kMass)},
+      {"inertia", units.FormatUnit(kInertiaDim)}, {"density", units.FormatUnit(kDensityDim)},
+      {"volume", units.FormatUnit(kVolumeDim)},   {"area", units.FormatUnit(kAreaDim)}};
   j["inertia_convention"] = kInertiaConvention;
   j["parameters"] = nlohmann::json::object();
   for (const auto& [name, q] : scene.parameters) {

@@ -459,6 +459,8 @@ MassProperties SceneReader::ReadPointOrCustomPart(const At& at, ScenePart& part,
                                                   Mat3& R_BP) {
   MassProperties local;
   const bool custom = part.shape == "custom";
+  // A point has neither volume nor area; a custom part has no geometry (NaN: not known).
+  if (!custom) part.volume = part.surface_area = 0.0;
   std::vector<std::string> allowed = {"name", "shape", "subtract", "mass", "position"};
   if (custom) {
     for (const char* k : {"center_of_mass", "inertia", "axis", "rotation", "euler", "quaternion"}) {
@@ -564,6 +566,8 @@ MassProperties SceneReader::ReadTableShapePart(const At& at, const At& shape_at,
   } catch (const InputError& e) {
     report_.Fail(at, fmt::format("{}: {}", what, e.what()));
   }
+  part.volume = geometry->is_solid() ? geometry->CalcMeasure() : 0.0;
+  part.surface_area = geometry->CalcSurfaceArea();
   try {
     local = ReadShapeMass(at, body_at, *geometry, what, part);
   } catch (const SceneError&) {

@@ -109,6 +109,10 @@ MassProperties SceneReader::ReadMeshPart(const At& at, const At& body_at, const 
     report_.Fail(file_at, e.what());
   }
   part.notes = MeshNotes(result.report);
+  // A shell is a sheet: no volume, its area; a solid: the divergence-theorem volume and the
+  // sum of the triangles' areas.
+  part.volume = shell ? 0.0 : result.report.volume;
+  part.surface_area = result.report.surface_area;
   for (const std::string& w : result.report.repair.warnings) {
     warnings_.push_back(fmt::format("{}: {}", what, w));
   }

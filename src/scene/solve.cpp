@@ -33,12 +33,16 @@ void FillMuS(const Scene& scene, SolveReport& s) {
   for (size_t i = 0; i < c.rolling.size(); ++i) s.mu_s[c.joints.size() + i] = c.rolling[i].mu_s;
 }
 
-std::vector<BodyMotionReport> CalcMotion(const Model& model, const State& state,
+std::vector<BodyMotionReport> CalcMotion(const Scene& scene, const Model& model, const State& state,
+                                         const InstantaneousSolution& solved,
                                          BodyMotionReport* total) {
   std::vector<BodyMotionReport> out;
+  Vec3 M_a = Vec3::Zero();  // Σ m a_cm [N]
   for (int b = 0; b < model.num_bodies(); ++b) {
-    const BodyState& x = state.bodies[static_cast<size_t>(b)];
+    const auto i = static_cast<size_t>(b);
+    const BodyState& x = state.bodies[i];
     const Body& body = model.body(b);
+    const BodyAccelerationReport& acc = solved.bodies[i];
     BodyMotionReport m;
     m.name = body.name();
     m.T_trans = 0.5 * body.mass() * x.v_WBcm_W.squaredNorm();
@@ -46,13 +50,42 @@ std::vector<BodyMotionReport> CalcMotion(const Model& model, const State& state,
     m.P = body.mass() * x.v_WBcm_W;
     m.H_cm = x.q_WB * Vec3(body.I_BBcm_B() * x.w_WB_B);
     m.H_O = m.H_cm + x.p_WBcm.cross(m.P);
+    m.w_WB_W = x.q_WB * x.w_WB_B;
+    m.v_WBcm_W = x.v_WBcm_W;
+    // dH_cm/dt = R (I α_B + ω_B × I ω_B): the left side of Euler's equations (eqs. 8.75-8.81),
+    // in body axes where I is constant, expressed in W. dH_O/dt = dH_cm/dt + r_cm × m a_cm
+    // (H_O = H_cm + r_cm × m v_cm; d/dt of the second term is v_cm × m v_cm + r_cm × m a_cm).
+    const Vec3 Hdot_B =
+        body.I_BBcm_B() * acc.alpha_WB_B + x.w_WB_B.cross(Vec3(body.I_BBcm_B() * x.w_WB_B));
+    m.Hdot_cm = x.q_WB * Hdot_B;
+    m.Hdot_O = m.Hdot_cm + x.p_WBcm.cross(body.mass() * acc.a_WBcm_W);
+    // The body's named points (a scene body is Model body b, frames alike: BuildStudy starts
+    // from the identity map). r from the centre of mass to P, in W:
+    //   v_P = v_cm + ω × r,  a_P = a_cm + α × r + ω × (ω × r).
+    if (i < scene.bodies.size()) {
+      for (const ScenePoint& p : scene.bodies[i].points) {
+        const Vec3 r = x.q_WB * body.PointFromCenterOfMass(p.p_BoP_B);
+        PointMotionReport pm;
+        pm.name = p.name;
+        pm.p_WP = x.p_WBcm + r;
+        pm.v_WP_W = x.v_WBcm_W + m.w_WB_W.cross(r);
+        pm.a_WP_W = acc.a_WBcm_W + acc.alpha_WB_W.cross(r) + m.w_WB_W.cross(m.w_WB_W.cross(r));
+        m.points.push_back(pm);
+      }
+    }
+    total->Hdot_O += m.Hdot_O;
+    M_a += body.mass() * acc.a_WBcm_W;
     out.push_back(m);
   }
   total->T_trans = CalcTranslationalKineticEnergy(model, state);
   total->T_rot = CalcRotationalKineticEnergy(model, state);
   total->P = CalcLinearMomentum(model, state);
-  total->H_cm = CalcAngularMomentum(model, state, CalcSystemCenterOfMass(model, state));
+  const Vec3 p_WScm = CalcSystemCenterOfMass(model, state);
+  total->H_cm = CalcAngularMomentum(model, state, p_WScm);
   total->H_O = CalcAngularMomentum(model, state, Vec3::Zero());
+  // About the system's centre of mass S: H_O = H_S + r_S × P with P = M v_S, so
+  // dH_S/dt = dH_O/dt - r_S × Σ m a (the term v_S × M v_S vanishes).
+  total->Hdot_cm = total->Hdot_O - p_WScm.cross(M_a);
   return out;
 }
 
@@ -103,7 +136,7 @@ SolveReport SolveScene(const Scene& scene) {
     CertificateBuilder certificate;
     certificate.CheckState(model, state, CheckPhase::kSolve);
     s.certificate = certificate.Finish();
-    s.motion = CalcMotion(model, state, &s.total);
+    s.motion = CalcMotion(scene, model, state, s.solution, &s.total);
     FillMuS(scene, s);
     if (model.num_contacts() > 0) s.contacts = ContactReports(scene, model, state);
     return s;

@@ -670,6 +670,8 @@ BodyMap IdentityMap(const Scene& scene) {
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     map.place.push_back({static_cast<int>(b), Mat3::Identity(), Vec3::Zero()});
     map.p_BoBcm_B.push_back(scene.bodies[b].mass_properties.p_BoBcm_B());
+    map.mass.push_back(scene.bodies[b].mass_properties.mass());
+    map.I_BBcm_B.push_back(scene.bodies[b].mass_properties.I_BBcm_B().matrix());
   }
   return map;
 }

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -31,6 +32,31 @@ const std::vector<BodyGroup>& BodyGroups() {
       {"acceleration", {"ax", "ay", "az"}},
       {"angular_acceleration", {"alx", "aly", "alz"}},
       {"angular_acceleration_body", {"albx", "alby", "albz"}},
+      // The body's own energy, momenta and their rates: T = ½ m v² + ½ ωᵀ I ω, P = m v, H = I ω
+      // about its centre of mass, H_O about the world origin, dH/dt = I α + ω × I ω and
+      // dH_O/dt = dH/dt + r_cm × m a_cm (ΣM = dH/dt, eq. 8.30).
+      {"body_energy", {"T_trans", "T_rot", "T"}},
+      {"body_momentum", {"Px", "Py", "Pz"}},
+      {"body_angular_momentum", {"Hx", "Hy", "Hz"}},
+      {"body_angular_momentum_origin", {"HOx", "HOy", "HOz"}},
+      {"angular_momentum_rate", {"dHx", "dHy", "dHz"}},
+      {"angular_momentum_rate_origin", {"dHOx", "dHOy", "dHOz"}},
+  };
+  return groups;
+}
+
+struct PointGroup {
+  const char* group;
+  /// Column suffixes and the quantities they read.
+  std::vector<std::pair<const char*, const char*>> columns;
+};
+
+// Per named body point "<body>_<point>_<suffix>": v_P = v + ω × r and
+// a_P = a + α × r + ω × (ω × r), r from the centre of mass to P, in W.
+const std::vector<PointGroup>& PointGroups() {
+  static const std::vector<PointGroup> groups = {
+      {"point_velocity", {{"vx", "pvx"}, {"vy", "pvy"}, {"vz", "pvz"}}},
+      {"point_acceleration", {{"ax", "pax"}, {"ay", "pay"}, {"az", "paz"}}},
   };
   return groups;
 }
@@ -40,6 +66,7 @@ const std::vector<BodyGroup>& BodyGroups() {
 std::vector<std::string> ColumnGroups() {
   std::vector<std::string> g;
   for (const auto& b : BodyGroups()) g.emplace_back(b.group);
+  for (const auto& b : PointGroups()) g.emplace_back(b.group);
   for (const char* s : {"energy", "work", "residual", "momentum", "angular_momentum",
                         "angular_momentum_origin", "ledger", "reactions", "contacts"}) {
     g.emplace_back(s);
@@ -65,6 +92,18 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
     for (size_t b = 0; b < scene.bodies.size(); ++b) {
       for (const char* s : g.suffixes) {
         cols.push_back({scene.bodies[b].name + "_" + s, g.group, static_cast<int>(b), s, ""});
+      }
+    }
+  }
+  for (const auto& g : PointGroups()) {
+    for (size_t b = 0; b < scene.bodies.size(); ++b) {
+      for (const ScenePoint& p : scene.bodies[b].points) {
+        for (const auto& [suffix, quantity] : g.columns) {
+          ColumnInfo c{scene.bodies[b].name + "_" + p.name + "_" + suffix, g.group,
+                       static_cast<int>(b), quantity, ""};
+          c.p_BoP_B = p.p_BoP_B;
+          cols.push_back(c);
+        }
       }
     }
   }

@@ -2,7 +2,9 @@
 // values derived from the physics (formulas written here with their source).
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -116,6 +118,108 @@ TEST(Examples, Example82TwoRodsInertiaAboutO) {
   expected << 4, 0, 0, 0, 11.0 / 3, -0.5, 0, -0.5, 1.0 / 3;
   EXPECT_TRUE(MatNear(ToMat(Point(j.at("bodies").at(0), "O").at("inertia")), expected, kTight));
   EXPECT_TRUE(Near(j.at("bodies").at(0).at("mass").get<double>(), 3.0, kTight));
+}
+
+// Example 8.2 about O: [I_O] = (m l^2 / 6) [[24, 0, 0], [0, 22, -3], [0, -3, 2]] (the chapter's
+// tensor). x is a principal axis with I = 4 m l^2; the yz block has trace 4 and determinant
+// (22 * 2 - 3 * 3) / 36 = 35/36 (m l^2)^2, so its eigenvalues are 2 -+ sqrt(4 - 35/36)
+// = 2 -+ sqrt(109)/6 m l^2. The eigenvector of lambda in the yz block solves
+// (11/3 - lambda) y - z/2 = 0: (0, 1/2, 11/3 - lambda) up to length and sign. Radii of gyration
+// k = sqrt(I / M) with M = 3 m (eq. 8.19); about the body axes through O sqrt(diag / M).
+TEST(Examples, Example82PrincipalMomentsAxesAndRadiiAboutO) {
+  const double m = 1.0, l = 1.0, M = 3 * m, ml2 = m * l * l;
+  const double r = std::sqrt(109.0) / 6;
+  const Vec3 moments((2 - r) * ml2, (2 + r) * ml2, 4 * ml2);
+  for (const char* about : {"", " --about '[0, 0, 0]'"}) {
+    const auto j = MassJson("examples/example-8.2-two-rods.yaml", about);
+    const auto& O = Point(j.at("bodies").at(0), about[0] ? "'[0, 0, 0]'" : "O");
+    EXPECT_TRUE(MatNear(ToVec(O.at("principal_moments")), moments, kTight)) << about;
+    for (int k = 0; k < 3; ++k) {
+      Vec3 e = k == 2 ? Vec3(1, 0, 0) : Vec3(0, 0.5, 11.0 / 3 - moments[k] / ml2);
+      e.normalize();
+      const Vec3 got = ToVec(O.at("principal_axes").at(k));
+      // An axis is a direction: compare up to sign.
+      EXPECT_NEAR(std::abs(got.dot(e)), 1.0, kTight) << k;
+      EXPECT_NEAR(got.norm(), 1.0, kTight) << k;
+    }
+    const auto& k = O.at("radii_of_gyration");
+    EXPECT_TRUE(MatNear(
+        ToVec(k.at("principal_axes")),
+        Vec3(std::sqrt(moments[0] / M), std::sqrt(moments[1] / M), std::sqrt(moments[2] / M)),
+        kTight));
+    EXPECT_TRUE(
+        MatNear(ToVec(k.at("body_axes")),
+                Vec3(std::sqrt(4 * ml2 / M), std::sqrt(11.0 / 3 * ml2 / M), std::sqrt(ml2 / 3 / M)),
+                kTight));
+  }
+  // The text report gives them too, under the point's inertia.
+  const CliResult t = RunCli("mass " + Quote(SourcePath("examples/example-8.2-two-rods.yaml")));
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  const std::string after_O = t.out.substr(t.out.find("Inertia about point O"));
+  char line[128];
+  std::snprintf(line, sizeof line, "    Principal moments   %.7g, %.7g, %.7g kg*m^2", moments[0],
+                moments[1], moments[2]);
+  EXPECT_THAT(after_O, ::testing::HasSubstr(line));
+  EXPECT_THAT(after_O, ::testing::HasSubstr("about the principal axes through the point"));
+}
+
+// The plate with a drilled hole: the blank box a x b x t has volume abt and surface area
+// 2 (ab + bt + ta); the hole, a cylinder of radius r through the thickness t, volume πr²t and
+// surface 2πr² + 2πrt. The body's volume is abt - πr²t; its surface area is not given (its
+// parts cut each other's faces), with a note, and null in JSON.
+TEST(Examples, PlateWithHoleVolumeAndSurfaceArea) {
+  const double a = 0.2, b = 0.12, t = 0.01, r = 0.025;
+  const auto j = MassJson("examples/plate-with-hole.yaml");
+  const auto& body = j.at("bodies").at(0);
+  EXPECT_TRUE(Near(body.at("volume").get<double>(), a * b * t - M_PI * r * r * t, kTight));
+  EXPECT_TRUE(body.at("surface_area").is_null());
+  EXPECT_THAT(body.at("surface_area_note").get<std::string>(),
+              ::testing::HasSubstr("parts may share or cut faces"));
+  const auto& blank = body.at("parts").at(0);
+  const auto& hole = body.at("parts").at(1);
+  EXPECT_TRUE(Near(blank.at("volume").get<double>(), a * b * t, kTight));
+  EXPECT_TRUE(Near(blank.at("surface_area").get<double>(), 2 * (a * b + b * t + t * a), kTight));
+  EXPECT_TRUE(Near(hole.at("volume").get<double>(), M_PI * r * r * t, kTight));
+  EXPECT_TRUE(
+      Near(hole.at("surface_area").get<double>(), 2 * M_PI * r * r + 2 * M_PI * r * t, kTight));
+  EXPECT_EQ(j.at("units").at("volume"), "m^3");
+  // In millimetres: volume in mm^3 (1e9 per m^3).
+  const CliResult mm_run = RunCli("mass " + Quote(SourcePath("examples/plate-with-hole.yaml")) +
+                                  " --units mm,kg --format json");
+  ASSERT_EQ(mm_run.exit_code, 0) << mm_run.err;
+  const auto mm = nlohmann::json::parse(mm_run.out);
+  EXPECT_TRUE(Near(mm.at("bodies").at(0).at("volume").get<double>(),
+                   (a * b * t - M_PI * r * r * t) * 1e9, kTight));
+  const CliResult text = RunCli("mass " + Quote(SourcePath("examples/plate-with-hole.yaml")));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out,
+              ::testing::HasSubstr("Surface area        n/a: parts may share or cut faces"));
+}
+
+// A body of one part has its part's surface area: a sphere of radius R, 4πR², volume 4πR³/3.
+// A custom part has no geometry: volume and area null, with notes.
+TEST(Examples, OnePartBodySurfaceAreaAndCustomPartHasNone) {
+  const auto dir = OutDir("examples_measures");
+  const auto path = dir / "measures.yaml";
+  std::ofstream(path) << "chasles: 1\n"
+                         "bodies:\n"
+                         "  - name: ball\n"
+                         "    parts: [{shape: sphere, radius: 3 cm, mass: 1 kg}]\n"
+                         "  - name: lump\n"
+                         "    parts: [{shape: custom, mass: 1 kg, inertia: {Ixx: 1, Iyy: 1, "
+                         "Izz: 1}}]\n";
+  const CliResult r = RunCli("mass " + Quote(path.string()) + " --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double R = 0.03;
+  const auto& ball = j.at("bodies").at(0);
+  EXPECT_TRUE(Near(ball.at("surface_area").get<double>(), 4 * M_PI * R * R, kTight));
+  EXPECT_TRUE(Near(ball.at("volume").get<double>(), 4 * M_PI * R * R * R / 3, kTight));
+  const auto& lump = j.at("bodies").at(1);
+  EXPECT_TRUE(lump.at("volume").is_null());
+  EXPECT_TRUE(lump.at("surface_area").is_null());
+  EXPECT_THAT(lump.at("volume_note").get<std::string>(), ::testing::HasSubstr("no geometry"));
+  EXPECT_TRUE(lump.at("parts").at(0).at("volume").is_null());
 }
 
 // Section 8.3: centre of mass 41/25 r along the axle; about O diag(5, 1/2, 5) m r^2; about the

@@ -76,6 +76,13 @@ TEST(Mesh, MeshFileOnTheCommandLine) {
   EXPECT_TRUE(Near(body.at("mass").get<double>(), expected.m, kTight));
   EXPECT_TRUE(MatNear(ToVec(body.at("center_of_mass")), expected.c, kTight));
   EXPECT_TRUE(MatNear(ToMat(body.at("inertia_about_center_of_mass")), expected.I, kTight));
+  // One mesh part: the body's volume and surface area are the mesh's. The L profile in xz
+  // (60 x 10 plus 10 x 40: area 1000 mm², perimeter 60 + 10 + 50 + 40 + 10 + 50 = 220 mm)
+  // extruded 40 mm along y: volume 40000 mm³, surface 2 * 1000 + 220 * 40 = 10800 mm².
+  EXPECT_TRUE(Near(body.at("volume").get<double>(), 40000 * mm * mm * mm, kTight));
+  EXPECT_TRUE(Near(body.at("surface_area").get<double>(), 10800 * mm * mm, kTight));
+  EXPECT_TRUE(
+      Near(body.at("parts").at(0).at("surface_area").get<double>(), 10800 * mm * mm, kTight));
 }
 
 TEST(Mesh, SceneCombinesMeshPrimitivesAndTwoMaterials) {
@@ -91,6 +98,12 @@ TEST(Mesh, SceneCombinesMeshPrimitivesAndTwoMaterials) {
   EXPECT_TRUE(MatNear(ToVec(body.at("center_of_mass")), expected.c, kTight));
   EXPECT_TRUE(MatNear(ToMat(body.at("inertia_about_center_of_mass")), expected.I, kTight));
   EXPECT_EQ(body.at("parts").at(0).at("shape"), "mesh");
+  // Volume: the bracket's 40000 mm³, plus the pin's π 4² 30 mm³, minus the hole's π 3² 10 mm³;
+  // the surface area of parts that cut each other is not given.
+  const double pi = 3.14159265358979323846;
+  EXPECT_TRUE(Near(body.at("volume").get<double>(),
+                   (40000 + pi * 16 * 30 - pi * 9 * 10) * mm * mm * mm, kTight));
+  EXPECT_TRUE(body.at("surface_area").is_null());
 }
 
 TEST(Mesh, CommandLineMistakes) {

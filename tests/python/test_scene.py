@@ -231,3 +231,18 @@ simulation: {until: 5 s, tolerance: 1e-12}
     assert_rel(e.t, math.sqrt(2 / G0))
     assert_rel(e.snapshot.bodies[0].velocity, [0, 0, -G0 * math.sqrt(2 / G0)])
     assert_rel(run.t_end, math.sqrt(2 / G0))
+
+
+def test_example_8_3_angular_momentum_rate_and_surface_area():
+    # The cylinder starts at rest: dH/dt about its centre of mass is I alpha with
+    # I = m R^2 / 2 about its axis y and alpha = a / R (the omega x I omega term is 0), and
+    # the velocity of every point is 0.
+    s = chasles.solve(chasles.load_scene(example("example-8.3-cylinder-incline.yaml")))
+    a, _ = cylinder_closed_form(math.radians(30))
+    m = s.motion[0]
+    assert_rel(m.Hdot_cm, [0.0, M * R * R / 2 * a / R, 0.0])
+    assert np.all(np.asarray(m.velocity) == 0.0)
+    assert np.all(np.asarray(m.angular_velocity) == 0.0)
+    assert_rel(s.table()["cylinder_dHy"][0], M * R * a / 2)
+    # A solid cylinder's surface: two ends pi R^2 and the side 2 pi R h.
+    assert_rel(chasles.cylinder(R, 0.3).surface_area(), 2 * math.pi * R * R + 2 * math.pi * R * 0.3)

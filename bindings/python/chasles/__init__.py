@@ -153,7 +153,8 @@ def solve(scene):
     """The instantaneous problem of ``scene`` at its initial state (``chasles solve``).
 
     Returns a Solution: ``bodies`` (accelerations), ``reactions``, ``contacts``,
-    ``motion`` / ``total`` (energy, momenta), ``certificate``, ``warnings``; ``table()``
+    ``motion`` / ``total`` (energy, momenta, dH/dt; per body ω, v, named points' velocity
+    and acceleration), ``certificate``, ``warnings``; ``table()``
     gives the sweep-table row as a one-row Table.
     """
     return _solve(scene)

@@ -7,6 +7,7 @@
 /// scene, no units (SI throughout). The io layer writes them as the program's JSON and CSV
 /// (chasles/io/solve_json.h).
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,9 +19,23 @@
 
 namespace chasles {
 
+/// A named point of a body (its `points:` entry) at the solved state: the rigid-body velocity
+/// and acceleration fields of rigid-body kinematics, with r from the centre of mass to P,
+///   v_P = v_cm + ω × r,   a_P = a_cm + α × r + ω × (ω × r).
+struct PointMotionReport {
+  std::string name;
+  /// Position, velocity and acceleration of the point, in W [m, m/s, m/s²].
+  Vec3 p_WP = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 v_WP_W = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 a_WP_W = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+};
+
 /// Kinetic energy and momenta of one body (or, for the total, of all of them) at the solved
 /// state (eqs. 8.115, 8.116): T = ½ m v² + ½ ωᵀ I ω, p = m v, H about the centre of mass
-/// I ω and about the world origin H_O = H + p_cm × m v.
+/// I ω and about the world origin H_O = H + p_cm × m v. With the accelerations also their
+/// rates, the chapter's ΣM = dH/dt (eq. 8.30): about the centre of mass, in body axes
+/// dH/dt = I α + ω × I ω (the left sides of Euler's equations, eqs. 8.75-8.81), expressed in W;
+/// about the fixed origin O, dH_O/dt = dH_cm/dt + r_cm × m a_cm (the term v_cm × m v_cm vanishes).
 struct BodyMotionReport {
   /// Body name ("" for the total).
   std::string name;
@@ -33,6 +48,15 @@ struct BodyMotionReport {
   Vec3 H_cm = Vec3::Zero();
   /// Angular momentum about the world origin, in W [kg·m²/s].
   Vec3 H_O = Vec3::Zero();
+  /// Rates of H_cm and H_O, in W [N·m] (for the total: about the system's centre of mass and
+  /// about O, the sums over the bodies).
+  Vec3 Hdot_cm = Vec3::Zero();
+  Vec3 Hdot_O = Vec3::Zero();
+  /// Per body (empty for the total): the angular velocity in W [rad/s], the velocity of the
+  /// centre of mass in W [m/s] and the body's named points.
+  Vec3 w_WB_W = Vec3::Zero();
+  Vec3 v_WBcm_W = Vec3::Zero();
+  std::vector<PointMotionReport> points;
 };
 
 /// One contact point at the solved state, in the mode SelectContactModes chose.
@@ -73,9 +97,12 @@ struct SolveReport {
 
 /// One row of a sweep table: the report's values in table order, with their names and SI
 /// units ("m/s^2", "N", ...) when the pointers are given. Per body a and alpha (planar: a_x,
-/// a_y, alpha), the kinetic energy and momenta per body and in total (named as the
-/// simulation's ledger columns), per constraint F and M (planar: Fx, Fy, Mz) and for rolling
-/// N, |f| and f/N, per contact point mode (0 separated, 1 sliding, 2 sticking), N, |f|, f/N.
+/// a_y, alpha), v and omega (planar: v_x, v_y, omega), each named point's velocity and
+/// acceleration ("<body>_<point>_vx", "_ax"; planar x and y), dH/dt about the centre of mass
+/// and about O ("<body>_dHx", "_dHOx"; planar z), the kinetic energy and momenta per body and
+/// in total (named as the simulation's ledger columns) with the totals' dH/dt, per constraint F and
+/// M (planar: Fx, Fy, Mz) and for rolling N, |f| and f/N, per contact point mode (0 separated, 1
+/// sliding, 2 sticking), N, |f|, f/N.
 void SolutionTableRow(const SolveReport& s, std::vector<std::string>* names,
                       std::vector<std::string>* units, std::vector<double>* values);
 

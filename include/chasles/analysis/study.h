@@ -46,6 +46,10 @@ struct BodyPlacement {
 struct BodyMap {
   std::vector<BodyPlacement> place;
   std::vector<Vec3> p_BoBcm_B;
+  /// Each user body's own mass [kg] and central inertia in its B [kg·m²] (its momenta and
+  /// dH/dt columns; empty when no column asks).
+  std::vector<double> mass;
+  std::vector<Mat3> I_BBcm_B;
   /// A point fixed in user body b, given in B, in the model body's frame M.
   Vec3 PointInModelBody(int b, const Vec3& p_BoP_B) const;
 };
@@ -110,6 +114,8 @@ struct StudyColumn {
   std::string force;
   /// Contact point index (Model order) for the "contacts" group; -1 otherwise.
   int point = -1;
+  /// The body point of a point column ("pvx", "pax", ...): from the body origin, in B [m].
+  Vec3 p_BoP_B = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 /// A rolling constraint whose friction the run watches against μ_s (it holds the rolling

@@ -83,6 +83,8 @@ struct MeshMassReport {
   double volume = std::numeric_limits<double>::quiet_NaN();
   /// Surface area [m²] (shell mode; NaN in solid mode).
   double area = std::numeric_limits<double>::quiet_NaN();
+  /// Surface area [m²] in either mode: the sum of the triangles' areas.
+  double surface_area = std::numeric_limits<double>::quiet_NaN();
   /// Density used per unit measure [kg/m³ solid, kg/m² shell] (derived when mass is given).
   double density = std::numeric_limits<double>::quiet_NaN();
   /// Wall time reading the file [s].

@@ -69,6 +69,9 @@ class Shape {
 
   /// Length [m], area [m²] or volume [m³], according to measure().
   virtual double CalcMeasure() const = 0;
+  /// Area of the bounding surface [m²]: a solid's whole boundary, a surface shape's own area
+  /// (one side of the sheet), 0 for a curve.
+  virtual double CalcSurfaceArea() const = 0;
   /// Centroid from S's origin, expressed in S [m].
   virtual Vec3 CalcCentroid() const = 0;
   /// Inertia of unit mass about the centroid, expressed in S [m²] (= I_SScm_S / mass).
@@ -94,6 +97,10 @@ class Shape {
 // Factories. Each validates its dimensions (finite, > 0, and the shape's own rules) and
 // throws InputError naming the shape, the dimension and the rule, e.g.
 // "tube: inner radius 0.05 m must be smaller than outer radius 0.04 m".
+
+/// Surface area of the ellipsoid with semi-axes `a`, `b`, `c` [m] (any order), exact by
+/// Legendre's formula with incomplete elliptic integrals [m²].
+double EllipsoidSurfaceArea(double a, double b, double c);
 
 /// Slender rod of length `length` [m] along z ("rod").
 std::unique_ptr<Shape> MakeSlenderRod(double length);

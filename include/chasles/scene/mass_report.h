@@ -31,14 +31,30 @@ struct MassReportPoint {
   Vec3 p_BoP_B = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
+/// A body's volume and surface area, or why one is not given.
+struct BodyMeasures {
+  /// Σ of the parts' volumes, a cut's subtracted [m³]; NaN when a part has no geometry.
+  double volume = std::numeric_limits<double>::quiet_NaN();
+  /// The surface area [m²] where it is exact: a body of one part (a shape or a mesh); NaN
+  /// otherwise.
+  double surface_area = std::numeric_limits<double>::quiet_NaN();
+  /// "n/a: ..." for a value not given; empty otherwise.
+  std::string volume_note, surface_area_note;
+};
+
+/// The body's volume and surface area (BodyMeasures).
+BodyMeasures CalcBodyMeasures(const SceneBody& body);
+
 /// The body's own points (its `points:` entries) followed by `extra` (e.g. --about).
 std::vector<MassReportPoint> MassReportPoints(const SceneBody& body,
                                               const std::vector<MassReportPoint>& extra);
 
-/// The report: "scene", "title", "units" (length, mass, inertia, density), "inertia_convention",
-/// "parameters" (SI value and dimension), "bodies" (each with "points" from MassReportPoints,
-/// "frame" when R_BF is given: the central inertia in frame F, R_BF its orientation in the
-/// body, and "parts"), "warnings". Values in `units`.
+/// The report: "scene", "title", "units" (length, mass, inertia, density, volume, area),
+/// "inertia_convention", "parameters" (SI value and dimension), "bodies" (each with "volume" and
+/// "surface_area" (null with "volume_note", "surface_area_note" when not given), "points" from
+/// MassReportPoints, "frame" when R_BF is given: the central inertia in frame F, R_BF its
+/// orientation in the body, and "parts", each with its "volume" and "surface_area", null when
+/// the part has no geometry), "warnings". Values in `units`.
 nlohmann::json MassReportJson(const Scene& scene, const UnitSystem& units,
                               const std::vector<MassReportPoint>& extra = {},
                               const std::optional<Mat3>& R_BF = std::nullopt);

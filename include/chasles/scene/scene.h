@@ -31,6 +31,11 @@ struct ScenePart {
   double density = std::numeric_limits<double>::quiet_NaN();
   /// Mass properties in the body frame B; a subtractive part carries negative mass.
   MassProperties mass_properties;
+  /// The part's own volume [m³] (0 for curves, surfaces and points) and the area of its
+  /// bounding surface [m²] (a surface's own area; 0 for curves and points), positive for a
+  /// cut too; NaN when the part has no geometry (custom).
+  double volume = std::numeric_limits<double>::quiet_NaN();
+  double surface_area = std::numeric_limits<double>::quiet_NaN();
   /// Remarks for the report (integration error estimates, mesh repairs).
   std::vector<std::string> notes;
   /// Line of the part in the scene file (1-based).

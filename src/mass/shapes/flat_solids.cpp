@@ -27,6 +27,7 @@ class Box final : public Shape {
     return {{"size_x", a_}, {"size_y", b_}, {"size_z", c_}};
   }
   double CalcMeasure() const override { return a_ * b_ * c_; }
+  double CalcSurfaceArea() const override { return 2 * (a_ * b_ + b_ * c_ + c_ * a_); }
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // ∫ x² dm = m a²/12 for a uniform segment of length a: Ixx = m (b² + c²)/12, etc.
   RotationalInertia CalcUnitInertia() const override {
@@ -81,6 +82,12 @@ class TriangularPrism final : public Shape {
             {"length", h_}};
   }
   double CalcMeasure() const override { return twice_area_ / 2 * h_; }
+  // Two triangular ends 2A and three rectangular sides, the perimeter times the length.
+  double CalcSurfaceArea() const override {
+    const double perimeter =
+        (v_[1] - v_[0]).norm() + (v_[2] - v_[1]).norm() + (v_[0] - v_[2]).norm();
+    return twice_area_ + perimeter * h_;
+  }
   Vec3 CalcCentroid() const override {
     const Eigen::Vector2d c = (v_[0] + v_[1] + v_[2]) / 3;
     return Vec3(c.x(), c.y(), 0);

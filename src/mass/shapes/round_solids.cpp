@@ -3,8 +3,13 @@
 // toroidal coordinates with the radius linear in u, so that a density polynomial in x, y, z
 // stays a polynomial (times sines and cosines) in u and the cubature converges fast.
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
+
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <boost/math/special_functions/ellint_2.hpp>
 
 #include "chasles/mass/shape.h"
 #include "mass/internal/shape_checks.h"
@@ -27,6 +32,31 @@ Vec3 SphericalPoint(double r, double u1, double u2, double theta_max, double* an
   return Vec3(r * s * std::cos(phi), r * s * std::sin(phi), r * std::cos(theta));
 }
 
+}  // namespace
+
+double EllipsoidSurfaceArea(double a, double b, double c) {
+  // Legendre's formula with the semi-axes sorted a >= b >= c:
+  //   S = 2πc² + (2πab / sin φ) (E(φ, k) sin²φ + F(φ, k) cos²φ),
+  //   cos φ = c/a,  k² = a² (b² - c²) / (b² (a² - c²)),
+  // F and E the incomplete elliptic integrals of the first and second kind (modulus k). A
+  // sphere (a = c, φ = 0) is the limit 4πa².
+  double s[3] = {a, b, c};
+  std::sort(s, s + 3, std::greater<double>());
+  const double A = s[0], B = s[1], C = s[2];
+  if (A == C) return 4 * pi * A * A;
+  const double phi = std::acos(C / A);
+  const double sin_phi = std::sin(phi), cos_phi = C / A;
+  // a² - c² and b² - c² as products of sums and differences, free of cancellation.
+  const double k2 = (A * A * (B - C) * (B + C)) / (B * B * (A - C) * (A + C));
+  const double k = std::sqrt(std::min(k2, 1.0));
+  const double E = boost::math::ellint_2(k, phi);
+  const double F = boost::math::ellint_1(k, phi);
+  return 2 * pi * C * C +
+         2 * pi * A * B / sin_phi * (E * sin_phi * sin_phi + F * cos_phi * cos_phi);
+}
+
+namespace {
+
 class SolidCylinder final : public Shape {
  public:
   SolidCylinder(double R, double h) : R_(R), h_(h) {
@@ -39,6 +69,8 @@ class SolidCylinder final : public Shape {
     return {{"radius", R_}, {"length", h_}};
   }
   double CalcMeasure() const override { return pi * R_ * R_ * h_; }
+  // Two end disks and the side: 2πR² + 2πRh.
+  double CalcSurfaceArea() const override { return 2 * pi * R_ * (R_ + h_); }
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // Izz = ∫ r² dm = m R²/2 (disk); Ixx = m R²/4 (disk, perpendicular axes) + m h²/12 (rod).
   RotationalInertia CalcUnitInertia() const override {
@@ -72,6 +104,10 @@ class Tube final : public Shape {
   }
   // pi (Ro² - Ri²) h, factored so that a thin wall loses no digits.
   double CalcMeasure() const override { return pi * (Ro_ - Ri_) * (Ro_ + Ri_) * h_; }
+  // Outer and inner walls 2π(Ro + Ri)h and two annular ends 2π(Ro² - Ri²).
+  double CalcSurfaceArea() const override {
+    return 2 * pi * (Ro_ + Ri_) * h_ + 2 * pi * (Ro_ - Ri_) * (Ro_ + Ri_);
+  }
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // Cylinder(Ro) minus cylinder(Ri): ∫ r² dm / m = (Ro⁴ - Ri⁴)/(2 (Ro² - Ri²)) = (Ro² + Ri²)/2;
   // Ixx = half of that (perpendicular axes) + h²/12.
@@ -99,6 +135,7 @@ class SolidSphere final : public Shape {
   Measure measure() const override { return Measure::kVolume; }
   std::vector<ShapeDimension> dimensions() const override { return {{"radius", R_}}; }
   double CalcMeasure() const override { return 4 * pi * R_ * R_ * R_ / 3; }
+  double CalcSurfaceArea() const override { return 4 * pi * R_ * R_; }
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // (2/3) ∫ |p|² dm = (2/3) m (3/5) R² = (2/5) m R² about every axis.
   RotationalInertia CalcUnitInertia() const override {
@@ -132,6 +169,8 @@ class ThickSphericalShell final : public Shape {
   double CalcMeasure() const override {
     return 4 * pi * (Ro_ - Ri_) * (Ro_ * Ro_ + Ro_ * Ri_ + Ri_ * Ri_) / 3;
   }
+  // The outer and the inner sphere: 4π(Ro² + Ri²).
+  double CalcSurfaceArea() const override { return 4 * pi * (Ro_ * Ro_ + Ri_ * Ri_); }
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // Sphere(Ro) minus sphere(Ri): (2/5) (Ro⁵ - Ri⁵)/(Ro³ - Ri³), both differences divided by
   // (Ro - Ri) so that a thin wall tends to the thin shell's (2/3) R² without cancellation.
@@ -161,6 +200,8 @@ class SolidHemisphere final : public Shape {
   Measure measure() const override { return Measure::kVolume; }
   std::vector<ShapeDimension> dimensions() const override { return {{"radius", R_}}; }
   double CalcMeasure() const override { return 2 * pi * R_ * R_ * R_ / 3; }
+  // The dome 2πR² and the flat face πR².
+  double CalcSurfaceArea() const override { return 3 * pi * R_ * R_; }
   // ∫ z dV = pi R⁴/4 over the half ball of volume 2 pi R³/3: z = 3R/8.
   Vec3 CalcCentroid() const override { return Vec3(0, 0, 3 * R_ / 8); }
   // About the flat face's centre every axis gives (2/5) m R² (half of a sphere); shifting the
@@ -192,6 +233,8 @@ class SolidCone final : public Shape {
     return {{"radius", R_}, {"height", h_}};
   }
   double CalcMeasure() const override { return pi * R_ * R_ * h_ / 3; }
+  // The base πR² and the lateral surface πR s, s = sqrt(R² + h²) the slant height.
+  double CalcSurfaceArea() const override { return pi * R_ * (R_ + std::hypot(R_, h_)); }
   // Cross-section area ∝ (h - z)²: z = ∫ z (h-z)² dz / ∫ (h-z)² dz = h/4.
   Vec3 CalcCentroid() const override { return Vec3(0, 0, h_ / 4); }
   // Izz = ∫ (disk R(z)²/2) dm = (3/10) m R². Ixx about the base = (3/20) m R² + m h²/10;
@@ -226,6 +269,7 @@ class Ellipsoid final : public Shape {
     return {{"semi_axis_x", a_}, {"semi_axis_y", b_}, {"semi_axis_z", c_}};
   }
   double CalcMeasure() const override { return 4 * pi * a_ * b_ * c_ / 3; }
+  double CalcSurfaceArea() const override { return EllipsoidSurfaceArea(a_, b_, c_); }
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // The unit ball stretched by (a, b, c): ∫ x² dm = m a²/5, so Ixx = m (b² + c²)/5, etc.
   RotationalInertia CalcUnitInertia() const override {
@@ -258,6 +302,8 @@ class Torus final : public Shape {
   }
   // Pappus: tube cross-section pi r² swept along a circle of length 2 pi R.
   double CalcMeasure() const override { return 2 * pi * pi * R_ * r_ * r_; }
+  // Pappus: the tube's circle 2πr swept round the circle of radius R: 4π² R r.
+  double CalcSurfaceArea() const override { return 4 * pi * pi * R_ * r_; }
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // dV = s dA dphi over the tube's disk (radius r), s = R + x the distance from z:
   // Izz = ∫ s³ dA / ∫ s dA = (R³ + 3R r²/4)/R = R² + (3/4) r²; ∫ z² dm / m = r²/4, so

@@ -19,6 +19,7 @@ class SlenderRod final : public Shape {
   Measure measure() const override { return Measure::kLength; }
   std::vector<ShapeDimension> dimensions() const override { return {{"length", L_}}; }
   double CalcMeasure() const override { return L_; }
+  double CalcSurfaceArea() const override { return 0.0; }  // a curve
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // ∫ z² dm over a uniform segment [-L/2, L/2]: m L²/12 about x and y; nothing about its axis.
   RotationalInertia CalcUnitInertia() const override {
@@ -36,6 +37,7 @@ class ThinRing final : public Shape {
   Measure measure() const override { return Measure::kLength; }
   std::vector<ShapeDimension> dimensions() const override { return {{"radius", R_}}; }
   double CalcMeasure() const override { return 2 * pi * R_; }
+  double CalcSurfaceArea() const override { return 0.0; }  // a curve
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // All mass at distance R from z: Izz = m R²; perpendicular-axis theorem Ixx = Iyy = Izz/2.
   RotationalInertia CalcUnitInertia() const override {
@@ -53,6 +55,7 @@ class ThinDisk final : public Shape {
   Measure measure() const override { return Measure::kArea; }
   std::vector<ShapeDimension> dimensions() const override { return {{"radius", R_}}; }
   double CalcMeasure() const override { return pi * R_ * R_; }
+  double CalcSurfaceArea() const override { return CalcMeasure(); }  // a surface
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // Izz = ∫ r² dm = m R²/2 (dm = 2m r dr / R²); perpendicular-axis theorem Ixx = Iyy = Izz/2.
   RotationalInertia CalcUnitInertia() const override {
@@ -75,6 +78,7 @@ class ThinPlate final : public Shape {
     return {{"size_x", a_}, {"size_y", b_}};
   }
   double CalcMeasure() const override { return a_ * b_; }
+  double CalcSurfaceArea() const override { return CalcMeasure(); }  // a surface
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // Ixx = ∫ y² dm = m b²/12, Iyy = m a²/12 (uniform segments); Izz = Ixx + Iyy (flat plate).
   RotationalInertia CalcUnitInertia() const override {
@@ -97,6 +101,7 @@ class ThinCylindricalShell final : public Shape {
     return {{"radius", R_}, {"length", h_}};
   }
   double CalcMeasure() const override { return 2 * pi * R_ * h_; }
+  double CalcSurfaceArea() const override { return CalcMeasure(); }  // a surface
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // Izz = m R² (all mass at radius R); Ixx = ∫(y² + z²) dm = m R²/2 + m h²/12.
   RotationalInertia CalcUnitInertia() const override {
@@ -115,6 +120,7 @@ class ThinSphericalShell final : public Shape {
   Measure measure() const override { return Measure::kArea; }
   std::vector<ShapeDimension> dimensions() const override { return {{"radius", R_}}; }
   double CalcMeasure() const override { return 4 * pi * R_ * R_; }
+  double CalcSurfaceArea() const override { return CalcMeasure(); }  // a surface
   Vec3 CalcCentroid() const override { return Vec3::Zero(); }
   // By symmetry Ixx = Iyy = Izz = (2/3) ∫ |p|² dm = (2/3) m R².
   RotationalInertia CalcUnitInertia() const override {

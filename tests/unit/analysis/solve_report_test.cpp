@@ -67,8 +67,25 @@ TEST(SolutionTableRow, PlanarRowsHoldAxAyAlphaAndFxFyMz) {
   EXPECT_EQ(at("pin_Fy"), 8.0);
   EXPECT_EQ(at("pin_Mz"), 12.0);
   EXPECT_EQ(units[0], "m/s^2");
-  // Per body T_trans, T_rot, T, P, H, HO (12), then the same for the total.
-  EXPECT_EQ(names.size(), 3u + 12u + 12u + 3u);
+  // Planar: per body v_x, v_y, omega, dH_z/dt about the centre of mass and about O (5), per
+  // body T_trans, T_rot, T, P, H, HO (12), then the same for the total with its dH_z/dt and
+  // dH_Oz/dt (12 + 2).
+  EXPECT_EQ(names.size(), 3u + 5u + 12u + 12u + 2u + 3u);
+  s.motion[0].v_WBcm_W = Vec3(13, 14, 15);
+  s.motion[0].w_WB_W = Vec3(16, 17, 18);
+  s.motion[0].Hdot_cm = Vec3(19, 20, 21);
+  s.motion[0].Hdot_O = Vec3(22, 23, 24);
+  s.total.Hdot_cm = Vec3(25, 26, 27);
+  s.total.Hdot_O = Vec3(28, 29, 30);
+  names.clear(), units.clear(), values.clear();
+  SolutionTableRow(s, &names, &units, &values);
+  EXPECT_EQ(at("bar_vx"), 13.0);
+  EXPECT_EQ(at("bar_vy"), 14.0);
+  EXPECT_EQ(at("bar_omega"), 18.0);
+  EXPECT_EQ(at("bar_dHz"), 21.0);
+  EXPECT_EQ(at("bar_dHOz"), 24.0);
+  EXPECT_EQ(at("dHz"), 27.0);
+  EXPECT_EQ(at("dHOz"), 30.0);
 }
 
 }  // namespace

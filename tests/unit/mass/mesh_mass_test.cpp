@@ -116,6 +116,8 @@ TEST(MeshMass, BoxIsExact) {
                      .asDiagonal();
   EXPECT_TRUE(MatNear(mp.I_BBcm_B().matrix(), I, 1e-13));
   EXPECT_TRUE(Near(res.report.volume, a * b * c, 1e-14));
+  // The six faces: 2 (ab + bc + ca), the sum of the twelve triangles' areas.
+  EXPECT_TRUE(Near(res.report.surface_area, 2 * (a * b + b * c + c * a), 1e-14));
   EXPECT_EQ(res.report.triangles, 12u);
   EXPECT_TRUE(res.report.repair.warnings.empty());
 }
@@ -136,6 +138,12 @@ TEST(MeshMass, TetrahedronIsExact) {
   const MeshMassResult res = ComputeMeshMassProperties(t, o);
   const MassProperties& mp = res.mass_properties;
   EXPECT_TRUE(Near(res.report.volume, a * b * c / 6, 1e-15));
+  // Three right-triangle faces ab/2, bc/2, ca/2 and the slanted face |(b - a) × (c - a)|/2
+  // = sqrt((bc)² + (ca)² + (ab)²)/2 with the edge vectors (-a, b, 0) and (-a, 0, c).
+  EXPECT_TRUE(
+      Near(res.report.surface_area,
+           (a * b + b * c + c * a + std::sqrt(b * b * c * c + c * c * a * a + a * a * b * b)) / 2,
+           1e-15));
   EXPECT_TRUE(Near(mp.mass(), mass, 1e-15));
   EXPECT_TRUE(MatNear(mp.p_BoBcm_B(), Vec3(a, b, c) / 4, 1e-15));
   const double m = mass;

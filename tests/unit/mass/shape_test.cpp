@@ -109,6 +109,67 @@ TEST(Shape, BoxAndEllipsoidMatchAppendixA) {
               RotationalInertia((b * b + c * c) / 5, (a * a + c * c) / 5, (a * a + b * b) / 5), c);
 }
 
+// Surface areas: a solid's whole boundary, a surface shape's own area, 0 for curves.
+TEST(Shape, SurfaceAreasMatchTheirClosedForms) {
+  const double R = 0.3, Ri = 0.1, h = 0.7, a = 0.4, b = 0.5, c = 0.9, r = 0.05;
+  EXPECT_EQ(MakeSlenderRod(h)->CalcSurfaceArea(), 0.0);
+  EXPECT_EQ(MakeThinRing(R)->CalcSurfaceArea(), 0.0);
+  EXPECT_TRUE(Near(MakeThinDisk(R)->CalcSurfaceArea(), pi * R * R, kExact));
+  EXPECT_TRUE(Near(MakeThinPlate(a, b)->CalcSurfaceArea(), a * b, kExact));
+  EXPECT_TRUE(Near(MakeThinCylindricalShell(R, h)->CalcSurfaceArea(), 2 * pi * R * h, kExact));
+  EXPECT_TRUE(Near(MakeThinSphericalShell(R)->CalcSurfaceArea(), 4 * pi * R * R, kExact));
+  // Cylinder: two ends πR² and the side 2πRh.
+  EXPECT_TRUE(
+      Near(MakeSolidCylinder(R, h)->CalcSurfaceArea(), 2 * pi * R * R + 2 * pi * R * h, kExact));
+  // Tube: outer and inner walls, two annuli.
+  EXPECT_TRUE(Near(MakeTube(Ri, R, h)->CalcSurfaceArea(),
+                   2 * pi * R * h + 2 * pi * Ri * h + 2 * pi * (R * R - Ri * Ri), kExact));
+  EXPECT_TRUE(Near(MakeSolidSphere(R)->CalcSurfaceArea(), 4 * pi * R * R, kExact));
+  EXPECT_TRUE(Near(MakeThickSphericalShell(Ri, R)->CalcSurfaceArea(),
+                   4 * pi * R * R + 4 * pi * Ri * Ri, kExact));
+  // Hemisphere: half the sphere 2πR² and the flat disk πR².
+  EXPECT_TRUE(Near(MakeSolidHemisphere(R)->CalcSurfaceArea(), 3 * pi * R * R, kExact));
+  // Cone: base πR² and lateral πR times the slant height sqrt(R² + h²).
+  EXPECT_TRUE(Near(MakeSolidCone(R, h)->CalcSurfaceArea(),
+                   pi * R * R + pi * R * std::sqrt(R * R + h * h), kExact));
+  EXPECT_TRUE(Near(MakeBox(a, b, c)->CalcSurfaceArea(), 2 * (a * b + b * c + c * a), kExact));
+  // Torus (Pappus): the tube's circumference 2πr times the path 2πR of its centre.
+  EXPECT_TRUE(Near(MakeTorus(R, r)->CalcSurfaceArea(), 4 * pi * pi * R * r, kExact));
+  // Prism on the 3-4-5 right triangle: two ends of area 6 and sides (3 + 4 + 5) h.
+  EXPECT_TRUE(Near(MakeTriangularPrism({1, 1}, {4, 1}, {1, 5}, h)->CalcSurfaceArea(),
+                   2 * 6.0 + 12.0 * h, kExact));
+}
+
+// The ellipsoid (Legendre's formula, incomplete elliptic integrals) against the closed forms:
+// the sphere 4πa²; a spheroid with equatorial radius a and polar semi-axis c,
+//   oblate (c < a), e² = 1 - c²/a²:  S = 2πa² (1 + (1 - e²) atanh(e) / e),
+//   prolate (c > a), e² = 1 - a²/c²: S = 2πa² (1 + c asin(e) / (a e)),
+// with the semi-axes given in every order; and the degenerate limit c -> 0 of a flat
+// ellipsoid, twice the ellipse's area 2πab.
+TEST(Shape, EllipsoidSurfaceAreaMatchesSphereAndSpheroids) {
+  const double a = 0.7;
+  EXPECT_TRUE(Near(MakeEllipsoid(a, a, a)->CalcSurfaceArea(), 4 * pi * a * a, kExact));
+  for (double c : {0.1, 0.35, 0.69}) {
+    const double e = std::sqrt(1 - c * c / (a * a));
+    const double S = 2 * pi * a * a * (1 + (1 - e * e) * std::atanh(e) / e);
+    EXPECT_TRUE(Near(MakeEllipsoid(a, a, c)->CalcSurfaceArea(), S, kExact)) << "oblate c " << c;
+    EXPECT_TRUE(Near(MakeEllipsoid(c, a, a)->CalcSurfaceArea(), S, kExact)) << "oblate c " << c;
+  }
+  for (double c : {0.71, 1.4, 7.0}) {
+    const double e = std::sqrt(1 - a * a / (c * c));
+    const double S = 2 * pi * a * a * (1 + c * std::asin(e) / (a * e));
+    EXPECT_TRUE(Near(MakeEllipsoid(a, a, c)->CalcSurfaceArea(), S, kExact)) << "prolate c " << c;
+    EXPECT_TRUE(Near(MakeEllipsoid(a, c, a)->CalcSurfaceArea(), S, kExact)) << "prolate c " << c;
+  }
+  const double b = 0.4;
+  EXPECT_TRUE(Near(EllipsoidSurfaceArea(a, b, 1e-9), 2 * pi * a * b, 1e-8));
+  // Between its inscribed and circumscribed spheres' areas, and the same in every order.
+  const double S = EllipsoidSurfaceArea(a, b, 0.2);
+  EXPECT_GT(S, 4 * pi * 0.2 * 0.2);
+  EXPECT_LT(S, 4 * pi * a * a);
+  EXPECT_TRUE(Near(EllipsoidSurfaceArea(0.2, a, b), S, kExact));
+}
+
 TEST(Shape, RightTrianglePrismMatchesTextbookSecondMoments) {
   // Right triangle with legs a (x) and b (y) at the corner (x0, y0): area ab/2, centroid
   // (x0 + a/3, y0 + b/3); about the centroid ∫ y'² dA = a b³/36, ∫ x'² dA = a³ b/36 and
