@@ -53,6 +53,7 @@
 #include "chasles/model/forces.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
+#include "chasles/model/string_constraint.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
 #include "chasles/suggest.h"

@@ -10,6 +10,7 @@
 
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/newton_euler.h"
+#include "chasles/model/string_constraint.h"
 
 namespace chasles {
 
@@ -160,6 +161,17 @@ CertificateBuilder::BodyResultants CertificateBuilder::CollectForces(const Model
     const ConstraintOutput& o = data.constraints[static_cast<size_t>(c)];
     AddForce(state, r, con.child(), o.F_Jc_W, o.p_WJ);
     AddMoment(r, con.child(), o.M_Jc_W);
+    if (con.parent() != kWorld && dynamic_cast<const StringConstraint*>(&con) != nullptr) {
+      // A string over pulleys pulls its parent along its own end segment, not opposite to
+      // the child (the pulleys take the difference): the parent's share of Jᵀλ, T e_A at
+      // its leaving point, which the row's angular part r_A × e_A already moves to Pcm.
+      const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+      const Vec3 F = e.J_parent.row(0).head<3>().transpose() * o.lambda[0];
+      const Vec3 M = e.J_parent.row(0).tail<3>().transpose() * o.lambda[0];
+      AddForce(state, r, con.parent(), F, state.bodies[static_cast<size_t>(con.parent())].p_WBcm);
+      AddMoment(r, con.parent(), M);
+      continue;
+    }
     AddForce(state, r, con.parent(), -o.F_Jc_W, o.p_WJ);
     AddMoment(r, con.parent(), -o.M_Jc_W);
   }

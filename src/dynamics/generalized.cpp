@@ -1,5 +1,12 @@
 #include "dynamics/internal/generalized.h"
 
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "chasles/error.h"
+#include "chasles/model/string_constraint.h"
+
 namespace chasles::internal {
 
 // Mass-matrix helpers over the 6-per-body generalised velocity u_b = [v_WBcm_W; w_WB_W].
@@ -45,6 +52,25 @@ double KineticEnergy(const Model& model, const State& state) {
   return T;
 }
 
+namespace {
+
+// A string's multiplier is its tension (model/string_constraint.h). Its row is bilateral: a
+// negative tension means the string would go slack, which it cannot represent, so the run
+// stops there (a tolerance of 1e-9 of the largest force in play absorbs round-off).
+void CheckStringTaut(const Constraint& con, double tension, const Data& data, double t) {
+  if (dynamic_cast<const StringConstraint*>(&con) == nullptr) return;
+  double scale = data.lambda.size() > 0 ? data.lambda.cwiseAbs().maxCoeff() : 0.0;
+  for (const Vec3& F : data.F_Bcm_W) scale = std::max(scale, F.norm());
+  if (tension < -1e-9 * scale) {
+    throw InputError(fmt::format(
+        "string '{}' would go slack at t = {:.6g} s: its tension comes out {:.6g} N, and a "
+        "string can only pull; strings are held taut (a slack string is not modelled yet)",
+        con.name(), t, tension));
+  }
+}
+
+}  // namespace
+
 void FillConstraintReactions(const Model& model, const State& state, Data& data) {
   GetVelocity(model, state, data, data.u);
   data.Ju.noalias() = data.J * data.u;
@@ -67,6 +93,7 @@ void FillConstraintReactions(const Model& model, const State& state, Data& data)
     out.F_Jc_B = data.R_WB[bi].transpose() * out.F_Jc_W;
     out.M_Jc_B = data.R_WB[bi].transpose() * out.M_Jc_W;
     out.power = data.lambda.segment(o, n).dot(data.Ju.segment(o, n));
+    CheckStringTaut(con, out.lambda[0], data, state.t);
   }
 }
 

@@ -7,6 +7,7 @@
 
 #include "chasles/error.h"
 #include "chasles/model/constraints.h"
+#include "chasles/model/string_constraint.h"
 
 namespace chasles {
 
@@ -84,6 +85,17 @@ int Model::AddConstraint(std::shared_ptr<const Constraint> constraint) {
   if (const auto* joint = dynamic_cast<const Joint*>(constraint.get())) {
     particle_attachment(constraint->parent(), joint->X_PJ());
     particle_attachment(constraint->child(), joint->X_CJ());
+  } else if (const auto* str = dynamic_cast<const StringConstraint*>(constraint.get())) {
+    // A string pulls a point mass at its position; a drum needs a body that turns.
+    for (const StringEnd* e : {&str->end_a(), &str->end_b()}) {
+      if (e->body != kWorld && body(e->body).is_particle() && e->radius > 0.0) {
+        throw InputError(fmt::format(
+            "string '{}': body '{}' is a point mass, which has no drum to wind the string on; "
+            "tie the string to it (radius 0) or give it a shape with inertia",
+            constraint->name(), body(e->body).name()));
+      }
+      particle_attachment(e->body, AttachmentFrame{e->p_BoP_B, Mat3::Identity()});
+    }
   } else {
     for (BodyIndex b : {constraint->parent(), constraint->child()}) {
       if (b != kWorld && body(b).is_particle()) {
