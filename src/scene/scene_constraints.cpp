@@ -20,6 +20,7 @@ std::vector<std::string> SceneConstraints::names() const {
   for (const auto& r : rolling) n.push_back(r.name);
   for (const auto& d : drivers) n.push_back(d.name);
   for (const auto& g : gears) n.push_back(g.name);
+  for (const auto& st : strings) n.push_back(st.name);
   return n;
 }
 
@@ -35,6 +36,9 @@ const SceneSpot* SceneConstraints::Find(const std::string& name) const {
   }
   for (const auto& g : gears) {
     if (g.name == name) return &g.where;
+  }
+  for (const auto& st : strings) {
+    if (st.name == name) return &st.where;
   }
   return nullptr;
 }
@@ -103,10 +107,11 @@ std::string SceneReader::ConstraintName(const At& at, const char* kind, size_t i
   const std::string name = at.Has("name") ? report_.Text(at.Child("name"), "a name")
                                           : fmt::format("{}{}", kind, index + 1);
   if (std::find(taken.begin(), taken.end(), name) != taken.end()) {
-    report_.Fail(at.Has("name") ? at.Child("name") : at,
-                 fmt::format("two joints, rolling contacts, drivers or gears are named '{}'; names "
-                             "must be unique",
-                             name));
+    report_.Fail(
+        at.Has("name") ? at.Child("name") : at,
+        fmt::format("two joints, rolling contacts, drivers, gears or strings are named '{}'; "
+                    "names must be unique",
+                    name));
   }
   taken.push_back(name);
   return name;
@@ -345,6 +350,84 @@ void SceneReader::CheckPitchCirclesTouch(const At& at, const SceneGear& g) {
   }
 }
 
+// A string's sense round a drum or pulley, about the string's normal.
+int SceneReader::StringSenseAt(const At& at) {
+  const std::string sense = report_.Text(at, "counterclockwise or clockwise");
+  if (sense == "counterclockwise") return 1;
+  if (sense == "clockwise") return -1;
+  report_.Fail(at, fmt::format("unknown sense '{}'{}; expected counterclockwise or clockwise "
+                               "(about the string's normal, following the string from 'from' "
+                               "to 'to')",
+                               sense, DidYouMean(sense, {"counterclockwise", "clockwise"})));
+}
+
+// An end of a string: {body, at, radius, sense}; `radius` makes it a drum (then `sense` is
+// needed); `at` defaults to the body's centre of mass (the world has none).
+SceneStringEnd SceneReader::ReadStringEnd(const At& at, const Scene& scene,
+                                          const std::string& what) {
+  report_.CheckMap(at, {"body", "at", "radius", "sense"},
+                   "a string end ({body, at} or a drum {body, at, radius, sense})");
+  SceneStringEnd e;
+  e.body = ParentIndexAt(report_.Require(at, "body", what), scene);
+  if (at.Has("at")) {
+    e.p_W = WorldVector(at.Child("at"), kLength, "the end's point (world)");
+  } else if (e.body == kWorld) {
+    report_.Require(at, "at", what + " (the world has no centre of mass to default to)");
+  }
+  if (at.Has("radius")) {
+    e.radius = PositiveValue(at.Child("radius"), kLength, "the drum's radius");
+    e.sense = StringSenseAt(report_.Require(at, "sense", what + " (a drum)"));
+  } else if (at.Has("sense")) {
+    report_.Fail(at.Child("sense"),
+                 "'sense' belongs to a drum; give its 'radius' too, or remove "
+                 "'sense' for a string tied to a point");
+  }
+  return e;
+}
+
+SceneString SceneReader::ReadString(const At& at, size_t i, const Scene& scene,
+                                    std::vector<std::string>& taken) {
+  report_.CheckMap(at, {"name", "from", "to", "over", "normal"}, "a string");
+  SceneString st;
+  st.where = Spot(at);
+  st.name = ConstraintName(at, "string", i, taken);
+  const std::string what = fmt::format("string '{}'", st.name);
+  st.from = ReadStringEnd(report_.Require(at, "from", what), scene, what + ": 'from'");
+  st.to = ReadStringEnd(report_.Require(at, "to", what), scene, what + ": 'to'");
+  if (st.from.body == kWorld && st.to.body == kWorld) {
+    report_.Fail(at.Child("to"), "both ends of the string are on the world; tie one to a body");
+  }
+  if (st.from.body == st.to.body) {
+    report_.Fail(at.Child("to"),
+                 "both ends of the string are on the same body; tie them to two "
+                 "different bodies (or one to the world)");
+  }
+  if (at.Has("over")) {
+    const At list = at.Child("over");
+    report_.CheckSequence(list, "a list of pulleys [{center, radius, sense}, ...]");
+    for (size_t k = 0; k < list.node.size(); ++k) {
+      const At p_at = list.Item(k);
+      report_.CheckMap(p_at, {"center", "radius", "sense"}, "a pulley ({center, radius, sense})");
+      SceneStringPulley p;
+      p.center_W = WorldVector(report_.Require(p_at, "center", "a pulley"), kLength,
+                               "the pulley's centre (world)");
+      p.radius = PositiveValue(report_.Require(p_at, "radius", "a pulley"), kLength,
+                               "the pulley's radius");
+      p.sense = StringSenseAt(report_.Require(p_at, "sense", "a pulley"));
+      st.over.push_back(p);
+    }
+  }
+  if (at.Has("normal")) {
+    if (planar_) {
+      report_.Fail(at.Child("normal"),
+                   "a planar scene's strings lie in its plane (normal z); "
+                   "remove 'normal'");
+    }
+    st.normal_W = AxisAt(at.Child("normal"), "the string's normal");
+  }
+  return st;
+}
+
 void SceneReader::ReadConstraints(const At& root, Scene& scene) {
   SceneConstraints& c = scene.dynamics.constraints;
   std::vector<std::string> taken;
@@ -378,6 +461,14 @@ void SceneReader::ReadConstraints(const At& root, Scene& scene) {
     report_.CheckSequence(list, "a list of gear meshes");
     for (size_t i = 0; i < list.node.size(); ++i) {
       c.gears.push_back(ReadGear(list.Item(i), i, scene, taken));
+    }
+  }
+
+  if (root.Has("strings")) {
+    const At list = root.Child("strings");
+    report_.CheckSequence(list, "a list of strings");
+    for (size_t i = 0; i < list.node.size(); ++i) {
+      c.strings.push_back(ReadString(list.Item(i), i, scene, taken));
     }
   }
 }

@@ -40,10 +40,10 @@ const Dimension kArea{2, 0, 0};
 const Dimension kInertia{2, 1, 0};
 
 const std::vector<std::string> kRootKeys = {
-    "chasles",    "title",    "description",    "units",          "parameters", "materials",
-    "bodies",     "gravity",  "forces",         "events",         "impulses",   "impacts",
-    "simulation", "output",   "joints",         "rolling",        "drivers",    "gears",
-    "planar",     "contacts", "material_pairs", "project_initial"};
+    "chasles",    "title",    "description",    "units",           "parameters", "materials",
+    "bodies",     "gravity",  "forces",         "events",          "impulses",   "impacts",
+    "simulation", "output",   "joints",         "rolling",         "drivers",    "gears",
+    "planar",     "contacts", "material_pairs", "project_initial", "strings"};
 const std::vector<std::string> kBodyKeys = {"name",   "material", "density",
                                             "points", "parts",    "initial"};
 // Keys every part may have; each shape adds its dimensions (see shape_table.cpp).

@@ -26,6 +26,7 @@
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
+#include "chasles/model/string_constraint.h"
 #include "chasles/scene/scene_error.h"
 #include "internal/initial_state.h"
 #include "internal/study_columns.h"
@@ -148,6 +149,62 @@ std::string PlaneConstraintName(const Scene& scene, int b) {
   return fmt::format("{} (in plane)", scene.bodies[static_cast<size_t>(b)].name);
 }
 
+/// A scene string as the model's StringConstraint: each end's point (the body's centre of mass
+/// by default) in its body's frame, and the free length it has at the initial configuration,
+/// which it keeps. The model's second end must be a body, so a string given from a body to the
+/// world is turned round: the world end first, the pulleys in reverse order, every sense
+/// flipped (followed the other way, the string goes round each circle the other way).
+void AddSceneString(const SceneString& st, const BodyMap& map, const State& s0, Model& model) {
+  auto model_body = [&](int b) {
+    return b == kWorld ? kWorld : map.place[static_cast<size_t>(b)].model_body;
+  };
+  SceneStringEnd from = st.from, to = st.to;
+  std::vector<SceneStringPulley> over = st.over;
+  if (to.body == kWorld) {
+    std::swap(from, to);
+    std::reverse(over.begin(), over.end());
+    from.sense = -from.sense;
+    to.sense = -to.sense;
+    for (SceneStringPulley& p : over) p.sense = -p.sense;
+  }
+  std::vector<Vec3> points;  // in W, for the plane check
+  const auto end = [&](const SceneStringEnd& e) {
+    const int b = model_body(e.body);
+    const Vec3 p_W = e.p_W.allFinite() ? e.p_W : s0.bodies[static_cast<size_t>(b)].p_WBcm;
+    points.push_back(p_W);
+    const AttachmentFrame X = AttachmentFrameAtWorldPose(model, s0, b, p_W, Mat3::Identity());
+    return StringEnd{b, X.p_BoJ_B, e.radius, e.sense};
+  };
+  const StringEnd a = end(from), b = end(to);
+  std::vector<StringPulley> pulleys;
+  for (const SceneStringPulley& p : over) {
+    pulleys.push_back({p.center_W, p.radius, p.sense});
+    points.push_back(p.center_W);
+  }
+  // With a pulley or a drum the path is planar (model/string_constraint.h): every point and
+  // centre in one plane normal to the string's normal.
+  if (a.radius > 0.0 || b.radius > 0.0 || !pulleys.empty()) {
+    double scale = 1e-3;
+    for (const Vec3& p : points) scale = std::max(scale, p.norm());
+    for (const Vec3& p : points) {
+      const double off = st.normal_W.dot(p - points.front());
+      if (std::abs(off) > 1e-9 * scale) {
+        throw InputError(fmt::format(
+            "string '{}': its ends, drums and pulleys must lie in one plane normal to its "
+            "normal [{:.6g}, {:.6g}, {:.6g}], but the point [{:.6g}, {:.6g}, {:.6g}] is {:.6g} m "
+            "off the plane through the first end; move it, or set 'normal'",
+            st.name, st.normal_W.x(), st.normal_W.y(), st.normal_W.z(), p.x(), p.y(), p.z(), off));
+      }
+    }
+  }
+  const StringConstraint probe(st.name, a, pulleys, b, st.normal_W, 1.0);
+  Data data = MakeData(model);
+  CalcKinematics(model, s0, data);
+  const double length = probe.CalcPath(model, s0, data).length;
+  model.AddConstraint(
+      std::make_shared<StringConstraint>(st.name, a, pulleys, b, st.normal_W, length));
+}
+
 /// Adds the scene's joints, rolling contacts, drivers and gear meshes to `model` (bodies already
 /// added, one per scene body). A scene gives joint points and axes in W at the initial
 /// configuration; each side's attachment frame is the one that coincides with that world pose
@@ -204,6 +261,7 @@ void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
         g.name, g.kind, model_body(g.parent), circle(g.parent, g.parent_circle),
         model_body(g.child), circle(g.child, g.child_circle), g.keep_contact));
   }
+  for (const SceneString& st : c.strings) AddSceneString(st, map, s0, model);
   if (scene.planar) {
     // Every body of a planar scene is held in its plane z = const by one kPlanar joint with
     // the world at its centre of mass (3 rows: v_z, w_x, w_y). The scene's joints contribute
@@ -561,6 +619,7 @@ std::vector<bool> HeldBodies(const Scene& scene) {
   for (const auto& r : c.rolling) hold(r.on), hold(r.body);
   for (const auto& d : c.drivers) hold(d.parent), hold(d.child);
   for (const auto& g : c.gears) hold(g.parent), hold(g.child);
+  for (const auto& st : c.strings) hold(st.from.body), hold(st.to.body);
   for (const auto& k : scene.dynamics.contacts.contacts) hold(k.body), hold(k.other_body);
   return held;
 }

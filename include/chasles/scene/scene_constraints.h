@@ -3,7 +3,8 @@
 /// The constraint part of a scene (docs/scene-format.md, "Joints, rolling and drivers"):
 /// joints, rolling contacts and prescribed-motion drivers as the file gives them, in SI and in
 /// world coordinates at the initial configuration. BuildStudy turns them into the Model's
-/// Joint, RollingContact and PrescribedMotion (include/chasles/model/constraints.h).
+/// Joint, RollingContact, PrescribedMotion, GearMesh (include/chasles/model/constraints.h) and
+/// StringConstraint (include/chasles/model/string_constraint.h).
 
 #include <limits>
 #include <string>
@@ -100,17 +101,50 @@ struct SceneGear {
   bool keep_contact = false;
 };
 
-/// Keys `joints`, `rolling`, `drivers`, `gears`.
+/// One end of an entry of `strings`: a point of a body (or of the world), or a drum of the
+/// body the string is wound on; in W at the initial configuration.
+struct SceneStringEnd {
+  /// Scene body index, or kWorld.
+  int body = kWorld;
+  /// The point or the drum's centre in W [m]; not finite: the body's centre of mass.
+  Vec3 p_W = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  /// Drum radius [m]; 0 for a point end.
+  double radius = 0.0;
+  /// +1 when the string, followed from `from` to `to`, goes round the drum counterclockwise
+  /// about the string's normal, -1 clockwise.
+  int sense = 1;
+};
+
+/// A frictionless pulley fixed in the world (an entry of a string's `over`).
+struct SceneStringPulley {
+  Vec3 center_W = Vec3::Zero();
+  double radius = 0.0;
+  int sense = 1;
+};
+
+/// One entry of `strings`: an inextensible string held taut from `from` over the pulleys
+/// `over` to `to` (model/string_constraint.h).
+struct SceneString {
+  std::string name;
+  SceneSpot where;
+  SceneStringEnd from, to;
+  std::vector<SceneStringPulley> over;
+  /// Unit normal of the string's plane, in W (z in a planar scene).
+  Vec3 normal_W = Vec3::UnitZ();
+};
+
+/// Keys `joints`, `rolling`, `drivers`, `gears`, `strings`.
 struct SceneConstraints {
   std::vector<SceneJoint> joints;
   std::vector<SceneRolling> rolling;
   std::vector<SceneDriver> drivers;
   std::vector<SceneGear> gears;
+  std::vector<SceneString> strings;
   /// True when the scene has none.
   bool empty() const {
-    return joints.empty() && rolling.empty() && drivers.empty() && gears.empty();
+    return joints.empty() && rolling.empty() && drivers.empty() && gears.empty() && strings.empty();
   }
-  /// Names in Model order (joints, rolling, drivers, then gears).
+  /// Names in Model order (joints, rolling, drivers, gears, then strings).
   std::vector<std::string> names() const;
   /// Where the entry named `name` stands in the file; null when there is none.
   const SceneSpot* Find(const std::string& name) const;

@@ -143,7 +143,8 @@ class SceneReader {
   VectorFrame FrameAt(const At& at);
 
   // Constraints (scene_constraints.cpp) ---------------------------------------------------
-  /// Reads `joints`, `rolling`, `drivers` and `gears` into scene.dynamics.constraints.
+  /// Reads `joints`, `rolling`, `drivers`, `gears` and `strings` into
+  /// scene.dynamics.constraints.
   void ReadConstraints(const At& root, Scene& scene);
   /// Entry `i` of `joints`, `rolling`, `drivers` or `gears` (its name added to `taken`).
   SceneJoint ReadJoint(const At& at, size_t i, const Scene& scene, std::vector<std::string>& taken);
@@ -152,6 +153,11 @@ class SceneReader {
   SceneDriver ReadDriver(const At& at, size_t i, const Scene& scene,
                          std::vector<std::string>& taken);
   SceneGear ReadGear(const At& at, size_t i, const Scene& scene, std::vector<std::string>& taken);
+  /// Entry `i` of `strings`, its ends and a drum's or pulley's sense (+1 counterclockwise).
+  SceneString ReadString(const At& at, size_t i, const Scene& scene,
+                         std::vector<std::string>& taken);
+  SceneStringEnd ReadStringEnd(const At& at, const Scene& scene, const std::string& what);
+  int StringSenseAt(const At& at);
   /// Fails unless the gear's pitch circles touch at the initial configuration.
   void CheckPitchCirclesTouch(const At& at, const SceneGear& gear);
   /// A body name or `world` (kWorld).
