@@ -144,7 +144,11 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
           detail = p.mass_source;
         }
         for (const auto& n : p.notes) detail += (detail.empty() ? "" : "; ") + n;
-        if (!std::isnan(p.volume)) {
+        if (p.volume == 0.0 && p.surface_area == 0.0) {
+          // A slender rod, a ring or a point: the idealisation has neither.
+          detail += std::string(detail.empty() ? "" : "; ") +
+                    "no volume or surface area (its mass lies on a curve or at a point)";
+        } else if (!std::isnan(p.volume)) {
           detail += fmt::format(
               "{}volume {} {}, surface area {} {}", detail.empty() ? "" : "; ",
               Num(P.units.FromSI(p.volume, kVolumeDim), 0), P.units.FormatUnit(kVolumeDim),

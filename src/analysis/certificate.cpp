@@ -227,7 +227,7 @@ void CertificateBuilder::CheckContacts(const Model& model, const State& state, c
 void CertificateBuilder::CheckBalances(const Model& model, const State& state, const Data& data,
                                        CheckPhase phase, const BodyResultants& r) {
   const double t = state.t;
-  // Newton–Euler per body (eq. 8.39 and Euler's equations, eq. 8.68): m a_cm = ΣF;
+  // Newton–Euler per body (eq. 8.39 and Euler's equations, eqs. 8.75-8.81): m a_cm = ΣF;
   // dH_cm/dt = R (I ω̇ + ω × I ω) with ω in B = ΣM_cm.
   for (int b = 0; b < model.num_bodies(); ++b) {
     const auto i = static_cast<size_t>(b);

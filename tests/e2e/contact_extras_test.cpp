@@ -343,11 +343,11 @@ TEST(ContactExtras, SolveSweepsTheInclineAcrossTheRollSlideThreshold) {
   }
 }
 
-// The rear-wheel-drive car (Problem 8.12) at its initial state: the rear contact slides
-// backward with f = mu N_r forward, a = mu g lf/(L - mu h), N_r = M (g lf + a h)/L; the front
-// (mu = 0) slides without friction.
+// The rear-wheel-drive car (Problem 8.12, wheels as bodies) at its initial state: the rear
+// wheel turns faster than it rolls, so its tyre slides with f = mu N_r forward,
+// a = mu g lf/(L - mu h), N_r = M (g lf + a h)/L; the front (mu = 0) slides without friction.
 TEST(ContactExtras, SolveReportsTheCarsTraction) {
-  const nlohmann::json j = Solve("examples/problem-8.12-rear-wheel-drive.yaml");
+  const nlohmann::json j = Solve("examples/problem-8.12-rear-wheel-drive-wheels.yaml");
   const double M = 1805, h = 1, lf = 1.20, lr = 1.67, mu = 0.8, L = lf + lr;
   const double a = mu * kG * lf / (L - mu * h);
   const double N_r = M * (kG * lf + a * h) / L;
@@ -363,7 +363,7 @@ TEST(ContactExtras, SolveReportsTheCarsTraction) {
   EXPECT_NEAR(ToVec(j.at("bodies")[0].at("acceleration")).x(), a, kSolve * kG);
 
   const CliResult text =
-      RunCli("solve '" + SourcePath("examples/problem-8.12-rear-wheel-drive.yaml") + "'");
+      RunCli("solve '" + SourcePath("examples/problem-8.12-rear-wheel-drive-wheels.yaml") + "'");
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_THAT(text.out, ::testing::HasSubstr("Contacts (modes chosen at the initial state"));
   EXPECT_THAT(text.out, ::testing::HasSubstr("rear: slides (sliding)"));

@@ -2,7 +2,7 @@
 /// @file
 /// Newton–Euler equations of free rigid bodies (chapter 8.3): for every body
 ///   m a_Bcm = ΣF                            (eq. 8.39)
-///   I ẇ + w × (I w) = ΣM_Bcm                (Euler's equations, eq. 8.68, in B)
+///   I ẇ + w × (I w) = ΣM_Bcm                (Euler's equations, eqs. 8.75-8.81, in B)
 /// with the full inertia tensor I about Bcm in B (non-principal frames included), solved with
 /// its precomputed inverse. The three stages fill the Data fields named after them.
 

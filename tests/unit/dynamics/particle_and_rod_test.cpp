@@ -160,7 +160,7 @@ TEST(ParticleAndRod, SlenderRodPinnedAtOneEnd) {
 }
 
 // A free rod turning with ω ⊥ its axis: H = I⊥ ω is parallel to ω, so the Euler equations
-// (8.86-8.88, with the zero moment) give ω̇ = 0 and the rod turns uniformly about the fixed
+// (8.79-8.81, with the zero moment) give ω̇ = 0 and the rod turns uniformly about the fixed
 // ω: its axis u(t) is u(0) turned by |ω| t about ω. Energy and angular momentum stay.
 TEST(ParticleAndRod, FreeRodTumblesUniformlyKeepingHAndEnergy) {
   const double m = 0.7, L = 2.0;
