@@ -589,7 +589,7 @@ bool Contains(const std::vector<int>& v, int p) {
 class ModeSelector {
  public:
   ModeSelector(const Model& model, const State& state, const ContactTolerances& tol,
-               const std::vector<int>& slip_starts);
+               const ModeHints& hints);
   // Candidates: touching and not moving apart.
   void PlanCandidates();
   // Passes over the plan until the modes are consistent; leaves the points in contact.
@@ -611,6 +611,7 @@ class ModeSelector {
   const Model& model_;
   const ContactTolerances& tol_;
   const std::vector<int>& slip_starts_;
+  const std::vector<int>& lift_offs_;
   int np_;
   Data data_;
   VectorXd u_free_, u_, c_con_;
@@ -627,10 +628,11 @@ class ModeSelector {
 };
 
 ModeSelector::ModeSelector(const Model& model, const State& state, const ContactTolerances& tol,
-                           const std::vector<int>& slip_starts)
+                           const ModeHints& hints)
     : model_(model),
       tol_(tol),
-      slip_starts_(slip_starts),
+      slip_starts_(hints.slip_starts),
+      lift_offs_(hints.lift_offs),
       np_(model.num_contact_points()),
       data_(MakeData(model)) {
   CalcKinematics(model, state, data_);
@@ -690,9 +692,13 @@ void ModeSelector::SelectModes() {
       continue;
     }
     // Points whose normal acceleration is positive leave (N = 0 there by complementarity).
+    // A point whose normal force just fell through zero sits where N = 0 and a_n = 0 both hold
+    // to round-off: it leaves unless it would press in by more than round-off.
     active_.clear();
     for (size_t i = 0; i < plan_.size(); ++i) {
-      if (sol.w[static_cast<Eigen::Index>(i)] <= a_tol_) active_.push_back(plan_[i]);
+      const double w = sol.w[static_cast<Eigen::Index>(i)];
+      const bool stays = Contains(lift_offs_, plan_[i].point) ? w < -a_tol_ : w <= a_tol_;
+      if (stays) active_.push_back(plan_[i]);
     }
     if (active_.empty()) break;
     const std::vector<ContactPointOutput>& out = EvaluateActive();
@@ -925,7 +931,7 @@ void ModeSelector::BookJams(State& state, const std::vector<PointPlan>& vplan,
 
 std::vector<ContactModeChange> SelectContactModes(const Model& model, State& state,
                                                   const ContactTolerances& tol,
-                                                  const std::vector<int>& slip_starts,
+                                                  const ModeHints& hints,
                                                   ModeSelectionNotes* notes) {
   const int np = model.num_contact_points();
   if (state.contacts.size() != static_cast<size_t>(np)) {
@@ -934,7 +940,7 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
   std::vector<ContactMode> before(static_cast<size_t>(np));
   for (int p = 0; p < np; ++p)
     before[static_cast<size_t>(p)] = state.contacts[static_cast<size_t>(p)].mode;
-  ModeSelector selector(model, state, tol, slip_starts);
+  ModeSelector selector(model, state, tol, hints);
   selector.PlanCandidates();
   selector.SelectModes();
   selector.WriteModes(state);

@@ -484,12 +484,14 @@ class HybridRun {
       if (rec.accumulation) rec.accumulation_time = accumulation_time;
       r_.impacts.push_back(rec);
     }
-    // A point whose friction limit was crossed starts to slip (SelectContactModes).
-    std::vector<int> slip_starts;
+    // A point whose friction limit was crossed starts to slip, one whose normal force fell
+    // through zero leaves (SelectContactModes).
+    ModeHints hints;
     if (reason == ContactEventReason::kFrictionLimit && trigger >= 0)
-      slip_starts.push_back(trigger);
+      hints.slip_starts.push_back(trigger);
+    if (reason == ContactEventReason::kLiftOff && trigger >= 0) hints.lift_offs.push_back(trigger);
     ModeSelectionNotes notes;
-    SelectContactModes(model_, s, tol_, slip_starts, &notes);
+    SelectContactModes(model_, s, tol_, hints, &notes);
     for (const JamImpulse& j : notes.jams) {
       ImpactRecord rec;
       rec.t = s.t;

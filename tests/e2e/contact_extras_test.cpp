@@ -7,10 +7,13 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <string>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 
 #include "cli_runner.h"
 #include "test_support.h"
@@ -373,6 +376,97 @@ TEST(ContactExtras, SolveReportsTheCarsTraction) {
   EXPECT_THAT(rolls.out, ::testing::HasSubstr("incline_0: rolls (sticking)"));
   EXPECT_THAT(rolls.out, ::testing::HasSubstr("against mu_s = 0.25"));
 }
+
+// ---------------------------------------------------------------------------------------
+// examples/ladder-leaves-wall.yaml: Example 8.4's ladder (a slender rod, m, L, from rest at
+// phi0 from the vertical) on frictionless contacts at the wall and the floor, run past the
+// angle where the wall lets go. φ is the tilt from the vertical.
+// Phase 1 (both ends touching): the centre of mass moves on the circle of radius L/2 about
+// the corner, so T = ½ (m L²/3) φ'² and energy gives φ'² = (3 g / L)(cos φ0 - cos φ);
+// m ẍ_cm = N_A with x_cm = (L/2) sin φ gives N_A = (3/4) m g sin φ (3 cos φ - 2 cos φ0),
+// zero at cos φ1 = (2/3) cos φ0, reached at t1 = ∫ dφ / φ' from φ0 to φ1 (an integrable
+// 1/sqrt singularity at φ0: tanh-sinh quadrature).
+// Phase 2 (the floor alone; no horizontal force): v_x = (L/2) cos φ1 φ1' stays, and with
+// z_cm = (L/2) cos φ energy gives
+//   φ'² = (g L (cos φ0 - cos φ) - v_x²) / (L² (1/12 + sin² φ / 4)),
+// and its time derivative φ'' = ((g / (2 L)) sin φ - (sin φ cos φ / 4) φ'²) / (1/12 + sin² φ/4);
+// the floor pushes N_B = m (g + z̈_cm) = m (g - (L/2)(cos φ φ'² + sin φ φ'')). The stop at
+// φ = 85° comes at t1 + ∫ dφ / φ' from φ1 to 85°.
+// The example's 30° and seeded random starting angles and lengths.
+class LadderLeavesTheWall : public ::testing::TestWithParam<int> {};
+
+TEST_P(LadderLeavesTheWall, AndSlidesOnTheFloor) {
+  std::mt19937 rng(static_cast<unsigned>(GetParam()));
+  const double m = 10.0, g = kG, phi_stop = 85 * kPi / 180;
+  double L = 2.0, phi0 = kPi / 6;
+  if (GetParam() > 0) {
+    L = std::uniform_real_distribution<double>(0.5, 5.0)(rng);
+    phi0 = std::uniform_real_distribution<double>(0.05, 1.2)(rng);
+  }
+  const RunResult run =
+      SimulateExample("examples/ladder-leaves-wall.yaml",
+                      fmt::format("--set 'L={:.17g} m' --set 'phi0={:.17g} rad'", L, phi0));
+  const double c0 = std::cos(phi0);
+  const double phi1 = std::acos(2.0 / 3.0 * c0);
+  const double w1 = std::sqrt(3 * g / L * (c0 - std::cos(phi1)));
+  const double vx = 0.5 * L * std::cos(phi1) * w1;
+  // cos φ0 - cos φ = 2 sin((φ + φ0)/2) sin((φ - φ0)/2): no cancellation next to φ0.
+  auto rate1 = [&](double phi) {
+    return std::sqrt(3 * g / L * 2 * std::sin((phi + phi0) / 2) *
+                     std::max(0.0, std::sin((phi - phi0) / 2)));
+  };
+  auto rate2 = [&](double phi) {
+    const double s = std::sin(phi);
+    return std::sqrt((g * L * (c0 - std::cos(phi)) - vx * vx) / (L * L * (1.0 / 12 + s * s / 4)));
+  };
+  // With φ = φ0 + u² the integrand 2u / φ' is smooth (finite at u = 0); φ' is written in u
+  // (cos φ0 - cos φ = 2 sin(φ0 + u²/2) sin(u²/2)) so that u² is not lost next to φ0.
+  const double t1 = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+      [&](double u) {
+        if (u == 0.0) return 2.0 / std::sqrt(3 * g / L * std::sin(phi0));
+        return 2 * u / std::sqrt(3 * g / L * 2 * std::sin(phi0 + u * u / 2) * std::sin(u * u / 2));
+      },
+      0.0, std::sqrt(phi1 - phi0), 10, 1e-14);
+  const double t2 =
+      t1 + boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+               [&](double phi) { return 1.0 / rate2(phi); }, phi1, phi_stop, 10, 1e-14);
+  // The wall lets go at t1 (a lift-off, the only mode change), the run stops at 85°.
+  const auto& off = FirstEvent(run, "lift-off");
+  EXPECT_EQ(off.at("point"), "wall");
+  EXPECT_TRUE(Near(off.at("t").get<double>(), t1, kEvent)) << t1;
+  EXPECT_EQ(run.json.at("contact_events").size(), 3u);  // two initial, one lift-off
+  ASSERT_TRUE(run.json.at("stopped_by_event").get<bool>());
+  EXPECT_TRUE(Near(run.json.at("events")[0].at("t").get<double>(), t2, kEvent)) << t2;
+  const auto& c = run.csv;
+  int phase2 = 0;
+  for (size_t i = 0; i < c.at("t").size(); ++i) {
+    const double t = c.at("t")[i], phi = c.at("ladder_tilt")[i];
+    const double w = -c.at("ladder_wy")[i];  // the tilt grows by a turn about -y
+    EXPECT_NEAR(c.at("ladder_z")[i], 0.5 * L * std::cos(phi), kEvent * L) << t;
+    EXPECT_NEAR(c.at("floor_gap")[i], 0.0, kEvent * L) << t;
+    if (t < t1) {
+      EXPECT_NEAR(w, rate1(phi), kEvent * w1) << t;
+      EXPECT_NEAR(c.at("wall_N")[i], 0.75 * m * g * std::sin(phi) * (3 * std::cos(phi) - 2 * c0),
+                  kEvent * m * g)
+          << t;
+      continue;
+    }
+    ++phase2;
+    const double s = std::sin(phi), co = std::cos(phi);
+    const double w2 = rate2(phi);
+    const double a2 = (g / (2 * L) * s - s * co / 4 * w2 * w2) / (1.0 / 12 + s * s / 4);
+    EXPECT_NEAR(c.at("ladder_vx")[i], vx, kEvent * vx) << t;
+    EXPECT_NEAR(w, w2, kEvent * w1) << t;
+    EXPECT_EQ(c.at("wall_N")[i], 0.0) << t;
+    EXPECT_GT(c.at("wall_gap")[i], 0.0) << t;
+    EXPECT_NEAR(c.at("floor_N")[i], m * (g - 0.5 * L * (co * w2 * w2 + s * a2)), kEvent * m * g)
+        << t;
+  }
+  EXPECT_GT(phase2, 5);
+  ExpectLedgerBalances(run);
+}
+
+INSTANTIATE_TEST_SUITE_P(ContactExtras, LadderLeavesTheWall, ::testing::Values(0, 1, 2, 3));
 
 }  // namespace
 }  // namespace chasles::test

@@ -16,21 +16,21 @@ namespace chasles::test {
 namespace {
 
 // The example's values.
-constexpr double kL = 1.0, kR = 0.005, kM = 1.0, kVx = 1.0, kVz = 2.0, kE = 0.5;
+constexpr double kL = 1.0, kM = 1.0, kVx = 1.0, kVz = 2.0, kE = 0.5;
 
 struct After {
   nlohmann::json json;
   double T = 0.0;  // kinetic energy after [J]
 };
 
-// T = ½ m v² + ½ wᵀ I_W w with the rod's inertia about G: a solid cylinder (radius r),
-// m (3 r² + L²)/12 across the axis; w stays along y, across the axis.
+// T = ½ m v² + ½ wᵀ I_W w with the slender rod's inertia about G, m L²/12 across the axis;
+// w stays along y, across the axis.
 After RunRod(const std::string& scene) {
   After a;
   a.json = SimulateJson(scene, OutDir("impact"));
   const auto& b = a.json.at("final").at("bodies").at(0);
   const Eigen::Vector3d v = ToVec(b.at("velocity")), w = ToVec(b.at("angular_velocity"));
-  const double I = kM * (3 * kR * kR + kL * kL) / 12;
+  const double I = kM * kL * kL / 12;
   a.T = 0.5 * kM * v.squaredNorm() + 0.5 * I * w.squaredNorm();
   return a;
 }

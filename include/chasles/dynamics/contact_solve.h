@@ -79,6 +79,20 @@ struct JamImpulse {
   double energy_lost = 0.0;
 };
 
+/// What the caller knows about the instant SelectContactModes chooses modes at: the event that
+/// led there. At an event the quantity that crossed zero is zero to round-off, so the choice
+/// between the two modes it separates is degenerate; the hint breaks the tie towards the mode
+/// the crossing enters (otherwise the old mode would be chosen again and the event would fire
+/// again at once).
+struct ModeHints {
+  /// Points whose friction limit was just crossed (tried as slipping first).
+  std::vector<int> slip_starts;
+  /// Points whose normal force just fell through zero: they leave unless they would then
+  /// press into the surface by more than round-off (normal acceleration below -tol.relative
+  /// of the acceleration scale).
+  std::vector<int> lift_offs;
+};
+
 /// What SelectContactModes had to do beyond choosing modes.
 struct ModeSelectionNotes {
   /// Jammed points (empty when the modes had consistent forces).
@@ -92,19 +106,20 @@ struct ModeSelectionNotes {
 /// contact stage computes it) is within mu_s N, and otherwise start to slide in the direction
 /// of impending slip (against the needed friction, then along the slip acceleration: maximum
 /// dissipation), one point at a time, largest excess first, then the LCP again. A point
-/// within tol.cone of its cone, or listed in `slip_starts` (its friction limit was just
+/// within tol.cone of its cone, or listed in `hints.slip_starts` (its friction limit was just
 /// crossed), is tried as sliding and slides if its slip then grows (for `slip_starts`: does
-/// not shrink); otherwise it sticks. Writes state.contacts (sizing it if empty), sets the slip
-/// and rolling reference directions, and removes the round-off normal (and sticking
-/// tangential) velocities of the touching points by a mass-weighted velocity projection (the
-/// kinetic energy it changes goes to ContactPointState::friction_work). When the normal
-/// forces have no consistent solution with the sliding friction (Painlevé), the sliding
-/// points are jammed (stopped by the projection's impulse, energy to impact_work, listed in
-/// `notes`); an InputError says so when that impulse lies outside the friction cone.
-/// Returns the changes.
+/// not shrink); otherwise it sticks. A touching point in `hints.lift_offs` leaves when its
+/// normal acceleration is round-off (the LCP is degenerate where its force just vanished). Writes
+/// state.contacts (sizing it if empty), sets the slip and rolling reference directions, and removes
+/// the round-off normal (and sticking tangential) velocities of the touching points by a
+/// mass-weighted velocity projection (the kinetic energy it changes goes to
+/// ContactPointState::friction_work). When the normal forces have no consistent solution with the
+/// sliding friction (Painlevé), the sliding points are jammed (stopped by the projection's impulse,
+/// energy to impact_work, listed in `notes`); an InputError says so when that impulse lies outside
+/// the friction cone. Returns the changes.
 std::vector<ContactModeChange> SelectContactModes(const Model& model, State& state,
                                                   const ContactTolerances& tol = {},
-                                                  const std::vector<int>& slip_starts = {},
+                                                  const ModeHints& hints = {},
                                                   ModeSelectionNotes* notes = nullptr);
 
 }  // namespace chasles
