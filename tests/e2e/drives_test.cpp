@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -211,6 +212,80 @@ TEST(Drives, RampedDriveTorqueLosesAndRegainsTraction) {
   for (const auto& e : run.json.at("contact_events")) changes += e.at("reason") != "initial";
   EXPECT_EQ(changes, 2);
 }
+
+// examples/drive-layouts-ramp.yaml (its header has the equations): a car on two wheel bodies,
+// the drive torque tau = k t split s_r : s_f between the axles. While both wheels roll,
+// a = tau r / (M_t r² + 2 I_w); wheel i's road force f_i = (s_i tau - I_w a / r) / r (the
+// undriven wheel's is the small backward force that spins it up); N_r from the moments about
+// G, l_r N_r - l_f N_f - h (f_r + f_f) = 2 I_w a / r with N_f = M_t g - N_r. All are linear in
+// tau, so each wheel's limit |f_i| = mu N_i is reached at its own tau*_i; the smaller one is
+// the wheel that spins, at t = tau*/k. Rear, front and four-wheel (even split) drive.
+struct Layout {
+  double s_r, s_f;
+  const char* spins;  // the contact expected to reach its limit first
+};
+
+class DriveLayouts : public ::testing::TestWithParam<Layout> {};
+
+TEST_P(DriveLayouts, ReachTheTractionLimitAtTheClosedFormTorque) {
+  const Layout lay = GetParam();
+  const double M = 900, m_w = 20, r = 0.3, h_c = 0.55, l_r0 = 1.4, l_f0 = 1.1, mu = 0.7, k = 400,
+               g = 9.81;
+  const double I_w = 0.5 * m_w * r * r, M_t = M + 2 * m_w;
+  // G: the car's centre at x = 0, height h_c; the wheels' at -l_r0 and l_f0, height r.
+  const double x_G = m_w * (l_f0 - l_r0) / M_t, h = (M * h_c + 2 * m_w * r) / M_t;
+  const double l_r = l_r0 + x_G, l_f = l_f0 - x_G, L = l_r + l_f;
+  auto acc = [&](double tau) { return tau * r / (M_t * r * r + 2 * I_w); };
+  auto f = [&](double share, double tau) { return (share * tau - I_w * acc(tau) / r) / r; };
+  auto N_r = [&](double tau) {
+    const double a = acc(tau);
+    return (l_f * M_t * g + h * M_t * a + 2 * I_w * a / r) / L;
+  };
+  auto N_f = [&](double tau) { return M_t * g - N_r(tau); };
+  // The limit of a wheel, |f(tau)| = mu N(tau), both linear in tau: the root of
+  // |f| - mu N = c0 + c1 tau with c1 > 0 (infinity when the margin never closes).
+  auto limit = [&](auto margin) {
+    const double c0 = margin(0.0), c1 = margin(1.0) - c0;
+    return c1 > 0 ? -c0 / c1 : std::numeric_limits<double>::infinity();
+  };
+  const double tau_r = limit([&](double t) { return std::abs(f(lay.s_r, t)) - mu * N_r(t); });
+  const double tau_f = limit([&](double t) { return std::abs(f(lay.s_f, t)) - mu * N_f(t); });
+  const bool rear_first = tau_r < tau_f;
+  ASSERT_EQ(std::string(rear_first ? "rear_tyre" : "front_tyre"), lay.spins);
+  const double tau_star = std::min(tau_r, tau_f);
+  const double t_star = tau_star / k;
+
+  const RunOut run =
+      Simulate("examples/drive-layouts-ramp.yaml",
+               "--set s_r=" + std::to_string(lay.s_r) + " --set s_f=" + std::to_string(lay.s_f));
+  EXPECT_EQ(Mode(run, "rear_tyre"), "sticking");
+  EXPECT_EQ(Mode(run, "front_tyre"), "sticking");
+  EXPECT_NEAR(ModeChange(run, lay.spins, "sticking", "sliding"), t_star, kRel * t_star);
+  ASSERT_TRUE(run.json.at("stopped_by_event").get<bool>());
+  ASSERT_EQ(run.json.at("events").size(), 1u);
+  EXPECT_NEAR(run.json.at("events")[0].at("t").get<double>(), t_star, kRel * t_star);
+  // Rolling up to the limit: the acceleration, both normal forces and both road forces.
+  for (size_t i = 0; i < run.csv.at("t").size(); ++i) {
+    const double t = run.csv.at("t")[i];
+    if (t >= t_star) break;
+    const double tau = k * t;
+    EXPECT_NEAR(run.csv.at("car_ax")[i], acc(tau), kRel * g) << t;
+    EXPECT_NEAR(run.csv.at("rear_tyre_N")[i], N_r(tau), kRel * M_t * g) << t;
+    EXPECT_NEAR(run.csv.at("front_tyre_N")[i], N_f(tau), kRel * M_t * g) << t;
+    EXPECT_NEAR(run.csv.at("rear_tyre_f")[i], std::abs(f(lay.s_r, tau)), kRel * M_t * g) << t;
+    EXPECT_NEAR(run.csv.at("front_tyre_f")[i], std::abs(f(lay.s_f, tau)), kRel * M_t * g) << t;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Drives, DriveLayouts,
+                         ::testing::Values(Layout{1.0, 0.0, "rear_tyre"},
+                                           Layout{0.0, 1.0, "front_tyre"},
+                                           Layout{0.5, 0.5, "front_tyre"}),
+                         [](const ::testing::TestParamInfo<Layout>& info) {
+                           return info.param.s_f == 0.0   ? std::string("RearWheelDrive")
+                                  : info.param.s_r == 0.0 ? std::string("FrontWheelDrive")
+                                                          : std::string("FourWheelDrive");
+                         });
 
 // Statics of a torque across a joint: a disk on a fixed axle, a joint_torque tau and a brake
 // that locks the disk (a rotation driver at rate 0). Moments about the axle: the brake's
