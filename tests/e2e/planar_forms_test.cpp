@@ -175,6 +175,39 @@ TEST(PlanarForms, RollingCylinderSolveEqualsThreeDAndClosedForm) {
               kExact * m * g);
 }
 
+// --- gears, a driver and pins about z ----------------------------------------------------------
+// planetary-gears.yaml turns in the x-y plane already: its planar form gives no axis. With the
+// sun driven at w_sun = 10 rad/s, r_s = 5 cm, r_p = 2 cm, d = r_s + r_p and the ring fixed, no
+// slip at the pitch points gives the carrier w_c = w_sun r_s / (2 d) and the planet
+// w_p = -w_c d / r_p; the carrier's angle is w_c t.
+TEST(PlanarForms, PlanetaryGearsEqualThreeDAndClosedForm) {
+  const SimRun s =
+      Simulate(SourcePath("examples/planetary-gears.yaml"), "position,angular_velocity");
+  const SimRun p = Simulate(SourcePath("examples/planetary-gears-planar.yaml"), "planar");
+  const Columns &S = s.columns, &P = p.columns;
+  ASSERT_EQ(P.at("t").size(), 21u);
+  const double w_sun = 10.0, r_s = 0.05, r_p = 0.02, d = r_s + r_p;
+  const double w_c = w_sun * r_s / (2.0 * d), w_p = -w_c * d / r_p;
+  for (const char* b : {"sun", "carrier", "planet"}) {
+    const std::string n = b;
+    ExpectSameColumn(P.at(n + "_omega"), S.at(n + "_wz"), 1.0, kSame, n + " omega");
+    // Positions to round-off of the scene's size d (the sun's and carrier's stay at ~0).
+    for (size_t i = 0; i < P.at("t").size(); ++i) {
+      EXPECT_NEAR(P.at(n + "_x")[i], S.at(n + "_x")[i], kSame * d) << n << " row " << i;
+      EXPECT_NEAR(P.at(n + "_y")[i], S.at(n + "_y")[i], kSame * d) << n << " row " << i;
+    }
+  }
+  for (size_t i = 0; i < P.at("t").size(); ++i) {
+    SCOPED_TRACE("row " + std::to_string(i));
+    const double t = P.at("t")[i];
+    EXPECT_NEAR(P.at("sun_omega")[i], w_sun, kExact * w_sun);
+    EXPECT_NEAR(P.at("carrier_omega")[i], w_c, kExact * w_sun);
+    EXPECT_NEAR(P.at("planet_omega")[i], w_p, kExact * w_sun);
+    EXPECT_NEAR(P.at("carrier_theta")[i], w_c * t, kExact * w_sun);
+    EXPECT_NEAR(P.at("planet_x")[i], d * std::cos(w_c * t), kExact * d);
+  }
+}
+
 // --- one planar scene, body-frame keys as [x, y] or [x, y, z] --------------------------------
 TEST(PlanarForms, BodyFrameKeysReadTheSameWithTwoOrThreeValues) {
   // Part positions, from/to, points, a force's point, a contact's centre and a disk axis
