@@ -49,6 +49,13 @@ std::string V(const Vec3& v, double scale = 0.0) {
   return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", Clean(v.x(), s), Clean(v.y(), s), Clean(v.z(), s));
 }
 
+/// An in-plane vector of a planar scene's text report, [x, y] (its z is 0); V otherwise.
+std::string VInPlane(bool planar, const Vec3& v, double scale = 0.0) {
+  if (!planar) return V(v, scale);
+  const double s = std::max(v.stableNorm(), scale);
+  return fmt::format("[{:.9g}, {:.9g}]", Clean(v.x(), s), Clean(v.y(), s));
+}
+
 /// The scales of the report's quantities: the largest of each kind over bodies and reactions.
 struct ReportScales {
   double a = 0.0, alpha = 0.0, force = 0.0, moment = 0.0, p = 0.0, h = 0.0, v = 0.0, w = 0.0,
@@ -188,14 +195,14 @@ std::string Text(const Scene& scene, const SolveReport& s) {
       out += fmt::format("    gap {:.9g} m\n", c.out.gap);
       continue;
     }
-    out +=
-        fmt::format("    normal force {:.9g} N, friction {} N (|f| {:.9g} N)\n", c.out.normal_force,
-                    V(c.out.friction_force_W, k.force), c.out.friction_force_W.norm());
+    out += fmt::format("    normal force {:.9g} N, friction {} N (|f| {:.9g} N)\n",
+                       c.out.normal_force, VInPlane(s.planar, c.out.friction_force_W, k.force),
+                       c.out.friction_force_W.norm());
     if (c.out.mode == ContactMode::kSticking) {
       out += fmt::format("    f/N = {:.9g} against mu_s = {:.6g}\n", c.FrictionRatio(), c.mu_s);
     } else {
       out += fmt::format("    slip velocity {} m/s, f/N = mu_k = {:.6g}\n",
-                         V(c.out.slip_velocity_W), c.mu_k);
+                         VInPlane(s.planar, c.out.slip_velocity_W), c.mu_k);
     }
   }
   out += "\nKinetic energy and momenta (H about each centre of mass, H_O about the origin)\n";

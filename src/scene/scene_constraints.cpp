@@ -234,11 +234,7 @@ SceneDriver SceneReader::ReadDriver(const At& at, size_t i, const Scene& scene,
   d.p_WJ = WorldVector(report_.Require(at, "at", what), kLength, "the driver point (world)");
   if (planar_ && rot) {
     // A rotation in the plane is about z.
-    if (at.Has("axis")) {
-      report_.Fail(at.Child("axis"),
-                   "in a planar scene a rotation driver turns about z; remove 'axis'");
-    }
-    d.axis_W = Vec3::UnitZ();
+    d.axis_W = PlanarZAxis(at, "axis", "the axis of a rotation driver");
   } else {
     d.axis_W = AxisAt(report_.Require(at, "axis", what), "the driver axis");
   }
@@ -290,9 +286,11 @@ SceneGear SceneReader::ReadGear(const At& at, size_t i, const Scene& scene,
     const At c_at = report_.Require(at, key, what);
     report_.CheckMap(c_at, {"center", "axis", "radius"}, "a pitch circle ({center, axis, radius})");
     ScenePitchCircle pc;
-    pc.center_W =
-        Vector(report_.Require(c_at, "center", "a pitch circle"), kLength, "the centre (world)");
-    pc.axis_W = AxisAt(report_.Require(c_at, "axis", "a pitch circle"), "the gear's axis");
+    pc.center_W = WorldVector(report_.Require(c_at, "center", "a pitch circle"), kLength,
+                              "the centre (world)");
+    pc.axis_W = planar_
+                    ? PlanarZAxis(c_at, "axis", "the gear's axis")
+                    : AxisAt(report_.Require(c_at, "axis", "a pitch circle"), "the gear's axis");
     if (with_radius) {
       pc.radius = PositiveValue(report_.Require(c_at, "radius", "a pitch circle"), kLength,
                                 "the pitch radius");
@@ -417,12 +415,10 @@ SceneString SceneReader::ReadString(const At& at, size_t i, const Scene& scene,
       st.over.push_back(p);
     }
   }
-  if (at.Has("normal")) {
-    if (planar_) {
-      report_.Fail(at.Child("normal"),
-                   "a planar scene's strings lie in its plane (normal z); "
-                   "remove 'normal'");
-    }
+  if (planar_) {
+    // A planar scene's strings lie in its plane: the normal is z.
+    st.normal_W = PlanarZAxis(at, "normal", "the string's normal");
+  } else if (at.Has("normal")) {
     st.normal_W = AxisAt(at.Child("normal"), "the string's normal");
   }
   return st;

@@ -254,8 +254,16 @@ void SceneReader::ReadContactShape(const At& at, const std::string& what, const 
   } else {
     refuse("radius", "has no radius");
   }
-  if (HasAxis(c.shape)) {
-    c.axis_B = AxisAt(report_.Require(at, "axis", what), "the symmetry axis (body frame)");
+  if (HasAxis(c.shape) && planar_ &&
+      (c.shape == SceneContactShape::kDisk || c.shape == SceneContactShape::kCylinder)) {
+    // A disk or cylinder of a planar scene turns about z (read as a planar rolling contact's
+    // axis): its rim is the circle of the plane of motion.
+    c.axis_B = PlanarZAxis(at, "axis", fmt::format("the axis of a {} contact", shape));
+  } else if (HasAxis(c.shape) && planar_ && c.shape == SceneContactShape::kCapsule &&
+             !at.Has("axis")) {
+    c.axis_B = Vec3::UnitZ();  // a capsule seen end-on: its two end spheres at one circle
+  } else if (HasAxis(c.shape)) {
+    c.axis_B = BodyAxisAt(report_.Require(at, "axis", what), "the symmetry axis (body frame)");
   } else {
     refuse("axis", "has no axis");
   }
@@ -323,14 +331,15 @@ void SceneReader::ReadContactCounterpart(const At& at, const std::string& what, 
     refuse("other_radius", "against a plane has no other body (see 'with')");
     refuse("other_center", "against a plane has no other body (see 'with')");
     if (!at.Has("plane")) {
-      report_.Fail(at, fmt::format("{} needs 'plane: {{point: [x, y, z], normal: [x, y, z]}}' "
+      report_.Fail(at, fmt::format("{} needs 'plane: {{point: {}, normal: {}}}' "
                                    "(a world plane) or 'with: BODY' (another body's sphere)",
-                                   what));
+                                   what, planar_ ? "[x, y]" : "[x, y, z]",
+                                   planar_ ? "[x, y]" : "[x, y, z]"));
     }
     const At plane = at.Child("plane");
     report_.CheckMap(plane, {"point", "normal"}, "a plane ({point, normal})");
     if (plane.Has("point")) {
-      c.plane_point_W = Vector(plane.Child("point"), kLength, "a point of the plane");
+      c.plane_point_W = WorldVector(plane.Child("point"), kLength, "a point of the plane");
     }
     c.plane_normal_W = AxisAt(report_.Require(plane, "normal", "a plane"), "the plane's normal");
   }

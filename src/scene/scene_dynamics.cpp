@@ -20,6 +20,7 @@ namespace {
 constexpr Dimension kVelocity{1, 0, -1};
 constexpr Dimension kAngularVelocity{0, 0, -1};
 constexpr Dimension kAcceleration{1, 0, -2};
+constexpr Dimension kAngularAcceleration{0, 0, -2};
 constexpr Dimension kForce{1, 1, -2};
 constexpr Dimension kTorque{2, 1, -2};
 constexpr Dimension kImpulse{1, 1, -1};
@@ -33,7 +34,7 @@ constexpr std::array<Dimension, StateVariableLayout::kPerBody> kSuffixDimensions
     kLength,          kLength,          kLength,          kVelocity,        kVelocity,
     kVelocity,        kAngularVelocity, kAngularVelocity, kAngularVelocity, kAngularVelocity,
     kAngularVelocity, kAngularVelocity, kDimensionless,   kDimensionless,   kDimensionless,
-    kDimensionless,   kVelocity,        kAngularVelocity};
+    kDimensionless,   kVelocity,        kAngularVelocity, kDimensionless,   kAngularAcceleration};
 
 // Standard gravity (CGPM 1901, exact) [m/s²].
 constexpr double kStandardGravity = 9.80665;
@@ -118,13 +119,46 @@ std::optional<Symbol> SceneReader::ResolveStateSymbol(const At& at, std::string_
       }
       return Symbol::Variable(slot, (slot - reaction_slot_begin_) % 6 < 3 ? kForce : kTorque);
     }
-    const Dimension dim =
-        slot == 0
-            ? kTime
-            : kSuffixDimensions[static_cast<size_t>((slot - 1) % StateVariableLayout::kPerBody)];
-    return Symbol::Variable(slot, dim);
+    const int suffix = slot == 0 ? -1 : (slot - 1) % StateVariableLayout::kPerBody;
+    if (suffix == StateVariableLayout::kAlpha && !allow_reactions_) {
+      // α comes out of the solve that the forces feed (eq. 8.43), as a reaction does.
+      report_.Fail(at, fmt::format("'{}' is an angular acceleration; accelerations may appear "
+                                   "only in an event's 'when'",
+                                   name));
+    }
+    return Symbol::Variable(slot,
+                            suffix < 0 ? kTime : kSuffixDimensions[static_cast<size_t>(suffix)]);
   }
-  return ResolveParameter(name);
+  std::optional<Symbol> parameter = ResolveParameter(name);
+  if (!parameter && planar_) PlanarNameHint(at, name);
+  return parameter;
+}
+
+void SceneReader::PlanarNameHint(const At& at, std::string_view name) {
+  // A 3-D body variable in a planar scene: say which planar name to use instead of a bare
+  // "unknown name".
+  for (const auto& [var, slot] : state_variables_) {
+    if (slot < 1 || slot >= reaction_slot_begin_ ||
+        (slot - 1) % StateVariableLayout::kPerBody != 0) {
+      continue;  // one entry per body: its x
+    }
+    const std::string prefix = var.substr(0, var.size() - 1);  // "<body>_"
+    if (name.size() <= prefix.size() || name.substr(0, prefix.size()) != prefix) continue;
+    const std::string_view suffix = name.substr(prefix.size());
+    bool three_d = false;
+    for (const char* s : StateVariableLayout::kSuffixes) three_d = three_d || suffix == s;
+    if (!three_d) continue;
+    std::vector<std::string> names;
+    for (const auto& [s, k] : StateVariableLayout::kPlanarNames) names.push_back(prefix + s);
+    const bool rotation = suffix[0] == 'w' || suffix == "omega";
+    report_.Fail(at, fmt::format("'{}' is a 3-D state variable; a planar scene's body variables "
+                                 "are {}{}",
+                                 name, fmt::join(names, ", "),
+                                 rotation ? fmt::format(" ('{}omega' is the signed angular "
+                                                        "velocity about z)",
+                                                        prefix)
+                                          : ""));
+  }
 }
 
 Expression SceneReader::StateExpression(const At& at, const Dimension& expected,
@@ -586,11 +620,18 @@ void SceneReader::DeclareStateVariables(const Scene& scene) {
   state_variable_names_.emplace_back("t");
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     if (!IsIdentifier(scene.bodies[b].name)) continue;
-    for (int j = 0; j < StateVariableLayout::kPerBody; ++j) {
-      const std::string name =
-          scene.bodies[b].name + "_" + StateVariableLayout::kSuffixes[static_cast<size_t>(j)];
+    const auto declare = [&](const char* suffix, int j) {
+      const std::string name = scene.bodies[b].name + "_" + suffix;
       state_variables_.emplace(name, StateVariableLayout::Slot(static_cast<int>(b), j));
       state_variable_names_.push_back(name);
+    };
+    if (scene.planar) {
+      // One name per quantity, those of the `planar` output columns: θ, signed ω and α about z.
+      for (const auto& [suffix, j] : StateVariableLayout::kPlanarNames) declare(suffix, j);
+      continue;
+    }
+    for (int j = 0; j < StateVariableLayout::kTheta; ++j) {
+      declare(StateVariableLayout::kSuffixes[static_cast<size_t>(j)], j);
     }
   }
   // Reactions of the constraints, after the bodies' blocks: "<name>_Fx" ... "<name>_Mz" (W).

@@ -384,12 +384,13 @@ Mat3 SceneReader::ReadOrientation(const At& part) {
     const std::string key = given;
     const At at = part.Child(key);
     if (key == "axis") {
-      return RotationTakingZTo(Vector(at, kDimensionless, "the direction of the shape's z axis"));
+      return RotationTakingZTo(
+          BodyVector(at, kDimensionless, "the direction of the shape's z axis"));
     }
     if (key == "rotation") {
       report_.CheckMap(at, {"axis", "angle"}, "a rotation");
       const Vec3 axis =
-          Vector(report_.Require(at, "axis", "a rotation"), kDimensionless, "a rotation axis");
+          BodyVector(report_.Require(at, "axis", "a rotation"), kDimensionless, "a rotation axis");
       const double angle =
           Value(report_.Require(at, "angle", "a rotation"), kDimensionless, "a rotation angle");
       return RotationFromAxisAngle(axis, angle);
@@ -436,7 +437,7 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
     local = ReadPlanarPart(at, part, p_BoPo_B);
   } else if (part.shape == "mesh") {
     local = ReadMeshPart(at, body_at, fmt::format("part '{}' (mesh)", part.name), part);
-    if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
+    if (at.Has("position")) p_BoPo_B = BodyVector(at.Child("position"), kLength, "a position");
     R_BP = ReadOrientation(at);
   } else {
     local = ReadTableShapePart(at, shape_at, body_at, part, p_BoPo_B, R_BP);
@@ -475,7 +476,7 @@ MassProperties SceneReader::ReadPointOrCustomPart(const At& at, ScenePart& part,
     local = MassProperties::PointMass(mass, Vec3::Zero());
   } else {
     const Vec3 com = at.Has("center_of_mass")
-                         ? Vector(at.Child("center_of_mass"), kLength, "the centre of mass")
+                         ? BodyVector(at.Child("center_of_mass"), kLength, "the centre of mass")
                          : Vec3::Zero();
     const At inertia_at = report_.Require(at, "inertia", what);
     report_.CheckMap(inertia_at, {"Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz"},
@@ -498,7 +499,7 @@ MassProperties SceneReader::ReadPointOrCustomPart(const At& at, ScenePart& part,
     local = MassProperties(mass, com, inertia);
     R_BP = ReadOrientation(at);
   }
-  if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
+  if (at.Has("position")) p_BoPo_B = BodyVector(at.Child("position"), kLength, "a position");
   return local;
 }
 
@@ -546,8 +547,8 @@ MassProperties SceneReader::ReadTableShapePart(const At& at, const At& shape_at,
     dims.values[d.key] = ReadDimension(report_.Require(at, d.key, what), d);
   }
   if (segment) {
-    const Vec3 from = Vector(at.Child("from"), kLength, "the start point");
-    const Vec3 to = Vector(at.Child("to"), kLength, "the end point");
+    const Vec3 from = BodyVector(at.Child("from"), kLength, "the start point");
+    const Vec3 to = BodyVector(at.Child("to"), kLength, "the end point");
     const double length = (to - from).norm();
     if (!(length > 0)) report_.Fail(at.Child("to"), "'from' and 'to' are the same point");
     dims.values[shape->axial_key] = {length};
@@ -557,7 +558,7 @@ MassProperties SceneReader::ReadTableShapePart(const At& at, const At& shape_at,
       report_.Fail(at, "'from'/'to' already orient the part; remove its orientation");
     }
   } else {
-    if (at.Has("position")) p_BoPo_B = Vector(at.Child("position"), kLength, "a position");
+    if (at.Has("position")) p_BoPo_B = BodyVector(at.Child("position"), kLength, "a position");
     R_BP = ReadOrientation(at);
   }
   std::unique_ptr<Shape> geometry;

@@ -52,11 +52,46 @@ Vec3 SceneReader::WorldVector(const At& at, const Dimension& expected, std::stri
 }
 
 Vec3 SceneReader::BodyVector(const At& at, const Dimension& expected, std::string_view what) {
+  if (!planar_) return Vector(at, expected, what);
   // Body-frame geometry may keep its z (the body frame's z axis is the plane's normal).
-  if (planar_ && at.node.IsSequence() && at.node.size() == 2) {
+  if (at.node.IsSequence() && at.node.size() == 2) {
     return {Value(at.Item(0), expected, what), Value(at.Item(1), expected, what), 0.0};
   }
+  if (!at.node.IsSequence() || at.node.size() != 3) {
+    report_.Fail(
+        at, fmt::format("expected {} as [x, y] or [x, y, z] (body frame, a planar "
+                        "scene), got {}",
+                        what,
+                        at.node.IsSequence() ? fmt::format("a list of {} values", at.node.size())
+                                             : KindOf(at.node)));
+  }
   return Vector(at, expected, what);
+}
+
+Vec3 SceneReader::BodyAxisAt(const At& at, std::string_view what) {
+  const Vec3 a = BodyVector(at, kDimensionless, what);
+  if (!(a.norm() > 0) || !a.allFinite()) {
+    report_.Fail(at, fmt::format("{} has zero length; give a direction such as [0, 0, 1]", what));
+  }
+  return a.normalized();
+}
+
+Vec3 SceneReader::PlanarZAxis(const At& holder, const char* key, std::string_view what) {
+  if (!holder.Has(key)) return Vec3::UnitZ();
+  // Every rotation of a planar scene is about z, the plane's normal (eq. 8.43): the only axis
+  // a turning element can have is +z. [0, 0, 1] (any length) is accepted so that a 3-D scene's
+  // entry reads unchanged; anything else names the rule.
+  const At at = holder.Child(key);
+  const bool two = at.node.IsSequence() && at.node.size() == 2;
+  const Vec3 a = two ? Vec3::Zero() : BodyVector(at, kDimensionless, what);
+  const double tol = 1e-12 * a.norm();
+  if (two || !(a.z() > 0) || !(std::abs(a.x()) <= tol) || !(std::abs(a.y()) <= tol)) {
+    report_.Fail(
+        at, fmt::format("{} of a planar scene is z, the plane's normal; leave '{}' out "
+                        "(or give [0, 0, 1]){}",
+                        what, key, two ? ": [x, y] would be an axis in the plane" : ", not off z"));
+  }
+  return Vec3::UnitZ();
 }
 
 SceneVectorExpression SceneReader::PlanarStateVector(const At& at, const Dimension& expected,
@@ -171,18 +206,14 @@ MassProperties SceneReader::ReadPlanarPart(const At& at, ScenePart& part, Vec3& 
 void SceneReader::ReadPlanarJointType(const At& at, const std::string& what, SceneJoint& j) {
   const At type_at = at.Child("type");
   const std::string type = type_at.node.Scalar();
-  auto no_axis = [&](const char* why) {
-    if (at.Has("axis")) report_.Fail(at.Child("axis"), why);
-    j.axis_W = Vec3::UnitZ();
-  };
   switch (j.kind) {
     case JointKind::kRevolute:
       j.kind = JointKind::kRevoluteInPlane;
-      no_axis("in a planar scene a revolute turns about z (the plane's normal); remove 'axis'");
+      j.axis_W = PlanarZAxis(at, "axis", "the axis of a revolute");
       return;
     case JointKind::kWeld:
       j.kind = JointKind::kWeldInPlane;
-      no_axis("a weld has no axis in a planar scene; remove 'axis'");
+      j.axis_W = PlanarZAxis(at, "axis", "the axis of a weld");
       return;
     case JointKind::kPrismatic:
       j.kind = JointKind::kPrismaticInPlane;
@@ -213,10 +244,8 @@ void SceneReader::ReadPlanarJointType(const At& at, const std::string& what, Sce
 
 void SceneReader::ReadPlanarRolling(const At& at, const SceneBody& body, const std::string& what,
                                     SceneRolling& r) {
-  if (at.Has("axis")) {
-    report_.Fail(at.Child("axis"),
-                 "in a planar scene a wheel turns about z (the plane's normal); remove 'axis'");
-  }
+  // The same reading as a disk or cylinder contact's axis (scene_contacts.cpp).
+  r.axis_B = PlanarZAxis(at, "axis", "the axis of a rolling wheel");
   if (at.Has("shape")) {
     // Any round body rolls the same way in the plane: the circle of radius R on a line.
     const std::string shape = report_.Text(at.Child("shape"), "sphere, cylinder or disk");
@@ -229,7 +258,6 @@ void SceneReader::ReadPlanarRolling(const At& at, const SceneBody& body, const s
     }
   }
   r.shape = RollingShape::kWheelInPlane;
-  r.axis_B = Vec3::UnitZ();
   r.radius = PositiveValue(report_.Require(at, "radius", what), kLength, "the radius");
   r.p_BoC_B =
       at.Has("center") ? BodyPointAt(at.Child("center"), body) : body.mass_properties.p_BoBcm_B();

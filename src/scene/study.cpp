@@ -49,7 +49,29 @@ Vec3 CalcYawPitchRoll(const Mat3& R) {
 struct SceneMap {
   BodyMap map;
   int num_scene_constraints = 0;
+  /// Planar scenes: each body's initial θ [rad] (the `theta` variable's branch); empty in 3-D.
+  std::vector<double> initial_theta;
+  /// True for the events' map: only an event may read α (a force that did would call the
+  /// acceleration solve it is part of).
+  bool events = false;
 };
+
+/// θ of a planar body from its quaternion q = (cos θ/2, 0, 0, sin θ/2) (a rotation about z):
+/// q covers θ twice over 4π and the integrator carries it continuously, so the branch of
+/// 2 atan2(q_z, q_w) nearest the initial θ is θ itself while |θ - θ0| < 2π (one turn either
+/// way; the output column, which tracks the motion, continues over any number of turns).
+double PlanarTheta(const Quat& q_WB, double theta0) {
+  const double half = std::atan2(q_WB.z(), q_WB.w());
+  return theta0 + 2.0 * std::remainder(half - 0.5 * theta0, 2.0 * std::numbers::pi);
+}
+
+std::vector<double> PlanarInitialTheta(const Scene& scene) {
+  std::vector<double> theta;
+  if (scene.planar) {
+    for (const SceneInitialState& in : scene.dynamics.initial) theta.push_back(in.theta);
+  }
+  return theta;
+}
 
 /// Fills the state variables (StateVariableLayout) up to `count` slots.
 void FillVariables(const Model& model, const State& state, const SceneMap& scene_map, int count,
@@ -59,8 +81,31 @@ void FillVariables(const Model& model, const State& state, const SceneMap& scene
   v[0] = state.t;
   const int per = StateVariableLayout::kPerBody;
   const int num_scene_bodies = static_cast<int>(map.place.size());
+  // α (planar events only: a force cannot read it) needs the accelerations of this state.
+  const bool planar = !scene_map.initial_theta.empty();
+  bool alpha = false;
+  for (int b = 0; planar && scene_map.events && b < num_scene_bodies; ++b) {
+    alpha = alpha || StateVariableLayout::Slot(b, StateVariableLayout::kAlpha) < count;
+  }
+  const int first = StateVariableLayout::Slot(num_scene_bodies, 0);
+  const int num_constraints = std::min(scene_map.num_scene_constraints, model.num_constraints());
+  const int first_contact =
+      first + StateVariableLayout::kPerConstraint * scene_map.num_scene_constraints;
+  const bool reactions = count > first && num_constraints > 0;
+  const bool contacts = count > first_contact && model.num_contact_points() > 0;
+  Data data;
+  if (alpha || reactions || contacts) {
+    data = MakeData(model);
+    CalcAccelerations(model, state, data);
+  }
   for (int b = 0; b < num_scene_bodies && b * per + 1 < count; ++b) {
     const MappedBodyMotion m = CalcMappedBodyMotion(model, state, map, b);
+    const BodyPlacement& pl = map.place[static_cast<size_t>(b)];
+    const auto mb = static_cast<size_t>(pl.model_body);
+    const double theta = planar ? PlanarTheta(state.bodies[mb].q_WB * Quat(pl.R_MB),
+                                              scene_map.initial_theta[static_cast<size_t>(b)])
+                                : 0.0;
+    const double alpha_z = alpha ? (data.R_WB[mb] * data.wdot_WB_B[mb]).z() : 0.0;
     const Vec3 w_B = m.R_WB.transpose() * m.w_WB_W;
     const Vec3 ypr = CalcYawPitchRoll(m.R_WB);
     const double block[StateVariableLayout::kPerBody] = {
@@ -81,7 +126,9 @@ void FillVariables(const Model& model, const State& state, const SceneMap& scene
         ypr.y(),
         ypr.z(),
         m.v_WBcm_W.norm(),
-        m.w_WB_W.norm()};
+        m.w_WB_W.norm(),
+        theta,
+        alpha_z};
     for (int j = 0; j < per; ++j) {
       const int slot = StateVariableLayout::Slot(b, j);
       if (slot < count) v[static_cast<size_t>(slot)] = block[j];
@@ -89,15 +136,7 @@ void FillVariables(const Model& model, const State& state, const SceneMap& scene
   }
   // Reactions (events only): six slots per scene constraint after the scene bodies' blocks,
   // then the contact points' values (StateVariableLayout).
-  const int first = StateVariableLayout::Slot(num_scene_bodies, 0);
-  const int num_constraints = std::min(scene_map.num_scene_constraints, model.num_constraints());
-  const int first_contact =
-      first + StateVariableLayout::kPerConstraint * scene_map.num_scene_constraints;
-  const bool reactions = count > first && num_constraints > 0;
-  const bool contacts = count > first_contact && model.num_contact_points() > 0;
   if (!reactions && !contacts) return;
-  Data data = MakeData(model);
-  CalcAccelerations(model, state, data);
   for (int i = 0; i < num_constraints; ++i) {
     const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
     for (int k = 0; k < 6; ++k) {
@@ -345,7 +384,8 @@ Model BuildModel(const Scene& scene, const std::vector<NamedBody>& bodies,
   Model model;
   for (const NamedBody& b : bodies) model.AddBody(b.name, b.mass_properties);
   const auto map = std::make_shared<const SceneMap>(
-      SceneMap{body_map, static_cast<int>(scene.dynamics.constraints.names().size())});
+      SceneMap{body_map, static_cast<int>(scene.dynamics.constraints.names().size()),
+               PlanarInitialTheta(scene)});
   const SceneDynamics& d = scene.dynamics;
   if (d.has_gravity) model.AddForceElement(std::make_shared<UniformGravity>("gravity", d.g_W));
   auto point = [&](int b, const Vec3& p_BoP_B) { return map->map.PointInModelBody(b, p_BoP_B); };
@@ -470,7 +510,8 @@ bool IsModeChange(SceneModeChange change, const ContactEvent& c) {
 std::vector<EventSpec> BuildEvents(const Scene& scene, const BodyMap& body_map) {
   std::vector<EventSpec> events;
   const auto map = std::make_shared<const SceneMap>(
-      SceneMap{body_map, static_cast<int>(scene.dynamics.constraints.names().size())});
+      SceneMap{body_map, static_cast<int>(scene.dynamics.constraints.names().size()),
+               PlanarInitialTheta(scene), true});
   for (const SceneEvent& e : scene.dynamics.events) {
     if (e.change != SceneModeChange::kNone) {
       // Contact points are added to the Model in the scene's label order (AddSceneContacts).

@@ -11,6 +11,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "chasles/integrate/simulate.h"
@@ -28,11 +29,26 @@ struct StateVariableLayout {
   /// Suffixes in slot order within a body's block: Bcm position (W) [m], Bcm velocity (W)
   /// [m/s], angular velocity in W and in B [rad/s], tilt (angle of B's z axis from W's z)
   /// [rad], Euler ZYX yaw, pitch, roll of R_WB [rad], speed |v| [m/s], angular speed |w|
-  /// [rad/s].
-  static constexpr std::array<const char*, 18> kSuffixes = {
-      "x",   "y",   "z",   "vx",   "vy",  "vz",    "wx",   "wy",    "wz",
-      "wbx", "wby", "wbz", "tilt", "yaw", "pitch", "roll", "speed", "omega"};
+  /// [rad/s]; then the planar angle θ about z [rad] and angular acceleration α_z [rad/s²]
+  /// (planar scenes only). A 3-D scene names every slot but the last two by its suffix; a
+  /// planar scene names x, y, vx, vy, speed, theta, alpha and calls the wz slot `omega` (signed
+  /// ω about z): kPlanarNames.
+  static constexpr std::array<const char*, 20> kSuffixes = {
+      "x",   "y",   "z",    "vx",  "vy",    "vz",   "wx",    "wy",    "wz",    "wbx",
+      "wby", "wbz", "tilt", "yaw", "pitch", "roll", "speed", "omega", "theta", "alpha"};
   static constexpr int kPerBody = static_cast<int>(kSuffixes.size());
+  /// Index in kSuffixes of ω_z, of |ω| (3-D `omega`), of θ and of α_z.
+  static constexpr int kWz = 8, kAngularSpeed = 17, kTheta = 18, kAlpha = 19;
+  /// A planar scene's body variables: its name suffix and the kSuffixes slot it reads (one
+  /// name per quantity, the names of the `planar` output columns).
+  static constexpr std::array<std::pair<const char*, int>, 8> kPlanarNames = {{{"x", 0},
+                                                                               {"y", 1},
+                                                                               {"theta", kTheta},
+                                                                               {"vx", 3},
+                                                                               {"vy", 4},
+                                                                               {"omega", kWz},
+                                                                               {"alpha", kAlpha},
+                                                                               {"speed", 16}}};
   /// Slot of variable `suffix_index` of body `body` (scene order).
   static constexpr int Slot(int body, int suffix_index) {
     return 1 + body * kPerBody + suffix_index;

@@ -140,6 +140,8 @@ class SceneReader {
   SceneVectorExpression StateVector(const At& at, const Dimension& expected, std::string_view what);
   /// A time-or-state expression's resolver: t, <body>_<suffix>, then parameters.
   std::optional<Symbol> ResolveStateSymbol(const At& at, std::string_view name);
+  /// Fails with the planar names when `name` is a body's 3-D state variable (a planar scene).
+  void PlanarNameHint(const At& at, std::string_view name);
   VectorFrame FrameAt(const At& at);
 
   // Constraints (scene_constraints.cpp) ---------------------------------------------------
@@ -176,6 +178,12 @@ class SceneReader {
   Vec3 WorldVector(const At& at, const Dimension& expected, std::string_view what);
   /// A body-frame vector: [x, y] or [x, y, z] in a planar scene, [x, y, z] otherwise.
   Vec3 BodyVector(const At& at, const Dimension& expected, std::string_view what);
+  /// A unit direction in the body frame: [x, y] or [x, y, z] in a planar scene, [x, y, z]
+  /// otherwise; fails for a zero vector.
+  Vec3 BodyAxisAt(const At& at, std::string_view what);
+  /// The axis `key` of `holder` in a planar scene: z when absent; present, it must point along
+  /// +z (anything else, [x, y] included, is an error naming `what`).
+  Vec3 PlanarZAxis(const At& holder, const char* key, std::string_view what);
   /// A force [Fx, Fy] or a moment Mz (a scalar about z) of t and the state, as a 3-vector.
   SceneVectorExpression PlanarStateVector(const At& at, const Dimension& expected,
                                           std::string_view what, bool moment);
