@@ -47,6 +47,17 @@ struct Show {
     return fmt::format("[{:.9g}, {:.9g}, {:.9g}]{}{}", c(v.x()), c(v.y()), c(v.z()),
                        unit.empty() ? "" : " ", unit);
   }
+  /// The in-plane components [x, y] of a vector of a planar scene (round-off as above).
+  std::string Xy(const Vec3& v, const Dimension& d, double scale = 0.0) const {
+    const std::string unit = u.FormatUnit(d, Angular::kNo);
+    const double floor = 1e-12 * std::max(v.head<2>().stableNorm(), scale);
+    const auto c = [&](double x) {
+      return Finite(u.FromSI(std::abs(x) <= floor ? 0.0 : x, d, Angular::kNo),
+                    "a value of the report") +
+             0.0;
+    };
+    return fmt::format("[{:.9g}, {:.9g}]{}{}", c(v.x()), c(v.y()), unit.empty() ? "" : " ", unit);
+  }
 };
 
 /// Sizes of the report's kinds of quantity, so that round-off next to them prints as 0: a
@@ -111,6 +122,11 @@ std::string SnapshotText(const Scene& scene, const StudySnapshot& snap, const Sh
                        show(b.w_WB_W, kRateDim, Angular::kYes, w_s));
   }
   for (const auto& x : snap.reactions) {
+    if (scene.planar) {
+      out += fmt::format("    {}: force {}, moment {}\n", x.name,
+                         show.Xy(x.F_Jc_W, kForceDim, k.force), show(x.M_Jc_W.z(), kMomentDim));
+      continue;
+    }
     out += fmt::format("    {}: force {}, moment {}\n", x.name,
                        show(x.F_Jc_W, kForceDim, Angular::kNo, k.force),
                        show(x.M_Jc_W, kMomentDim, Angular::kNo, k.moment));
@@ -118,7 +134,8 @@ std::string SnapshotText(const Scene& scene, const StudySnapshot& snap, const Sh
   for (const auto& c : snap.contacts) {
     out += fmt::format("    {}: {}, N = {}, friction {}\n", c.point, c.mode,
                        show(c.normal_force, kForceDim),
-                       show(c.friction_force_W, kForceDim, Angular::kNo, k.force));
+                       scene.planar ? show.Xy(c.friction_force_W, kForceDim, k.force)
+                                    : show(c.friction_force_W, kForceDim, Angular::kNo, k.force));
   }
   return out;
 }
@@ -281,20 +298,23 @@ std::string EndReactionsText(const Scene& scene, const StudyResult& r, const Sho
   return out;
 }
 
-std::string EndContactsText(const StudyResult& r, const Show& show, const ReportScales& k) {
+std::string EndContactsText(const Scene& scene, const StudyResult& r, const Show& show,
+                            const ReportScales& k) {
   if (r.final_contacts.empty()) return "";
   std::string out = "\nContacts at the end (forces on the body, world frame)\n";
   for (const auto& c : r.final_contacts) {
     out += fmt::format("  {}: {}, N = {}, friction {}, slip {}, gap {}\n", c.point, c.mode,
                        show(c.normal_force, kForceDim),
-                       show(c.friction_force_W, kForceDim, Angular::kNo, k.force),
-                       show(c.slip_velocity_W, kVelocityDim, Angular::kNo, k.speed),
+                       scene.planar ? show.Xy(c.friction_force_W, kForceDim, k.force)
+                                    : show(c.friction_force_W, kForceDim, Angular::kNo, k.force),
+                       scene.planar ? show.Xy(c.slip_velocity_W, kVelocityDim, k.speed)
+                                    : show(c.slip_velocity_W, kVelocityDim, Angular::kNo, k.speed),
                        show(std::abs(c.gap) <= 1e-12 * k.length ? 0.0 : c.gap, kLength));
   }
   return out;
 }
 
-std::string LedgerText(const StudyResult& r, const TextUnits& u) {
+std::string LedgerText(const Scene& scene, const StudyResult& r, const TextUnits& u) {
   const StudyLedger& L = r.ledger;
   std::string out = "\nLedger (from t = 0)\n";
   out += fmt::format("  kinetic energy      {} (translation {}, rotation {})\n",
@@ -322,6 +342,16 @@ std::string LedgerText(const StudyResult& r, const TextUnits& u) {
   out += fmt::format(
       "  balance residual    {} ({:.2e} of the energy scale {})\n", u.Energy(L.residual),
       L.energy_scale > 0 ? std::abs(L.residual) / L.energy_scale : 0.0, u.Energy(L.energy_scale));
+  if (scene.planar) {
+    // Plane motion: momentum in the plane, angular momentum about z (eqs. 8.34-8.38).
+    out += fmt::format("  linear momentum     {}\n", u.show.Xy(L.linear_momentum_W, kMomentumDim));
+    out += fmt::format(
+        "  angular momentum    {} about the centre of mass, {} about the origin "
+        "(about z)\n",
+        u.show(L.angular_momentum_Scm_W.z(), kAngularMomentumDim),
+        u.show(L.angular_momentum_Wo_W.z(), kAngularMomentumDim));
+    return out;
+  }
   out += fmt::format("  linear momentum     {}\n", u.show(L.linear_momentum_W, kMomentumDim));
   out += fmt::format("  angular momentum    {} about the centre of mass, {} about the origin\n",
                      u.show(L.angular_momentum_Scm_W, kAngularMomentumDim),
@@ -345,8 +375,8 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
   out += ImpactsText(r, u);
   out += FinalStateText(scene, r, u.show, k);
   out += EndReactionsText(scene, r, u.show, k);
-  out += EndContactsText(r, u.show, k);
-  out += LedgerText(r, u);
+  out += EndContactsText(scene, r, u.show, k);
+  out += LedgerText(scene, r, u);
   out += fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n", r.integrator,
                      r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
   for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);

@@ -245,11 +245,16 @@ Contact::Contact(const Model& model, ContactSpec spec) : spec_(std::move(spec)) 
         add(ContactFeatureKind::kPoint, body.PointFromCenterOfMass(p), 0.0);
       break;
   }
+  if (!s.point_labels.empty() && s.point_labels.size() != features_.size()) {
+    throw InputError(fmt::format("contact '{}': {} point labels for {} points", s.name,
+                                 s.point_labels.size(), features_.size()));
+  }
 }
 
 std::string Contact::point_name(int i) const {
+  if (!spec_.point_labels.empty()) return spec_.point_labels[static_cast<size_t>(i)];
   if (num_points() == 1) return spec_.name;
-  return fmt::format("{}[{}]", spec_.name, i);
+  return fmt::format("{}_{}", spec_.name, i);
 }
 
 }  // namespace chasles

@@ -361,6 +361,7 @@ void AddSceneContacts(const Scene& scene, const BodyMap& map, Model& model) {
     spec.half_extents = c.size / 2;
     spec.points_B = c.points_B;
     spec.face_points = kDiskFacePoints;
+    spec.point_labels = ContactPointLabels(c);
     if (!c.with_plane) {
       spec.other_body = map.place[static_cast<size_t>(c.other_body)].model_body;
       spec.p_OoC_O = c.p_OoD_O;

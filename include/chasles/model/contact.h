@@ -61,7 +61,8 @@ const char* ContactModeName(ContactMode mode);
 /// given in the body's own frame B from Bo, like mass properties.
 struct ContactSpec {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  /// Name used in reports and messages (points of a multi-point shape are "name[i]").
+  /// Name used in reports and messages (points of a multi-point shape are "name_i", or their
+  /// `point_labels`).
   std::string name;
   /// Which shape (decides which fields below are read).
   ContactShape shape = ContactShape::kSphere;
@@ -83,6 +84,10 @@ struct ContactSpec {
   std::vector<Vec3> points_B;
   /// Number of ring points of a disk face (>= 3).
   int face_points = 8;
+  /// Names of the points in reports and messages, one per point (optional; empty: the
+  /// contact's name for a one-point shape, "name_i" otherwise; scenes give "name_<point>" for
+  /// named points of a point set, the labels of docs/scene-format.md).
+  std::vector<std::string> point_labels;
   /// The other body of a sphere-sphere contact (a body, not kWorld).
   BodyIndex other_body = kWorld;
   /// Centre of the other sphere from the other body's Bo, in its frame [m].
@@ -147,7 +152,8 @@ class Contact {
   const ContactFeature& feature(int i) const { return features_[static_cast<size_t>(i)]; }
   /// The other sphere's centre from the other body's Bcm, in its frame [m] (sphere-sphere).
   const Vec3& p_OcmC_O() const { return p_OcmC_O_; }
-  /// Name of point `i`: the contact's name for a one-point shape, "name[i]" otherwise.
+  /// Name of point `i`: its ContactSpec::point_labels entry if given, else the contact's name
+  /// for a one-point shape and "name_i" otherwise.
   std::string point_name(int i) const;
   /// Plane normal and tangents (t1 × t2 = n), in W.
   const Vec3& n_W() const { return n_W_; }

@@ -74,7 +74,7 @@ TEST(ContactSpec, ShapesReduceToPoints) {
   const Contact box(model, s);
   ASSERT_EQ(box.num_points(), 8);
   EXPECT_TRUE(test::MatNear(box.feature(7).p_BcmF_B, Vec3(1, 2, 3), test::kExact));
-  EXPECT_EQ(box.point_name(3), "c[3]");
+  EXPECT_EQ(box.point_name(3), "c_3");
   s.shape = ContactShape::kCylinder;
   s.length = 0.4;
   EXPECT_EQ(Contact(model, s).num_points(), 2);
