@@ -200,5 +200,49 @@ TEST(ConstraintModes, SolveChoosesTautOrSlackByTheSignOfTheTension) {
   EXPECT_TRUE(Near(sol.reactions[0].gap, 0.5 * l, 1e-15));
 }
 
+// Two strings, an LCP: a particle at rest at p = (0, -h) hangs from A = (-a, 0) and B = (a, 0)
+// (taut, s = √(a² + h²)) in a gravity g⃗ = (gx, -g) that pulls it towards +x. With e_A, e_B the
+// unit vectors from the particle to the anchors, equilibrium T_A e_A + T_B e_B = -m g⃗ gives
+//   T_A + T_B = m g s / h,   T_B - T_A = -m gx s / a,
+// so T_B = (m s / 2)(g/h - gx/a) < 0 once gx > a g / h: then B is slack and A alone holds it,
+// T_A = -m g⃗·e_A = m (gx a + g h) / s, and the particle starts on the circle about A with
+// a = g⃗ + T_A e_A / m; B's slack then opens (g̈_B = a·e_B > 0). Both sides of gx = a g / h.
+TEST(ConstraintModes, TwoStringsShareTheLoadOrOneGoesSlack) {
+  const double m = 1.3, a = 0.4, h = 0.9, g = kG, s = std::hypot(a, h);
+  for (const double k : {1.0 - 1e-6, 1.0 + 1e-6}) {
+    const double gx = k * a * g / h;
+    Model model;
+    model.AddBody("bob",
+                  MassProperties(m, Vec3::Zero(), RotationalInertia::FromMatrix(Mat3::Zero())));
+    model.AddForceElement(std::make_shared<UniformGravity>("g", Vec3(gx, -g, 0)));
+    State st = MakeRestState(model);
+    st.bodies[0].p_WBcm = Vec3(0, -h, 0);
+    for (const double x : {-a, a}) {
+      model.AddConstraint(std::make_shared<StringConstraint>(
+          x < 0 ? "A" : "B", StringEnd{kWorld, Vec3(x, 0, 0), 0.0, 1}, std::vector<StringPulley>{},
+          StringEnd{0, Vec3::Zero(), 0.0, 1}, Vec3::UnitZ(), s));
+    }
+    const InstantaneousSolution sol = SolveInstantaneous(model, st);
+    const double TB = 0.5 * m * s * (g / h - gx / a);
+    if (TB >= 0.0) {
+      EXPECT_EQ(sol.reactions[0].mode, "taut");
+      EXPECT_EQ(sol.reactions[1].mode, "taut");
+      EXPECT_TRUE(Near(sol.reactions[1].lambda[0], TB, 1e-9, m * g));
+      EXPECT_TRUE(Near(sol.reactions[0].lambda[0], m * g * s / h - TB, 1e-9));
+      EXPECT_TRUE(test::MatNear(sol.bodies[0].a_WBcm_W, Vec3::Zero(), 1e-12, g));
+    } else {
+      const Vec3 eA = Vec3(-a, h, 0) / s, eB = Vec3(a, h, 0) / s;
+      const double TA = m * (gx * a + g * h) / s;
+      EXPECT_EQ(sol.reactions[0].mode, "taut");
+      EXPECT_EQ(sol.reactions[1].mode, "slack");
+      EXPECT_TRUE(Near(sol.reactions[0].lambda[0], TA, 1e-9));
+      EXPECT_EQ(sol.reactions[1].lambda[0], 0.0);
+      const Vec3 acc = Vec3(gx, -g, 0) + TA * eA / m;
+      EXPECT_TRUE(test::MatNear(sol.bodies[0].a_WBcm_W, acc, 1e-9, g));
+      EXPECT_GT(acc.dot(eB), 0.0);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace chasles
