@@ -208,6 +208,27 @@ std::string ContactEventsText(const StudyResult& r, const TextUnits& u) {
          });
 }
 
+std::string StringEventsText(const StudyResult& r, const TextUnits& u) {
+  if (r.string_events.empty()) return "";
+  return "\nString modes (time, string: from -> to, why)\n" +
+         Abridged(r.string_events, 20, 5, "change", [&](const StudyStringEvent& e) {
+           std::string line = e.from == e.to
+                                  ? fmt::format("  t = {}  string {}: {} ({})\n", u.Time(e.t),
+                                                e.string, e.to, e.reason)
+                                  : fmt::format("  t = {}  string {}: {} -> {} ({})\n", u.Time(e.t),
+                                                e.string, e.from, e.to, e.reason);
+           if (e.reason == "snapped taut" && e.to == "slack") {
+             line += "    it rebounded (restitution): slack again at once\n";
+           }
+           if (e.reason == "snapped taut") {
+             line += fmt::format("    closing speed {}, impulse {}, energy lost {}\n",
+                                 u.show(e.approach_speed, kVelocityDim),
+                                 u.show(e.impulse, kMomentumDim), u.Energy(e.energy_lost));
+           }
+           return line;
+         });
+}
+
 std::string ImpactText(const StudyImpact& x, const TextUnits& u) {
   std::string out =
       fmt::format("  t = {}  {}: approach speed {}, energy lost {}{}\n", u.Time(x.t), x.point,
@@ -336,6 +357,8 @@ std::string LedgerText(const Scene& scene, const StudyResult& r, const TextUnits
       out += fmt::format("    {:<20} {}\n", "rolling resistance", u.Energy(L.rolling_work));
     }
     out += fmt::format("    {:<20} {}\n", "impacts", u.Energy(L.impact_work));
+  } else if (!r.string_events.empty()) {
+    out += fmt::format("    {:<20} {}\n", "strings snapping", u.Energy(L.impact_work));
   }
   out += fmt::format("  dissipated          {}\n", u.Energy(L.dissipated));
   if (!r.jumps.empty()) out += fmt::format("  impulses and impacts {}\n", u.Energy(L.jumps));
@@ -372,6 +395,7 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
   out += EventsText(scene, r, u.show);
   out += JumpsText(r, u);
   out += ContactEventsText(r, u);
+  out += StringEventsText(r, u);
   out += ImpactsText(r, u);
   out += FinalStateText(scene, r, u.show, k);
   out += EndReactionsText(scene, r, u.show, k);

@@ -176,6 +176,12 @@ std::string Text(const Scene& scene, const SolveReport& s) {
       out += fmt::format("    force  {} N\n", V(r.F_Jc_W, k.force));
       out += fmt::format("    moment {} N*m\n", V(r.M_Jc_W, k.moment));
     }
+    if (!r.mode.empty()) {
+      out += fmt::format(
+          "    {}: tension {:.9g} N, slack {:.9g} m (chosen by T >= 0, slack acceleration >= 0, "
+          "T * slack acceleration = 0)\n",
+          r.mode, Clean(r.lambda[0], k.force), r.gap);
+    }
     if (r.is_rolling) {
       out += fmt::format("    normal force {:.9g} N, friction {:.9g} N, f/N = {:.9g}",
                          r.normal_force, r.friction_W.norm(), r.friction_needed);

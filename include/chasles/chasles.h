@@ -11,6 +11,7 @@
 #include "chasles/analysis/momentum.h"
 #include "chasles/analysis/solve_report.h"
 #include "chasles/analysis/study.h"
+#include "chasles/dynamics/constraint_modes.h"
 #include "chasles/dynamics/constraint_residual.h"
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/contact_projection.h"

@@ -261,6 +261,7 @@ void CertificateBuilder::CheckConstraintRows(const Model& model, const State& st
   // |J_trans| L + |J_rot| (1 rad); its velocity residual's is |J_trans| V + |J_rot| Ω.
   for (int c = 0; c < model.num_constraints(); ++c) {
     const Constraint& con = model.constraint(c);
+    if (con.can_release() && IsReleased(state, c)) continue;  // a slack string holds nothing
     const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
     auto u_of = [&](int b) {
       Eigen::Matrix<double, 6, 1> u = Eigen::Matrix<double, 6, 1>::Zero();

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "chasles/dynamics/constraint_modes.h"
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
@@ -14,9 +15,29 @@
 
 namespace chasles {
 
+namespace {
+InstantaneousSolution SolveInChosenModes(const Model& model, const State& state,
+                                         const InstantaneousOptions& options);
+}  // namespace
+
 InstantaneousSolution SolveInstantaneous(const Model& model, const State& state,
                                          const InstantaneousOptions& options) {
   ValidateState(model, state);
+  // Strings that can go slack: taut or slack by the complementarity on their tensions
+  // (SelectConstraintModes), never assumed.
+  State chosen = state;
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    if (model.constraint(c).can_release()) {
+      SelectConstraintModes(model, chosen);
+      break;
+    }
+  }
+  return SolveInChosenModes(model, chosen, options);
+}
+
+namespace {
+InstantaneousSolution SolveInChosenModes(const Model& model, const State& state,
+                                         const InstantaneousOptions& options) {
   Data data = MakeData(model);
   const ConstraintViolation v = CalcConstraintViolation(model, state, data);
   if (v.position > options.tolerance || v.velocity > options.tolerance) {
@@ -51,6 +72,7 @@ InstantaneousSolution SolveInstantaneous(const Model& model, const State& state,
   }
   return s;
 }
+}  // namespace
 
 ReactionReport MakeReactionReport(const Model& model, const Data& data, int c) {
   const Constraint& con = model.constraint(c);
@@ -67,6 +89,12 @@ ReactionReport MakeReactionReport(const Model& model, const Data& data, int c) {
   r.M_Jc_B = o.M_Jc_B;
   r.power = o.power;
   for (int k = 0; k < con.num_rows(); ++k) r.lambda.push_back(o.lambda[k]);
+  if (con.can_release()) {
+    const bool slack = data.row_released[static_cast<size_t>(model.constraint_row_offset(c))] != 0;
+    r.mode =
+        ConstraintModeName(model, c, slack ? ConstraintMode::kReleased : ConstraintMode::kEngaged);
+    r.gap = data.constraint_gap[static_cast<size_t>(c)];
+  }
   if (const auto* roll = dynamic_cast<const RollingContact*>(&con)) {
     r.is_rolling = true;
     r.normal_force = o.lambda[0];

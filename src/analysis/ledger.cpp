@@ -53,6 +53,17 @@ LedgerSample CalcLedgerSample(const Model& model, const State& s, const State& s
     abs_work += std::abs(cl.work);
   }
   L.work_nonconservative += L.constraint_work;
+  // Strings snapping taut: impacts, so dissipated (an empty list reads as zeros).
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const auto i = static_cast<size_t>(c);
+    const double w = i < s.constraint_modes.size() ? s.constraint_modes[i].impact_work : 0.0;
+    const double w0 = i < s0.constraint_modes.size() ? s0.constraint_modes[i].impact_work : 0.0;
+    L.constraints[i].impact_work = w - w0;
+    L.constraint_impact_work += w - w0;
+  }
+  L.work_nonconservative += L.constraint_impact_work;
+  L.dissipated -= L.constraint_impact_work;
+  abs_work += std::abs(L.constraint_impact_work);
   // Contacts: sliding friction, rolling resistance and impacts only take energy out; a state
   // without contact entries (a model without contacts) reads as zeros.
   L.contacts.resize(static_cast<size_t>(model.num_contact_points()));

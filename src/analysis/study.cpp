@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "chasles/analysis/ledger.h"
+#include "chasles/dynamics/constraint_modes.h"
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/impact.h"
@@ -318,6 +319,16 @@ void StudyRun::RecordSimulation(const SimulationResult& r, const std::vector<Con
     result_.contact_events.push_back(
         {e.t, Label(e.point), m.contact(m.contact_of_point(e.point)).name(), ContactModeName(from),
          ContactModeName(e.to), ContactEventReasonName(e.reason)});
+  }
+  for (const ConstraintEvent& e : r.constraint_events) {
+    const std::string& name = m.constraint(e.constraint).name();
+    // A later segment lists its strings' modes again as "initial": only news is kept.
+    const bool known = std::any_of(result_.string_events.begin(), result_.string_events.end(),
+                                   [&](const StudyStringEvent& x) { return x.string == name; });
+    if (e.reason == "initial" && known && e.from == e.to && e.impulse == 0.0) continue;
+    result_.string_events.push_back({e.t, name, ConstraintModeName(m, e.constraint, e.from),
+                                     ConstraintModeName(m, e.constraint, e.to), e.reason,
+                                     e.approach_speed, e.impulse, e.energy_lost});
   }
   for (const ImpactRecord& imp : r.impacts) {
     result_.impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,

@@ -150,6 +150,7 @@ StudyLedger FinalLedger(const StudyDefinition& definition, const Model& model, c
     out.rolling_work += p.rolling_work;
     out.impact_work += p.impact_work;
   }
+  for (const ConstraintModeState& m : state.constraint_modes) out.impact_work += m.impact_work;
   out.jumps = carry.jumps;
   out.residual = carry.residual + L.energy_residual;
   out.energy_scale = std::max(carry.scale, L.energy_scale);

@@ -99,6 +99,20 @@ void CalcConstraintRows(const Model& model, const State& state, Data& data) {
     con.Evaluate(model, state, data, e);
     const int o = model.constraint_row_offset(c);
     const int n = con.num_rows();
+    // A constraint that can let go keeps its gap (its row's g) for the events; released, its
+    // rows leave the system (zero in J, b, c, g; its multiplier is held at 0 by
+    // internal::HoldReleasedRows) but `e` keeps its Jacobian rows for the gap rate.
+    const bool released = con.can_release() && IsReleased(state, c);
+    data.constraint_gap[static_cast<size_t>(c)] = con.can_release() ? e.position_error[0] : 0.0;
+    for (int k = 0; k < n; ++k) data.row_released[static_cast<size_t>(o + k)] = released ? 1 : 0;
+    if (released) {
+      e.position_error.setZero();
+      e.holonomic.fill(false);
+      data.velocity_rhs.segment(o, n).setZero();
+      data.acceleration_rhs.segment(o, n).setZero();
+      data.position_error.segment(o, n).setZero();
+      continue;
+    }
     if (con.parent() != kWorld) data.J.block(o, 6 * con.parent(), n, 6) = e.J_parent.topRows(n);
     data.J.block(o, 6 * con.child(), n, 6) = e.J_child.topRows(n);
     data.velocity_rhs.segment(o, n) = e.velocity_rhs.head(n);
@@ -122,6 +136,7 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
   data.schur.noalias() = data.JMinv * data.J.transpose();
   data.Ju.noalias() = data.J * u_dot;  // J u̇_free here; J u below
   data.schur_rhs = data.acceleration_rhs - data.Ju;
+  internal::HoldReleasedRows(data.row_released, data.schur, data.schur_rhs);
   const double r_scale =
       std::max(data.acceleration_rhs.cwiseAbs().maxCoeff(), data.Ju.cwiseAbs().maxCoeff());
   // Redundant rows: the reactions least in the norm Σ F² + Σ (M / ℓ)² (moments over the
@@ -231,7 +246,9 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
   if (res.size() == 0 || res.cwiseAbs().maxCoeff() == 0.0) return;
   internal::TimesMassInverse(model, data, data.J, data.JMinv);
   data.schur.noalias() = data.JMinv * data.J.transpose();
-  SolveSchur(model, nullptr, data.schur, data.schur_ldlt.ldlt, res, mu, nullptr, 0.0);
+  VectorXd r = res;
+  internal::HoldReleasedRows(data.row_released, data.schur, r);
+  SolveSchur(model, nullptr, data.schur, data.schur_ldlt.ldlt, r, mu, nullptr, 0.0);
   const VectorXd du = -data.JMinv.transpose() * mu;
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);

@@ -440,6 +440,7 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
   internal::TimesMassInverse(model, data, ws.W, ws.WMinv);
   ws.A.noalias() = ws.J * ws.WMinv.transpose();
   ws.rhs.noalias() = ws.c - ws.J * u_dot;
+  if (nc_rows > 0) internal::HoldReleasedRows(data.row_released, ws.A, ws.rhs);
   const bool redundant = internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda);
   if (redundant) WeighRedundantRows(model, state, data, nc_rows, ws);
   u_dot.noalias() += ws.WMinv.transpose() * ws.lambda;

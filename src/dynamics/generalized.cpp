@@ -41,6 +41,17 @@ void SetVelocity(const Model& model, const Data& data, const Eigen::VectorXd& u,
   }
 }
 
+void HoldReleasedRows(const std::vector<char>& released, Eigen::MatrixXd& A, Eigen::VectorXd& r) {
+  for (size_t k = 0; k < released.size(); ++k) {
+    if (released[k] == 0) continue;
+    const auto i = static_cast<Eigen::Index>(k);
+    A.row(i).setZero();
+    A.col(i).setZero();
+    A(i, i) = 1.0;
+    r[i] = 0.0;
+  }
+}
+
 double KineticEnergy(const Model& model, const State& state) {
   double T = 0.0;
   for (int b = 0; b < model.num_bodies(); ++b) {
@@ -54,17 +65,21 @@ double KineticEnergy(const Model& model, const State& state) {
 
 namespace {
 
-// A string's multiplier is its tension (model/string_constraint.h). Its row is bilateral: a
-// negative tension means the string would go slack, which it cannot represent, so the run
-// stops there (a tolerance of 1e-9 of the largest force in play absorbs round-off).
+// A string's multiplier is its tension (model/string_constraint.h). A string wound on a drum
+// cannot go slack (its row is velocity-level: the state holds the drum's angle only modulo a
+// turn, so the slack could not be tracked), so a negative tension stops the run there (a
+// tolerance of 1e-9 of the largest force in play absorbs round-off). Strings without drums go
+// slack at an event instead (integrate/hybrid.cpp).
 void CheckStringTaut(const Constraint& con, double tension, const Data& data, double t) {
-  if (dynamic_cast<const StringConstraint*>(&con) == nullptr) return;
+  if (dynamic_cast<const StringConstraint*>(&con) == nullptr || con.can_release()) return;
   double scale = data.lambda.size() > 0 ? data.lambda.cwiseAbs().maxCoeff() : 0.0;
   for (const Vec3& F : data.F_Bcm_W) scale = std::max(scale, F.norm());
   if (tension < -1e-9 * scale) {
     throw InputError(fmt::format(
         "string '{}' would go slack at t = {:.6g} s: its tension comes out {:.6g} N, and a "
-        "string can only pull; strings are held taut (a slack string is not modelled yet)",
+        "string can only pull; a string wound on a drum is held taut (how far the drum has "
+        "turned is known only modulo a turn, so its slack cannot be tracked): tie it to a "
+        "point of the body instead of a drum",
         con.name(), t, tension));
   }
 }

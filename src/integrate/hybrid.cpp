@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "chasles/dynamics/constraint_modes.h"
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/contact_projection.h"
 #include "chasles/dynamics/contact_solve.h"
@@ -21,11 +22,21 @@ namespace chasles::internal {
 namespace {
 
 // One scalar event function of one contact point in its current mode; each falls through
-// zero at its transition (docs/contact.md, "Events").
-enum class Fn { kGap, kNormalForce, kSlip, kFrictionMargin, kRolling };
+// zero at its transition (docs/contact.md, "Events"). kStringGap and kStringTension are those
+// of a constraint that can let go (a string): its slack g = L0 - L while slack, its tension
+// while taut (docs/constraints.md, "Strings that go slack").
+enum class Fn { kGap, kNormalForce, kSlip, kFrictionMargin, kRolling, kStringGap, kStringTension };
+
+// A gap closes like a contact's: the same location logic (closest approach, short flights).
+bool IsGap(Fn f) {
+  return f == Fn::kGap || f == Fn::kStringGap;
+}
+bool IsString(Fn f) {
+  return f == Fn::kStringGap || f == Fn::kStringTension;
+}
 
 struct ContactFn {
-  int point;
+  int point;  // contact point, or constraint for the string functions
   Fn fn;
   ContactEventReason reason;
 };
@@ -51,7 +62,31 @@ std::vector<ContactFn> EventFunctions(const Model& model, const State& s) {
         break;
     }
   }
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    if (!model.constraint(c).can_release()) continue;
+    if (IsReleased(s, c)) {
+      fns.push_back({c, Fn::kStringGap, ContactEventReason::kTouchDown});
+    } else {
+      fns.push_back({c, Fn::kStringTension, ContactEventReason::kLiftOff});
+    }
+  }
   return fns;
+}
+
+// Gap rate ġ = J u of the string function's constraint (its row, kept in Data::constraint_rows
+// in either mode; data filled by CalcAccelerations at `s`); the contact point's normal
+// velocity for a contact gap.
+double GapRate(const Model& model, const State& s, const Data& data, const ContactFn& f) {
+  if (!IsString(f.fn)) return data.contact_points[static_cast<size_t>(f.point)].normal_velocity;
+  const Constraint& con = model.constraint(f.point);
+  const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(f.point)];
+  const auto row = [&](BodyIndex b, const ConstraintEval::Rows& J) {
+    const auto i = static_cast<size_t>(b);
+    return J.row(0).head<3>().dot(s.bodies[i].v_WBcm_W) + J.row(0).tail<3>().dot(data.w_WB_W[i]);
+  };
+  double v = row(con.child(), e.J_child);
+  if (con.parent() != kWorld) v += row(con.parent(), e.J_parent);
+  return v;
 }
 
 // Values of the event functions at `s` (evaluates the contact forces in s's modes).
@@ -61,6 +96,14 @@ void EvalFunctions(const Model& model, const State& s, const std::vector<Contact
   g.resize(fns.size());
   for (size_t i = 0; i < fns.size(); ++i) {
     const ContactFn& f = fns[i];
+    if (f.fn == Fn::kStringGap) {
+      g[i] = data.constraint_gap[static_cast<size_t>(f.point)];
+      continue;
+    }
+    if (f.fn == Fn::kStringTension) {
+      g[i] = data.constraints[static_cast<size_t>(f.point)].lambda[0];
+      continue;
+    }
     const ContactPointOutput& out = data.contact_points[static_cast<size_t>(f.point)];
     const ContactPointState& ps = s.contacts[static_cast<size_t>(f.point)];
     const Contact& con = model.contact(model.contact_of_point(f.point));
@@ -79,6 +122,9 @@ void EvalFunctions(const Model& model, const State& s, const std::vector<Contact
         break;
       case Fn::kFrictionMargin:
         g[i] = con.mu_s() * out.normal_force - out.friction_force_W.norm();
+        break;
+      case Fn::kStringGap:
+      case Fn::kStringTension:
         break;
       case Fn::kRolling: {
         const Vec3 w_rel = [&] {
@@ -103,9 +149,12 @@ double RoundOffBand(const ContactFn& f, const Data& data) {
     force = std::max({force, std::abs(o.normal_force), o.friction_force_W.norm()});
     speed = std::max(speed, o.slip_velocity_W.norm());
   }
+  if (data.lambda.size() > 0) force = std::max(force, data.lambda.cwiseAbs().maxCoeff());
+  for (const Vec3& F : data.F_Bcm_W) force = std::max(force, F.norm());
   switch (f.fn) {
     case Fn::kNormalForce:
     case Fn::kFrictionMargin:
+    case Fn::kStringTension:
       return 1e-9 * force;
     default:
       return 1e-9 * speed;
@@ -126,7 +175,11 @@ class HybridRun {
         o_(o),
         tol_(o.contact.tolerances),
         data_(MakeData(model)),
-        bounces_(static_cast<size_t>(model.num_contact_points())) {}
+        bounces_(static_cast<size_t>(model.num_contact_points())) {
+    for (int c = 0; c < model.num_constraints(); ++c) {
+      strings_ = strings_ || model.constraint(c).can_release();
+    }
+  }
 
   SimulationResult Run(const State& initial) {
     State s = Start(initial);
@@ -148,7 +201,7 @@ class HybridRun {
         integ.Step(o_.t_end);
         if (o_.on_step) o_.on_step(integ.t());
         EvalFunctions(model_, integ.state(), st.fns, data_, st.g1);
-        NormalVelocities(st.fns, st.vn1);
+        NormalVelocities(integ.state(), st.fns, st.vn1);
         const auto [t_c, which] = FindContactEvent(integ, st);
         const double t_stop = LocateUserEvents(integ, t_c);
         const double t_out_end = std::min({integ.t(), t_c, t_stop});
@@ -195,8 +248,33 @@ class HybridRun {
     if (s.contacts.size() != static_cast<size_t>(model_.num_contact_points())) {
       s.contacts.assign(static_cast<size_t>(model_.num_contact_points()), ContactPointState{});
     }
+    // Strings apart (slack beyond the gap tolerance) are slack before the projection, which
+    // would otherwise pull them taut.
+    EnsureConstraintModes(model_, s);
+    std::vector<ConstraintMode> given;
+    for (const ConstraintModeState& m : s.constraint_modes) given.push_back(m.mode);
+    if (strings_) SelectConstraintModes(model_, s, tol_);
     if (model_.num_constraints() > 0) ProjectOntoConstraints(model_, s, data_);
+    const size_t first_string = r_.constraint_events.size();
     Transition(s, -1, ContactEventReason::kInitial);
+    // Every string's initial mode is listed (from the mode it was given), and the changes the
+    // first transition made are in it.
+    std::vector<ConstraintEvent> snaps(
+        r_.constraint_events.begin() + static_cast<std::ptrdiff_t>(first_string),
+        r_.constraint_events.end());
+    r_.constraint_events.resize(first_string);
+    for (int c = 0; c < model_.num_constraints(); ++c) {
+      if (!model_.constraint(c).can_release()) continue;
+      ConstraintEvent ev{s.t, c, given[static_cast<size_t>(c)],
+                         s.constraint_modes[static_cast<size_t>(c)].mode, "initial"};
+      for (const ConstraintEvent& x : snaps) {
+        if (x.constraint == c && x.impulse != 0.0) {
+          ev.reason = x.reason, ev.approach_speed = x.approach_speed, ev.impulse = x.impulse;
+          ev.energy_lost = x.energy_lost;
+        }
+      }
+      r_.constraint_events.push_back(ev);
+    }
     CheckFiniteState(model_, s);
     for (int p = 0; p < model_.num_contact_points(); ++p) {
       r_.contact_events.insert(
@@ -218,10 +296,12 @@ class HybridRun {
   }
 
   // Normal velocities of the points of `fns` (data_ filled by EvalFunctions).
-  void NormalVelocities(const std::vector<ContactFn>& fns, std::vector<double>& vn) const {
+  // (The state is integ's at the evaluation: only a string's rate reads it.)
+  void NormalVelocities(const State& s, const std::vector<ContactFn>& fns,
+                        std::vector<double>& vn) const {
     vn.resize(fns.size());
     for (size_t i = 0; i < fns.size(); ++i) {
-      vn[i] = data_.contact_points[static_cast<size_t>(fns[i].point)].normal_velocity;
+      vn[i] = IsGap(fns[i].fn) ? GapRate(model_, s, data_, fns[i]) : 0.0;
     }
   }
 
@@ -231,7 +311,7 @@ class HybridRun {
     Stretch st;
     st.fns = EventFunctions(model_, s);
     EvalFunctions(model_, integ.state(), st.fns, data_, st.g0);
-    NormalVelocities(st.fns, st.vn0);
+    NormalVelocities(integ.state(), st.fns, st.vn0);
     // A function that is zero (or round-off below) where the run restarts has its crossing
     // there, not in a later step: a sticking point left exactly at its friction limit, a
     // slip that started from zero, a normal force that is zero. It is armed: if it then
@@ -242,7 +322,7 @@ class HybridRun {
     st.armed.assign(st.fns.size(), 0);
     for (size_t i = 0; i < st.fns.size(); ++i) {
       st.band[i] = RoundOffBand(st.fns[i], data_);
-      st.armed[i] = st.fns[i].fn != Fn::kGap && st.g0[i] <= st.band[i];
+      st.armed[i] = !IsGap(st.fns[i].fn) && st.g0[i] <= st.band[i];
     }
     return st;
   }
@@ -278,16 +358,15 @@ class HybridRun {
       return gv[0];
     };
     double a = ta, ga = g0[i];
-    if (fns[i].fn == Fn::kGap && g0[i] > 0.0 && g1[i] > 0.0) {
+    if (IsGap(fns[i].fn) && g0[i] > 0.0 && g1[i] > 0.0) {
       // Apart at both ends, but approaching at the start and separating at the end: the
       // closest approach (the zero of ġ) lies inside the step, and the gap may have
       // dipped below zero there (two spheres passing through each other in one long
       // free-flight step, a turning vertex). Then the touch-down is in [ta, closest].
       if (!(vn0[i] < 0.0 && vn1[i] > 0.0)) return kNone;
-      const auto p = static_cast<size_t>(fns[i].point);
       auto gdot = [&](double t) {
         g(t);
-        return data_.contact_points[p].normal_velocity;
+        return GapRate(model_, scratch_, data_, fns[i]);
       };
       const double t_min =
           internal::LocateEventTime(gdot, ta, vn0[i], tb, vn1[i], o_.event_time_tolerance);
@@ -302,11 +381,10 @@ class HybridRun {
       // of the normal velocity ġ; the touch-down is then bracketed by [top, tb]. A
       // flight whose top is not above the plane (a rebound below round-off) lands at
       // its top, and a point that never moved away lands at once.
-      if (fns[i].fn != Fn::kGap || g0[i] > 0.0 || !(g1[i] < 0.0)) return kNone;
-      const auto p = static_cast<size_t>(fns[i].point);
+      if (!IsGap(fns[i].fn) || g0[i] > 0.0 || !(g1[i] < 0.0)) return kNone;
       auto gdot = [&](double t) {
         g(t);
-        return data_.contact_points[p].normal_velocity;
+        return GapRate(model_, scratch_, data_, fns[i]);
       };
       const double v0 = gdot(ta), v1 = gdot(tb);
       double t_top = ta;
@@ -366,7 +444,11 @@ class HybridRun {
     s.t = t_c;
     const State before = o_.on_transition ? s : State{};
     const size_t first_change = r_.contact_events.size();
-    Transition(s, fn.point, fn.reason);
+    if (IsString(fn.fn)) {
+      Transition(s, -1, ContactEventReason::kOther, fn.point, fn.fn == Fn::kStringTension);
+    } else {
+      Transition(s, fn.point, fn.reason);
+    }
     CheckFiniteState(model_, s);
     if (o_.on_transition) o_.on_transition(before, s);
     if (RecordModeEvents(first_change, s)) {
@@ -381,10 +463,12 @@ class HybridRun {
     }
     if (++switches_ > o_.contact.max_mode_switches) {
       throw InputError(fmt::format(
-          "contacts switched mode more than {} times (at t = {:.9g} s, point '{}'); the "
-          "motion chatters: check the friction coefficients and the tolerances, or raise "
+          "contacts and strings switched mode more than {} times (at t = {:.9g} s, {} '{}'); "
+          "the motion chatters: check the friction coefficients and the tolerances, or raise "
           "max_mode_switches",
-          o_.contact.max_mode_switches, s.t, model_.contact_point_name(fn.point)));
+          o_.contact.max_mode_switches, s.t, IsString(fn.fn) ? "string" : "point",
+          IsString(fn.fn) ? model_.constraint(fn.point).name()
+                          : model_.contact_point_name(fn.point)));
     }
     return false;
   }
@@ -430,8 +514,47 @@ class HybridRun {
     last_ = st;
   }
 
-  // Impacts, the accumulation test, mode selection and the records, at `s`.
-  void Transition(State& s, int trigger, ContactEventReason reason) {
+  // Impacts, the accumulation test, mode selection and the records, at `s`. `string` is the
+  // constraint whose event triggered it (-1: none), `went_slack` true when that was its
+  // tension falling through zero. Strings snap taut first (their impact holds every engaged
+  // constraint; contacts take no part), then contacts take their impacts and modes, then the
+  // strings their modes (an LCP on the tensions) with the contacts' modes fixed.
+  void Transition(State& s, int trigger, ContactEventReason reason, int string = -1,
+                  bool went_slack = false) {
+    if (!strings_) {
+      TransitionContacts(s, trigger, reason);
+      return;
+    }
+    std::vector<ConstraintMode> strings_before;
+    EnsureConstraintModes(model_, s);
+    for (const ConstraintModeState& m : s.constraint_modes) strings_before.push_back(m.mode);
+    const std::vector<ConstraintImpulse> snaps = ResolveConstraintImpacts(model_, s, tol_);
+    TransitionContacts(s, trigger, reason);
+    std::vector<int> release;
+    if (went_slack) release.push_back(string);
+    SelectConstraintModes(model_, s, tol_, release);
+    for (int c = 0; c < model_.num_constraints(); ++c) {
+      if (!model_.constraint(c).can_release()) continue;
+      const ConstraintMode from = strings_before[static_cast<size_t>(c)];
+      const ConstraintMode to = s.constraint_modes[static_cast<size_t>(c)].mode;
+      ConstraintEvent ev{s.t, c, from, to, "other"};
+      for (const ConstraintImpulse& ci : snaps) {
+        if (ci.constraint != c) continue;
+        ev.reason = "snapped taut";
+        ev.approach_speed = ci.approach_speed;
+        ev.impulse = ci.impulse;
+        ev.energy_lost = ci.energy_lost;
+      }
+      if (ev.reason == "other") {
+        if (from == to && c != string) continue;
+        if (to == ConstraintMode::kReleased) ev.reason = "went slack";
+        if (to == ConstraintMode::kEngaged) ev.reason = "went taut";
+      }
+      r_.constraint_events.push_back(ev);
+    }
+  }
+
+  void TransitionContacts(State& s, int trigger, ContactEventReason reason) {
     std::vector<ContactMode> before(s.contacts.size());
     for (size_t p = 0; p < s.contacts.size(); ++p) before[p] = s.contacts[p].mode;
     // Approach speeds before the impulses, for the accumulation test.
@@ -531,6 +654,8 @@ class HybridRun {
   double t0_ = 0.0;
   long long k_ = 1;
   int switches_ = 0;
+  /// Whether a constraint can let go (a string without drums): then strings have modes.
+  bool strings_ = false;
   /// User event functions at the start and end of the current step.
   std::vector<double> ug_prev_, ug_new_;
   /// Dense-output state for event location and samples.

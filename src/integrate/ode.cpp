@@ -151,6 +151,7 @@ void OdeSystem::Pack(const State& s, Vector& y) const {
 void OdeSystem::SetDiscreteState(const State& state) {
   state_.contacts = state.contacts;
   state_.contacts.resize(static_cast<size_t>(model_.num_contact_points()));
+  state_.constraint_modes = state.constraint_modes;
 }
 
 void OdeSystem::Unpack(double t, const Vector& y, State& s) const {
@@ -176,6 +177,7 @@ void OdeSystem::Unpack(double t, const Vector& y, State& s) const {
   for (int c = 0; c < model_.num_constraints(); ++c) {
     s.constraint_work[static_cast<size_t>(c)] = y[c0 + c];
   }
+  if (&s != &state_) s.constraint_modes = state_.constraint_modes;
   if (model_.num_contact_points() > 0) {
     if (&s != &state_) s.contacts = state_.contacts;
     for (int p = 0; p < model_.num_contact_points(); ++p) {

@@ -187,11 +187,16 @@ std::vector<ContactModeInterval> CalcModeTimeline(const SimulationResult& result
 SimulationResult Simulate(const Model& model, const State& initial,
                           const SimulationOptions& options) {
   Validate(model, initial, options);
-  if (model.num_contacts() > 0) {
+  bool switching = false;  // a constraint that can let go (a string without drums)
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    switching = switching || model.constraint(c).can_release();
+  }
+  if (model.num_contacts() > 0 || switching) {
     if (options.integrator != IntegratorKind::kDormandPrince5) {
       throw InputError(
-          "contacts switch modes at events located on the adaptive integrator's dense output; "
-          "choose the Dormand-Prince integrator for a model with contacts");
+          "contacts and strings switch modes at events located on the adaptive integrator's "
+          "dense output; choose the Dormand-Prince integrator for a model with contacts or "
+          "strings");
     }
     return internal::RunHybrid(model, initial, options);
   }

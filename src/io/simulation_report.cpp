@@ -114,6 +114,20 @@ nlohmann::json ContactEventsJson(const std::vector<StudyContactEvent>& events) {
   return out;
 }
 
+nlohmann::json StringEventsJson(const std::vector<StudyStringEvent>& events) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& e : events) {
+    out.push_back(
+        {{"t", e.t}, {"string", e.string}, {"from", e.from}, {"to", e.to}, {"reason", e.reason}});
+    if (e.reason == "snapped taut") {
+      out.back()["approach_speed"] = e.approach_speed;
+      out.back()["impulse"] = e.impulse;
+      out.back()["energy_lost"] = e.energy_lost;
+    }
+  }
+  return out;
+}
+
 nlohmann::json ImpactsJson(const std::vector<StudyImpact>& impacts) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& x : impacts) {
@@ -183,6 +197,7 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
   j["final"]["t"] = r.t_end;
   j["contact_events"] = ContactEventsJson(r.contact_events);
   j["impacts"] = ImpactsJson(r.impacts);
+  j["string_events"] = StringEventsJson(r.string_events);
   j["ledger"] = LedgerJson(r.ledger);
   j["integrator"] = {{"name", r.integrator},
                      {"steps", r.stats.steps},

@@ -45,6 +45,11 @@ nlohmann::json SolveJson(const SolveReport& s) {
     if (s.planar) {
       x["planar"] = {{"Fx", r.F_Jc_W.x()}, {"Fy", r.F_Jc_W.y()}, {"Mz", r.M_Jc_W.z()}};
     }
+    if (!r.mode.empty()) {
+      x["mode"] = r.mode;
+      x["tension"] = r.lambda[0];
+      x["slack"] = r.gap;
+    }
     if (r.is_rolling) {
       x["normal_force"] = r.normal_force;
       x["friction"] = VecJson(r.friction_W);

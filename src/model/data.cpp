@@ -27,6 +27,8 @@ Data MakeData(const Model& model) {
   d.acceleration_rhs = Eigen::VectorXd::Zero(rows);
   d.position_error = Eigen::VectorXd::Zero(rows);
   d.lambda = Eigen::VectorXd::Zero(rows);
+  d.row_released.assign(static_cast<size_t>(rows), 0);
+  d.constraint_gap.assign(nc, 0.0);
   d.constraint_rank = rows;
   d.JMinv = Eigen::MatrixXd::Zero(rows, 6 * model.num_bodies());
   d.schur = Eigen::MatrixXd::Zero(rows, rows);

@@ -89,6 +89,14 @@ StringConstraint::StringConstraint(std::string name, const StringEnd& a,
   }
 }
 
+void StringConstraint::set_restitution(double e) {
+  if (!(e >= 0.0 && e <= 1.0)) {
+    throw InputError(fmt::format(
+        "string '{}': its restitution is {}; it must lie in [0, 1] (0: plastic)", name(), e));
+  }
+  restitution_ = e;
+}
+
 // The path (header comment): common tangents of consecutive circles, and the wrap of each
 // pulley from the in-plane direction d_in of the segment arriving to d_out of the one leaving,
 // φ = atan2(s n·(d_in × d_out), d_in·d_out) taken in [-π/2, 3π/2).

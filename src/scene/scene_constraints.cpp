@@ -385,7 +385,8 @@ SceneStringEnd SceneReader::ReadStringEnd(const At& at, const Scene& scene,
 
 SceneString SceneReader::ReadString(const At& at, size_t i, const Scene& scene,
                                     std::vector<std::string>& taken) {
-  report_.CheckMap(at, {"name", "from", "to", "over", "normal"}, "a string");
+  report_.CheckMap(at, {"name", "from", "to", "over", "normal", "length", "restitution"},
+                   "a string");
   SceneString st;
   st.where = Spot(at);
   st.name = ConstraintName(at, "string", i, taken);
@@ -420,6 +421,27 @@ SceneString SceneReader::ReadString(const At& at, size_t i, const Scene& scene,
     st.normal_W = PlanarZAxis(at, "normal", "the string's normal");
   } else if (at.Has("normal")) {
     st.normal_W = AxisAt(at.Child("normal"), "the string's normal");
+  }
+  // Slack strings (docs/constraints.md, "Strings that go slack"): the free length (default: the
+  // path's length at the start) and Newton's restitution when it snaps taut.
+  if (at.Has("length")) {
+    st.length = PositiveValue(at.Child("length"), kLength, "the string's length");
+  }
+  if (at.Has("restitution")) {
+    st.restitution =
+        Value(at.Child("restitution"), kDimensionless, "the string's coefficient of restitution");
+    if (!(st.restitution >= 0 && st.restitution <= 1)) {
+      report_.Fail(at.Child("restitution"),
+                   fmt::format("restitution must be in [0, 1] (0: the string snaps taut "
+                               "plastically, 1: elastic), got {:g}",
+                               st.restitution));
+    }
+  }
+  if ((at.Has("length") || at.Has("restitution")) && (st.from.radius > 0.0 || st.to.radius > 0.0)) {
+    report_.Fail(at.Child(at.Has("length") ? "length" : "restitution"),
+                 "a string wound on a drum is held taut (how far a drum has turned is known "
+                 "only modulo a turn, so its slack cannot be tracked); remove this key or tie "
+                 "the string to a point of the body");
   }
   return st;
 }

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "chasles/dynamics/constraint_modes.h"
 #include "chasles/dynamics/constraint_residual.h"
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/model/constraints.h"
@@ -148,9 +149,35 @@ std::vector<std::string> Changes(const Scene& scene, const Model& model, const S
 
 }  // namespace
 
+namespace {
+State SettleOnConstraints(const Scene& scene, const Model& model, const State& given,
+                          std::vector<std::string>& warnings);
+}  // namespace
+
 State SettleInitialState(const Scene& scene, const Model& model, const State& given,
                          std::vector<std::string>& warnings) {
   if (model.num_constraints() == 0) return given;
+  // Nothing silent: a string given from a body to the world is modelled the other way round.
+  for (const SceneString& st : scene.dynamics.constraints.strings) {
+    if (st.to.body != kWorld) continue;
+    warnings.push_back(fmt::format(
+        "string '{}' is given from body '{}' to the world; it is modelled from its world end to "
+        "'{}' (the same string followed the other way, every sense flipped), so its reaction is "
+        "reported on '{}'",
+        st.name, scene.bodies[static_cast<size_t>(st.from.body)].name,
+        scene.bodies[static_cast<size_t>(st.from.body)].name,
+        scene.bodies[static_cast<size_t>(st.from.body)].name));
+  }
+  // A string whose length exceeds its path (or whose ends move to slacken it, or whose tension
+  // would come out negative) starts slack: its row is not held, so it is no violation.
+  State with_modes = given;
+  SelectConstraintModes(model, with_modes);
+  return SettleOnConstraints(scene, model, with_modes, warnings);
+}
+
+namespace {
+State SettleOnConstraints(const Scene& scene, const Model& model, const State& given,
+                          std::vector<std::string>& warnings) {
   Data data = MakeData(model);
   const ConstraintScales scales = CalcConstraintScales(model, given, data);
   const std::vector<ConstraintResidual> violations =
@@ -186,5 +213,7 @@ State SettleInitialState(const Scene& scene, const Model& model, const State& gi
                   "(mass-weighted), which changes:{}",
                   kRoundOffResidual, scales.length, scales.velocity, list, hints, nearest));
 }
+
+}  // namespace
 
 }  // namespace chasles::scene_internal

@@ -189,10 +189,11 @@ std::string PlaneConstraintName(const Scene& scene, int b) {
 }
 
 /// A scene string as the model's StringConstraint: each end's point (the body's centre of mass
-/// by default) in its body's frame, and the free length it has at the initial configuration,
-/// which it keeps. The model's second end must be a body, so a string given from a body to the
-/// world is turned round: the world end first, the pulleys in reverse order, every sense
-/// flipped (followed the other way, the string goes round each circle the other way).
+/// by default) in its body's frame, and its `length` (default: the free length it has at the
+/// initial configuration), which it keeps. The model's second end must be a body, so a string
+/// given from a body to the world is turned round: the world end first, the pulleys in reverse
+/// order, every sense flipped (followed the other way, the string goes round each circle the
+/// other way); the reports say so (StringTurnRoundWarnings).
 void AddSceneString(const SceneString& st, const BodyMap& map, const State& s0, Model& model) {
   auto model_body = [&](int b) {
     return b == kWorld ? kWorld : map.place[static_cast<size_t>(b)].model_body;
@@ -239,9 +240,11 @@ void AddSceneString(const SceneString& st, const BodyMap& map, const State& s0, 
   const StringConstraint probe(st.name, a, pulleys, b, st.normal_W, 1.0);
   Data data = MakeData(model);
   CalcKinematics(model, s0, data);
-  const double length = probe.CalcPath(model, s0, data).length;
-  model.AddConstraint(
-      std::make_shared<StringConstraint>(st.name, a, pulleys, b, st.normal_W, length));
+  const double length =
+      std::isfinite(st.length) ? st.length : probe.CalcPath(model, s0, data).length;
+  auto string = std::make_shared<StringConstraint>(st.name, a, pulleys, b, st.normal_W, length);
+  string->set_restitution(st.restitution);
+  model.AddConstraint(string);
 }
 
 /// Adds the scene's joints, rolling contacts, drivers and gear meshes to `model` (bodies already

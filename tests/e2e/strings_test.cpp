@@ -4,10 +4,14 @@
 // examples' comments.
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <numbers>
 #include <string>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 
 #include "chasles/math/types.h"
 #include "cli_runner.h"
@@ -82,6 +86,120 @@ TEST(Strings, YoYoFallsOnItsString) {
   EXPECT_TRUE(Near(yoyo.at("x").get<double>(), 0.0, kRun, r));
 }
 
+nlohmann::json Simulate(const std::string& file) {
+  const auto out = OutDir("strings");
+  const CliResult r =
+      RunCli("simulate " + Quote(file) + " --format json --strict --out " + Quote(out.string()));
+  if (r.exit_code != 0) throw std::runtime_error(file + ": " + r.err);
+  return nlohmann::json::parse(r.out);
+}
+
+// examples/string-pendulum-goes-slack.yaml: m = 0.3 kg, l = 0.8 m, v0² = 3.5 g l. The tension
+// T = m (v²/l + g cos φ) with v² = v0² - 2 g l (1 - cos φ) vanishes at cos φ_s = (2 g l - v0²) /
+// (3 g l) = -1/2, reached at t_s = ∫₀^φs l dφ / v(φ); the flight on the parabola meets the
+// circle again after τ = 4 v_s sin φ_s / g (|p(τ)|² - l² = τ³ (v_s·g + g² τ / 4), v_s
+// tangential and v_s² = -g l cos φ_s), where the plastic snap takes ½ m v_r².
+TEST(Strings, PendulumOnAStringGoesSlackAndSnapsTaut) {
+  const double m = 0.3, l = 0.8, g = 9.81, v0 = std::sqrt(3.5 * g * l);
+  const double cos_s = (2 * g * l - v0 * v0) / (3 * g * l), phi_s = std::acos(cos_s);
+  const double vs = std::sqrt(-g * l * cos_s);
+  const double t_s = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+      [&](double phi) { return l / std::sqrt(v0 * v0 - 2 * g * l * (1 - std::cos(phi))); }, 0.0,
+      phi_s, 15, 1e-15);
+  const double tau = 4 * vs * std::sin(phi_s) / g;
+  const Vec3 p_s(l * std::sin(phi_s), -l * cos_s, 0), v_s = vs * Vec3(cos_s, std::sin(phi_s), 0);
+  const Vec3 p = p_s + v_s * tau + 0.5 * Vec3(0, -g, 0) * tau * tau;
+  const double v_r = (v_s + Vec3(0, -g, 0) * tau).dot(p / l);
+  const auto j = Simulate(SourcePath("examples/string-pendulum-goes-slack.yaml"));
+  const auto& ev = j.at("string_events");
+  ASSERT_EQ(ev.size(), 3u) << ev.dump();
+  EXPECT_EQ(ev[0].at("reason"), "initial");
+  EXPECT_EQ(ev[0].at("to"), "taut");
+  EXPECT_EQ(ev[1].at("reason"), "went slack");
+  EXPECT_EQ(ev[1].at("to"), "slack");
+  EXPECT_TRUE(Near(ev[1].at("t").get<double>(), t_s, kRun));
+  EXPECT_EQ(ev[2].at("reason"), "snapped taut");
+  EXPECT_EQ(ev[2].at("from"), "slack");
+  EXPECT_EQ(ev[2].at("to"), "taut");
+  EXPECT_TRUE(Near(ev[2].at("t").get<double>(), t_s + tau, kRun));
+  EXPECT_TRUE(Near(ev[2].at("approach_speed").get<double>(), v_r, 1e-8));
+  EXPECT_TRUE(Near(ev[2].at("impulse").get<double>(), m * v_r, 1e-8));
+  EXPECT_TRUE(Near(ev[2].at("energy_lost").get<double>(), 0.5 * m * v_r * v_r, 1e-8));
+  const auto& L = j.at("ledger");
+  EXPECT_TRUE(Near(L.at("impact_work").get<double>(), -0.5 * m * v_r * v_r, 1e-8));
+  EXPECT_TRUE(Near(L.at("dissipated").get<double>(), 0.5 * m * v_r * v_r, 1e-8));
+}
+
+// examples/block-thrown-up-on-a-string.yaml: m = 2 kg on l = 1.5 m, thrown up at v0 = 1.2 m/s,
+// restitution e = 0.5: slack at once, then snaps at t_k = (2 v0/g)(1 + e + ... + e^(k-1)) with
+// approach speed e^(k-1) v0, impulse m (1 + e) e^(k-1) v0 and ½ m (e^(k-1) v0)² (1 - e²) lost.
+TEST(Strings, BlockThrownUpOnAStringRebounds) {
+  const double m = 2, v0 = 1.2, g = 9.81, e = 0.5;
+  const auto j = Simulate(SourcePath("examples/block-thrown-up-on-a-string.yaml"));
+  const auto& ev = j.at("string_events");
+  ASSERT_EQ(ev.size(), 4u) << ev.dump();
+  EXPECT_EQ(ev[0].at("reason"), "initial");  // opening at once: slack from the start
+  EXPECT_EQ(ev[0].at("to"), "slack");
+  double t = 0.0, v = v0, lost = 0.0;
+  for (size_t k = 1; k < 4; ++k) {
+    t += 2 * v / g;
+    EXPECT_EQ(ev[k].at("reason"), "snapped taut");
+    EXPECT_EQ(ev[k].at("to"), "slack");
+    EXPECT_TRUE(Near(ev[k].at("t").get<double>(), t, kRun)) << k;
+    EXPECT_TRUE(Near(ev[k].at("approach_speed").get<double>(), v, kRun)) << k;
+    EXPECT_TRUE(Near(ev[k].at("impulse").get<double>(), m * (1 + e) * v, kRun)) << k;
+    EXPECT_TRUE(Near(ev[k].at("energy_lost").get<double>(), 0.5 * m * v * v * (1 - e * e), kRun));
+    lost += 0.5 * m * v * v * (1 - e * e);
+    v *= e;
+  }
+  EXPECT_TRUE(Near(j.at("ledger").at("dissipated").get<double>(), lost, kRun));
+}
+
+// `chasles solve` chooses taut or slack: a particle on a string at φ = 120° from the bottom
+// moving along the circle at v needs T = m (v²/l + g cos φ), >= 0 only for v² >= g l / 2. Just
+// above that the string is taut with that tension, just below slack (T = 0, free fall).
+TEST(Strings, SolveSaysWhetherTheStringIsTautOrSlack) {
+  const double m = 0.3, l = 0.8, g = 9.81;
+  for (const double k : {1.0 + 1e-6, 1.0 - 1e-6}) {
+    const auto file = OutDir("strings") / "boundary.yaml";
+    char k_text[32];
+    std::snprintf(k_text, sizeof k_text, "%.17g", k);
+    {
+      std::ofstream out(file);
+      out << "chasles: 1\n"
+             "parameters: {l: 0.8 m, g: 9.81 m/s^2, k: "
+          << k_text
+          << "}\n"
+             "bodies:\n"
+             "  - name: bob\n"
+             "    parts: [{shape: point, mass: 0.3 kg, position: [0, 0, 0]}]\n"
+             "    initial: {position: [l*sin(120 deg), -l*cos(120 deg), 0],\n"
+             "              velocity: [k*sqrt(g*l/2)*cos(120 deg), k*sqrt(g*l/2)*sin(120 deg), "
+             "0]}\n"
+             "gravity: [0, -g, 0]\n"
+             "strings:\n"
+             "  - {name: string, from: {body: world, at: [0, 0, 0]}, to: {body: bob}}\n";
+    }
+    const CliResult r = RunCli("solve " + Quote(file.string()) + " --format json --strict");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const auto& s = Named(j.at("reactions"), "string");
+    const double v2 = k * k * g * l / 2;
+    const double T = m * (v2 / l + g * std::cos(2 * std::numbers::pi / 3));
+    if (k > 1.0) {
+      EXPECT_EQ(s.at("mode"), "taut");
+      EXPECT_TRUE(Near(s.at("tension").get<double>(), T, 1e-6));
+    } else {
+      EXPECT_EQ(s.at("mode"), "slack");
+      EXPECT_EQ(s.at("tension").get<double>(), 0.0);
+      EXPECT_TRUE(MatNear(ToVec(Named(j.at("bodies"), "bob").at("acceleration")), Vec3(0, -g, 0),
+                          kSolve, g));
+    }
+    const CliResult text = RunCli("solve " + Quote(file.string()));
+    EXPECT_THAT(text.out, ::testing::HasSubstr(k > 1.0 ? "taut: tension" : "slack: tension"));
+  }
+}
+
 // A mass m hangs on a string that goes up over a fixed pulley (x-z plane, normal y) and down
 // to a point of the world: in equilibrium the tension is m g and nothing moves. The string is
 // given from the body to the world, so the loader turns it round (senses flipped); a wrong
@@ -112,6 +230,10 @@ TEST(Strings, MassHangingOverAPulleyToTheWorldIsInEquilibrium) {
   EXPECT_TRUE(MatNear(ToVec(rope.at("force")), Vec3(0, 0, m * g), kSolve, m * g));
   EXPECT_TRUE(
       MatNear(ToVec(Named(j.at("bodies"), "m").at("acceleration")), Vec3::Zero(), kSolve, g));
+  // Turned round so that the world is its first end: said, not silent.
+  ASSERT_TRUE(j.contains("warnings"));
+  EXPECT_THAT(j.at("warnings").dump(), ::testing::HasSubstr("string 'rope' is given from body 'm' "
+                                                            "to the world"));
 }
 
 }  // namespace

@@ -51,6 +51,11 @@ struct ReactionReport {
   double normal_force = 0.0;
   Vec3 friction_W = Vec3::Zero();
   double friction_needed = 0.0;
+  /// Constraints that can let go (strings): "taut" or "slack" (empty for the others), chosen
+  /// by the complementarity T >= 0, g̈ >= 0, T g̈ = 0 (SelectConstraintModes), and the gap (the
+  /// slack L0 - L) [m].
+  std::string mode;
+  double gap = 0.0;
 };
 
 struct InstantaneousSolution {

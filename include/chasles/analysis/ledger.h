@@ -41,6 +41,9 @@ struct ConstraintLedger {
   /// Work done by its forces on all its bodies since the initial state [J] (zero for ideal
   /// joints and rolling up to the integration error; a driver's input otherwise).
   double work = 0.0;
+  /// Kinetic-energy change at its impacts (a string snapping taut) since the initial state
+  /// [J] (<= 0).
+  double impact_work = 0.0;
 };
 
 struct ContactLedger {
@@ -99,6 +102,9 @@ struct LedgerSample {
   double contact_impact_work = 0.0;
   /// Per contact point, in Model order.
   std::vector<ContactLedger> contacts;
+  /// Kinetic energy lost when strings snap taut, as work [J] (<= 0; part of
+  /// work_nonconservative, and its negative part of dissipated).
+  double constraint_impact_work = 0.0;
 };
 
 /// The ledger at `state` relative to `initial` (the run's first state; its force integrals

@@ -204,6 +204,19 @@ struct StudyContactEvent {
   std::string from, to, reason;
 };
 
+/// A string's mode: its initial mode, going slack, snapping taut (an impact along it).
+struct StudyStringEvent {
+  double t = 0.0;
+  std::string string;
+  /// "taut" / "slack" before and after, and why ("initial", "went slack", "snapped taut",
+  /// "went taut").
+  std::string from, to, reason;
+  /// For "snapped taut": closing speed before [m/s], impulse [N·s], kinetic energy lost [J].
+  double approach_speed = 0.0;
+  double impulse = 0.0;
+  double energy_lost = 0.0;
+};
+
 /// One impact (or accumulated bounce sequence) at a contact point.
 struct StudyImpact {
   double t = 0.0;
@@ -278,7 +291,8 @@ struct StudyLedger {
   /// ones up to the integration error, a driver's input otherwise (part of W_nc).
   std::vector<std::pair<std::string, double>> work_by_constraint;
   /// Work of sliding friction, of rolling resistance, and the kinetic-energy change at
-  /// impacts, at all contacts since t = 0 [J] (each <= 0; part of W_nc).
+  /// impacts at all contacts and strings snapping taut, since t = 0 [J] (each <= 0; part of
+  /// W_nc).
   double friction_work = 0.0;
   double rolling_work = 0.0;
   double impact_work = 0.0;
@@ -332,6 +346,8 @@ struct StudyResult {
   /// Contact mode changes and impacts in time order.
   std::vector<StudyContactEvent> contact_events;
   std::vector<StudyImpact> impacts;
+  /// Mode changes of the strings that can go slack, with their initial modes, in time order.
+  std::vector<StudyStringEvent> string_events;
   /// Every contact point at the end (Model order).
   std::vector<StudyContactPoint> final_contacts;
   /// Time the run ended [s] (the end time, or a stopping event's time).

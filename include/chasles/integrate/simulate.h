@@ -83,6 +83,24 @@ struct EventRecord {
   State state;
 };
 
+/// A mode change of a constraint that can let go (a string going slack or snapping taut), or
+/// its initial mode (reason "initial").
+struct ConstraintEvent {
+  /// Time [s] (located to the event time tolerance).
+  double t = 0.0;
+  /// Constraint index (Model order).
+  int constraint = -1;
+  ConstraintMode from = ConstraintMode::kEngaged;
+  ConstraintMode to = ConstraintMode::kEngaged;
+  /// "initial", "went slack" (the tension fell through 0), "snapped taut" (an impact: the
+  /// gap closed while closing), "went taut" (the gap closed at zero speed) or "other".
+  std::string reason;
+  /// For "snapped taut": closing speed before [m/s], impulse [N·s], kinetic energy lost [J].
+  double approach_speed = 0.0;
+  double impulse = 0.0;
+  double energy_lost = 0.0;
+};
+
 /// One impact (or accumulated bounce sequence) at one contact point.
 struct ImpactRecord {
   /// Time [s].
@@ -178,6 +196,9 @@ struct SimulationResult {
   std::vector<ContactEvent> contact_events;
   /// Impacts in time order.
   std::vector<ImpactRecord> impacts;
+  /// Mode changes of the constraints that can let go (strings), in time order, with their
+  /// initial modes first.
+  std::vector<ConstraintEvent> constraint_events;
   /// What the run had to decide or change that the user should know (jams, ...).
   std::vector<std::string> warnings;
 };

@@ -80,6 +80,14 @@ class Constraint {
   /// Fills `eval` at `state`; reads Data::R_WB and Data::w_WB_W (the kinematics stage).
   virtual void Evaluate(const Model& model, const State& state, const Data& data,
                         ConstraintEval& eval) const = 0;
+  /// Whether the constraint is unilateral and can let go (a string going slack): then it has
+  /// one holonomic row whose position error g >= 0 is the gap (the slack), whose rate J u is
+  /// positive when the gap opens, and whose multiplier (the tension) must be >= 0; its mode is
+  /// carried in State::constraint_modes (docs/constraints.md, "Strings that go slack").
+  virtual bool can_release() const { return false; }
+  /// Newton's restitution coefficient of such a constraint's impact (a string snapping taut):
+  /// the gap rate after is -e times the rate before (0: plastic).
+  virtual double restitution() const { return 0.0; }
 
  private:
   std::string name_;

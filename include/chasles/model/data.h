@@ -175,6 +175,12 @@ struct Data {
   Eigen::VectorXd velocity_rhs, acceleration_rhs, position_error;
   /// Stacked multipliers λ (generalised constraint force Jᵀλ).
   Eigen::VectorXd lambda;
+  /// Per row: 1 when its constraint is released (a slack string): its row in J, b, c and g is
+  /// zero and its multiplier is held at 0 (CalcConstraintRows).
+  std::vector<char> row_released;
+  /// Per constraint: the gap g >= 0 of one that can let go (a string's slack L0 - L), in
+  /// either mode; 0 for the others [m] (CalcConstraintRows).
+  std::vector<double> constraint_gap;
   /// Rank of J M⁻¹ Jᵀ found by the solve (< rows when constraints are redundant).
   int constraint_rank = 0;
   /// Workspace of the constraint solve, sized once by MakeData so that the derivative

@@ -59,6 +59,19 @@ struct ContactPointState {
   double impact_work = 0.0;
 };
 
+/// Mode of a constraint that can let go (Constraint::can_release): a string is taut
+/// (kEngaged: its rows hold, its multiplier is the tension >= 0) or slack (kReleased: no rows,
+/// no force). Other switching constraints (a brake that locks or slips) can use the same list.
+enum class ConstraintMode { kEngaged, kReleased };
+
+/// Discrete state and running integrals of one constraint.
+struct ConstraintModeState {
+  /// Current mode.
+  ConstraintMode mode = ConstraintMode::kEngaged;
+  /// Kinetic-energy change at its impacts (a string snapping taut) since the start [J] (<= 0).
+  double impact_work = 0.0;
+};
+
 struct State {
   /// Time [s].
   double t = 0.0;
@@ -75,7 +88,18 @@ struct State {
   /// One entry per contact point (Model::num_contact_points()): mode and dissipated work.
   /// May be left empty: Simulate then chooses the initial modes (SelectContactModes).
   std::vector<ContactPointState> contacts;
+  /// One entry per constraint, in the Model's order: its mode (taut or slack for a string) and
+  /// the energy its impacts took. May be left empty: every constraint is then engaged, and
+  /// Simulate chooses the modes of those that can let go (SelectConstraintModes).
+  std::vector<ConstraintModeState> constraint_modes;
 };
+
+/// Whether constraint `c` is released (slack) in `state` (an empty list: none is).
+inline bool IsReleased(const State& state, int c) {
+  const auto i = static_cast<size_t>(c);
+  return i < state.constraint_modes.size() &&
+         state.constraint_modes[i].mode == ConstraintMode::kReleased;
+}
 
 /// A state for `model` at t = 0 with every body at rest at the world origin, identity
 /// orientation, and zero force integrals and constraint work.

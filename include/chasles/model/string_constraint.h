@@ -31,8 +31,11 @@
 /// terms. Without drums the row is holonomic, g = L0 - L(q) (the slack; ∂g/∂x = J); with a
 /// drum the wound length depends on how far the drum has turned, which the state holds only
 /// modulo a turn, so the row is kept at velocity level (no position error).
-/// Tension is assumed: a tension that comes out negative means the string would go slack,
-/// which this bilateral row cannot represent (the solve reports it as an InputError).
+/// Unilateral (can_release): a string without drums is taut (the row holds, tension T >= 0) or
+/// slack (no row, no force), its mode in State::constraint_modes; it goes slack when T falls
+/// through 0 and snaps taut (an impact, dynamics/constraint_modes.h) when g falls through 0.
+/// A string with a drum is held taut: its slack cannot be tracked (velocity-level row), so a
+/// tension that comes out negative is an InputError.
 
 #include <limits>
 #include <string>
@@ -101,12 +104,20 @@ class StringConstraint final : public Constraint {
   bool has_drum() const { return a_.radius > 0.0 || b_.radius > 0.0; }
   /// The free length L0 the string keeps [m].
   double length() const { return length_; }
+  /// Without drums the string can go slack (its row is holonomic: the slack g = L0 - L is known).
+  bool can_release() const override { return !has_drum(); }
+  /// Newton's restitution when the string snaps taut: the slack rate after is -e times the
+  /// rate before (0, the default: plastic, the string's closing rate becomes 0).
+  double restitution() const override { return restitution_; }
+  /// Sets it; throws InputError unless 0 <= e <= 1.
+  void set_restitution(double e);
 
  private:
   StringEnd a_, b_;
   std::vector<StringPulley> pulleys_;
   Vec3 n_W_;
   double length_;
+  double restitution_ = 0.0;
 };
 
 }  // namespace chasles

@@ -131,6 +131,11 @@ struct SceneString {
   std::vector<SceneStringPulley> over;
   /// Unit normal of the string's plane, in W (z in a planar scene).
   Vec3 normal_W = Vec3::UnitZ();
+  /// Free length L0 [m] (key `length`); NaN: the path's length at the start. Longer than the
+  /// path: the string starts slack.
+  double length = std::numeric_limits<double>::quiet_NaN();
+  /// Newton's restitution when it snaps taut (key `restitution`; 0: plastic).
+  double restitution = 0.0;
 };
 
 /// Keys `joints`, `rolling`, `drivers`, `gears`, `strings`.

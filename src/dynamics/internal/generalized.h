@@ -3,6 +3,8 @@
 /// Helpers over the generalised velocity u_b = [v_WBcm_W; w_WB_W] (6 per body) shared by the
 /// constraint solve, the contact solve and the contact projection.
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "chasles/model/data.h"
@@ -18,6 +20,11 @@ void TimesMassInverse(const Model& model, const Data& data, const Eigen::MatrixX
 void GetVelocity(const Model& model, const State& state, const Data& data, Eigen::VectorXd& u);
 /// Writes u back into the state (angular velocity re-expressed in B).
 void SetVelocity(const Model& model, const Data& data, const Eigen::VectorXd& u, State& state);
+/// Rows of released constraints (Data::row_released) in a system A x = r over the constraint
+/// rows first (A = J M⁻¹ Wᵀ; further rows, e.g. contact rows, follow): such a row of J is zero,
+/// so A has a zero row and column there; they become x_k = 0 (A_kk = 1, r_k = 0), which keeps
+/// the system regular and the multiplier of a slack string at 0.
+void HoldReleasedRows(const std::vector<char>& released, Eigen::MatrixXd& A, Eigen::VectorXd& r);
 /// Total kinetic energy [J].
 double KineticEnergy(const Model& model, const State& state);
 /// Data::constraints from the constraint multipliers in Data::lambda and the rows in
