@@ -2,12 +2,11 @@
 /// @file
 /// An inextensible, massless string (or cable) held taut: from an end on body A (or the
 /// world) over zero or more frictionless pulleys, fixed in the world or carried by bodies, to
-/// an end on body B. Each
-/// end is a point of its body or a drum (hub, spool) of its body on which the string is wound
-/// without slip. The path lies in the plane normal to the string's unit normal n (fixed in
-/// W): pulleys and drums are circles in that plane, turning about n; an end point off the
-/// plane is allowed only on a string without pulleys and drums (docs/constraints.md,
-/// "Strings").
+/// an end on body B. Each end is a point of its body or a drum (hub, spool) of its body on
+/// which the string is wound without slip. The path lies in the plane normal to the string's
+/// unit normal n (fixed in W): pulleys and drums are circles in that plane, turning about n;
+/// an end point off the plane is allowed only on a string without pulleys and drums
+/// (docs/constraints.md, "Strings").
 ///
 /// One row. The path is a chain of circles c_0 (end A), c_1..c_N (pulleys), c_N+1 (end B),
 /// each with centre c_i, radius r_i (0 for a point end) and sense s_i = ±1: the string,
@@ -38,8 +37,8 @@
 ///   ė = (I - e eᵀ)(u_end - u_start) / ℓ for each segment,
 /// u the velocity of a segment's end: w at a string end, v_c at a pulley (0 when fixed). A
 /// tangent point slides along its circle's tangent, which is along e, so that motion drops out
-/// of (I - e eᵀ). Without drums the row is holonomic, g = L0 - L(q) (the slack; ∂g/∂x = J); with a
-/// drum the wound length depends on how far the drum has turned, which the state holds only
+/// of (I - e eᵀ). Without drums the row is holonomic, g = L0 - L(q) (the slack; ∂g/∂x = J);
+/// with a drum the wound length depends on how far the drum has turned, which the state holds only
 /// modulo a turn, so the row is kept at velocity level (no position error).
 /// Tension is assumed: a tension that comes out negative means the string would go slack,
 /// which this bilateral row cannot represent (the solve reports it as an InputError).
