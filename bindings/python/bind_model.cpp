@@ -4,12 +4,15 @@
 #include <memory>
 
 #include "bindings.h"
+#include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/contact.h"
+#include "chasles/model/data.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
+#include "chasles/model/string_constraint.h"
 
 namespace chasles::python {
 
@@ -22,6 +25,25 @@ VectorFunction PythonVectorFunction(py::function fn) {
       std::move(fn), [](const py::function& f, const Model& /*model*/, const State& state) {
         return f(state.t, state).cast<Vec3>();
       });
+}
+
+/// A Python callable fn(t, state) -> float as a ScalarFunction (a tension, a torque).
+ScalarFunction PythonScalarFunction(py::function fn) {
+  return GilSafe<double, const Model&, const State&>(
+      std::move(fn), [](const py::function& f, const Model& /*model*/, const State& state) {
+        return f(state.t, state).cast<double>();
+      });
+}
+
+ScalarFunction ConstantScalar(double value) {
+  return [value](const Model&, const State&) { return value; };
+}
+
+/// A drum's or pulley's sense: +1 counterclockwise, -1 clockwise (as the scene's words).
+int SenseFrom(const std::string& sense) {
+  if (sense == "counterclockwise") return 1;
+  if (sense == "clockwise") return -1;
+  throw InputError("sense must be 'counterclockwise' or 'clockwise', got '" + sense + "'");
 }
 
 /// A Python callable fn(t) -> float as one function of a TimeFunction.
@@ -56,19 +78,90 @@ void BindForces(py::module_& m) {
       "constant 3-vector [N] or a callable fn(t, state) returning one; frame 'world' or "
       "'body'.")
       .def(py::init([](std::string name, BodyIndex body, const Vec3& point, const Vec3& force,
-                       const std::string& frame) {
-             return AppliedForce::Constant(std::move(name), body, point, force, FrameFrom(frame));
+                       const std::string& frame, const std::string& point_frame) {
+             return std::make_shared<AppliedForce>(
+                 std::move(name), body, point, FrameFrom(point_frame),
+                 [force](const Model&, const State&) { return force; }, FrameFrom(frame));
            }),
            py::arg("name"), py::arg("body"), py::arg("point"), py::arg("force"),
-           py::arg("frame") = "world")
+           py::arg("frame") = "world", py::arg("point_frame") = "body",
+           "point_frame 'body': the point from Bo in B, fixed in the body; 'world': a world "
+           "point, the force acting on the material point there at each instant")
       .def(py::init([](std::string name, BodyIndex body, const Vec3& point, py::function force,
-                       const std::string& frame) {
-             return std::make_shared<AppliedForce>(std::move(name), body, point,
-                                                   PythonVectorFunction(std::move(force)),
-                                                   FrameFrom(frame));
+                       const std::string& frame, const std::string& point_frame) {
+             return std::make_shared<AppliedForce>(
+                 std::move(name), body, point, FrameFrom(point_frame),
+                 PythonVectorFunction(std::move(force)), FrameFrom(frame));
            }),
            py::arg("name"), py::arg("body"), py::arg("point"), py::arg("force"),
-           py::arg("frame") = "world");
+           py::arg("frame") = "world", py::arg("point_frame") = "body");
+  py::class_<CableForce, ForceElement, std::shared_ptr<CableForce>>(
+      m, "CableForce",
+      "A cable from a point of a body (from Bo in B [m]) to a fixed world point (the winch), "
+      "pulling with tension >= 0 [N]: a number or a callable fn(t, state).")
+      .def(py::init([](std::string name, BodyIndex body, const Vec3& point, const Vec3& winch,
+                       double tension) {
+             return std::make_shared<CableForce>(std::move(name), body, point, winch,
+                                                 ConstantScalar(tension));
+           }),
+           py::arg("name"), py::arg("body"), py::arg("point"), py::arg("winch"), py::arg("tension"))
+      .def(py::init([](std::string name, BodyIndex body, const Vec3& point, const Vec3& winch,
+                       py::function tension) {
+             return std::make_shared<CableForce>(std::move(name), body, point, winch,
+                                                 PythonScalarFunction(std::move(tension)));
+           }),
+           py::arg("name"), py::arg("body"), py::arg("point"), py::arg("winch"),
+           py::arg("tension"));
+  py::class_<StringPull, ForceElement, std::shared_ptr<StringPull>>(
+      m, "StringPull",
+      "A string wound on a drum of a body (centre from Bo in B [m], axis in B, radius [m]) "
+      "pulled by hand with tension >= 0 [N] (a number or fn(t, state)) along a fixed world "
+      "direction; sense 'counterclockwise' or 'clockwise': the way the string, followed from "
+      "the drum to the hand, leaves the drum about the axis. It acts at the tangent point "
+      "c - s r a x d.")
+      .def(py::init([](std::string name, BodyIndex body, const Vec3& centre, const Vec3& axis,
+                       double radius, const std::string& sense, const Vec3& direction,
+                       double tension) {
+             return std::make_shared<StringPull>(std::move(name), body, centre, axis, radius,
+                                                 SenseFrom(sense), direction,
+                                                 ConstantScalar(tension));
+           }),
+           py::arg("name"), py::arg("body"), py::arg("centre"), py::arg("axis"), py::arg("radius"),
+           py::arg("sense"), py::arg("direction"), py::arg("tension"))
+      .def(py::init([](std::string name, BodyIndex body, const Vec3& centre, const Vec3& axis,
+                       double radius, const std::string& sense, const Vec3& direction,
+                       py::function tension) {
+             return std::make_shared<StringPull>(std::move(name), body, centre, axis, radius,
+                                                 SenseFrom(sense), direction,
+                                                 PythonScalarFunction(std::move(tension)));
+           }),
+           py::arg("name"), py::arg("body"), py::arg("centre"), py::arg("axis"), py::arg("radius"),
+           py::arg("sense"), py::arg("direction"), py::arg("tension"))
+      .def(
+          "tangent_point",
+          [](const StringPull& f, const Model& model, const State& state) {
+            Data data = MakeData(model);
+            CalcKinematics(model, state, data);
+            return f.CalcTangentPoint(model, state, data);
+          },
+          py::arg("model"), py::arg("state"), "Where the string leaves the drum, in W [m].");
+  py::class_<JointTorque, ForceElement, std::shared_ptr<JointTorque>>(
+      m, "JointTorque",
+      "A torque [N*m] (a number or fn(t, state)) about an axis fixed in the parent (in W for "
+      "WORLD): +torque on the child, -torque on the parent.")
+      .def(py::init([](std::string name, BodyIndex parent, BodyIndex child, const Vec3& axis,
+                       double torque) {
+             return std::make_shared<JointTorque>(std::move(name), parent, child, axis,
+                                                  ConstantScalar(torque));
+           }),
+           py::arg("name"), py::arg("parent"), py::arg("child"), py::arg("axis"), py::arg("torque"))
+      .def(py::init([](std::string name, BodyIndex parent, BodyIndex child, const Vec3& axis,
+                       py::function torque) {
+             return std::make_shared<JointTorque>(std::move(name), parent, child, axis,
+                                                  PythonScalarFunction(std::move(torque)));
+           }),
+           py::arg("name"), py::arg("parent"), py::arg("child"), py::arg("axis"),
+           py::arg("torque"));
   py::class_<AppliedMoment, ForceElement, std::shared_ptr<AppliedMoment>>(
       m, "AppliedMoment",
       "A pure moment [N*m] on a body: a constant 3-vector or a callable fn(t, state); frame "
@@ -148,6 +241,53 @@ void BindConstraints(py::module_& m) {
                     const Vec3&, const Vec3&>(),
            py::arg("name"), py::arg("shape"), py::arg("body"), py::arg("centre"), py::arg("axis"),
            py::arg("radius"), py::arg("plane_point"), py::arg("plane_normal"));
+  py::class_<StringEnd>(m, "StringEnd",
+                        "An end of a string: a point of a body (radius 0) or a drum of it "
+                        "(point = the drum's centre), from Bo in B (in W for WORLD) [m].")
+      .def(py::init([](BodyIndex body, const Vec3& point, double radius, const std::string& sense) {
+             return StringEnd{body, point, radius, SenseFrom(sense)};
+           }),
+           py::arg("body"), py::arg("point"), py::arg("radius") = 0.0,
+           py::arg("sense") = "counterclockwise")
+      .def_readwrite("body", &StringEnd::body)
+      .def_readwrite("point", &StringEnd::p_BoP_B)
+      .def_readwrite("radius", &StringEnd::radius)
+      .def_readwrite("sense", &StringEnd::sense, "+1 counterclockwise, -1 clockwise");
+  py::class_<StringPulley>(m, "StringPulley",
+                           "A massless frictionless pulley: fixed (body WORLD, centre in W) or "
+                           "carried by a body (centre from Bo in B) [m].")
+      .def(
+          py::init([](const Vec3& centre, double radius, const std::string& sense, BodyIndex body) {
+            return StringPulley{centre, radius, SenseFrom(sense), body};
+          }),
+          py::arg("centre"), py::arg("radius"), py::arg("sense"), py::arg("body") = kWorld)
+      .def_readwrite("centre", &StringPulley::p_BoO_B)
+      .def_readwrite("radius", &StringPulley::radius)
+      .def_readwrite("sense", &StringPulley::sense, "+1 counterclockwise, -1 clockwise")
+      .def_readwrite("body", &StringPulley::body);
+  py::class_<StringConstraint, Constraint, std::shared_ptr<StringConstraint>>(
+      m, "StringConstraint",
+      "An inextensible string held taut from end a (the parent) over pulleys to end b (the "
+      "child), in the plane normal to `normal`, keeping the free length `length` [m] (use "
+      "free_length at the initial state). Its multiplier is the tension [N]. Senses: the way "
+      "the string, followed from a to b, goes round each circle about the normal.")
+      .def(py::init<std::string, const StringEnd&, std::vector<StringPulley>, const StringEnd&,
+                    const Vec3&, double>(),
+           py::arg("name"), py::arg("a"), py::arg("pulleys"), py::arg("b"), py::arg("normal"),
+           py::arg("length"))
+      .def_static(
+          "free_length",
+          [](const Model& model, const State& state, const StringEnd& a,
+             const std::vector<StringPulley>& pulleys, const StringEnd& b, const Vec3& normal) {
+            const StringConstraint probe("probe", a, pulleys, b, normal, 1.0);
+            Data data = MakeData(model);
+            CalcKinematics(model, state, data);
+            return probe.CalcPath(model, state, data).length;
+          },
+          py::arg("model"), py::arg("state"), py::arg("a"), py::arg("pulleys"), py::arg("b"),
+          py::arg("normal"),
+          "The free length L (segments plus arcs on the pulleys) of that path at `state` [m].")
+      .def_property_readonly("length", &StringConstraint::length);
   py::enum_<GearKind>(m, "GearKind", "How two pitch circles mesh.")
       .value("EXTERNAL", GearKind::kExternal)
       .value("INTERNAL", GearKind::kInternal)

@@ -161,15 +161,22 @@ CertificateBuilder::BodyResultants CertificateBuilder::CollectForces(const Model
     const ConstraintOutput& o = data.constraints[static_cast<size_t>(c)];
     AddForce(state, r, con.child(), o.F_Jc_W, o.p_WJ);
     AddMoment(r, con.child(), o.M_Jc_W);
-    if (con.parent() != kWorld && dynamic_cast<const StringConstraint*>(&con) != nullptr) {
+    if (dynamic_cast<const StringConstraint*>(&con) != nullptr) {
       // A string over pulleys pulls its parent along its own end segment, not opposite to
       // the child (the pulleys take the difference): the parent's share of Jᵀλ, T e_A at
-      // its leaving point, which the row's angular part r_A × e_A already moves to Pcm.
+      // its leaving point, which the row's angular part r_A × e_A already moves to Pcm; a
+      // pulley carried by a further body pulls it with that body's share, T (e_out - e_in).
       const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
-      const Vec3 F = e.J_parent.row(0).head<3>().transpose() * o.lambda[0];
-      const Vec3 M = e.J_parent.row(0).tail<3>().transpose() * o.lambda[0];
-      AddForce(state, r, con.parent(), F, state.bodies[static_cast<size_t>(con.parent())].p_WBcm);
-      AddMoment(r, con.parent(), M);
+      const auto share = [&](BodyIndex b, const ConstraintEval::Rows& J) {
+        const Vec3 F = J.row(0).head<3>().transpose() * o.lambda[0];
+        const Vec3 M = J.row(0).tail<3>().transpose() * o.lambda[0];
+        AddForce(state, r, b, F, state.bodies[static_cast<size_t>(b)].p_WBcm);
+        AddMoment(r, b, M);
+      };
+      if (con.parent() != kWorld) share(con.parent(), e.J_parent);
+      for (int k = 0; k < e.num_extra; ++k) {
+        share(e.extra_body[static_cast<size_t>(k)], e.J_extra[static_cast<size_t>(k)]);
+      }
       continue;
     }
     AddForce(state, r, con.parent(), -o.F_Jc_W, o.p_WJ);
@@ -274,14 +281,26 @@ void CertificateBuilder::CheckConstraintRows(const Model& model, const State& st
     const Eigen::Matrix<double, 6, 1> up = u_of(con.parent()), uc = u_of(con.child());
     for (int k = 0; k < con.num_rows(); ++k) {
       const bool has_parent = con.parent() != kWorld;
-      const double jt = e.J_child.row(k).head<3>().norm() +
-                        (has_parent ? e.J_parent.row(k).head<3>().norm() : 0.0);
-      const double jr = e.J_child.row(k).tail<3>().norm() +
-                        (has_parent ? e.J_parent.row(k).tail<3>().norm() : 0.0);
-      const double Ju = e.J_child.row(k).dot(uc) + (has_parent ? e.J_parent.row(k).dot(up) : 0.0);
+      double jt = e.J_child.row(k).head<3>().norm() +
+                  (has_parent ? e.J_parent.row(k).head<3>().norm() : 0.0);
+      double jr = e.J_child.row(k).tail<3>().norm() +
+                  (has_parent ? e.J_parent.row(k).tail<3>().norm() : 0.0);
+      double jt_extra = 0.0, jr_extra = 0.0, Ju_extra = 0.0, terms_extra = 0.0;
+      for (int x = 0; x < e.num_extra; ++x) {
+        const auto j = static_cast<size_t>(x);
+        const Eigen::Matrix<double, 6, 1> ux = u_of(e.extra_body[j]);
+        jt_extra += e.J_extra[j].row(k).head<3>().norm();
+        jr_extra += e.J_extra[j].row(k).tail<3>().norm();
+        Ju_extra += e.J_extra[j].row(k).dot(ux);
+        terms_extra += e.J_extra[j].row(k).cwiseAbs().dot(ux.cwiseAbs());
+      }
+      jt += jt_extra;
+      jr += jr_extra;
+      const double Ju =
+          e.J_child.row(k).dot(uc) + (has_parent ? e.J_parent.row(k).dot(up) : 0.0) + Ju_extra;
       const double terms = e.J_child.row(k).cwiseAbs().dot(uc.cwiseAbs()) +
                            (has_parent ? e.J_parent.row(k).cwiseAbs().dot(up.cwiseAbs()) : 0.0) +
-                           std::abs(e.velocity_rhs[k]);
+                           terms_extra + std::abs(e.velocity_rhs[k]);
       const std::string where = fmt::format("constraint '{}' row {}", con.name(), k);
       Add(kConstraintVelocity, std::abs(Ju - e.velocity_rhs[k]), Scale::kVelocity, jt, jr, terms,
           where, t, phase);

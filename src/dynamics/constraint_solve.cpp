@@ -115,6 +115,10 @@ void CalcConstraintRows(const Model& model, const State& state, Data& data) {
     }
     if (con.parent() != kWorld) data.J.block(o, 6 * con.parent(), n, 6) = e.J_parent.topRows(n);
     data.J.block(o, 6 * con.child(), n, 6) = e.J_child.topRows(n);
+    for (int k = 0; k < e.num_extra; ++k) {
+      const auto j = static_cast<size_t>(k);
+      data.J.block(o, 6 * e.extra_body[j], n, 6) = e.J_extra[j].topRows(n);
+    }
     data.velocity_rhs.segment(o, n) = e.velocity_rhs.head(n);
     data.acceleration_rhs.segment(o, n) = e.acceleration_rhs.head(n);
     data.position_error.segment(o, n) = e.position_error.head(n);

@@ -182,6 +182,23 @@ void RequireFrame(const std::string& name, const char* which, const AttachmentFr
 }  // namespace
 
 // ---------------------------------------------------------------------------------------
+ConstraintEval::Rows& ConstraintEval::RowsOn(BodyIndex b, BodyIndex parent, BodyIndex child) {
+  if (b == parent) return J_parent;
+  if (b == child) return J_child;
+  for (int k = 0; k < num_extra; ++k) {
+    if (extra_body[static_cast<size_t>(k)] == b) return J_extra[static_cast<size_t>(k)];
+  }
+  if (num_extra == kMaxExtraBodies) {
+    throw InputError(fmt::format(
+        "a constraint touches more than {} bodies besides its two ends; at most {} are supported",
+        kMaxExtraBodies, kMaxExtraBodies));
+  }
+  const auto k = static_cast<size_t>(num_extra++);
+  extra_body[k] = b;
+  J_extra[k].setZero();
+  return J_extra[k];
+}
+
 Constraint::Constraint(std::string name, BodyIndex parent, BodyIndex child)
     : name_(std::move(name)), parent_(parent), child_(child) {
   if (name_.empty()) throw InputError("a constraint needs a non-empty name");

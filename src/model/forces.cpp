@@ -159,6 +159,72 @@ double CableForce::AddForces(const Model& model, const State& state, const Data&
 }
 
 // ---------------------------------------------------------------------------------------
+StringPull::StringPull(std::string name, BodyIndex body, const Vec3& p_BoC_B, const Vec3& axis_B,
+                       double radius, int sense, const Vec3& direction_W, ScalarFunction tension)
+    : ForceElement(std::move(name)),
+      body_(body),
+      p_BoC_B_(p_BoC_B),
+      axis_B_(axis_B),
+      radius_(radius),
+      sense_(sense),
+      d_W_(direction_W),
+      tension_(std::move(tension)) {
+  RequireFinite(this->name(), "drum centre", p_BoC_B);
+  RequireFinite(this->name(), "drum axis", axis_B);
+  RequireFinite(this->name(), "direction", direction_W);
+  if (!(axis_B.norm() > 0.0)) {
+    throw InputError(fmt::format("force element '{}': the drum's axis is zero", this->name()));
+  }
+  if (!(direction_W.norm() > 0.0)) {
+    throw InputError(fmt::format("force element '{}': the pull's direction is zero", this->name()));
+  }
+  if (!(radius > 0.0) || !std::isfinite(radius)) {
+    throw InputError(fmt::format("force element '{}': the drum's radius is {}; it must be > 0",
+                                 this->name(), radius));
+  }
+  if (sense != 1 && sense != -1) {
+    throw InputError(
+        fmt::format("force element '{}': the sense is {}; expected +1 or -1", this->name(), sense));
+  }
+  if (!tension_)
+    throw InputError(fmt::format("force element '{}': no tension given", this->name()));
+  axis_B_.normalize();
+  d_W_.normalize();
+}
+
+// T = c - s r a × d̂ (header): the point where a string leaving in direction d̂ leaves the
+// circle, the centre on its left (s = +1) or right of the string seen along a.
+Vec3 StringPull::CalcTangentPoint(const Model& model, const State& state, const Data& data) const {
+  const auto i = static_cast<size_t>(body_);
+  const Vec3 a = data.R_WB[i] * axis_B_;
+  const Vec3 c =
+      state.bodies[i].p_WBcm + data.R_WB[i] * model.body(body_).PointFromCenterOfMass(p_BoC_B_);
+  const Vec3 d_plane = d_W_ - a * a.dot(d_W_);
+  const double len = d_plane.norm();
+  if (!(len > 1e-12)) {
+    throw InputError(fmt::format(
+        "force element '{}': the pull's direction is along the drum's axis at t = {:.6g} s; the "
+        "string has no side of the drum to leave from",
+        name(), state.t));
+  }
+  return c - sense_ * radius_ * a.cross(d_plane / len);
+}
+
+double StringPull::AddForces(const Model& model, const State& state, const Data& data,
+                             WrenchAccumulator& out) const {
+  const double P = tension_(model, state);
+  if (!(P >= 0.0)) {
+    throw InputError(fmt::format(
+        "force element '{}': the string's tension is {:.6g} N at t = {:.6g} s; a string can only "
+        "pull (tension >= 0)",
+        name(), P, state.t));
+  }
+  const Vec3 T = CalcTangentPoint(model, state, data);
+  out.AddForceAtPoint(body_, T - state.bodies[static_cast<size_t>(body_)].p_WBcm, P * d_W_);
+  return out.power();
+}
+
+// ---------------------------------------------------------------------------------------
 JointTorque::JointTorque(std::string name, BodyIndex parent, BodyIndex child, const Vec3& axis_P,
                          ScalarFunction torque)
     : ForceElement(std::move(name)),

@@ -96,6 +96,16 @@ int Model::AddConstraint(std::shared_ptr<const Constraint> constraint) {
       }
       particle_attachment(e->body, AttachmentFrame{e->p_BoP_B, Mat3::Identity()});
     }
+    for (const StringPulley& p : str->pulleys()) {
+      if (p.body == kWorld) continue;
+      if (p.body < 0 || p.body >= num_bodies()) {
+        throw InputError(fmt::format(
+            "string '{}': a pulley is carried by body index {}, but the model has {} bodies "
+            "(0 to {}); use kWorld ({}) for a fixed pulley",
+            constraint->name(), p.body, num_bodies(), num_bodies() - 1, kWorld));
+      }
+      particle_attachment(p.body, AttachmentFrame{p.p_BoO_B, Mat3::Identity()});
+    }
   } else {
     for (BodyIndex b : {constraint->parent(), constraint->child()}) {
       if (b != kWorld && body(b).is_particle()) {

@@ -1,5 +1,6 @@
 #include "chasles/model/string_constraint.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -25,20 +26,26 @@ struct Circle {
   Vec3 w = Vec3::Zero();     // the body's angular velocity, in W
 };
 
-Circle EndCircle(const Model& model, const State& state, const Data& data, const StringEnd& e) {
+// A circle of centre p_BoC_B on `body` (in W for kWorld).
+Circle BodyCircle(const Model& model, const State& state, const Data& data, BodyIndex body,
+                  const Vec3& p_BoC_B, double r, int s) {
   Circle k;
-  k.r = e.radius;
-  k.s = e.sense;
-  if (e.body == kWorld) {
-    k.c = e.p_BoP_B;
+  k.r = r;
+  k.s = s;
+  if (body == kWorld) {
+    k.c = p_BoC_B;
     return k;
   }
-  const auto i = static_cast<size_t>(e.body);
+  const auto i = static_cast<size_t>(body);
   k.p_cm = state.bodies[i].p_WBcm;
   k.v = state.bodies[i].v_WBcm_W;
   k.w = data.w_WB_W[i];
-  k.c = k.p_cm + data.R_WB[i] * model.body(e.body).PointFromCenterOfMass(e.p_BoP_B);
+  k.c = k.p_cm + data.R_WB[i] * model.body(body).PointFromCenterOfMass(p_BoC_B);
   return k;
+}
+
+Circle EndCircle(const Model& model, const State& state, const Data& data, const StringEnd& e) {
+  return BodyCircle(model, state, data, e.body, e.p_BoP_B, e.radius, e.sense);
 }
 
 void CheckEnd(const std::string& name, const char* which, const StringEnd& e) {
@@ -71,12 +78,25 @@ StringConstraint::StringConstraint(std::string name, const StringEnd& a,
   CheckEnd(this->name(), "B", b_);
   for (size_t k = 0; k < pulleys_.size(); ++k) {
     const StringPulley& p = pulleys_[k];
-    if (!p.p_WO.allFinite() || !(p.radius > 0.0) || !std::isfinite(p.radius) ||
+    if (!p.p_BoO_B.allFinite() || !(p.radius > 0.0) || !std::isfinite(p.radius) ||
         (p.sense != 1 && p.sense != -1)) {
       throw InputError(fmt::format(
           "string '{}': pulley {} needs a finite centre, a radius > 0 and a sense of +1 or -1",
           this->name(), k + 1));
     }
+  }
+  std::vector<BodyIndex> carriers;  // pulley bodies other than the ends
+  for (const StringPulley& p : pulleys_) {
+    if (p.body == kWorld || p.body == a_.body || p.body == b_.body) continue;
+    if (std::find(carriers.begin(), carriers.end(), p.body) == carriers.end()) {
+      carriers.push_back(p.body);
+    }
+  }
+  if (carriers.size() > static_cast<size_t>(ConstraintEval::kMaxExtraBodies)) {
+    throw InputError(fmt::format(
+        "string '{}': its pulleys are carried by {} bodies besides its ends; at most {} are "
+        "supported (split it into several strings)",
+        this->name(), carriers.size(), ConstraintEval::kMaxExtraBodies));
   }
   if (!(n_W_.norm() > 0.0) || !n_W_.allFinite()) {
     throw InputError(
@@ -105,11 +125,7 @@ StringPath StringConstraint::CalcPath(const Model& model, const State& state,
   std::vector<Circle> circles;
   circles.push_back(EndCircle(model, state, data, a_));
   for (const StringPulley& p : pulleys_) {
-    Circle k;
-    k.c = p.p_WO;
-    k.r = p.radius;
-    k.s = p.sense;
-    circles.push_back(k);
+    circles.push_back(BodyCircle(model, state, data, p.body, p.p_BoO_B, p.radius, p.sense));
   }
   circles.push_back(EndCircle(model, state, data, b_));
   StringPath path;
@@ -179,15 +195,45 @@ void StringConstraint::Evaluate(const Model& model, const State& state, const Da
   // Row: ġ = e_A·w_A + e_B·w_B; a body point's velocity along e is e·v + ω·(r × e).
   eval.J_parent.row(0) << eA.transpose(), rA.cross(eA).transpose();
   eval.J_child.row(0) << eB.transpose(), rB.cross(eB).transpose();
-  // c = -Σ [ė·w + e·(ω × (ω × r))], ė = (I - e eᵀ)(w_next - w)/ℓ; the next point of a
-  // segment that ends on a fixed pulley does not move (its slide along e drops out).
-  const bool direct = pulleys_.empty();
-  const Vec3 dA = (direct ? wB : Vec3(Vec3::Zero())) - wA;
-  const Vec3 dB = (direct ? wA : Vec3(Vec3::Zero())) - wB;
-  const Vec3 eA_dot = (dA - eA * eA.dot(dA)) / path.first_segment;
-  const Vec3 eB_dot = (dB - eB * eB.dot(dB)) / path.last_segment;
-  eval.acceleration_rhs[0] = -(eA_dot.dot(wA) + eA.dot(A.w.cross(A.w.cross(rA))) + eB_dot.dot(wB) +
-                               eB.dot(B.w.cross(B.w.cross(rB))));
+  // Each segment's direction e_i (from circle i towards circle i+1; T_i+1 - T_i, header),
+  // its length ℓ_i, and the velocities u_i of the circles: w at the ends, the centre's
+  // velocity v_c at a pulley (0 when fixed). ė_i = (I - e_i e_iᵀ)(u_i+1 - u_i)/ℓ_i.
+  const size_t nc = pulleys_.size() + 2;
+  std::vector<Vec3> u(nc, Vec3::Zero()), r_c(nc, Vec3::Zero());
+  u.front() = wA;
+  u.back() = wB;
+  for (size_t k = 0; k < pulleys_.size(); ++k) {
+    const StringPulley& p = pulleys_[k];
+    const Circle C = BodyCircle(model, state, data, p.body, p.p_BoO_B, p.radius, p.sense);
+    if (p.body == kWorld) continue;
+    r_c[k + 1] = C.c - C.p_cm;
+    u[k + 1] = C.v + C.w.cross(r_c[k + 1]);
+  }
+  std::vector<Vec3> e(nc - 1), e_dot(nc - 1);
+  for (size_t i = 0; i + 1 < nc; ++i) {
+    const Vec3 seg = path.points[2 * i + 1] - path.points[2 * i];
+    const double ell = seg.norm();
+    e[i] = seg / ell;
+    const Vec3 du = u[i + 1] - u[i];
+    e_dot[i] = (du - e[i] * e[i].dot(du)) / ell;
+  }
+  // Ends: e_A = e_0, e_B = -e_N (so ė_B = -ė_N).
+  double Jdot_u = e_dot.front().dot(wA) + eA.dot(A.w.cross(A.w.cross(rA))) - e_dot.back().dot(wB) +
+                  eB.dot(B.w.cross(B.w.cross(rB)));
+  // Pulleys on bodies: the row (e_out - e_in)·(v + ω × r_c) on the carrying body (added to an
+  // end's row when the pulley rides on that end's body), and its J̇u term.
+  for (size_t k = 0; k < pulleys_.size(); ++k) {
+    const StringPulley& p = pulleys_[k];
+    if (p.body == kWorld) continue;
+    const Vec3 f = e[k + 1] - e[k];  // e_out - e_in
+    const Vec3& r = r_c[k + 1];
+    const Vec3 w = data.w_WB_W[static_cast<size_t>(p.body)];
+    ConstraintEval::Rows& J = eval.RowsOn(p.body, parent(), child());
+    J.block<1, 3>(0, 0) += f.transpose();
+    J.block<1, 3>(0, 3) += r.cross(f).transpose();
+    Jdot_u += (e_dot[k + 1] - e_dot[k]).dot(u[k + 1]) + f.dot(w.cross(w.cross(r)));
+  }
+  eval.acceleration_rhs[0] = -Jdot_u;
   eval.holonomic[0] = !has_drum();
   eval.position_error[0] = has_drum() ? 0.0 : length_ - path.length;
   eval.p_WJ = TB;

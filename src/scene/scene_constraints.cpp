@@ -403,11 +403,13 @@ SceneString SceneReader::ReadString(const At& at, size_t i, const Scene& scene,
   }
   if (at.Has("over")) {
     const At list = at.Child("over");
-    report_.CheckSequence(list, "a list of pulleys [{center, radius, sense}, ...]");
+    report_.CheckSequence(list, "a list of pulleys [{center, radius, sense, body}, ...]");
     for (size_t k = 0; k < list.node.size(); ++k) {
       const At p_at = list.Item(k);
-      report_.CheckMap(p_at, {"center", "radius", "sense"}, "a pulley ({center, radius, sense})");
+      report_.CheckMap(p_at, {"center", "radius", "sense", "body"},
+                       "a pulley ({center, radius, sense}, and 'body' when a body carries it)");
       SceneStringPulley p;
+      if (p_at.Has("body")) p.body = ParentIndexAt(p_at.Child("body"), scene);
       p.center_W = WorldVector(report_.Require(p_at, "center", "a pulley"), kLength,
                                "the pulley's centre (world)");
       p.radius = PositiveValue(report_.Require(p_at, "radius", "a pulley"), kLength,

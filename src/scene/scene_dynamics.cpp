@@ -265,9 +265,11 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
   f.where = SpotAt(at);
   const std::string type =
       report_.Text(report_.Require(at, "type", "a force element"),
-                   "force, moment, spring, drag, central_gravity, cable or joint_torque");
-  const std::vector<std::string> types = {"force",           "moment", "spring",      "drag",
-                                          "central_gravity", "cable",  "joint_torque"};
+                   "force, moment, spring, drag, central_gravity, cable, string_pull or "
+                   "joint_torque");
+  const std::vector<std::string> types = {"force",       "moment",          "spring",
+                                          "drag",        "central_gravity", "cable",
+                                          "string_pull", "joint_torque"};
   f.name = at.Has("name") ? report_.Text(at.Child("name"), "a name")
                           : fmt::format("{} {}", type, index + 1);
   const std::string what = fmt::format("{} '{}'", type, f.name);
@@ -297,6 +299,8 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
     if (at.Has("frame")) f.frame = FrameAt(at.Child("frame"));
   } else if (type == "cable") {
     ReadCable(at, scene, what, f);
+  } else if (type == "string_pull") {
+    ReadStringPull(at, scene, what, f);
   } else if (type == "joint_torque") {
     ReadJointTorque(at, scene, what, f);
   } else if (type == "spring") {
@@ -369,6 +373,49 @@ void SceneReader::ReadCable(const At& at, const Scene& scene, const std::string&
   f.scalar = StateExpression(report_.Require(at, "tension", what), kForce, "the tension");
   if (f.scalar.is_constant() && f.scalar.Evaluate({}) < 0) {
     report_.Fail(at.Child("tension"), "the tension must be >= 0: a cable can only pull");
+  }
+}
+
+// A string wound on a drum of a body, pulled by hand with a tension along a fixed world
+// direction (model/forces.h, StringPull): {body, drum: {center, radius, sense, axis},
+// direction, tension}; the centre (default the centre of mass) and axis (default z) in the
+// body's frame.
+void SceneReader::ReadStringPull(const At& at, const Scene& scene, const std::string& what,
+                                 SceneForce& f) {
+  report_.CheckMap(at, {"type", "name", "body", "drum", "direction", "tension"},
+                   "a string_pull element");
+  f.type = SceneForce::Type::kStringPull;
+  f.body = BodyIndexAt(report_.Require(at, "body", what), scene);
+  const SceneBody& body = scene.bodies[static_cast<size_t>(f.body)];
+  const At drum = report_.Require(at, "drum", what);
+  report_.CheckMap(drum, {"center", "radius", "sense", "axis"},
+                   "a drum ({radius, sense}, optionally center and axis in the body's frame)");
+  f.p_BoP_B = drum.Has("center") ? BodyPointAt(drum.Child("center"), body)
+                                 : body.mass_properties.p_BoBcm_B();
+  f.drum_radius = PositiveValue(report_.Require(drum, "radius", what + ": 'drum'"), kLength,
+                                "the drum's radius");
+  f.drum_sense = StringSenseAt(report_.Require(drum, "sense", what + ": 'drum'"));
+  if (drum.Has("axis")) {
+    if (planar_) {
+      report_.Fail(drum.Child("axis"),
+                   "a planar scene's drums turn about z, the plane's normal; remove 'axis'");
+    }
+    const At axis = drum.Child("axis");
+    const Vec3 a = BodyVector(axis, kDimensionless, "the drum's axis (body frame)");
+    if (!(a.norm() > 0) || !a.allFinite()) {
+      report_.Fail(axis, "the drum's axis has zero length; give a direction such as [0, 0, 1]");
+    }
+    f.drum_axis_B = a.normalized();
+  }
+  f.direction_W = AxisAt(report_.Require(at, "direction", what), "the pull's direction");
+  if (std::abs(f.direction_W.dot(f.drum_axis_B)) > 1.0 - 1e-12 && !planar_) {
+    report_.Fail(at.Child("direction"),
+                 "the pull's direction is along the drum's axis; the string would leave the "
+                 "drum from no side: give a direction in the drum's plane");
+  }
+  f.scalar = StateExpression(report_.Require(at, "tension", what), kForce, "the tension");
+  if (f.scalar.is_constant() && f.scalar.Evaluate({}) < 0) {
+    report_.Fail(at.Child("tension"), "the tension must be >= 0: a string can only pull");
   }
 }
 

@@ -218,7 +218,10 @@ void AddSceneString(const SceneString& st, const BodyMap& map, const State& s0, 
   const StringEnd a = end(from), b = end(to);
   std::vector<StringPulley> pulleys;
   for (const SceneStringPulley& p : over) {
-    pulleys.push_back({p.center_W, p.radius, p.sense});
+    // A pulley on a body: its centre in the body's frame (the world pose at the start).
+    const int pb = model_body(p.body);
+    const Vec3 c = AttachmentFrameAtWorldPose(model, s0, pb, p.center_W, Mat3::Identity()).p_BoJ_B;
+    pulleys.push_back({c, p.radius, p.sense, pb});
     points.push_back(p.center_W);
   }
   // With a pulley or a drum the path is planar (model/string_constraint.h): every point and
@@ -414,6 +417,12 @@ Model BuildModel(const Scene& scene, const std::vector<NamedBody>& bodies,
         model.AddForceElement(std::make_shared<CableForce>(f.name, pl->model_body,
                                                            point(f.body, f.p_BoP_B), f.p_WQ,
                                                            MakeScalarFunction(map, f.scalar)));
+        break;
+      case SceneForce::Type::kStringPull:
+        // The drum's axis turns from the scene body's frame into the model body's.
+        model.AddForceElement(std::make_shared<StringPull>(
+            f.name, pl->model_body, point(f.body, f.p_BoP_B), pl->R_MB * f.drum_axis_B,
+            f.drum_radius, f.drum_sense, f.direction_W, MakeScalarFunction(map, f.scalar)));
         break;
       case SceneForce::Type::kJointTorque: {
         // The joint's axis is given in W at the initial configuration; the torque turns it

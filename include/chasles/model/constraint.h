@@ -57,6 +57,17 @@ struct ConstraintEval {
   /// Axes in which a joint's reaction components are named ("its z force": along the joint
   /// axis): the parent's joint frame, in W (W itself for the other constraints).
   Mat3 R_WJ = Mat3::Identity();
+  /// Most further bodies one constraint may touch besides its parent and child.
+  static constexpr int kMaxExtraBodies = 4;  // J_extra's initialiser lists 4
+  /// Rows on further bodies (a string's pulleys carried by bodies that are neither of its
+  /// ends): the first `num_extra` entries of `extra_body` and `J_extra`, laid out as J_child.
+  int num_extra = 0;
+  std::array<BodyIndex, kMaxExtraBodies> extra_body{};
+  std::array<Rows, kMaxExtraBodies> J_extra = {Rows::Zero(), Rows::Zero(), Rows::Zero(),
+                                               Rows::Zero()};
+  /// The rows on body `b` (not kWorld): J_parent, J_child, or an extra slot (made zero when
+  /// first asked for; throws InputError past kMaxExtraBodies).
+  Rows& RowsOn(BodyIndex b, BodyIndex parent, BodyIndex child);
 };
 
 class Constraint {

@@ -97,6 +97,38 @@ class CableForce final : public ForceElement {
   ScalarFunction tension_;
 };
 
+/// A string wound on a drum (hub, spool) of a body and pulled by hand with tension P = f(t,
+/// state) >= 0 along a direction d fixed in the world, its far end at infinity (the string
+/// stays parallel to d). The drum is a circle of radius r about the axis a (fixed in the body)
+/// through its centre c; the string leaves it in the drum's plane at the tangent point
+///   T = c - s r a × d̂,   d̂ the unit in-plane part of d,
+/// the end-A tangent formula of StringConstraint (model/string_constraint.h) with the other
+/// circle at infinity: there the segment's direction is d̂ and the centre lies at T + s r a ×
+/// d̂. `sense` s = +1 when the string, followed from the drum to the hand, leaves the drum going
+/// counterclockwise about a, -1 clockwise. The force P d (d unit) acts on the body's material
+/// point at T; its power is P d·v_T. A negative P (a string cannot push) is an error when
+/// evaluated; so is a direction along the drum's axis.
+class StringPull final : public ForceElement {
+ public:
+  /// `p_BoC_B` the drum's centre from Bo in B [m], `axis_B` its axis in B (any non-zero
+  /// length), `radius` > 0 [m], `sense` ±1, `direction_W` the pull's direction in W (any
+  /// non-zero length; its part along the axis, if any, is kept in the force).
+  StringPull(std::string name, BodyIndex body, const Vec3& p_BoC_B, const Vec3& axis_B,
+             double radius, int sense, const Vec3& direction_W, ScalarFunction tension);
+  double AddForces(const Model&, const State&, const Data&, WrenchAccumulator&) const override;
+  std::vector<BodyIndex> bodies() const override { return {body_}; }
+  /// The tangent point T in W at the kinematics stage in `data` [m].
+  Vec3 CalcTangentPoint(const Model& model, const State& state, const Data& data) const;
+
+ private:
+  BodyIndex body_;
+  Vec3 p_BoC_B_, axis_B_;
+  double radius_;
+  int sense_;
+  Vec3 d_W_;
+  ScalarFunction tension_;
+};
+
 /// A torque across a joint (a motor, a drive shaft, a brake): tau = f(t, state) [N·m] about
 /// the joint's axis a, +tau a on the child and -tau a on the parent (Newton's third law for a
 /// couple: the pair exerts no net moment on the two bodies together). The axis is fixed in

@@ -1,12 +1,12 @@
 #pragma once
 /// @file
 /// An inextensible, massless string (or cable) held taut: from an end on body A (or the
-/// world) over zero or more frictionless pulleys fixed in the world to an end on body B. Each
-/// end is a point of its body or a drum (hub, spool) of its body on which the string is wound
-/// without slip. The path lies in the plane normal to the string's unit normal n (fixed in
-/// W): pulleys and drums are circles in that plane, turning about n; an end point off the
-/// plane is allowed only on a string without pulleys and drums (docs/constraints.md,
-/// "Strings").
+/// world) over zero or more frictionless pulleys, fixed in the world or carried by bodies, to
+/// an end on body B. Each end is a point of its body or a drum (hub, spool) of its body on
+/// which the string is wound without slip. The path lies in the plane normal to the string's
+/// unit normal n (fixed in W): pulleys and drums are circles in that plane, turning about n;
+/// an end point off the plane is allowed only on a string without pulleys and drums
+/// (docs/constraints.md, "Strings").
 ///
 /// One row. The path is a chain of circles c_0 (end A), c_1..c_N (pulleys), c_N+1 (end B),
 /// each with centre c_i, radius r_i (0 for a point end) and sense s_i = ±1: the string,
@@ -21,15 +21,24 @@
 /// e_A the unit vector at A's leaving point T_0 along the string (towards the next point),
 /// e_B likewise at B's T_N+1, w the velocity of the body's material point at T (for a drum
 /// that is v + ω × r_T: the string is at rest on the drum there; it includes the unwinding).
-/// Moving a fixed-pulley tangent point along its circle changes L only to second order, so
-/// only the ends appear. The multiplier is the tension T >= 0: the force on each end body is
-/// T e at its leaving point (it pulls each end along the string).
+/// Moving a pulley's tangent point along its circle changes L only to second order, so of a
+/// pulley only its centre's motion appears. A pulley k carried by a body, with e_in and e_out
+/// the unit vectors (along the string from A to B) of the segments arriving at and leaving
+/// it: moving its centre by δc lengthens the arriving segment by e_in·δc and shortens the
+/// leaving one by e_out·δc, so ∂L/∂c_k = e_in - e_out and the row gains
+///   + (e_out - e_in)·v_c,   v_c = v + ω × r_c   (r_c from the body's Bcm to the centre).
+/// (A movable pulley hanging in a loop, e_in down and e_out up: lifting it slackens the string
+/// at twice its speed.) The multiplier is the tension T >= 0: the force on each end body is
+/// T e at its leaving point (it pulls each end along the string), and on a pulley's body
+/// T (e_out - e_in) at the pulley's centre.
 /// Acceleration level: J u̇ = c with c = -J̇ u,
-///   c = -Σ_ends [ė·w + e·(ω × (ω × r_T))],   ė = (I - e eᵀ)(w_next - w) / ℓ,
-/// w_next the velocity of the segment's other end (0 at a fixed pulley): a tangent point
-/// slides along its circle's tangent, which is along e, so that motion drops out of both
-/// terms. Without drums the row is holonomic, g = L0 - L(q) (the slack; ∂g/∂x = J); with a
-/// drum the wound length depends on how far the drum has turned, which the state holds only
+///   c = -Σ_ends [ė·w + e·(ω × (ω × r_T))]
+///       - Σ_pulleys on bodies [(ė_out - ė_in)·v_c + (e_out - e_in)·(ω × (ω × r_c))],
+///   ė = (I - e eᵀ)(u_end - u_start) / ℓ for each segment,
+/// u the velocity of a segment's end: w at a string end, v_c at a pulley (0 when fixed). A
+/// tangent point slides along its circle's tangent, which is along e, so that motion drops out
+/// of (I - e eᵀ). Without drums the row is holonomic, g = L0 - L(q) (the slack; ∂g/∂x = J);
+/// with a drum the wound length depends on how far the drum has turned, which the state holds only
 /// modulo a turn, so the row is kept at velocity level (no position error).
 /// Unilateral (can_release): a string without drums is taut (the row holds, tension T >= 0) or
 /// slack (no row, no force), its mode in State::constraint_modes; it goes slack when T falls
@@ -58,14 +67,20 @@ struct StringEnd {
   int sense = 1;
 };
 
-/// A frictionless pulley fixed in the world, in the string's plane.
+/// A frictionless, massless pulley in the string's plane, fixed in the world or carried by a
+/// body (a block, a movable pulley's frame): it turns freely on its axle, so only its
+/// centre's motion enters. Its axle is taken along the string's normal n whatever the
+/// body's attitude: a pulley on a body must turn with it about n only (planar motion); a body
+/// that tilts the axle out of n is outside this model.
 struct StringPulley {
-  /// Centre in W [m].
-  Vec3 p_WO = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  /// Centre from Bo in B (in W for kWorld) [m].
+  Vec3 p_BoO_B = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   /// Radius [m] (> 0).
   double radius = std::numeric_limits<double>::quiet_NaN();
   /// +1: the string, followed from end A to end B, goes round it counterclockwise about n.
   int sense = 1;
+  /// The body carrying the pulley, or kWorld (fixed).
+  BodyIndex body = kWorld;
 };
 
 /// The path of a string at one configuration (StringConstraint::CalcPath).
@@ -86,8 +101,9 @@ class StringConstraint final : public Constraint {
   /// `pulleys` in order from a to b; `n_W` the normal of the string's plane (normalised);
   /// `length` L0 [m], the free length the string keeps (the holonomic row's g = L0 - L; the
   /// initial free length comes from CalcPath). Throws
-  /// InputError for non-positive radii, a sense other than ±1, a zero normal, or a drum or
-  /// pulley on a string whose end is a point mass (checked by Model::AddConstraint).
+  /// InputError for non-positive radii, a sense other than ±1, a zero normal, more than
+  /// ConstraintEval::kMaxExtraBodies pulley bodies besides the ends, or a drum or pulley on a
+  /// string whose end is a point mass (checked by Model::AddConstraint).
   StringConstraint(std::string name, const StringEnd& a, std::vector<StringPulley> pulleys,
                    const StringEnd& b, const Vec3& n_W, double length);
   int num_rows() const override { return 1; }

@@ -115,11 +115,14 @@ struct SceneStringEnd {
   int sense = 1;
 };
 
-/// A frictionless pulley fixed in the world (an entry of a string's `over`).
+/// A frictionless, massless pulley (an entry of a string's `over`), fixed in the world or
+/// carried by a body; its centre in W at the initial configuration.
 struct SceneStringPulley {
   Vec3 center_W = Vec3::Zero();
   double radius = 0.0;
   int sense = 1;
+  /// Scene body index carrying it, or kWorld (fixed).
+  int body = kWorld;
 };
 
 /// One entry of `strings`: an inextensible string held taut from `from` over the pulleys

@@ -95,7 +95,16 @@ struct SceneVectorExpression {
 
 /// One entry of `forces`.
 struct SceneForce {
-  enum class Type { kForce, kMoment, kSpring, kDrag, kCentralGravity, kCable, kJointTorque };
+  enum class Type {
+    kForce,
+    kMoment,
+    kSpring,
+    kDrag,
+    kCentralGravity,
+    kCable,
+    kJointTorque,
+    kStringPull
+  };
   Type type = Type::kForce;
   /// Unique name (reports, ledger columns "W_<name>").
   std::string name;
@@ -103,15 +112,22 @@ struct SceneForce {
   SceneSpot where;
   /// Body acted on (scene index), or for a spring its first end.
   int body = -1;
-  /// Point of application from Bo in B [m] (force; spring's first end; cable's body end), or
-  /// a world point [m] when `point_frame` is kWorld (force only).
+  /// Point of application from Bo in B [m] (force; spring's first end; cable's body end;
+  /// string pull's drum centre), or a world point [m] when `point_frame` is kWorld (force
+  /// only).
   Vec3 p_BoP_B = Vec3::Zero();
   /// kWorld: the force acts at the material point currently at the world point p_BoP_B.
   VectorFrame point_frame = VectorFrame::kBody;
-  /// Cable's tension [N] or joint torque [N·m] as an expression.
+  /// Cable's or string pull's tension [N], or joint torque [N·m], as an expression.
   Expression scalar;
   /// Cable: the fixed world point it runs to [m].
   Vec3 p_WQ = Vec3::Zero();
+  /// String pull: the drum's axis in B (unit), radius [m] and sense (+1 counterclockwise
+  /// about the axis), and the pull's unit direction in W.
+  Vec3 drum_axis_B = Vec3::UnitZ();
+  double drum_radius = 0.0;
+  int drum_sense = 1;
+  Vec3 direction_W = Vec3::UnitX();
   /// Joint torque: the joint it acts across (index into SceneConstraints::joints).
   int joint = -1;
   /// Force [N] or moment [N·m] as expressions.

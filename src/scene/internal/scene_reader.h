@@ -122,6 +122,7 @@ class SceneReader {
   SceneImpact ReadImpact(const At& at, const Scene& scene);
   void ReadInitial(const At& at, const SceneBody& body, SceneInitialState& initial);
   void ReadCable(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
+  void ReadStringPull(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
   void ReadJointTorque(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
   SceneForce ReadForce(const At& at, const Scene& scene, size_t index);
   SceneEvent ReadEvent(const At& at, size_t index, const Scene& scene);

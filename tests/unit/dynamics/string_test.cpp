@@ -56,6 +56,16 @@ struct Evaluated {
   double psi[2] = {0.0, 0.0};
 };
 
+// The row on body b: the parent's, the child's, an extra body's (a pulley it carries), or 0.
+Eigen::Matrix<double, 1, 6> RowOn(const StringConstraint& s, const ConstraintEval& e, int b) {
+  if (b == s.parent()) return e.J_parent.row(0);
+  if (b == s.child()) return e.J_child.row(0);
+  for (int k = 0; k < e.num_extra; ++k) {
+    if (e.extra_body[static_cast<size_t>(k)] == b) return e.J_extra[static_cast<size_t>(k)].row(0);
+  }
+  return Eigen::Matrix<double, 1, 6>::Zero();
+}
+
 Evaluated Eval(const Model& model, const StringConstraint& s, const State& state) {
   Data data = MakeData(model);
   CalcKinematics(model, state, data);
@@ -73,11 +83,11 @@ Evaluated Eval(const Model& model, const StringConstraint& s, const State& state
     const Vec3 u0 = data.R_WB[i] * Vec3::UnitX();
     r.psi[side] = std::atan2(Vec3::UnitZ().dot(u0.cross(rho)), u0.dot(rho));
   }
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < model.num_bodies(); ++b) {
     const BodyState& bs = state.bodies[static_cast<size_t>(b)];
     Eigen::Matrix<double, 6, 1> u;
     u << bs.v_WBcm_W, bs.q_WB * bs.w_WB_B;
-    r.Ju += (b == s.parent() ? r.e.J_parent : r.e.J_child).row(0).dot(u);
+    r.Ju += RowOn(s, r.e, b).dot(u);
   }
   return r;
 }
@@ -116,15 +126,15 @@ State Drift(const State& s, double eps) {
 void CheckRow(const Model& model, const StringConstraint& s, const State& state) {
   const Evaluated e0 = Eval(model, s, state);
   const double eps = 1e-5;
-  for (int side = 0; side < 2; ++side) {
-    const StringEnd& end = side == 0 ? s.end_a() : s.end_b();
-    if (end.body == kWorld) continue;
-    const auto& J = side == 0 ? e0.e.J_parent : e0.e.J_child;
+  // Every body of the model: the ends' bodies, the bodies carrying pulleys, and the others
+  // (whose row must be zero).
+  for (int body = 0; body < model.num_bodies(); ++body) {
+    const Eigen::Matrix<double, 1, 6> J = RowOn(s, e0.e, body);
     for (int j = 0; j < 6; ++j) {
       Eigen::Matrix<double, 6, 1> x = Eigen::Matrix<double, 6, 1>::Zero();
       x[j] = eps;
-      const Evaluated p = Eval(model, s, Displace(state, end.body, x));
-      const Evaluated m = Eval(model, s, Displace(state, end.body, -x));
+      const Evaluated p = Eval(model, s, Displace(state, body, x));
+      const Evaluated m = Eval(model, s, Displace(state, body, -x));
       double dW = 0.0;
       for (int k = 0; k < 2; ++k) {
         const StringEnd& ek = k == 0 ? s.end_a() : s.end_b();
@@ -132,7 +142,7 @@ void CheckRow(const Model& model, const StringConstraint& s, const State& state)
         dW += (k == 0 ? 1.0 : -1.0) * ek.sense * ek.radius * dpsi;
       }
       const double expected = -(p.length - m.length + dW) / (2 * eps);
-      EXPECT_TRUE(Near(J(0, j), expected, 1e-8, 1.0)) << s.name() << " side " << side << " j " << j;
+      EXPECT_TRUE(Near(J(0, j), expected, 1e-8, 1.0)) << s.name() << " body " << body << " j " << j;
     }
   }
   const double h = 1e-5;
@@ -201,6 +211,97 @@ TEST(String, RowMatchesFiniteDifferencesOfTheLengthAtRandomStates) {
       }
     }
   }
+}
+
+// Pulleys carried by bodies: the row on every body (the ends' bodies, the bodies carrying
+// pulleys, and the untouched ones, whose row must be zero) against finite differences of the
+// length, and J̇u along a drift. Three bodies in the plane z = 0, turned a little about z and
+// moving at random: a movable block (body c) below the two ends carries a pulley the string
+// loops under, then the string goes over a fixed pulley and down to a drum on body b. In the
+// second string end A is tied to the block itself, which also carries a pulley (the row on
+// the parent body gets both terms).
+TEST(String, PulleysOnBodiesMatchFiniteDifferencesOfTheLength) {
+  Model model = TwoBodies();
+  model.AddBody("c", Box(0.8, Vec3(0.05, 0.06, 0.07)));
+  std::mt19937 rng(20261125);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  const Vec3 n = Vec3::UnitZ();
+  for (int trial = 0; trial < 4; ++trial) {
+    State s = MakeRestState(model);
+    const Vec3 base[3] = {Vec3(0, 0, 0.05), Vec3(3, 0, 0), Vec3(1.5, -2, 0)};
+    for (int b = 0; b < 3; ++b) {
+      BodyState& bs = s.bodies[static_cast<size_t>(b)];
+      bs.p_WBcm = base[b] + 0.3 * Vec3(U(rng), U(rng), 0.0);
+      bs.q_WB = Quat(RotationFromAxisAngle(Vec3::UnitZ(), 0.3 * U(rng)));
+      bs.v_WBcm_W = Vec3(U(rng), U(rng), 0.0);
+      bs.w_WB_B = bs.q_WB.conjugate() * Vec3(0, 0, 2 * U(rng));
+    }
+    // Down to the block's pulley and round its underside (counterclockwise about z), up over
+    // the fixed pulley (clockwise) and down to b's drum.
+    const StringPulley block{Vec3(0.1, -0.05, 0.0), 0.25, 1, 2};
+    const StringPulley fixed{Vec3(3.2, 2.0, 0.0), 0.2, -1, kWorld};
+    for (const int sb : {1, -1}) {
+      const StringConstraint movable("movable", StringEnd{0, Vec3(0.2, 0.1, 0.0), 0.0, 1},
+                                     {block, fixed}, StringEnd{1, Vec3(0.05, 0.1, 0.0), 0.15, sb},
+                                     n, 8.0);
+      CheckRow(model, movable, s);
+      EXPECT_EQ(Eval(model, movable, s).e.num_extra, 1);
+    }
+    // From a hook on the block up over a fixed pulley, down round the block's pulley, up over
+    // the second fixed pulley to b.
+    const StringConstraint tackle(
+        "tackle", StringEnd{2, Vec3(-0.4, 0.3, 0.0), 0.0, 1},
+        {StringPulley{Vec3(1.0, 1.5, 0.0), 0.2, -1, kWorld}, block, fixed},
+        StringEnd{1, Vec3(0.05, 0.1, 0.0), 0.0, 1}, n, 12.0);
+    CheckRow(model, tackle, s);
+    EXPECT_EQ(Eval(model, tackle, s).e.num_extra, 0);
+  }
+}
+
+// A single movable pulley (massless, radius r2) carrying m2: the string is tied to the
+// ceiling, runs down round the pulley's underside, up over a fixed pulley (radius r1) and down
+// to m1; every strand vertical. With y1, y2 the heights, the length 2 (y_f - y2) + (y_f - y1)
+// + arcs is constant, so a1 = -2 a2; the pulley is pulled up by the two strands 2T:
+//   m1 a1 = T - m1 g,  m2 a2 = 2 T - m2 g  ⇒  a2 = (2 m1 - m2) g / (4 m1 + m2),
+//   T = 3 m1 m2 g / (4 m1 + m2).
+TEST(String, MovablePulleyHalvesTheHangingMassesMotion) {
+  const double m1 = 1.5, m2 = 2.0, r1 = 0.1, r2 = 0.15, g = 9.81;
+  Model model;
+  model.AddBody("m1", Box(m1, Vec3(0.01, 0.01, 0.01)));
+  model.AddBody("m2", Box(m2, Vec3(0.02, 0.02, 0.02)));
+  model.AddForceElement(std::make_shared<UniformGravity>("g", Vec3(0, -g, 0)));
+  State s = MakeRestState(model);
+  const double xf = r2 + r1, yf = 0.0;  // the fixed pulley's centre
+  s.bodies[0].p_WBcm = Vec3(r2 + 2 * r1, -1.0, 0);
+  s.bodies[1].p_WBcm = Vec3(0, -1.5, 0);
+  const double L = (-0.2 - (-1.5)) + std::numbers::pi * r2 + (yf - (-1.5)) + std::numbers::pi * r1 +
+                   (yf - (-1.0));
+  model.AddConstraint(std::make_shared<StringConstraint>(
+      "rope", StringEnd{kWorld, Vec3(-r2, -0.2, 0), 0.0, 1},
+      std::vector<StringPulley>{{Vec3::Zero(), r2, 1, 1}, {Vec3(xf, yf, 0), r1, -1, kWorld}},
+      StringEnd{0, Vec3::Zero(), 0.0, 1}, Vec3::UnitZ(), L));
+  const double a2 = (2 * m1 - m2) * g / (4 * m1 + m2);
+  const double T = 3 * m1 * m2 * g / (4 * m1 + m2);
+  Data data = MakeData(model);
+  EXPECT_LT(CalcConstraintViolation(model, s, data).position, 1e-12);
+  const InstantaneousSolution sol = SolveInstantaneous(model, s);
+  EXPECT_TRUE(Near(sol.bodies[1].a_WBcm_W.y(), a2, 1e-12));
+  EXPECT_TRUE(Near(sol.bodies[0].a_WBcm_W.y(), -2 * a2, 1e-12));
+  EXPECT_TRUE(Near(sol.reactions[0].lambda[0], T, 1e-12));
+  // The pulley's body feels T (e_out - e_in) = 2 T up: its free-body balance holds.
+  EXPECT_TRUE(Near(m2 * sol.bodies[1].a_WBcm_W.y(), 2 * T - m2 * g, 1e-12, m2 * g));
+  CertificateBuilder builder;
+  builder.CheckState(model, s, CheckPhase::kSolve);
+  const Certificate c = builder.Finish();
+  for (const CheckResult& r : c.checks) EXPECT_TRUE(r.passed()) << r.name << " " << r.worst;
+  SimulationOptions o;
+  o.t_end = 0.4;
+  o.adaptive.rtol = 1e-12;
+  const SimulationResult res = Simulate(model, s, o);
+  const double rise = 0.5 * a2 * o.t_end * o.t_end;
+  EXPECT_TRUE(Near(res.final_state.bodies[1].p_WBcm.y(), -1.5 + rise, 1e-9));
+  EXPECT_TRUE(Near(res.final_state.bodies[0].p_WBcm.y(), -1.0 - 2 * rise, 1e-9));
+  EXPECT_LT(CalcConstraintViolation(model, res.final_state, data).position, 1e-12);
 }
 
 // The free length of a known path: a string from (-r, -a) up to a pulley of radius r at the
@@ -429,6 +530,12 @@ TEST(String, BadInputIsRefused) {
   EXPECT_THROW(
       StringConstraint("s", a, {{Vec3::Zero(), 0.0, 1}}, StringEnd{0, Vec3::Zero()}, n, 1.0),
       InputError);
+  // Pulleys on more bodies than a constraint's rows can hold.
+  std::vector<StringPulley> many;
+  for (int b = 1; b <= ConstraintEval::kMaxExtraBodies + 1; ++b) {
+    many.push_back({Vec3::Zero(), 0.1, 1, b});
+  }
+  EXPECT_THROW(StringConstraint("s", a, many, StringEnd{0, Vec3::Zero()}, n, 1.0), InputError);
   EXPECT_THROW(StringConstraint("s", a, {}, StringEnd{0, Vec3::Zero()}, Vec3::Zero(), 1.0),
                InputError);
   EXPECT_THROW(StringConstraint("s", a, {}, StringEnd{0, Vec3::Zero()}, n, 0.0), InputError);

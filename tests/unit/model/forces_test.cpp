@@ -94,6 +94,68 @@ TEST(Forces, CablePullsAlongTheLineToTheWinch) {
   }
 }
 
+// A string pulled by hand off a drum (axis a, centre c, radius r): it leaves the drum at the
+// point T where the drum's tangent in its sense s is the pull's in-plane direction d̂_p, i.e.
+// ρ = T - c with |ρ| = r, ρ·a = 0 and s (a × ρ)/r = d̂_p (counterclockwise about a is a × ρ).
+// The force is P d (d the full unit direction, its axial part kept), its moment about Bcm
+// (T - p_cm) × P d and its power P d·(v + ω × (T - p_cm)). Random 3D states, a tilted drum
+// axis and a direction off the drum's plane.
+TEST(Forces, StringPullActsWhereTheStringLeavesTheDrum) {
+  std::mt19937 rng(12);
+  for (int trial = 0; trial < 20; ++trial) {
+    for (const int sense : {1, -1}) {
+      Model m;
+      const BodyIndex b = m.AddBody("spool", Brick());
+      const Vec3 p_BoC_B(0.1, -0.2, 0.05), axis_B(0.3, -0.2, 1.0), d_W(0.8, 0.5, -0.3);
+      const double r = 0.07, P = 4.5;
+      const auto pull = std::make_shared<StringPull>("hand", b, p_BoC_B, axis_B, r, sense, d_W,
+                                                     [P](const Model&, const State&) { return P; });
+      m.AddForceElement(pull);
+      State s = MakeRestState(m);
+      Randomize(s, rng);
+      Data d = MakeData(m);
+      CalcAccelerations(m, s, d);
+      const Mat3 R = s.bodies[0].q_WB.toRotationMatrix();
+      const Vec3 a = (R * axis_B).normalized();
+      const Vec3 c = s.bodies[0].p_WBcm + R * (p_BoC_B - Brick().p_BoBcm_B());
+      const Vec3 u = d_W.normalized();
+      const Vec3 u_p = (u - a * a.dot(u)).normalized();
+      const Vec3 T = pull->CalcTangentPoint(m, s, d);
+      const Vec3 rho = T - c;
+      EXPECT_TRUE(test::Near(rho.norm(), r, test::kExact));
+      EXPECT_TRUE(test::Near(rho.dot(a), 0.0, test::kExact, r));
+      EXPECT_TRUE(test::MatNear(sense * a.cross(rho) / r, u_p, test::kExact, 1.0)) << sense;
+      const Vec3 arm = T - s.bodies[0].p_WBcm;
+      EXPECT_TRUE(test::MatNear(d.F_Bcm_W[0], P * u, test::kExact));
+      EXPECT_TRUE(test::MatNear(d.M_Bcm_W[0], arm.cross(P * u), test::kExact, P));
+      const Vec3 v_T = s.bodies[0].v_WBcm_W + (R * s.bodies[0].w_WB_B).cross(arm);
+      EXPECT_TRUE(test::Near(d.elements[0].power, P * u.dot(v_T), test::kExact, P));
+    }
+  }
+  const auto P = [](const Model&, const State&) { return 1.0; };
+  const Vec3 z = Vec3::UnitZ(), x = Vec3::UnitX();
+  EXPECT_THROW(StringPull("h", 0, Vec3::Zero(), z, 0.0, 1, x, P), InputError);
+  EXPECT_THROW(StringPull("h", 0, Vec3::Zero(), z, 0.1, 2, x, P), InputError);
+  EXPECT_THROW(StringPull("h", 0, Vec3::Zero(), Vec3::Zero(), 0.1, 1, x, P), InputError);
+  EXPECT_THROW(StringPull("h", 0, Vec3::Zero(), z, 0.1, 1, Vec3::Zero(), P), InputError);
+  // Pulling along the axis, or pushing, stops the evaluation.
+  for (const auto& [dir, tension] : {std::pair{z, 1.0}, std::pair{x, -1.0}}) {
+    Model m;
+    const BodyIndex b = m.AddBody("spool", Brick());
+    const double T = tension;
+    m.AddForceElement(std::make_shared<StringPull>("h", b, Vec3::Zero(), z, 0.1, 1, dir,
+                                                   [T](const Model&, const State&) { return T; }));
+    State s = MakeRestState(m);
+    Data d = MakeData(m);
+    try {
+      CalcAccelerations(m, s, d);
+      FAIL();
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(tension < 0 ? "can only pull" : "along the drum's axis"));
+    }
+  }
+}
+
 // A joint torque: +tau a on the child, -tau a on the parent (no net moment on the pair), a
 // turning with the parent; power tau a·(w_child - w_parent).
 TEST(Forces, JointTorqueIsEqualAndOppositeAcrossTheJoint) {
