@@ -22,7 +22,21 @@ double RowTimes(const Model& model, const Data& data, int c, const Eigen::Vector
   const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
   double v = e.J_child.row(0).dot(x.segment<6>(6 * con.child()));
   if (con.parent() != kWorld) v += e.J_parent.row(0).dot(x.segment<6>(6 * con.parent()));
+  // Rows on further bodies (a pulley carried by a body neither end is on).
+  for (int k = 0; k < e.num_extra; ++k) {
+    const auto j = static_cast<size_t>(k);
+    v += e.J_extra[j].row(0).dot(x.segment<6>(6 * e.extra_body[j]));
+  }
   return v;
+}
+
+// Σ |J_row 0| over every body the constraint's row acts on (a scale for round-off tests).
+double RowSize(const ConstraintEval& e) {
+  double s = e.J_child.row(0).cwiseAbs().sum() + e.J_parent.row(0).cwiseAbs().sum();
+  for (int k = 0; k < e.num_extra; ++k) {
+    s += e.J_extra[static_cast<size_t>(k)].row(0).cwiseAbs().sum();
+  }
+  return s;
 }
 
 void SetMode(State& state, int c, ConstraintMode m) {
@@ -88,9 +102,7 @@ std::vector<ConstraintModeChange> SelectConstraintModes(const Model& model, Stat
         // g̈ = J u̇ - c (c = -J̇ u, the row's acceleration right-hand side).
         const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
         const double g_dd = RowTimes(model, data, c, u_dot) - e.acceleration_rhs[0];
-        const double scale = std::abs(e.acceleration_rhs[0]) +
-                             e.J_child.row(0).cwiseAbs().sum() * u_dot.norm() +
-                             e.J_parent.row(0).cwiseAbs().sum() * u_dot.norm();
+        const double scale = std::abs(e.acceleration_rhs[0]) + RowSize(e) * u_dot.norm();
         if (g_dd < -tol.relative * scale) flip = c;
       } else {
         const double lambda = data.constraints[static_cast<size_t>(c)].lambda[0];

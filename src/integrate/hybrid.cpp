@@ -86,6 +86,10 @@ double GapRate(const Model& model, const State& s, const Data& data, const Conta
   };
   double v = row(con.child(), e.J_child);
   if (con.parent() != kWorld) v += row(con.parent(), e.J_parent);
+  for (int k = 0; k < e.num_extra; ++k) {  // a pulley carried by a third body
+    const auto j = static_cast<size_t>(k);
+    v += row(e.extra_body[j], e.J_extra[j]);
+  }
   return v;
 }
 

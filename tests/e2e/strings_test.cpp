@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -153,6 +154,45 @@ TEST(Strings, BlockThrownUpOnAStringRebounds) {
     v *= e;
   }
   EXPECT_TRUE(Near(j.at("ledger").at("dissipated").get<double>(), lost, kRun));
+}
+
+// examples/movable-pulley.yaml with the block m2 (carrying the pulley) thrown up at v0 and m1 at
+// rest: the length L = 2 (y_f - y2) + (y_f - y1) + arcs changes at -2 v2 - v1 = -2 v0, so the
+// string is slack at once and both fall freely; the slack g = 2 (y2 - y20) + (y1 - y10) =
+// 2 v0 t - (3/2) g t² closes again at t* = 4 v0 / (3 g), at the rate 2 v0. The plastic snap
+// is an impulse P (tension) with m2 Δv2 = 2 P, m1 Δv1 = P and 2 Δv2 + Δv1 = 2 v0:
+// P = 2 v0 / (4/m2 + 1/m1), taking ½ (2 v0)² / (4/m2 + 1/m1). Then taut: a2 = g/8.
+TEST(Strings, MovablePulleyThrownUpGoesSlackAndSnapsTaut) {
+  const double m1 = 1.5, m2 = 2, g = 9.81, v0 = 1.0;
+  std::ifstream in(SourcePath("examples/movable-pulley.yaml"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const std::string from = "initial: {position: [0, -1.5 m]}";
+  const size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, from.size(), "initial: {position: [0, -1.5 m], velocity: [0, 1 m/s]}");
+  const auto path = OutDir("strings") / "movable-pulley-thrown-up.yaml";
+  std::ofstream(path) << text;
+  const auto j = Simulate(path.string());
+  const double t_star = 4 * v0 / (3 * g), k = 4 / m2 + 1 / m1;
+  const auto& ev = j.at("string_events");
+  ASSERT_EQ(ev.size(), 2u) << ev.dump();
+  EXPECT_EQ(ev[0].at("reason"), "initial");
+  EXPECT_EQ(ev[0].at("to"), "slack");
+  EXPECT_EQ(ev[1].at("reason"), "snapped taut");
+  EXPECT_EQ(ev[1].at("to"), "taut");
+  EXPECT_TRUE(Near(ev[1].at("t").get<double>(), t_star, kRun));
+  EXPECT_TRUE(Near(ev[1].at("approach_speed").get<double>(), 2 * v0, kRun));
+  EXPECT_TRUE(Near(ev[1].at("impulse").get<double>(), 2 * v0 / k, kRun));
+  EXPECT_TRUE(Near(ev[1].at("energy_lost").get<double>(), 0.5 * 4 * v0 * v0 / k, kRun));
+  // After the snap (t = 0.5 s): v2 = v0 - g t* + 2P/m2 + (g/8)(t - t*), v1 from a1 = -2 a2.
+  const double P = 2 * v0 / k, t = 0.5;
+  const double v2 = v0 - g * t_star + 2 * P / m2 + g / 8 * (t - t_star);
+  const double v1 = -g * t_star + P / m1 - g / 4 * (t - t_star);
+  const auto& fin = j.at("final").at("bodies");
+  EXPECT_NEAR(Named(fin, "m2").at("velocity")[1].get<double>(), v2, kRun * v0);
+  EXPECT_NEAR(Named(fin, "m1").at("velocity")[1].get<double>(), v1, kRun * v0);
 }
 
 // `chasles solve` chooses taut or slack: a particle on a string at φ = 120° from the bottom
