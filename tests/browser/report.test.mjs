@@ -229,6 +229,26 @@ test('mass report: two rods (Example 8.2) with the central inertia of the closed
   assert.ok(Math.abs(data.moments.reduce((s, x) => s + x, 0) - trace) <= 1e-12 * trace);
   assert.deepEqual(await page.evaluate(() => window.chasles.plots()), []);
   await checkNotBlank(page);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('mass report: a mesh part (the L-bracket OBJ) drawn from its file, in metres', async () => {
+  const html = join(work, 'bracket.html');
+  chaslesRun(['mass', example('mesh-bracket-assembly.yaml'), '--html', html]);
+  const { page, problems } = await openReport(html);
+  // The OBJ's own vertices and triangles ("v" and "f" lines), scaled from mm to m.
+  const obj = readFileSync(example('meshes/l-bracket.obj'), 'utf8').split('\n');
+  const v = obj.filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1, 4).map(Number));
+  const f = obj.filter((l) => l.startsWith('f ')).map((l) => l.split(/\s+/).slice(1, 4).map((x) => Number(x.split('/')[0]) - 1));
+  const mesh = await page.evaluate(() => {
+    const p = window.chasles.data.bodies[0].parts.find((x) => x.mesh);
+    return { positions: Array.from(p.mesh.positions), indices: Array.from(p.mesh.indices) };
+  });
+  assert.equal(mesh.positions.length, 3 * v.length);
+  assert.deepEqual(mesh.indices, f.flat());
+  v.flat().forEach((x, k) => assert.ok(Math.abs(mesh.positions[k] - x * 1e-3) <= 1e-7 * Math.max(1e-3, Math.abs(x * 1e-3))));
+  await checkNotBlank(page);
   await screenshot(page, 'report-mass.png');
   assert.deepEqual(problems, []);
   await page.close();
