@@ -25,6 +25,9 @@ packages=(
   python3-matplotlib   # the plot of docs/python.md
   python3-pip          # pip install . of the module
   python3-venv         # a virtual environment to install it into
+  nodejs               # the browser report: bundles report/ with esbuild; runs tests/browser
+  npm                  # installs report/'s packages (three, uplot, esbuild, puppeteer-core)
+  chromium             # headless browser of the report's tests (tests/browser)
 )
 
 missing=()
@@ -32,13 +35,37 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 
-if [ ${#missing[@]} -eq 0 ]; then
-  echo "setup: all ${#packages[@]} packages present"
-  exit 0
+# A node installed from elsewhere (e.g. nodesource's nodejs, which carries its own npm) counts
+# as present: Debian's npm would conflict with it.
+if command -v node >/dev/null && command -v npm >/dev/null; then
+  kept=()
+  for p in "${missing[@]}"; do
+    [ "$p" = nodejs ] || [ "$p" = npm ] || kept+=("$p")
+  done
+  missing=("${kept[@]+"${kept[@]}"}")
 fi
 
-SUDO=""
-[ "$(id -u)" -eq 0 ] || SUDO="sudo"
-echo "setup: installing ${missing[*]}"
-$SUDO apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+else
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  echo "setup: installing ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# The browser report's packages, exactly as report/package-lock.json pins them, from the npm
+# registry (puppeteer-core drives Debian's chromium and downloads no browser). Skipped when
+# node_modules was installed after the lock file last changed.
+report="$(cd "$(dirname "$0")/.." && pwd)/report"
+if [ -f "$report/package-lock.json" ]; then
+  # npm writes node_modules/.package-lock.json at every install: newer than the lock file
+  # means the install matches it.
+  if [ "$report/node_modules/.package-lock.json" -nt "$report/package-lock.json" ]; then
+    echo "setup: report/node_modules up to date"
+  else
+    echo "setup: npm ci in report/"
+    (cd "$report" && PUPPETEER_SKIP_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
+  fi
+fi

@@ -29,6 +29,7 @@ struct MassArgs {
   std::string frame;               // orientation of a report frame in the body
   std::string output;              // file, or "" for standard output
   bool hide_parts = false;
+  std::string html;  // --html: also write the browser report here
   // A mesh file given instead of a scene (chasles mass part.stl --unit mm --density 7850):
   // these say what the scene's mesh part would.
   std::string mesh_unit, mesh_mode, mesh_density, mesh_material, mesh_mass, mesh_areal_density,
@@ -59,6 +60,7 @@ struct SimulateArgs {
   double min_step = std::numeric_limits<double>::quiet_NaN();  // [s]
   bool quiet = false;                                          // no progress on stderr
   double progress_interval = 10.0;  // [s] between progress lines off a terminal
+  std::string html;                 // --html: also write the browser report here
 };
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args);
 int RunSimulate(const SimulateArgs& args);
@@ -71,9 +73,21 @@ struct SolveArgs {
   std::int64_t max_rows = 0;        // most sweep values; 0: the default limit
   bool quiet = false;               // no progress on stderr
   double progress_interval = 10.0;  // [s] between progress lines off a terminal
+  std::string html;                 // --html: also write the browser report here (one solve)
 };
 CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args);
 int RunSolve(const SolveArgs& args);
+
+/// `chasles report RUN.json -o report.html`: the browser report of a finished simulate run,
+/// from its JSON summary, the CSV it names and the scene it names.
+struct ReportArgs {
+  std::string run_json;
+  std::string output;
+  std::vector<std::string> set;                    // the run's --set overrides, if any
+  size_t max_scene_bytes = kDefaultMaxSceneBytes;  // --max-scene-bytes
+};
+CLI::App* AddReportCommand(CLI::App& app, ReportArgs& args);
+int RunReport(const ReportArgs& args);
 
 CLI::App* AddMaterialsCommand(CLI::App& app);
 int RunMaterials();

@@ -6,13 +6,16 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "chasles/io/atomic_file.h"
 #include "chasles/io/json_report.h"
 #include "chasles/scene/mass_report.h"
 #include "chasles/scene/mesh_file.h"
+#include "chasles/scene/report_data.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/units.h"
 #include "commands.h"
+#include "html_report.h"
 #include "scene_args.h"
 
 namespace chasles::cli {
@@ -246,6 +249,9 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
   cmd->add_option("-o,--output", args.output,
                   "Write the report to this file instead of the terminal");
   cmd->add_flag("--no-parts", args.hide_parts, "Leave out the table of parts");
+  cmd->add_option("--html", args.html,
+                  "Also write the browser report here: the bodies drawn with their principal "
+                  "axes and inertia ellipsoids (one HTML file)");
   // A help heading (Option::group), not an Option_group: CLI11 2.1's option groups are
   // subcommands inside, and `mass a "" --x` (an empty extra argument, then an unknown option)
   // sent its parser round them forever (found by the command-line fuzz target).
@@ -340,6 +346,10 @@ int RunMass(const MassArgs& args) {
   const std::string report = args.format == "json" ? DumpJson(j, "the mass report")
                                                    : (CheckFiniteJson(j, "the mass report"),
                                                       TextReport(scene, P, args, extra, frame));
+  if (!args.html.empty()) {
+    RequireHtmlReport("--html");
+    WriteFileAtomically(args.html, HtmlReport(MassReportData(scene)));
+  }
   Emit(args.output, report);
   return 0;
 }

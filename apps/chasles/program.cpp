@@ -30,6 +30,7 @@ std::unique_ptr<Program> MakeProgram() {
       "  chasles check my-scene.yaml\n"
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
       "  chasles solve examples/example-8.3-cylinder-incline.yaml\n"
+      "  chasles simulate examples/dzhanibekov.yaml --html dzhanibekov.html\n"
       "Scene format: docs/scene-format.md. Exit codes: 0 ok, 2 bad input, 3 a failed check "
       "with --strict (simulate, solve), 1 internal error.");
   p->mass = AddMassCommand(app, p->mass_args);
@@ -37,6 +38,7 @@ std::unique_ptr<Program> MakeProgram() {
   p->simulate = AddSimulateCommand(app, p->simulate_args);
   p->solve = AddSolveCommand(app, p->solve_args);
   p->materials = AddMaterialsCommand(app);
+  p->report = AddReportCommand(app, p->report_args);
   return p;
 }
 
@@ -47,6 +49,7 @@ int RunParsed(Program& p) {
     if (p.simulate->parsed()) return RunSimulate(p.simulate_args);
     if (p.solve->parsed()) return RunSolve(p.solve_args);
     if (p.materials->parsed()) return RunMaterials();
+    if (p.report->parsed()) return RunReport(p.report_args);
     std::fprintf(stderr,
                  "chasles: no command given, so here is the built-in demonstration scene "
                  "(chasles --help lists the commands).\n\n");

@@ -25,11 +25,13 @@ struct Program {
   CheckArgs check_args;
   SimulateArgs simulate_args;
   SolveArgs solve_args;
+  ReportArgs report_args;
   CLI::App* mass = nullptr;
   CLI::App* check = nullptr;
   CLI::App* simulate = nullptr;
   CLI::App* solve = nullptr;
   CLI::App* materials = nullptr;
+  CLI::App* report = nullptr;
 };
 
 /// A fresh parser (CLI11 apps are not reusable across parses).

@@ -12,10 +12,12 @@
 #include "chasles/io/output_set.h"
 #include "chasles/io/simulation_report.h"
 #include "chasles/math/quaternion.h"
+#include "chasles/scene/report_data.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
 #include "chasles/scene/units.h"
 #include "commands.h"
+#include "html_report.h"
 #include "progress.h"
 #include "run_limits.h"
 #include "scene_args.h"
@@ -436,10 +438,15 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
   cmd->add_option("--units", args.units,
                   "Units of the text report: SI, US (in, lb, lbf), or a list such as 'ft,slug' "
                   "(default: the scene's own units; the CSV and JSON are always SI)");
+  cmd->add_option("--html", args.html,
+                  "Also write the browser report (a 3-D replay with plots, one HTML file) here; "
+                  "the CSV then also holds the columns the report needs (poses, ledger, "
+                  "reactions, contacts)");
   AddRunLimitOptions(*cmd, args);
   cmd->footer(
       "Examples:\n"
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
+      "  chasles simulate examples/dzhanibekov.yaml --html dzhanibekov.html\n"
       "  chasles simulate examples/projectile-drag.yaml --set 'c=0.2 N*s/m' --format json\n"
       "  chasles simulate examples/spring-mass.yaml --until 20\n"
       "Progress goes to standard error: redrawn on a terminal after the first second, one "
@@ -466,6 +473,13 @@ int RunSimulate(const SimulateArgs& args) {
     options.until = args.until;
   }
   ApplyRunLimitOptions(args, options);
+  if (!args.html.empty()) {
+    // The replay needs every body's pose at every sample, the plots the ledger, reaction and
+    // contact columns, and the arrows the forces at every sample.
+    RequireHtmlReport("--html");
+    scene.dynamics.columns = ReportColumns(scene, scene.dynamics.columns);
+    options.record_row_snapshots = true;
+  }
   const double t_end =
       std::isfinite(options.until) ? options.until : scene.dynamics.simulation.until;
   StudyResult r;
@@ -487,11 +501,15 @@ int RunSimulate(const SimulateArgs& args) {
       SimulationJson(r, ReportHeader{scene.file, scene.title, scene.planar, scene.warnings},
                      csv_path),
       "the JSON summary");
-  const std::string report =
+  std::string report =
       args.format == "json" ? json_text : Text(scene, r, units, csv_path, json_path);
   OutputSet files;
   files.Add(csv_path, csv_text);
   files.Add(json_path, json_text);
+  if (!args.html.empty()) {
+    files.Add(args.html, HtmlReport(SimulationReportData(scene, r)));
+    if (args.format != "json") report += fmt::format("Wrote {} (the browser report)\n", args.html);
+  }
   files.Commit();
   Emit("", report);
   return args.strict && !r.certificate.passed() ? kExitCheckFailed : 0;

@@ -18,14 +18,17 @@
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/error.h"
+#include "chasles/io/atomic_file.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/solve_json.h"
 #include "chasles/model/model.h"
+#include "chasles/scene/report_data.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/solve.h"
 #include "chasles/scene/study.h"
 #include "commands.h"
+#include "html_report.h"
 #include "progress.h"
 #include "scene_args.h"
 
@@ -251,6 +254,9 @@ CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args) {
       "every joint's reaction, the friction rolling needs, each contact point's mode, normal "
       "and friction force (chapter 8.2-8.3)");
   AddSceneArgs(*cmd, args.scene);
+  cmd->add_option("--html", args.html,
+                  "Also write the browser report here: the configuration with the force arrows "
+                  "of the solved instant (one HTML file; not with --sweep)");
   cmd->add_option("--sweep", args.sweep,
                   "Repeat over a parameter range: NAME=START:STOP:COUNT (START and STOP are "
                   "expressions with units, e.g. 'theta=0 deg:60 deg:7'); prints a table");
@@ -287,9 +293,16 @@ int RunSolve(const SolveArgs& args) {
     const SolveReport s = SolveScene(scene);
     // Every value of either report is in the JSON form: checked there first, by name.
     const nlohmann::json j = SolveJson(s);
+    if (!args.html.empty()) {
+      RequireHtmlReport("--html");
+      WriteFileAtomically(args.html, HtmlReport(SolveReportData(scene, s)));
+    }
     Emit("", args.format == "json" ? DumpJson(j, "the solve report")
                                    : (CheckFiniteJson(j, "the solve report"), Text(scene, s)));
     return args.strict && !s.certificate.passed() ? kExitCheckFailed : 0;
+  }
+  if (!args.html.empty()) {
+    throw InputError("--html draws one solved instant; it does not go with --sweep");
   }
   const SweepSpec sweep = ParseSweep(args.sweep, "command line", "--sweep");
   const std::int64_t max_rows = args.max_rows > 0 ? args.max_rows : kDefaultMaxRows;

@@ -86,6 +86,8 @@ class StudyRun {
                         const std::vector<EventSpec>& events);
   void ApplyJump(const Jump& j);
   void Finish();
+  /// Appends the output row of `s` (and its snapshot when the definition asks for them).
+  void AddRow(const Model& model, const State& s);
 
   const StudyDefinition& def_;
   ThetaTracker theta_;
@@ -165,7 +167,7 @@ void StudyRun::Start() {
   }
   carry_.segment_initial = as_given;
   energy_initial_ = CalcMechanicalEnergy(model, as_given);
-  result_.rows.push_back(rows_.Row(model, seg_.map, state_, carry_));
+  AddRow(model, state_);
   Certify(state_, CheckPhase::kSample);
   slip_.Sample(model, state_);
 }
@@ -263,7 +265,7 @@ void StudyRun::RunTo(double t_b) {
                                      def_.limits.max_rows, s.t));
       }
       CheckFinite(*seg_.model, s);
-      result_.rows.push_back(rows_.Row(*seg_.model, seg_.map, s, carry_));
+      AddRow(*seg_.model, s);
       Certify(s, CheckPhase::kSample);
       slip_.Sample(*seg_.model, s);
       if (def_.progress) def_.progress(s.t);
@@ -387,8 +389,17 @@ void StudyRun::ApplyJump(const Jump& j) {
   carry_.scale = std::max({carry_.scale, std::abs(rec.energy_before), std::abs(rec.energy_after)});
   carry_.segment_initial = state_;
   result_.jumps.push_back(rec);
-  result_.rows.push_back(rows_.Row(*seg_.model, seg_.map, state_, carry_));
+  AddRow(*seg_.model, state_);
   Certify(state_, CheckPhase::kSample);
+}
+
+void StudyRun::AddRow(const Model& model, const State& s) {
+  result_.rows.push_back(rows_.Row(model, seg_.map, s, carry_));
+  if (!def_.record_row_snapshots) return;
+  StudySnapshot snap =
+      study_internal::MakeSnapshot(model, s, def_.num_reported_constraints, labels_, theta_, false);
+  snap.bodies.clear();
+  result_.row_snapshots.push_back(std::move(snap));
 }
 
 void StudyRun::Finish() {

@@ -451,6 +451,8 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
     }
     part.subtractive = subtract;
   }
+  part.geometry.p_BoPo_B = p_BoPo_B;
+  part.geometry.R_BP = R_BP;
   part.mass_properties = local.ExpressedInParent(R_BP, p_BoPo_B);
   if (part.subtractive) part.mass_properties = part.mass_properties.Negated();
   return part;
@@ -561,6 +563,7 @@ MassProperties SceneReader::ReadTableShapePart(const At& at, const At& shape_at,
     if (at.Has("position")) p_BoPo_B = BodyVector(at.Child("position"), kLength, "a position");
     R_BP = ReadOrientation(at);
   }
+  for (const auto& [key, values] : dims.values) part.geometry.dimensions.emplace_back(key, values);
   std::unique_ptr<Shape> geometry;
   try {
     geometry = shape->make(dims);

@@ -109,6 +109,8 @@ MassProperties SceneReader::ReadMeshPart(const At& at, const At& body_at, const 
     report_.Fail(file_at, e.what());
   }
   part.notes = MeshNotes(result.report);
+  part.geometry.mesh_file = path.string();
+  part.geometry.mesh_scale = options.scale;
   // A shell is a sheet: no volume, its area; a solid: the divergence-theorem volume and the
   // sum of the triangles' areas.
   part.volume = shell ? 0.0 : result.report.volume;

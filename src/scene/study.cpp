@@ -976,6 +976,7 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
   }
   def.certificate = CertificateTolerancesFor(scene);
   def.progress = options.progress;
+  def.record_row_snapshots = options.record_row_snapshots;
   const Model first = BuildModel(scene, def.bodies, IdentityMap(scene));
   // On the constraints, or an error, or projected with each change a warning.
   def.initial =

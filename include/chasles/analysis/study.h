@@ -173,6 +173,9 @@ struct StudyDefinition {
   /// Warnings about the initial state (e.g. values projected onto the constraints), passed
   /// on into the result.
   std::vector<std::string> warnings;
+  /// Also record the reactions and contact points at every output row
+  /// (StudyResult::row_snapshots; the browser report draws their forces).
+  bool record_row_snapshots = false;
 };
 
 /// An impulse or impact applied during the run.
@@ -244,6 +247,9 @@ struct StudyImpact {
 struct StudyContactPoint {
   std::string point;
   std::string mode;
+  /// The contact point on the body and the contact normal (towards the body), in W [m].
+  Vec3 p_WC = Vec3::Zero();
+  Vec3 n_W = Vec3::UnitZ();
   /// Normal force [N], friction force in W [N], slip velocity in W [m/s], gap [m].
   double normal_force = 0.0;
   Vec3 friction_force_W = Vec3::Zero();
@@ -368,6 +374,9 @@ struct StudyResult {
   std::vector<std::string> warnings;
   /// The run's checks of its own answer at every sample and event (analysis/certificate.h).
   Certificate certificate;
+  /// With StudyDefinition::record_row_snapshots: the reactions and contact points at each row
+  /// of `rows` (same order and count; bodies left empty: the rows hold the poses).
+  std::vector<StudySnapshot> row_snapshots;
 };
 
 /// Runs a study. Throws InputError for bad settings, and for a force, reaction, acceleration

@@ -5,6 +5,7 @@
 /// The format is documented key by key in docs/scene-format.md.
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -16,6 +17,21 @@
 #include "chasles/scene/units.h"
 
 namespace chasles {
+
+/// What a drawing of a part needs (the browser report, docs/report.md): the shape's dimensions
+/// and the part's own frame P in the body frame B.
+struct ScenePartGeometry {
+  /// The shape's dimensions [m] by key, as the scene file names them ("radius", "length",
+  /// "size": three values, "vertices": six); empty for point, custom, planar and mesh parts.
+  std::vector<std::pair<std::string, std::vector<double>>> dimensions;
+  /// Origin of P from Bo and the orientation of P in B (the part's position and axis).
+  Vec3 p_BoPo_B = Vec3::Zero();
+  Mat3 R_BP = Mat3::Identity();
+  /// A mesh part: the file (resolved against the scene's folder) and the length of one file
+  /// unit [m].
+  std::string mesh_file;
+  double mesh_scale = std::numeric_limits<double>::quiet_NaN();
+};
 
 /// One part of a body, as the scene file states it.
 struct ScenePart {
@@ -40,6 +56,8 @@ struct ScenePart {
   std::vector<std::string> notes;
   /// Line of the part in the scene file (1-based).
   int line = 0;
+  /// Its shape and place, for drawings.
+  ScenePartGeometry geometry;
 };
 
 /// A named point of a body at which the report also gives the inertia.

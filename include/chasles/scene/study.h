@@ -54,6 +54,8 @@ struct StudyOptions {
   std::int64_t max_rows = 0;
   double timeout = std::numeric_limits<double>::quiet_NaN();
   double min_step = std::numeric_limits<double>::quiet_NaN();
+  /// Record the reactions and contact points at every output row (the browser report).
+  bool record_row_snapshots = false;
 };
 
 /// The scene's study for the library's RunStudy: bodies, a ModelBuilder and an EventBuilder

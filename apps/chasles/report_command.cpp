@@ -1,0 +1,203 @@
+// chasles report RUN.json -o report.html: the browser report of a finished `simulate` run,
+// rebuilt from its JSON summary (events, contact-mode changes, impacts, jumps), the CSV it
+// names (every sample) and the scene it names (the bodies' parts). The force arrows need the
+// forces at every sample, which only a run made with --html records: this report has the
+// replay, the plots and the events, without arrows.
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "chasles/error.h"
+#include "chasles/io/atomic_file.h"
+#include "chasles/scene/report_data.h"
+#include "chasles/scene/scene.h"
+#include "commands.h"
+#include "html_report.h"
+#include "scene_args.h"
+
+namespace chasles::cli {
+
+namespace {
+
+std::string ReadText(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// `path` as written in the run's JSON: as it is when it exists (relative to the current
+/// folder, as the run wrote it), else beside the JSON file.
+std::string Resolve(const std::string& path, const std::string& json_path) {
+  if (path.empty() || std::filesystem::exists(path)) return path;
+  const std::filesystem::path beside =
+      std::filesystem::path(json_path).parent_path() / std::filesystem::path(path).filename();
+  return std::filesystem::exists(beside) ? beside.string() : path;
+}
+
+/// The fields of one CSV line (quoted fields with doubled quotes, as SimulationCsv writes).
+std::vector<std::string> CsvFields(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        out.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        out.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.emplace_back();
+    } else if (c != '\r') {
+      out.back() += c;
+    }
+  }
+  return out;
+}
+
+/// The run's table from its CSV: column names and rows. Errors name the file, line and column.
+void ReadCsv(const std::string& path, StudyResult& r) {
+  std::istringstream in(ReadText(path, "the run's CSV"));
+  std::string line;
+  if (!std::getline(in, line)) throw InputError(fmt::format("{}: empty CSV", path));
+  r.columns = CsvFields(line);
+  int number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line == "\r") continue;
+    const std::vector<std::string> f = CsvFields(line);
+    if (f.size() != r.columns.size()) {
+      throw InputError(fmt::format("{}:{}: expected {} values (one per column), got {}", path,
+                                   number, r.columns.size(), f.size()));
+    }
+    std::vector<double> row;
+    row.reserve(f.size());
+    for (size_t c = 0; c < f.size(); ++c) {
+      errno = 0;
+      char* end = nullptr;
+      const double v = std::strtod(f[c].c_str(), &end);
+      if (f[c].empty() || *end != '\0' || errno == ERANGE) {
+        throw InputError(fmt::format("{}:{}: column '{}': expected a number, got '{}'", path,
+                                     number, r.columns[c], f[c]));
+      }
+      row.push_back(v);
+    }
+    r.rows.push_back(std::move(row));
+  }
+}
+
+template <typename T>
+T Get(const nlohmann::json& j, const char* key, const std::string& where) {
+  if (!j.contains(key)) {
+    throw InputError(
+        fmt::format("{}: key '{}' missing (expected a chasles simulate JSON)", where, key));
+  }
+  try {
+    return j.at(key).get<T>();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: key '{}': {}", where, key, e.what()));
+  }
+}
+
+}  // namespace
+
+CLI::App* AddReportCommand(CLI::App& app, ReportArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "report",
+      "Write the browser report (3-D replay and plots, one HTML file) of a finished simulate "
+      "run, from its JSON summary, the CSV and the scene it names");
+  cmd->add_option("RUN", args.run_json, "The run's JSON summary (chasles simulate --out DIR)")
+      ->required();
+  cmd->add_option("-o,--output", args.output, "The HTML file to write")->required();
+  cmd->add_option("--set", args.set,
+                  "NAME=EXPRESSION: the scene parameters the run was given with --set "
+                  "(repeatable)");
+  cmd->add_option("--max-scene-bytes", args.max_scene_bytes, "Largest scene file read (bytes)");
+  cmd->footer(
+      "Example:\n"
+      "  chasles simulate examples/dzhanibekov.yaml --out results\n"
+      "  chasles report results/dzhanibekov.json -o dzhanibekov.html\n"
+      "The CSV must hold every body's origin and quaternion columns (the default columns of a "
+      "3-D scene hold the quaternion; add the output group origin, or run simulate with "
+      "--html, which writes the report with force arrows directly). docs/report.md.\n"
+      "Exit codes: 0 success, 2 bad input, 1 internal error.");
+  return cmd;
+}
+
+int RunReport(const ReportArgs& args) {
+  RequireHtmlReport("chasles report");
+  const std::string text = ReadText(args.run_json, "the run's JSON summary");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(fmt::format("{}: not JSON: {}", args.run_json, e.what()));
+  }
+  if (!j.is_object()) {
+    throw InputError(
+        fmt::format("{}: expected a JSON object (a chasles simulate summary)", args.run_json));
+  }
+  SceneArgs scene_args;
+  scene_args.scene = Resolve(Get<std::string>(j, "scene", args.run_json), args.run_json);
+  scene_args.set = args.set;
+  scene_args.max_scene_bytes = args.max_scene_bytes;
+  if (scene_args.scene.empty()) {
+    throw InputError(fmt::format("{}: the run names no scene file", args.run_json));
+  }
+  const Scene scene = LoadScene(scene_args);
+
+  StudyResult r;
+  ReadCsv(Resolve(Get<std::string>(j, "csv", args.run_json), args.run_json), r);
+  for (const auto& e : Get<nlohmann::json>(j, "events", args.run_json)) {
+    StudyEvent ev;
+    ev.name = Get<std::string>(e, "name", args.run_json + ": events");
+    ev.t = Get<double>(e, "t", args.run_json + ": events");
+    ev.stopped = e.value("stopped", false);
+    r.events.push_back(ev);
+  }
+  for (const auto& e : j.value("contact_events", nlohmann::json::array())) {
+    const std::string where = args.run_json + ": contact_events";
+    r.contact_events.push_back(
+        {Get<double>(e, "t", where), Get<std::string>(e, "point", where),
+         Get<std::string>(e, "contact", where), Get<std::string>(e, "from", where),
+         Get<std::string>(e, "to", where), Get<std::string>(e, "reason", where)});
+  }
+  for (const auto& e : j.value("impacts", nlohmann::json::array())) {
+    const std::string where = args.run_json + ": impacts";
+    StudyImpact x;
+    x.t = Get<double>(e, "t", where);
+    x.point = Get<std::string>(e, "point", where);
+    x.energy_lost = Get<double>(e, "energy_lost", where);
+    r.impacts.push_back(x);
+  }
+  for (const auto& e : j.value("jumps", nlohmann::json::array())) {
+    const std::string where = args.run_json + ": jumps";
+    StudyJump x;
+    x.t = Get<double>(e, "t", where);
+    x.kind = Get<std::string>(e, "kind", where);
+    x.description = Get<std::string>(e, "description", where);
+    r.jumps.push_back(x);
+  }
+  WriteFileAtomically(args.output, HtmlReport(SimulationReportData(scene, r)));
+  std::printf("Wrote %s (the browser report of %s, %zu samples)\n", args.output.c_str(),
+              args.run_json.c_str(), r.rows.size());
+  return 0;
+}
+
+}  // namespace chasles::cli

@@ -1,0 +1,49 @@
+#pragma once
+/// @file
+/// The data of the browser report (docs/report.md): one JSON object that the page embeds and
+/// draws. It holds the scene's bodies as drawable parts in their body frames, and for a run
+/// its samples (every output column), the events, contact-mode changes and impacts, and the
+/// reactions and contact forces at each sample; for a solve the forces of the solved instant.
+/// Long arrays are base64 text of little-endian numbers ("f8": 64-bit, exact; "f4": 32-bit,
+/// for drawing and plotting only), so a 10,000-sample, 10-body run stays a few megabytes.
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "chasles/analysis/solve_report.h"
+#include "chasles/analysis/study.h"
+#include "chasles/scene/scene.h"
+
+namespace chasles {
+
+/// The output columns a report needs besides `columns` (a run's own): per body the frame
+/// origin and the quaternion (the replay's poses), and the ledger, reaction and contact
+/// columns (the plots). `columns` first, in order; missing ones appended.
+std::vector<std::string> ReportColumns(const Scene& scene, const std::vector<std::string>& columns);
+
+/// The scene part of every report: kind, title, scene file, planar flag, units, and per body
+/// its parts as primitives or meshes (in B), centre of mass, inertia about it, principal
+/// moments and axes, named points. Mesh files are read again (their vertices, scaled to m).
+nlohmann::json ReportSceneJson(const Scene& scene, const std::string& kind);
+
+/// The report of a run: ReportSceneJson plus "time" (f8), "columns" (name, unit, group, data:
+/// f8 for t and the pose columns, f4 otherwise), "events", "contact_events", "impacts",
+/// "jumps", "ledger_columns" and, when the result has row snapshots, "reactions" (per
+/// constraint: point and force in W at each row, f4) and "contacts" (per point: position,
+/// normal force N n and friction force in W at each row, f4, and the mode of each row). The
+/// result's columns must hold the pose columns (ReportColumns); throws InputError otherwise.
+nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& result);
+
+/// The mass report: ReportSceneJson(scene, "mass").
+nlohmann::json MassReportData(const Scene& scene);
+
+/// The report of one solve: ReportSceneJson plus the instant's body poses (the scene's initial
+/// state), reactions and contact points with their forces, in W.
+nlohmann::json SolveReportData(const Scene& scene, const SolveReport& report);
+
+/// `bytes` as base64 (RFC 4648, with padding).
+std::string Base64(const void* bytes, size_t size);
+
+}  // namespace chasles

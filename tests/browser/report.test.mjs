@@ -1,0 +1,317 @@
+// The browser report in a real browser: headless Chromium (Debian's /usr/bin/chromium, driven
+// by puppeteer-core) opens reports the program wrote, from file:// URLs with every network
+// request refused, and the page is checked against the run's own CSV and JSON and against
+// closed forms. Run by ctest through run.mjs (CHASLES_SOURCE, CHASLES set); set
+// CHASLES_SCREENSHOTS=DIR to also save the screenshots docs/report.md shows.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { createRequire } from 'node:module';
+import { mkdtempSync, readFileSync, rmSync, mkdirSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { pathToFileURL } from 'node:url';
+
+const source = process.env.CHASLES_SOURCE;
+const chasles = process.env.CHASLES;
+const chromium = process.env.CHASLES_CHROMIUM || '/usr/bin/chromium';
+const shots = process.env.CHASLES_SCREENSHOTS || '';
+const require = createRequire(join(source, 'report/package.json'));
+const puppeteer = require('puppeteer-core');
+
+const work = mkdtempSync(join(tmpdir(), 'chasles-browser-'));
+let browser;
+
+function chaslesRun(args) {
+  return execFileSync(chasles, args, { cwd: work, encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
+}
+
+function example(name) {
+  return join(source, 'examples', name);
+}
+
+/** The CSV as column names and numeric rows (the program writes plain numbers). */
+function readCsv(path) {
+  const lines = readFileSync(path, 'utf8').trim().split('\n');
+  const names = lines[0].split(',').map((s) => s.replace(/^"|"$/g, ''));
+  const rows = lines.slice(1).map((l) => l.split(',').map(Number));
+  return { names, rows, col: (n) => names.indexOf(n) };
+}
+
+/** A seeded generator (LCG), so the sampled rows are the same at every run. */
+function lcg(seed) {
+  let s = seed >>> 0;
+  return () => {
+    s = (1664525 * s + 1013904223) >>> 0;
+    return s / 2 ** 32;
+  };
+}
+
+/** Opens a report; any http(s) request, console error or page error fails the test. */
+async function openReport(file) {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 1280, height: 760 });
+  const problems = [];
+  await page.setRequestInterception(true);
+  page.on('request', (req) => {
+    const url = req.url();
+    if (url.startsWith('file:') || url.startsWith('data:') || url.startsWith('blob:')) {
+      req.continue();
+    } else {
+      problems.push(`network request: ${url}`);
+      req.abort();
+    }
+  });
+  page.on('console', (m) => {
+    if (m.type() === 'error') problems.push(`console error: ${m.text()}`);
+  });
+  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  await page.goto(pathToFileURL(file).href, { waitUntil: 'load' });
+  await page.waitForFunction('window.chasles && (window.chasles.ready || window.chasles.errors.length)', {
+    timeout: 20000,
+  });
+  const errors = await page.evaluate(() => window.chasles.errors);
+  assert.deepEqual(errors, [], 'the page reports errors');
+  assert.equal(await page.evaluate(() => window.chasles.ready), true);
+  return { page, problems };
+}
+
+/** The 3-D view is not blank: distinct colours and pixels other than the background. */
+async function checkNotBlank(page) {
+  const stats = await page.evaluate(() => {
+    const c = document.querySelector('#view canvas');
+    const w = c.width;
+    const h = c.height;
+    const g = document.createElement('canvas');
+    g.width = w;
+    g.height = h;
+    const ctx = g.getContext('2d');
+    ctx.drawImage(c, 0, 0);
+    const px = ctx.getImageData(0, 0, w, h).data;
+    const colours = new Set();
+    let other = 0;
+    for (let i = 0; i < px.length; i += 4) {
+      colours.add((px[i] << 16) | (px[i + 1] << 8) | px[i + 2]);
+      // Background: the clear colour (247, 247, 244).
+      if (Math.abs(px[i] - 247) + Math.abs(px[i + 1] - 247) + Math.abs(px[i + 2] - 244) > 12) other++;
+    }
+    return { colours: colours.size, fraction: other / (w * h) };
+  });
+  assert.ok(stats.colours > 50, `only ${stats.colours} colours in the 3-D view`);
+  assert.ok(stats.fraction > 0.01, `only ${(100 * stats.fraction).toFixed(2)}% of the view drawn`);
+}
+
+async function screenshot(page, name) {
+  if (!shots) return;
+  mkdirSync(shots, { recursive: true });
+  await page.screenshot({ path: join(shots, name), type: 'png' });
+}
+
+/** The times the page must mark: events, contact-mode changes (not the initial modes),
+ * impacts and jumps of the run's JSON summary. */
+function expectedMarks(json) {
+  const t = [];
+  for (const e of json.events || []) t.push(e.t);
+  for (const e of json.contact_events || []) if (e.reason !== 'initial') t.push(e.t);
+  for (const e of json.impacts || []) t.push(e.t);
+  for (const e of json.jumps || []) t.push(e.t);
+  return t.sort((a, b) => a - b);
+}
+
+/**
+ * A simulate report against its run: at seeded samples, seek(t) then bodyPose equals the CSV's
+ * origin and quaternion at that row to 1e-9; the ledger plot holds every energy and work
+ * column; every plot marks every event.
+ */
+async function checkSimulation(stem, scene, args = [], fromJson = false) {
+  const html = join(work, `${stem}.html`);
+  if (fromJson) {
+    // The run without --html, then `chasles report` from its JSON summary.
+    chaslesRun(['simulate', example(scene), '--out', work, '--quiet', ...args]);
+    chaslesRun(['report', join(work, `${stem}.json`), '-o', html]);
+  } else {
+    chaslesRun(['simulate', example(scene), '--out', work, '--html', html, '--quiet', ...args]);
+  }
+  const csv = readCsv(join(work, `${stem}.csv`));
+  const json = JSON.parse(readFileSync(join(work, `${stem}.json`), 'utf8'));
+  const { page, problems } = await openReport(html);
+  const bodies = await page.evaluate(() => window.chasles.data.bodies.map((b) => b.name));
+  const n = csv.rows.length;
+  const t = csv.col('t');
+  const random = lcg(20261124);
+  const picks = [0, n - 1, n >> 1];
+  for (let k = 0; k < 6; k++) picks.push(Math.floor(random() * n));
+  let compared = 0;
+  for (const i of picks) {
+    const ti = csv.rows[i][t];
+    // A row repeated at one time (the state after an impulse) is shown as the later one.
+    const unique = (i + 1 >= n || csv.rows[i + 1][t] !== ti) && (i === 0 || csv.rows[i - 1][t] !== ti);
+    if (!unique) continue;
+    await page.evaluate((x) => window.chasles.seek(x), ti);
+    for (const b of bodies) {
+      const pose = await page.evaluate((name) => window.chasles.bodyPose(name), b);
+      const want = ['ox', 'oy', 'oz', 'qw', 'qx', 'qy', 'qz'].map((s) => csv.rows[i][csv.col(`${b}_${s}`)]);
+      const got = [...pose.position, ...pose.quaternion];
+      for (let c = 0; c < 7; c++) {
+        assert.ok(
+          Math.abs(got[c] - want[c]) <= 1e-9 * Math.max(1, Math.abs(want[c])),
+          `${stem}: body ${b} at t = ${ti}: pose component ${c} is ${got[c]}, CSV ${want[c]}`,
+        );
+      }
+      compared++;
+    }
+  }
+  assert.ok(compared >= bodies.length * 3, `${stem}: only ${compared} poses compared`);
+
+  const plots = await page.evaluate(() => window.chasles.plots());
+  const ledger = plots.find((p) => p.title.startsWith('Energy ledger'));
+  assert.ok(ledger, `${stem}: no energy ledger plot`);
+  const ledgerColumns = csv.names.filter(
+    (c) => ['T', 'V', 'E', 'W_nc', 'dissipated', 'residual'].includes(c) || c.startsWith('W_'),
+  );
+  for (const c of ledgerColumns) assert.ok(ledger.series.includes(c), `${stem}: ledger plot lacks ${c}`);
+  for (const c of ['T', 'V', 'E', 'residual']) assert.ok(ledger.series.includes(c), `${stem}: no ${c}`);
+  const marks = expectedMarks(json);
+  for (const p of plots) {
+    assert.equal(p.eventMarks.length, marks.length, `${stem}: plot '${p.title}' marks`);
+    p.eventMarks.forEach((x, k) => assert.ok(Math.abs(x - marks[k]) <= 1e-12 * Math.max(1, Math.abs(marks[k]))));
+  }
+  await checkNotBlank(page);
+  assert.deepEqual(problems, []);
+  return { page, plots, csv, json };
+}
+
+before(async () => {
+  browser = await puppeteer.launch({
+    executablePath: chromium,
+    headless: true,
+    args: ['--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--disable-gpu-sandbox'],
+  });
+});
+
+after(async () => {
+  if (browser) await browser.close();
+  rmSync(work, { recursive: true, force: true });
+});
+
+test('mass report: two rods (Example 8.2) with the central inertia of the closed form', async () => {
+  const html = join(work, 'two-rods.html');
+  chaslesRun(['mass', example('example-8.2-two-rods.yaml'), '--html', html]);
+  const { page, problems } = await openReport(html);
+  // m = 1 kg, l = 1 m. Vertical rod 2m over [0, 2l] along z, horizontal rod m over [0, l]
+  // along y at height l. Centre of mass (2m (0,0,l) + m (0,l/2,l)) / 3m = (0, l/6, l). A rod
+  // of mass M, length L along u about its centre: M L²/12 (E − u uᵀ); moved by d from the
+  // centre of mass: + M (|d|² E − d dᵀ) (eq. 8.29).
+  const rod = (M, L, u, c, cm) => {
+    const d = c.map((x, k) => x - cm[k]);
+    const dd = d.reduce((s, x) => s + x * x, 0);
+    return [0, 1, 2].map((i) =>
+      [0, 1, 2].map((j) => ((M * L * L) / 12) * ((i === j) - u[i] * u[j]) + M * (dd * (i === j) - d[i] * d[j])),
+    );
+  };
+  const cm = [0, 1 / 6, 1];
+  const A = rod(2, 2, [0, 0, 1], [0, 0, 1], cm);
+  const B = rod(1, 1, [0, 1, 0], [0, 0.5, 1], cm);
+  const data = await page.evaluate(() => {
+    const b = window.chasles.data.bodies[0];
+    return { mass: b.mass, cm: b.center_of_mass, I: b.inertia, moments: b.principal_moments };
+  });
+  assert.ok(Math.abs(data.mass - 3) <= 1e-12);
+  cm.forEach((x, k) => assert.ok(Math.abs(data.cm[k] - x) <= 1e-12, `centre of mass ${k}`));
+  for (let i = 0; i < 3; i++) {
+    for (let j = 0; j < 3; j++) {
+      const want = A[i][j] + B[i][j];
+      assert.ok(Math.abs(data.I[i][j] - want) <= 1e-12, `I[${i}][${j}] = ${data.I[i][j]}, closed form ${want}`);
+    }
+  }
+  // The principal moments are the eigenvalues: their sum is the trace.
+  const trace = [0, 1, 2].reduce((s, k) => s + A[k][k] + B[k][k], 0);
+  assert.ok(Math.abs(data.moments.reduce((s, x) => s + x, 0) - trace) <= 1e-12 * trace);
+  assert.deepEqual(await page.evaluate(() => window.chasles.plots()), []);
+  await checkNotBlank(page);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('mass report: a mesh part (the L-bracket OBJ) drawn from its file, in metres', async () => {
+  const html = join(work, 'bracket.html');
+  chaslesRun(['mass', example('mesh-bracket-assembly.yaml'), '--html', html]);
+  const { page, problems } = await openReport(html);
+  // The OBJ's own vertices and triangles ("v" and "f" lines), scaled from mm to m.
+  const obj = readFileSync(example('meshes/l-bracket.obj'), 'utf8').split('\n');
+  const v = obj.filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1, 4).map(Number));
+  const f = obj.filter((l) => l.startsWith('f ')).map((l) => l.split(/\s+/).slice(1, 4).map((x) => Number(x.split('/')[0]) - 1));
+  const mesh = await page.evaluate(() => {
+    const p = window.chasles.data.bodies[0].parts.find((x) => x.mesh);
+    return { positions: Array.from(p.mesh.positions), indices: Array.from(p.mesh.indices) };
+  });
+  assert.equal(mesh.positions.length, 3 * v.length);
+  assert.deepEqual(mesh.indices, f.flat());
+  v.flat().forEach((x, k) => assert.ok(Math.abs(mesh.positions[k] - x * 1e-3) <= 1e-7 * Math.max(1e-3, Math.abs(x * 1e-3))));
+  await checkNotBlank(page);
+  await screenshot(page, 'report-mass.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('simulate report: the Dzhanibekov flip', async () => {
+  const { page, json } = await checkSimulation('dzhanibekov', 'dzhanibekov.yaml');
+  assert.ok(json.events.length > 0, 'the flip events');
+  await page.evaluate(() => window.chasles.seek(3.3));
+  await screenshot(page, 'report-dzhanibekov.png');
+  await page.close();
+});
+
+test('simulate report: contacts of the spinning ball (Problem 8.26), regime bands', async () => {
+  const { page, plots, csv } = await checkSimulation('problem-8.26-spinning-ball', 'problem-8.26-spinning-ball.yaml');
+  const contacts = plots.find((p) => p.title.startsWith('Contacts'));
+  assert.ok(contacts, 'no contacts plot');
+  for (const c of csv.names.filter((c) => /_(N|f)$/.test(c) && csv.names.includes(c.replace(/_(N|f)$/, '_mode')))) {
+    assert.ok(contacts.series.includes(c), `contacts plot lacks ${c}`);
+  }
+  // The bands are the CSV's mode columns, sample by sample.
+  const modes = await page.evaluate(() => window.chasles.data.contacts.map((c) => ({ name: c.name, modes: c.modes })));
+  assert.ok(modes.length > 0);
+  for (const m of modes) {
+    const col = csv.col(`${m.name}_mode`);
+    assert.ok(col >= 0, `no mode column for ${m.name}`);
+    assert.equal(m.modes, csv.rows.map((r) => String(r[col])).join(''), `${m.name}: regime bands`);
+  }
+  await page.close();
+});
+
+test('simulate report: planar sliding ladder (Example 8.4), reactions', async () => {
+  const { page, plots, csv } = await checkSimulation('example-8.4-sliding-ladder-planar', 'example-8.4-sliding-ladder-planar.yaml');
+  const reactions = plots.find((p) => p.title.startsWith('Reactions'));
+  assert.ok(reactions, 'no reactions plot');
+  for (const c of csv.names.filter((c) => /_F[xy]$/.test(c))) assert.ok(reactions.series.includes(c), `lacks ${c}`);
+  assert.equal(await page.evaluate(() => window.chasles.data.planar), true);
+  await page.close();
+});
+
+test('report from a finished run: projectile with drag, apex and ground events', async () => {
+  const { page, json } = await checkSimulation(
+    'projectile-drag',
+    'projectile-drag.yaml',
+    ['--columns', 'position,quaternion,origin,energy,work,residual'],
+    true,
+  );
+  assert.ok(json.events.some((e) => e.name === 'ground' && e.stopped), 'the ground event');
+  assert.deepEqual(await page.evaluate(() => window.chasles.data.reactions), []);
+  await page.close();
+});
+
+test('solve report: the ladder at its solved instant', async () => {
+  const html = join(work, 'ladder-solve.html');
+  chaslesRun(['solve', example('example-8.4-sliding-ladder-planar.yaml'), '--html', html]);
+  const { page, problems } = await openReport(html);
+  const data = await page.evaluate(() => ({ poses: window.chasles.data.poses, reactions: window.chasles.data.solve_reactions }));
+  assert.ok(data.reactions.length > 0);
+  for (const p of data.poses) {
+    const pose = await page.evaluate((name) => window.chasles.bodyPose(name), p.name);
+    assert.deepEqual(pose.position, p.origin);
+  }
+  await checkNotBlank(page);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

@@ -1,0 +1,162 @@
+// The browser report's data (chasles/scene/report_data.h): base64, the parts as drawn, the
+// equivalent ellipsoids, and a run's columns, exact where the page compares them.
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+// Before gtest: <signal.h> (via gtest) defines a macro si_value, a parameter name in units.h.
+#include "chasles/error.h"
+#include "chasles/scene/report_data.h"
+#include "chasles/scene/study.h"
+// clang-format off
+#include <gtest/gtest.h>
+// clang-format on
+
+namespace chasles {
+namespace {
+
+std::string B64(const std::string& s) {
+  return Base64(s.data(), s.size());
+}
+
+/// The doubles of a base64 "f8" array.
+std::vector<double> DecodeF8(const std::string& text) {
+  auto value = [](char c) -> int {
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    return c == '+' ? 62 : 63;
+  };
+  std::vector<unsigned char> bytes;
+  for (size_t i = 0; i + 3 < text.size(); i += 4) {
+    const int n = (value(text[i]) << 18) | (value(text[i + 1]) << 12) |
+                  (text[i + 2] == '=' ? 0 : value(text[i + 2]) << 6) |
+                  (text[i + 3] == '=' ? 0 : value(text[i + 3]));
+    bytes.push_back(static_cast<unsigned char>(n >> 16));
+    if (text[i + 2] != '=') bytes.push_back(static_cast<unsigned char>((n >> 8) & 255));
+    if (text[i + 3] != '=') bytes.push_back(static_cast<unsigned char>(n & 255));
+  }
+  std::vector<double> out(bytes.size() / sizeof(double));
+  std::memcpy(out.data(), bytes.data(), out.size() * sizeof(double));
+  return out;
+}
+
+// RFC 4648, section 10.
+TEST(ReportData, Base64TestVectors) {
+  EXPECT_EQ(B64(""), "");
+  EXPECT_EQ(B64("f"), "Zg==");
+  EXPECT_EQ(B64("fo"), "Zm8=");
+  EXPECT_EQ(B64("foo"), "Zm9v");
+  EXPECT_EQ(B64("foob"), "Zm9vYg==");
+  EXPECT_EQ(B64("fooba"), "Zm9vYmE=");
+  EXPECT_EQ(B64("foobar"), "Zm9vYmFy");
+}
+
+// Legendre's ellipsoid, a_i² = 5 (I_j + I_k − I_i) / (2 m): a uniform solid sphere of radius R
+// (I = 2/5 m R²) is its own ellipsoid, a_i = R; a uniform box a × b × c (I_x = m (b² + c²)/12)
+// gives a_x² = 5 (2 a²/12) / 2, a_x = a sqrt(5/12); a custom part with I = diag(1, 2, 3) kg m²
+// and m = 1 kg gives a = [sqrt(10), sqrt(5), 0] m along x, y, z.
+TEST(ReportData, EquivalentEllipsoids) {
+  const Scene scene = LoadSceneText(R"(
+bodies:
+  - name: ball
+    parts: [{shape: sphere, radius: 0.3 m, mass: 2 kg}]
+  - name: brick
+    parts: [{shape: box, size: [0.2 m, 0.4 m, 0.6 m], mass: 5 kg}]
+  - name: top
+    parts: [{shape: custom, mass: 1 kg, inertia: {Ixx: 1 kg*m^2, Iyy: 2 kg*m^2, Izz: 3 kg*m^2}}]
+)",
+                                    "ellipsoids");
+  const nlohmann::json j = MassReportData(scene);
+  EXPECT_EQ(j["kind"], "mass");
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(j["bodies"][0]["ellipsoid"][k].get<double>(), 0.3, 1e-14);
+  }
+  // Principal moments ascending: I_z ∝ 0.04 + 0.16, I_y ∝ 0.04 + 0.36, I_x ∝ 0.16 + 0.36, so
+  // e1 = z (a_z = c sqrt(5/12)), e2 = y, e3 = x.
+  const double want[3] = {0.6 * std::sqrt(5.0 / 12), 0.4 * std::sqrt(5.0 / 12),
+                          0.2 * std::sqrt(5.0 / 12)};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(j["bodies"][1]["ellipsoid"][k].get<double>(), want[k], 1e-14);
+  }
+  const nlohmann::json& e = j["bodies"][2]["parts"][0]["ellipsoid"];
+  EXPECT_NEAR(e["semi_axes"][0].get<double>(), std::sqrt(10.0), 1e-14);
+  EXPECT_NEAR(e["semi_axes"][1].get<double>(), std::sqrt(5.0), 1e-14);
+  EXPECT_NEAR(e["semi_axes"][2].get<double>(), 0.0, 1e-7);
+}
+
+// A cylinder given by from/to: its length is |to − from|, its frame at the midpoint with z
+// along to − from (docs/scene-format.md, segments).
+TEST(ReportData, PartsAsDrawn) {
+  const Scene scene = LoadSceneText(R"(
+bodies:
+  - name: shaft
+    parts: [{shape: cylinder, radius: 0.05 m, mass: 1 kg, from: [0, 0, 0], to: [0, 0.3 m, 0.4 m]}]
+)",
+                                    "parts");
+  const nlohmann::json p = MassReportData(scene)["bodies"][0]["parts"][0];
+  EXPECT_EQ(p["shape"], "cylinder");
+  EXPECT_NEAR(p["dimensions"]["length"].get<double>(), 0.5, 1e-15);
+  EXPECT_NEAR(p["dimensions"]["radius"].get<double>(), 0.05, 1e-15);
+  EXPECT_NEAR(p["position"][1].get<double>(), 0.15, 1e-15);
+  EXPECT_NEAR(p["position"][2].get<double>(), 0.2, 1e-15);
+  // z of the part's frame along (0, 0.6, 0.8): the quaternion q = [w, x, y, z] turns z by the
+  // angle φ with cos φ = 0.8 about an axis perpendicular to z and the direction.
+  const double w = p["quaternion"][0], x = p["quaternion"][1], y = p["quaternion"][2],
+               z = p["quaternion"][3];
+  // Third column of R(q): [2(xz + wy), 2(yz − wx), 1 − 2(x² + y²)].
+  EXPECT_NEAR(2 * (x * z + w * y), 0.0, 1e-15);
+  EXPECT_NEAR(2 * (y * z - w * x), 0.6, 1e-15);
+  EXPECT_NEAR(1 - 2 * (x * x + y * y), 0.8, 1e-15);
+}
+
+// Free fall from z0 with vz0: z(t) = z0 + vz0 t − g t²/2, exact to round-off in the report's
+// f8 pose columns; the pose columns are added to the scene's own; without them the report is
+// refused.
+TEST(ReportData, RunColumnsExactAndPoseColumnsRequired) {
+  Scene scene = LoadSceneText(R"(
+bodies:
+  - name: ball
+    parts: [{shape: sphere, radius: 0.1 m, mass: 1 kg}]
+    initial: {position: [0, 0, 2 m], velocity: [0, 0, 3 m/s]}
+gravity: [0, 0, -9.81 m/s^2]
+output: {columns: [position]}
+simulation: {until: 0.5 s, tolerance: 1e-12, output_interval: 0.1 s}
+)",
+                              "fall");
+  const StudyResult plain = RunStudy(scene);
+  EXPECT_THROW(SimulationReportData(scene, plain), InputError);
+
+  scene.dynamics.columns = ReportColumns(scene, scene.dynamics.columns);
+  StudyOptions options;
+  options.record_row_snapshots = true;
+  const StudyResult r = RunStudy(scene, options);
+  ASSERT_EQ(r.row_snapshots.size(), r.rows.size());
+  const nlohmann::json j = SimulationReportData(scene, r);
+  EXPECT_EQ(j["samples"].get<size_t>(), r.rows.size());
+  std::vector<double> t, oz, qw;
+  for (const auto& c : j["columns"]) {
+    if (c["name"] == "t") t = DecodeF8(c["data"]);
+    if (c["name"] == "ball_oz") oz = DecodeF8(c["data"]);
+    if (c["name"] == "ball_qw") qw = DecodeF8(c["data"]);
+    if (c["name"] == "ball_oz") {
+      EXPECT_EQ(c["type"], "f8");
+    }
+    if (c["name"] == "E") {
+      EXPECT_EQ(c["group"], "energy");
+    }
+  }
+  ASSERT_EQ(t.size(), r.rows.size());
+  ASSERT_EQ(oz.size(), r.rows.size());
+  for (size_t i = 0; i < t.size(); ++i) {
+    EXPECT_NEAR(oz[i], 2.0 + 3.0 * t[i] - 0.5 * 9.81 * t[i] * t[i], 1e-12);
+    EXPECT_EQ(qw[i], 1.0);
+  }
+  EXPECT_TRUE(j["reactions"].empty());
+  EXPECT_TRUE(j["contacts"].empty());
+}
+
+}  // namespace
+}  // namespace chasles
