@@ -104,24 +104,32 @@ std::string JointFor(const std::array<bool, 6>& kept) {
 
 double CalcMechanismLength(const Model& model, const Data& data) {
   CheckDataFor(model, data);
+  // The bodies' mean radius of gyration: the length when the joint points coincide.
+  double k2 = 0.0;
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    k2 += model.body(b).I_BBcm_B().trace() / (2.0 * model.body(b).mass());
+  }
+  const double gyration = std::sqrt(k2 / std::max(1, model.num_bodies()));
   const int nc = model.num_constraints();
-  double ell = 0.0;
+  double ell = 0.0, reach = gyration;
   if (nc > 0) {
     Vec3 centroid = Vec3::Zero();
     for (int c = 0; c < nc; ++c) centroid += data.constraint_rows[static_cast<size_t>(c)].p_WJ;
     centroid /= nc;
     double sum = 0.0;
     for (int c = 0; c < nc; ++c) {
-      sum += (data.constraint_rows[static_cast<size_t>(c)].p_WJ - centroid).squaredNorm();
+      const Vec3& p = data.constraint_rows[static_cast<size_t>(c)].p_WJ;
+      sum += (p - centroid).squaredNorm();
+      reach = std::max(reach, p.norm());
     }
     ell = std::sqrt(sum / nc);
   }
-  if (ell > 0.0) return ell;
-  double sum = 0.0;
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    sum += model.body(b).I_BBcm_B().trace() / (2.0 * model.body(b).mass());
-  }
-  return std::sqrt(sum / std::max(1, model.num_bodies()));
+  // Joint points that coincide up to round-off (a cart that has moved from the origin with its
+  // pin and rail at one point: a spread of 1e-16 m) coincide: a spread that small would weight
+  // the moment rows by 1e16 and break the rank.
+  if (ell > 1e-9 * reach) return ell;
+  // Particles joined at one point have no moments to weigh: any length serves.
+  return gyration > 0.0 ? gyration : 1.0;
 }
 
 VectorXd CalcReactionWeights(const Model& model, const Data& data) {
@@ -320,6 +328,33 @@ std::vector<SupportChange> DeterminateSupports(const Model& model, const State& 
 
 }  // namespace
 
+namespace {
+
+// Tags the moment components about an axis along which the child's or the parent's spin is
+// not a degree of freedom (Body::free_rotation_B: a slender rod's own axis, any axis of a
+// particle): the constraint's moment there acts on no inertia, so equilibrium leaves it free.
+void MarkFrozenSpins(const Model& model, const Data& data, Redundancy& r) {
+  for (IndeterminateGroup& g : r.groups) {
+    for (ReactionComponent& rc : g.components) {
+      if (!rc.moment) continue;
+      const Constraint& con = model.constraint(rc.constraint);
+      const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(rc.constraint)];
+      const Vec3 a_W = e.R_WJ.col(rc.axis);
+      for (const BodyIndex b : {con.child(), con.parent()}) {
+        if (b == kWorld || model.body(b).num_zero_moments() == 0) continue;
+        const Mat3& R = data.R_WB[static_cast<size_t>(b)];
+        const Vec3 free = R * (model.body(b).free_rotation_B() * (R.transpose() * a_W));
+        if (free.norm() <= 1e-9) {
+          rc.frozen_spin_body = b;
+          break;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
 Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data) {
   CheckDataFor(model, data);
   Redundancy r;
@@ -349,6 +384,7 @@ Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data)
   MatrixXd C = NullReactionComponents(model, state, data, Lambda, r.length);
   const int lead = ReduceToEchelon(C);
   GroupComponents(C, lead, nc, r);
+  MarkFrozenSpins(model, data, r);
   r.changes = DeterminateSupports(model, state, data);
   return r;
 }
@@ -359,7 +395,8 @@ std::vector<std::string> DescribeRedundancy(const Model& model, const Redundancy
   out.push_back(fmt::format(
       "the constraints are redundant ({} rows, rank {}): their reactions are statically "
       "indeterminate; those reported are the least-norm ones with moments weighted by the "
-      "mechanism's length {:.4g} m (docs/constraints.md, \"Redundant constraints\")",
+      "mechanism's length {:.4g} m (docs/constraints.md, \"Redundant constraints\"); below, x, y "
+      "and z are the axes of each joint's frame (z the joint's axis)",
       r.rows, r.rank, r.length));
   for (const IndeterminateGroup& g : r.groups) {
     std::string names;
@@ -381,7 +418,23 @@ std::vector<std::string> DescribeRedundancy(const Model& model, const Redundancy
                                 sum ? "sum" : "difference", AxisName(g.components[0].axis),
                                 g.components[0].moment ? "moment" : "force"));
     } else if (n == static_cast<size_t>(g.dimension)) {
-      out.push_back(fmt::format("{}: not determined at all", names));
+      std::string why;
+      for (const ReactionComponent& rc : g.components) {
+        if (rc.frozen_spin_body == kWorld) continue;
+        const Body& body = model.body(rc.frozen_spin_body);
+        why = body.is_particle()
+                  ? fmt::format(
+                        " ('{}' is a particle: it has no moment of inertia, so no moment "
+                        "on it is needed or carried)",
+                        body.name())
+                  : fmt::format(
+                        " (about the own axis of '{}', a slender body with no moment of "
+                        "inertia about it: its spin there is not a degree of freedom, so "
+                        "no moment about it is needed or carried)",
+                        body.name());
+        break;
+      }
+      out.push_back(fmt::format("{}: not determined at all{}", names, why));
     } else {
       out.push_back(fmt::format(
           "{}: equilibrium fixes only {} combination{} of these {} (their resultant); {} "

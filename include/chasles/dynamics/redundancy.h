@@ -24,8 +24,10 @@ namespace chasles {
 
 /// The mechanism's characteristic length ℓ [m]: the RMS distance of the constraint points
 /// (Data::constraint_rows' p_WJ) from their centroid, the lever arm over which a pair of
-/// support forces can stand in for a moment; when the points coincide, the bodies' RMS radius
-/// of gyration sqrt(tr I / 2m). Reads the rows in `data` (CalcConstraintRows).
+/// support forces can stand in for a moment; when the points coincide (a spread within 1e-9 of
+/// their distance from the origin or the radius of gyration: round-off), the bodies' RMS radius
+/// of gyration sqrt(tr I / 2m) (1 m for particles only). Reads the rows in `data`
+/// (CalcConstraintRows).
 double CalcMechanismLength(const Model& model, const Data& data);
 
 /// One weight per constraint row: 1 for force rows, ℓ for moment rows (IsMomentRow), so that
@@ -40,6 +42,10 @@ struct ReactionComponent {
   /// 0, 1, 2 for x, y, z.
   int axis = 0;
   bool moment = false;
+  /// For a moment: the body (child or parent) whose spin about this axis is not a degree of
+  /// freedom (a slender rod about its own axis, or a particle), so no moment about it is
+  /// needed or transmitted; kWorld when there is none.
+  BodyIndex frozen_spin_body = kWorld;
 };
 
 /// Components that equilibrium leaves partly undetermined: only `components.size() -

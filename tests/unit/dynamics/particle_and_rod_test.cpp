@@ -10,6 +10,7 @@
 
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/analysis/momentum.h"
+#include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/math/rotation.h"
@@ -156,6 +157,46 @@ TEST(ParticleAndRod, SlenderRodPinnedAtOneEnd) {
     if (th == std::numbers::pi / 2) {
       EXPECT_TRUE(Near(sol.reactions[0].F_Jc_W.z(), 2.5 * m * kG, 1e-12));
     }
+  }
+}
+
+// The pin's moment about the rod's own axis acts on no inertia: the redundancy analysis finds
+// exactly that one component undetermined (the other four rows are independent) and names the
+// rod as its cause; a rod with a small made-up moment about its axis instead has no redundancy.
+TEST(ParticleAndRod, PinMomentAboutTheRodAxisIsUndeterminedBecauseOfTheRod) {
+  for (const double own : {0.0, 1e-4}) {
+    Model model;
+    const double m = 1.2, L = 0.8, I = m * L * L / 12.0;
+    model.AddBody("rod", MassProperties(m, Vec3::Zero(), RotationalInertia(I, I, own)));
+    State s = MakeRestState(model);
+    const Vec3 u(1, 0, 0);  // the rod lies along x, pinned at its end about y
+    SetBodyPose(model, 0, 0.5 * L * u, Quat::FromTwoVectors(Vec3::UnitZ(), u), s);
+    const Mat3 R = FrameWithZAxis(Vec3::UnitY());
+    model.AddConstraint(std::make_shared<Joint>(
+        "pin", JointKind::kRevolute, kWorld, AttachmentFrame{Vec3::Zero(), R}, 0,
+        AttachmentFrameAtWorldPose(model, s, 0, Vec3::Zero(), R)));
+    Data data = MakeData(model);
+    const Redundancy r = AnalyseRedundancy(model, s, data);
+    if (own > 0.0) {
+      EXPECT_EQ(r.rank, r.rows);
+      EXPECT_TRUE(DescribeRedundancy(model, r).empty());
+      continue;
+    }
+    EXPECT_EQ(r.rows, 5);
+    EXPECT_EQ(r.rank, 4);
+    ASSERT_EQ(r.groups.size(), 1u);
+    ASSERT_EQ(r.groups[0].components.size(), 1u);
+    const ReactionComponent& c = r.groups[0].components[0];
+    EXPECT_TRUE(c.moment);
+    EXPECT_EQ(c.frozen_spin_body, 0);
+    // The component's axis is the rod's: x of the joint frame along the rod.
+    const Vec3 a_W = data.constraint_rows[0].R_WJ.col(c.axis);
+    EXPECT_NEAR(std::abs(a_W.dot(u)), 1.0, 1e-12);
+    const std::vector<std::string> text = DescribeRedundancy(model, r);
+    // The headline, the undetermined moment with its cause, the determinate alternative.
+    ASSERT_EQ(text.size(), 3u);
+    EXPECT_THAT(text[1], HasSubstr("'pin' x moment: not determined at all (about the own axis "
+                                   "of 'rod', a slender body"));
   }
 }
 
