@@ -127,7 +127,10 @@ CLI::App* AddReportCommand(CLI::App& app, ReportArgs& args) {
   cmd->add_option("-o,--output", args.output, "The HTML file to write")->required();
   cmd->add_option("--set", args.set,
                   "NAME=EXPRESSION: the scene parameters the run was given with --set "
-                  "(repeatable)");
+                  "(one per --set; repeat --set for each)")
+      ->type_name("NAME=EXPR")
+      ->allow_extra_args(false)
+      ->delimiter('\0');  // an expression may contain commas and brackets: keep it whole
   cmd->add_option("--max-scene-bytes", args.max_scene_bytes, "Largest scene file read (bytes)");
   cmd->footer(
       "Example:\n"

@@ -13,7 +13,9 @@ void AddSceneArgs(CLI::App& cmd, SceneArgs& args) {
   cmd.add_option("scene", args.scene,
                  "Scene file (YAML). Without one, the built-in demonstration scene is used.");
   cmd.add_option("--set", args.set,
-                 "Override a scene parameter: NAME=EXPRESSION, e.g. --set 'h1=0.25*h' (repeatable)")
+                 "Override a scene parameter: NAME=EXPRESSION, e.g. --set 'h1=0.25*h'; one "
+                 "parameter per --set (repeat --set for each: --set a=1 --set b=2)")
+      ->type_name("NAME=EXPR")
       ->allow_extra_args(false)
       ->delimiter('\0');  // an expression may contain commas and brackets: keep it whole
   cmd.add_option("--max-scene-bytes", args.max_scene_bytes,
