@@ -215,15 +215,15 @@ std::string StringEventsText(const StudyResult& r, const TextUnits& u) {
   return "\nString modes (time, string: from -> to, why)\n" +
          Abridged(r.string_events, 20, 5, "change", [&](const StudyStringEvent& e) {
            std::string line = e.from == e.to
-                                  ? fmt::format("  t = {}  string {}: {} ({})\n", u.Time(e.t),
+                                  ? fmt::format("  t = {}  string '{}': {} ({})\n", u.Time(e.t),
                                                 e.string, e.to, e.reason)
-                                  : fmt::format("  t = {}  string {}: {} -> {} ({})\n", u.Time(e.t),
-                                                e.string, e.from, e.to, e.reason);
+                                  : fmt::format("  t = {}  string '{}': {} -> {} ({})\n",
+                                                u.Time(e.t), e.string, e.from, e.to, e.reason);
            if (e.reason == "snapped taut" && e.to == "slack") {
-             line += "    it rebounded (restitution): slack again at once\n";
+             line += "    it rebounded (restitution): taut for an instant, slack again at once\n";
            }
            if (e.reason == "snapped taut") {
-             line += fmt::format("    closing speed {}, impulse {}, energy lost {}\n",
+             line += fmt::format("    approach speed {}, impulse {}, energy lost {}\n",
                                  u.show(e.approach_speed, kVelocityDim),
                                  u.show(e.impulse, kMomentumDim), u.Energy(e.energy_lost));
            }
