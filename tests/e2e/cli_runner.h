@@ -4,7 +4,9 @@
 
 #include <sys/wait.h>
 #include <unistd.h>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +15,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
@@ -126,6 +130,23 @@ inline nlohmann::json SimulateJson(const std::string& scene, const std::filesyst
                              std::to_string(r.exit_code) + "): " + r.err);
   }
   return nlohmann::json::parse(r.out);
+}
+
+// Largest |x| of a column.
+inline double Scale(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s = std::max(s, std::abs(x));
+  return s;
+}
+
+// Column `a` equals `sign` times column `b` row by row, to `tol` of the columns' scale.
+inline void ExpectSameColumn(const std::vector<double>& a, const std::vector<double>& b,
+                             double sign, double tol, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  const double scale = std::max(Scale(a), Scale(b));
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(a[i], sign * b[i], tol * scale) << what << " at row " << i;
+  }
 }
 
 }  // namespace chasles::test

@@ -64,22 +64,6 @@ SimRun Simulate(const std::string& scene, const std::string& columns) {
   return {nlohmann::json::parse(r.out), ReadCsv((OutDir() / (stem + ".csv")).string())};
 }
 
-double Scale(const std::vector<double>& v) {
-  double s = 0.0;
-  for (double x : v) s = std::max(s, std::abs(x));
-  return s;
-}
-
-// Column `a` equals `sign` times column `b` row by row, to `tol` of the columns' scale.
-void ExpectSameColumn(const std::vector<double>& a, const std::vector<double>& b, double sign,
-                      double tol, const std::string& what) {
-  ASSERT_EQ(a.size(), b.size()) << what;
-  const double scale = std::max(Scale(a), Scale(b));
-  for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_NEAR(a[i], sign * b[i], tol * scale) << what << " at row " << i;
-  }
-}
-
 double EventTime(const nlohmann::json& report, const std::string& name) {
   for (const auto& e : report.at("events")) {
     if (e.at("name") == name) return e.at("t").get<double>();

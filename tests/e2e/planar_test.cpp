@@ -51,22 +51,6 @@ Columns Simulate(const std::string& scene, const std::string& columns) {
   return ReadCsv((OutDir() / (stem + ".csv")).string());
 }
 
-double Scale(const std::vector<double>& v) {
-  double s = 0.0;
-  for (double x : v) s = std::max(s, std::abs(x));
-  return s;
-}
-
-// Column `a` equals `sign` times column `b` sample by sample, to `tol` of the column's scale.
-void ExpectSameColumn(const std::vector<double>& a, const std::vector<double>& b, double sign,
-                      double tol, const std::string& what) {
-  ASSERT_EQ(a.size(), b.size()) << what;
-  const double scale = std::max(Scale(a), Scale(b));
-  for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_NEAR(a[i], sign * b[i], tol * scale) << what << " at row " << i;
-  }
-}
-
 std::string Planar(const std::string& name) {
   return SourcePath("examples/" + name);
 }
