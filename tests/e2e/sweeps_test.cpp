@@ -38,9 +38,10 @@ std::string WriteScene(const std::string& name, const std::string& text) {
 }
 
 // A planar pendulum: a bob of mass m and central moment m r^2 on a massless arm of length L
-// pinned at the origin, released from rest at theta0 from the downward vertical. `events`
-// watches the bob's x.
-std::string Pendulum(const std::string& name, const std::string& event, const std::string& until) {
+// pinned at the origin, released from rest at theta0 from the downward vertical. `event`
+// watches the bob's x; samples every `interval`.
+std::string Pendulum(const std::string& name, const std::string& event, const std::string& until,
+                     const std::string& interval = "0.01 s") {
   return WriteScene(name, R"(chasles: 1
 title: pendulum
 planar: true
@@ -61,7 +62,8 @@ events:
 simulation:
   until: )" + until + R"(
   tolerance: 1e-12
-  output_interval: 0.01 s
+  output_interval: )" + interval +
+                              R"(
 output:
   columns: [planar]
 )");
@@ -144,6 +146,30 @@ TEST(SimulateSweep, PeriodAsDifferenceOfEventTimes) {
                      4 * QuarterPeriod(L, theta0), kRun));
     // Released from rest at the largest x: L sin(theta0) (the initial sample).
     EXPECT_TRUE(Near(t.rows[k].at("max(bob_x)").get<double>(), L * std::sin(theta0), kRun));
+  }
+}
+
+// Extremes see the events' states: with samples 0.25 s apart the lowest sample of the bob
+// misses the bottom, but the recorded crossings of x = 0 are there, at y = -L exactly; and the
+// speed there is the largest, L w0 sqrt(2 (1 - cos theta0)) (energy, as above).
+TEST(SimulateSweep, ExtremesIncludeTheEventStates) {
+  const std::string scene =
+      Pendulum("pendulum_coarse", "{name: bottom, when: bob_x, crosses: 0 m, action: record}",
+               "2 s", "0.25 s");
+  const CliResult r = RunCli("simulate " + Quote(scene) +
+                             " --sweep 'L=0.5 m:1.5 m:3' --quantity 'min(bob_y)' --quantity "
+                             "'max(bob_omega)' --set 'theta0=50 deg' --format json --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Table t = ParseTable(r.out);
+  ASSERT_EQ(t.rows.size(), 3u);
+  const double theta0 = 50 * kPi / 180;
+  for (size_t k = 0; k < 3; ++k) {
+    const double L = 0.5 + 0.5 * static_cast<double>(k);
+    const double w0 = std::sqrt(kG * L / (0.05 * 0.05 + L * L));
+    EXPECT_TRUE(Near(t.rows[k].at("min(bob_y)").get<double>(), -L, kRun)) << L;
+    EXPECT_TRUE(Near(t.rows[k].at("max(bob_omega)").get<double>(),
+                     w0 * std::sqrt(2 * (1 - std::cos(theta0))), kRun))
+        << L;
   }
 }
 
