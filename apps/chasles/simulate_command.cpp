@@ -463,12 +463,13 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
       "  chasles simulate examples/dzhanibekov.yaml --html dzhanibekov.html\n"
       "  chasles simulate examples/projectile-drag.yaml --set 'c=0.2 N*s/m' --format json\n"
       "  chasles simulate examples/spring-mass.yaml --until 20\n"
-      "  chasles simulate examples/problem-8.26-spinning-ball.yaml --sweep 'mu_k=0.1:0.4:4' "
-      "--quantity 'final(ball_vx)'\n"
+      "  chasles simulate examples/problem-8.26-spinning-ball.yaml --sweep 'mu_k=0.2:0.5:4' "
+      "--quantity 'final(ball_vx)' --quantity 'max(floor_f)'\n"
       "Progress goes to standard error: redrawn on a terminal after the first second, one "
       "line every 10 s otherwise (--quiet: none). Scene keys: docs/scene-format.md, section "
       "Dynamics; limits: docs/reliability-limits.md; sweeps: docs/sweeps.md.\n"
-      "Exit codes: 0 success, 2 bad input, 3 a check failed with --strict, 1 internal error.");
+      "Exit codes: 0 success, 2 bad input, 3 a check failed (a sweep: or a point failed) with "
+      "--strict, 1 internal error.");
   return cmd;
 }
 

@@ -401,6 +401,8 @@ SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
       }
     }
   }
+  // --columns names no point can change: refused here, not at every row.
+  SelectColumns(base, columns);
   const auto point = [&](std::int64_t k) {
     PointRow row;
     row.values = grid.Values(k);

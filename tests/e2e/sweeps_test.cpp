@@ -358,6 +358,8 @@ TEST(Sweep, BadInputExitsTwoWithAClearMessage) {
       {sim + "--sweep 'L=1 m:2 m:2' --quantity 'event(bottom, 0)'", "expected final(COLUMN)"},
       {sim + "--sweep 'L=1 m:2 m:2'", "needs at least one --quantity"},
       {sim + "--quantity t_end", "--quantity goes with --sweep"},
+      {sim + "--sweep 'L=1 m:2 m:2' --quantity t_end --columns bob_x,nope",
+       "unknown column 'nope'"},
       {sim + "--sweep 'L=1 m:2 m:2' --quantity t_end --html x.html", "--keep-runs"},
       {sim + "--sweep 'L=1 m:2 m:10' --sweep 'theta0=0:1:10' --quantity t_end --max-runs 50",
        "more than the limit of 50"},
