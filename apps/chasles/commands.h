@@ -30,6 +30,12 @@ struct MassArgs {
   std::string output;              // file, or "" for standard output
   bool hide_parts = false;
   std::string html;  // --html: also write the browser report here
+  // --sweep NAME=START:STOP:COUNT (repeatable: a grid) with --quantity (docs/sweeps.md).
+  std::vector<std::string> sweep, quantity;
+  int jobs = 0;                     // threads of a sweep; 0: the hardware's concurrency
+  std::int64_t max_runs = 0;        // most points of a sweep; 0: the default limit
+  bool quiet = false;               // no progress of a sweep on stderr
+  double progress_interval = 10.0;  // [s] between progress lines off a terminal
   // A mesh file given instead of a scene (chasles mass part.stl --unit mm --density 7850):
   // these say what the scene's mesh part would.
   std::string mesh_unit, mesh_mode, mesh_density, mesh_material, mesh_mass, mesh_areal_density,
@@ -61,6 +67,11 @@ struct SimulateArgs {
   bool quiet = false;                                          // no progress on stderr
   double progress_interval = 10.0;  // [s] between progress lines off a terminal
   std::string html;                 // --html: also write the browser report here
+  // --sweep NAME=START:STOP:COUNT (repeatable: a grid) with --quantity (docs/sweeps.md).
+  std::vector<std::string> sweep, quantity;
+  int jobs = 0;               // threads of a sweep; 0: the hardware's concurrency
+  std::string keep_runs;      // write each run's CSV and JSON here
+  std::int64_t max_runs = 0;  // most points of a sweep; 0: the default limit
 };
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args);
 int RunSimulate(const SimulateArgs& args);

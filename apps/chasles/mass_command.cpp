@@ -4,6 +4,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "chasles/io/atomic_file.h"
@@ -13,10 +14,13 @@
 #include "chasles/scene/report_data.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
+#include "chasles/scene/sweep.h"
 #include "chasles/scene/units.h"
 #include "commands.h"
 #include "html_report.h"
+#include "progress.h"
 #include "scene_args.h"
+#include "sweep_output.h"
 
 namespace chasles::cli {
 
@@ -270,12 +274,24 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
   cmd->add_option("--thickness", args.mesh_thickness, "Shell mode: sheet thickness")->group(mesh);
   cmd->add_option("--areal-density", args.mesh_areal_density, "Shell mode: mass per area")
       ->group(mesh);
+  AddSweepOptions(*cmd, args.sweep, args.quantity, args.jobs, args.max_runs,
+                  fmt::format("NAME for a scene of one body, else BODY.NAME, with NAME one of {} "
+                              "(repeatable)",
+                              fmt::join(MassSweepQuantityNames(), ", ")));
+  cmd->add_flag("--quiet", args.quiet,
+                "No progress of a sweep on standard error (otherwise: redrawn on a terminal, one "
+                "line every 10 s off it)");
+  cmd->add_option("--progress-interval", args.progress_interval,
+                  "Seconds between progress lines of a sweep when standard error is not a "
+                  "terminal (default 10)");
   cmd->footer(
       "Examples:\n"
       "  chasles mass examples/example-8.1-cylinder.yaml\n"
       "  chasles mass examples/example-8.1-cylinder.yaml --set 'h1=0.25*h' --units mm,g\n"
       "  chasles mass examples/example-8.2-two-rods.yaml --format json -o rods.json\n"
       "  chasles mass part.stl --unit mm --density 7850\n"
+      "  chasles mass examples/example-8.1-cylinder.yaml --sweep 'R=2 cm:8 cm:4' --quantity Izz "
+      "--quantity center_of_mass_z\n"
       "Exit codes: 0 success, 2 bad input (the message names file, line, column and key), "
       "1 internal error.");
   return cmd;
@@ -326,7 +342,46 @@ Scene LoadMassInput(const MassArgs& args) {
 }
 }  // namespace
 
+namespace {
+
+/// mass --sweep: the quantities at every point of the grid, as a table (docs/sweeps.md).
+int RunMassSweep(const MassArgs& args) {
+  if (args.scene.scene.empty()) {
+    throw InputError("chasles mass --sweep needs a scene file (chasles mass --help)");
+  }
+  if (!args.about.empty() || !args.frame.empty() || !args.html.empty() || !args.units.empty()) {
+    throw InputError(
+        "--about, --frame, --html and --units go with one report, not with --sweep (the table "
+        "is in SI)");
+  }
+  if (!(args.progress_interval > 0) || !std::isfinite(args.progress_interval)) {
+    throw InputError(fmt::format("--progress-interval must be a positive time in seconds, got {}",
+                                 args.progress_interval));
+  }
+  const std::vector<SweepSpec> specs = ParseSweeps(args.sweep);
+  SweepTable table;
+  {
+    Progress progress("mass --sweep", "", args.quiet, args.progress_interval);
+    table = MassSweep(
+        SceneLoader(args.scene), SceneOptionsFrom(args.scene), specs, args.quantity, args.jobs,
+        [&progress](std::int64_t done, std::int64_t total) {
+          progress.Update(static_cast<double>(done), static_cast<double>(total));
+        },
+        args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns);
+  }
+  EmitSweepTable(table, args.format, args.output);
+  return 0;
+}
+
+}  // namespace
+
 int RunMass(const MassArgs& args) {
+  if (!args.sweep.empty()) return RunMassSweep(args);
+  if (!args.quantity.empty() || args.jobs > 0 || args.max_runs > 0) {
+    throw InputError(fmt::format("{} goes with --sweep", !args.quantity.empty() ? "--quantity"
+                                                         : args.jobs > 0        ? "--jobs"
+                                                                                : "--max-runs"));
+  }
   const Scene scene = LoadMassInput(args);
   const Presenter P(UnitSystem::Parse(args.units.empty() ? scene.units : args.units));
   std::vector<MassReportPoint> extra;

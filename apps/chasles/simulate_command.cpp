@@ -2,7 +2,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -15,12 +18,14 @@
 #include "chasles/scene/report_data.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
+#include "chasles/scene/sweep.h"
 #include "chasles/scene/units.h"
 #include "commands.h"
 #include "html_report.h"
 #include "progress.h"
 #include "run_limits.h"
 #include "scene_args.h"
+#include "sweep_output.h"
 
 namespace chasles::cli {
 
@@ -426,7 +431,9 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
       ->check(PositiveFiniteNumber("--until must be a positive time in seconds"));
   cmd->add_option("--out", args.out_dir,
                   "Directory for <scene>.csv and <scene>.json (default: the current directory)");
-  cmd->add_option("--format", args.format, "Report on standard output: text (default) or json")
+  cmd->add_option("--format", args.format,
+                  "Report on standard output: text (default) or json; a sweep's table: CSV "
+                  "(default) or json")
       ->check(CLI::IsMember({"text", "json"}));
   cmd->add_option("--columns", args.columns,
                   "CSV columns or groups, replacing the scene's output.columns, e.g. "
@@ -443,20 +450,113 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "the CSV then also holds the columns the report needs (poses, ledger, "
                   "reactions, contacts)");
   AddRunLimitOptions(*cmd, args);
+  AddSweepOptions(*cmd, args.sweep, args.quantity, args.jobs, args.max_runs,
+                  "final(COLUMN), max(COLUMN), min(COLUMN) (over the samples and the events), "
+                  "event(NAME) (time of its first firing; event(NAME, k) the k-th), "
+                  "event(NAME2) - event(NAME1), or t_end (repeatable)");
+  cmd->add_option("--keep-runs", args.keep_runs,
+                  "With --sweep, also write each run's CSV and JSON in this folder, named by the "
+                  "scene and the parameter values (<scene>_L=0.5_theta0=0.1.csv)");
   cmd->footer(
       "Examples:\n"
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
       "  chasles simulate examples/dzhanibekov.yaml --html dzhanibekov.html\n"
       "  chasles simulate examples/projectile-drag.yaml --set 'c=0.2 N*s/m' --format json\n"
       "  chasles simulate examples/spring-mass.yaml --until 20\n"
+      "  chasles simulate examples/problem-8.26-spinning-ball.yaml --sweep 'mu_k=0.2:0.5:4' "
+      "--quantity 'final(ball_vx)' --quantity 'max(floor_f)'\n"
       "Progress goes to standard error: redrawn on a terminal after the first second, one "
       "line every 10 s otherwise (--quiet: none). Scene keys: docs/scene-format.md, section "
-      "Dynamics; limits: docs/reliability-limits.md.\n"
-      "Exit codes: 0 success, 2 bad input, 3 a check failed with --strict, 1 internal error.");
+      "Dynamics; limits: docs/reliability-limits.md; sweeps: docs/sweeps.md.\n"
+      "Exit codes: 0 success, 2 bad input, 3 a check failed (a sweep: or a point failed) with "
+      "--strict, 1 internal error.");
   return cmd;
 }
 
+namespace {
+
+/// The run at each point of a grid (simulate --sweep): a table of the quantities on standard
+/// output, each run's files in --keep-runs when asked.
+int RunSimulateSweep(const SimulateArgs& args) {
+  if (args.scene.scene.empty()) {
+    throw InputError("chasles simulate --sweep needs a scene file (chasles simulate --help)");
+  }
+  if (!args.html.empty() || !args.out_dir.empty()) {
+    throw InputError(fmt::format(
+        "{} writes one run's files; with --sweep use --keep-runs DIR for every run's CSV and JSON",
+        args.html.empty() ? "--out" : "--html"));
+  }
+  if (!args.units.empty()) {
+    throw InputError("--units sets the text report's units; a sweep's table is in SI");
+  }
+  const std::vector<SweepSpec> specs = ParseSweeps(args.sweep);
+  std::vector<SweepQuantity> quantities;
+  for (const std::string& q : args.quantity) {
+    quantities.push_back(ParseSweepQuantity(q, "command line", "--quantity"));
+  }
+  SimulateSweepOptions options;
+  if (!std::isnan(args.until)) options.study.until = args.until;
+  ApplyRunLimitOptions(args, options.study);
+  options.columns = args.columns;
+  options.jobs = args.jobs;
+  const std::string stem =
+      args.scene.scene.empty() ? "demo" : std::filesystem::path(args.scene.scene).stem().string();
+  if (!args.keep_runs.empty()) CreateOutputFolder(args.keep_runs);
+  // Warnings of the runs (failed checks), by point, printed in grid order afterwards.
+  std::mutex mutex;
+  std::map<std::int64_t, std::vector<std::string>> warnings;
+  bool check_failed = false;
+  options.on_run = [&](std::int64_t k, const Scene& scene, const StudyResult& r) {
+    std::string name = stem;
+    for (const SweepSpec& s : specs) {
+      for (const auto& [n, q] : scene.parameters) {
+        if (n == s.name) name += fmt::format("_{}={:.12g}", n, q.value);
+      }
+    }
+    if (!args.keep_runs.empty()) {
+      const std::filesystem::path dir = args.keep_runs;
+      const std::string csv_path = (dir / (name + ".csv")).string();
+      OutputSet files;
+      files.Add(csv_path, SimulationCsv(r));
+      files.Add((dir / (name + ".json")).string(),
+                DumpJson(SimulationJson(
+                             r, ReportHeader{scene.file, scene.title, scene.planar, scene.warnings},
+                             csv_path),
+                         "the JSON summary"));
+      files.Commit();
+    }
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const std::string& w : r.certificate.FailureMessages()) {
+      warnings[k].push_back(fmt::format("{}: {}", name, w));
+      check_failed = true;
+    }
+  };
+  SweepTable table;
+  {
+    Progress progress("simulate --sweep", "", args.quiet, args.progress_interval);
+    options.progress = [&progress](std::int64_t done, std::int64_t total) {
+      progress.Update(static_cast<double>(done), static_cast<double>(total));
+    };
+    table = SimulateSweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), specs, quantities,
+                          options, args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns);
+  }
+  for (const auto& [k, list] : warnings) {
+    for (const std::string& w : list) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
+  const int failed = EmitSweepTable(table, args.format);
+  return args.strict && (failed > 0 || check_failed) ? kExitCheckFailed : 0;
+}
+
+}  // namespace
+
 int RunSimulate(const SimulateArgs& args) {
+  if (!args.sweep.empty()) return RunSimulateSweep(args);
+  if (!args.quantity.empty() || !args.keep_runs.empty() || args.jobs > 0 || args.max_runs > 0) {
+    throw InputError(fmt::format("{} goes with --sweep", !args.quantity.empty()    ? "--quantity"
+                                                         : !args.keep_runs.empty() ? "--keep-runs"
+                                                         : args.jobs > 0           ? "--jobs"
+                                                                                   : "--max-runs"));
+  }
   if (args.scene.scene.empty()) {
     throw InputError("chasles simulate needs a scene file (chasles simulate --help)");
   }

@@ -306,7 +306,8 @@ void StudyRun::RecordSimulation(const SimulationResult& r, const std::vector<Con
     result_.events.push_back(
         {e.name, e.t, stop,
          study_internal::MakeSnapshot(m, e.state, def_.num_reported_constraints, labels_, theta_,
-                                      false)});
+                                      false),
+         rows_.Row(m, seg_.map, e.state, carry_, false)});
   }
   for (const ContactEvent& e : r.contact_events) {
     // The modes carried into this run are already in the timeline: Simulate lists every

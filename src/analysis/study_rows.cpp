@@ -208,14 +208,14 @@ RowMaker::RowMaker(std::vector<StudyColumn> columns, ThetaTracker& theta)
 }
 
 std::vector<double> RowMaker::Row(const Model& model, const BodyMap& map, const State& s,
-                                  const LedgerCarry& carry) {
+                                  const LedgerCarry& carry, bool advance) {
   const LedgerSample L = CalcLedgerSample(model, s, carry.segment_initial);
   Data data;
   if (needs_accelerations_) {
     data = MakeData(model);
     CalcAccelerations(model, s, data);
   }
-  if (theta_.active()) {
+  if (theta_.active() && advance) {
     // θ of every body at every sample, so that it stays continuous whatever is printed.
     for (size_t b = 0; b < map.place.size(); ++b) {
       const MappedBodyMotion m = CalcMappedBodyMotion(model, s, map, static_cast<int>(b));

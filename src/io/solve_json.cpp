@@ -128,18 +128,53 @@ nlohmann::json SolveJson(const SolveReport& s) {
 }
 
 nlohmann::json SweepJson(const SweepTable& table) {
-  return {{"parameter", table.parameter}, {"columns", table.columns}, {"rows", table.rows}};
+  nlohmann::json j = {{"parameter", table.parameter}, {"columns", table.columns}};
+  if (!table.parameters.empty()) j["parameters"] = table.parameters;
+  if (table.errors.empty()) {
+    j["rows"] = table.rows;
+    return j;
+  }
+  // A failed run's values are null, never a silent NaN; "errors" says why (null when it ran).
+  j["rows"] = nlohmann::json::array();
+  j["errors"] = nlohmann::json::array();
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    nlohmann::json row = nlohmann::json::array();
+    for (const double v : table.rows[r]) {
+      row.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr));
+    }
+    j["rows"].push_back(std::move(row));
+    const std::string& e = r < table.errors.size() ? table.errors[r] : std::string();
+    j["errors"].push_back(e.empty() ? nlohmann::json(nullptr) : nlohmann::json(e));
+  }
+  return j;
 }
 
 std::string SweepCsv(const SweepTable& table) {
-  CheckFiniteTable(table.columns, table.rows, "the sweep table");
-  std::string out = fmt::format("# {} swept (SI values); one row per value\n", table.parameter);
+  // Rows whose run failed print their non-finite values as empty fields, with the reason in
+  // the "error" column; every other value must be finite.
+  std::vector<std::vector<double>> ran;
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    if (r >= table.errors.size() || table.errors[r].empty()) ran.push_back(table.rows[r]);
+  }
+  CheckFiniteTable(table.columns, ran, "the sweep table");
+  const bool grid = table.parameters.size() > 1;
+  std::string out = fmt::format("# {} swept (SI values); one row per {}\n", table.parameter,
+                                grid ? "combination (the last varying fastest)" : "value");
   for (size_t c = 0; c < table.columns.size(); ++c) {
     out += fmt::format("{}{}", c ? "," : "", internal::CsvField(table.columns[c]));
   }
+  if (!table.errors.empty()) out += ",error";
   out += "\n";
-  for (const auto& row : table.rows) {
-    for (size_t c = 0; c < row.size(); ++c) out += fmt::format("{}{:.12g}", c ? "," : "", row[c]);
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    const auto& row = table.rows[r];
+    for (size_t c = 0; c < row.size(); ++c) {
+      if (c > 0) out.push_back(',');
+      if (std::isfinite(row[c])) out += fmt::format("{:.12g}", row[c]);
+    }
+    if (!table.errors.empty()) {
+      out.push_back(',');
+      out += internal::CsvField(r < table.errors.size() ? table.errors[r] : std::string());
+    }
     out += "\n";
   }
   return out;

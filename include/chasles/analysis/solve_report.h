@@ -106,10 +106,13 @@ struct SolveReport {
 void SolutionTableRow(const SolveReport& s, std::vector<std::string>* names,
                       std::vector<std::string>* units, std::vector<double>* values);
 
-/// A sweep's result: one row per value of the swept parameter, the parameter first (SI).
+/// A sweep's result: one row per value of the swept parameter (per point of a grid of
+/// several), the parameters first (SI).
 struct SweepTable {
-  /// The swept parameter's name.
+  /// The swept parameter's name (a grid's names joined by ", ").
   std::string parameter;
+  /// A grid's parameter names, in column order (empty for a sweep of one parameter by solve).
+  std::vector<std::string> parameters;
   /// Column names: the parameter, then SolutionTableRow's names.
   std::vector<std::string> columns;
   /// SI unit of each column ("" for pure numbers and angles in rad).
@@ -119,6 +122,10 @@ struct SweepTable {
   std::vector<std::string> warnings;
   /// True when a check failed at some value.
   bool failed = false;
+  /// Per row, why its run failed ("" when it did not); empty when no row can fail (solve).
+  /// A failed row has its parameters and NaN for every other value: the writers print those
+  /// as empty CSV fields and JSON nulls, with the reason in an "error" column.
+  std::vector<std::string> errors;
 };
 
 }  // namespace chasles

@@ -341,6 +341,9 @@ struct StudyEvent {
   /// The full state at the event: bodies, reactions and contact points (for a contact-mode
   /// event, just after the change, in the new modes).
   StudySnapshot snapshot;
+  /// The output columns at the event's state (StudyResult::columns; not a row of the CSV):
+  /// extremes over a run (a sweep's max(COLUMN)) see the event instants as well as the samples.
+  std::vector<double> row;
 };
 
 struct StudyResult {

@@ -21,13 +21,17 @@ namespace chasles {
 /// writing it.
 nlohmann::json SolveJson(const SolveReport& report);
 
-/// {"parameter": name, "columns": [...], "rows": [[...], ...]}.
+/// {"parameter": name, "columns": [...], "rows": [[...], ...]}; with "parameters" (a grid's
+/// names) when the table has them, and with "errors" (per row the reason its run failed, or
+/// null) when its rows can fail, a failed row's values then null.
 nlohmann::json SweepJson(const SweepTable& table);
 
 /// The table as the program prints it: a comment line "# NAME swept (SI values); one row per
-/// value", the column names (quoted when they hold a comma, a quote or a newline), then one
-/// line per value, each number with 12 significant digits. Throws InputError naming the
-/// column and row of a value that is not finite (CheckFiniteTable, "the sweep table").
+/// value" (a grid: "per combination"), the column names (quoted when they hold a comma, a
+/// quote or a newline), then one line per value, each number with 12 significant digits.
+/// When its rows can fail (SweepTable::errors), a last column "error": the reason, with the
+/// failed row's values as empty fields. Throws InputError naming the column and row of a value
+/// of a row that ran that is not finite (CheckFiniteTable, "the sweep table").
 std::string SweepCsv(const SweepTable& table);
 
 }  // namespace chasles

@@ -54,9 +54,10 @@ class ThetaTracker {
 class RowMaker {
  public:
   RowMaker(std::vector<StudyColumn> columns, ThetaTracker& theta);
-  /// The row at `s` (ledger relative to the carry).
+  /// The row at `s` (ledger relative to the carry). `advance`: move the θ track on to `s`
+  /// (false for an event's state, which may lie before the last sample).
   std::vector<double> Row(const Model& model, const BodyMap& map, const State& s,
-                          const LedgerCarry& carry);
+                          const LedgerCarry& carry, bool advance = true);
 
  private:
   double BodyValue(const StudyColumn& c, const Model& model, const BodyMap& map, const State& s,

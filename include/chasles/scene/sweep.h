@@ -1,0 +1,117 @@
+#pragma once
+/// @file
+/// Sweeps of a scene's parameters over a grid, for `chasles simulate --sweep` and `chasles
+/// mass --sweep` (docs/sweeps.md): every combination of the values of one or several
+/// parameters, each point loaded and run on its own (in parallel, results in grid order and
+/// the same for any number of threads), and one table of parameters and asked-for quantities.
+/// A point whose run fails gives a row with the reason, never a crash or a silent NaN.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "chasles/analysis/solve_report.h"
+#include "chasles/analysis/study.h"
+#include "chasles/scene/scene.h"
+#include "chasles/scene/solve.h"
+#include "chasles/scene/study.h"
+
+namespace chasles {
+
+/// The combinations of the values of several swept parameters, the last varying fastest:
+/// point k has index i_j of parameter j with k = ((i_0 n_1 + i_1) n_2 + i_2) ...
+struct SweepGrid {
+  std::vector<SweepSpec> specs;
+  /// SI value of each parameter's START and STOP, and its SI unit ("" for pure numbers).
+  std::vector<double> start, stop;
+  std::vector<std::string> units;
+  /// Number of points (the product of the counts).
+  std::int64_t size = 0;
+  /// The index of each parameter at point k.
+  std::vector<int> Indices(std::int64_t k) const;
+  /// The SI value of each parameter at point k: START + (STOP - START) i / (COUNT - 1).
+  std::vector<double> Values(std::int64_t k) const;
+  /// `base` with one override per parameter for point k: the value as the expression
+  /// (START) + ((STOP) - (START)) * i / (COUNT - 1), so START and STOP keep their units.
+  SceneOptions PointOptions(const SceneOptions& base, std::int64_t k) const;
+};
+
+/// Checks the specs against `scene` (each names one of its parameters, once; START and STOP
+/// are expressions of its parameters with the parameter's dimension) and the grid's size
+/// against `max_rows`. Throws SceneError at each spec's source and key.
+SweepGrid MakeSweepGrid(const Scene& scene, const std::vector<SweepSpec>& specs,
+                        std::int64_t max_rows);
+
+/// What a simulate sweep tabulates of each run (`--quantity`).
+struct SweepQuantity {
+  enum class Kind { kFinal, kMax, kMin, kEvent, kEventDifference, kTEnd };
+  Kind kind = Kind::kTEnd;
+  /// As written, white space around ( ) , - removed ("event(bottom)-event(release)"): the
+  /// table's column name.
+  std::string text;
+  /// The run column of final/max/min.
+  std::string column;
+  /// event(NAME, k): the k-th firing (from 1) of NAME; a difference subtracts event(NAME2, k2).
+  std::string event, event2;
+  int k = 1, k2 = 1;
+};
+
+/// Reads final(COLUMN), max(COLUMN), min(COLUMN), event(NAME), event(NAME, k),
+/// event(NAME, k) - event(NAME2, k2) or t_end. Throws SceneError at (`source`, `key`) for
+/// anything else.
+SweepQuantity ParseSweepQuantity(const std::string& text, const std::string& source = "sweep",
+                                 const std::string& key = "quantity");
+
+/// The quantity's value in run `r` [SI]. Throws InputError when the run has no such column or
+/// the event did not fire that many times.
+double SweepQuantityValue(const StudyResult& r, const SweepQuantity& q);
+
+/// Calls run(k) for k = 0 .. count-1 on `jobs` threads (< 1: the hardware's concurrency),
+/// each k once; `done` (may be empty) is called after each, one call at a time, with the
+/// number finished. An exception thrown by run stops the others from starting and is thrown
+/// again here once all threads have ended.
+void RunParallel(std::int64_t count, int jobs, const std::function<void(std::int64_t k)>& run,
+                 const std::function<void(std::int64_t done)>& done = {});
+
+struct SimulateSweepOptions {
+  /// End time and limits of each run (its `progress` is not used).
+  StudyOptions study;
+  /// Run columns replacing the scene's output columns (--columns); empty: the scene's. The
+  /// quantities' columns are added to them.
+  std::vector<std::string> columns;
+  /// Threads (< 1: the hardware's concurrency).
+  int jobs = 0;
+  /// Called with the number of runs finished and the total, one call at a time.
+  std::function<void(std::int64_t done, std::int64_t total)> progress;
+  /// Called (from the thread that ran it, possibly several at once) with each point's index,
+  /// its scene and its result, e.g. to write the run's own files. An exception it throws fails
+  /// that point's row.
+  std::function<void(std::int64_t k, const Scene& scene, const StudyResult& r)> on_run;
+};
+
+/// Runs the scene at every point of the grid of `specs` and tabulates `quantities`: columns
+/// the parameters then the quantities (their text as the name), one row per point in grid
+/// order. A point whose scene fails to load or whose run fails (bad input at that point, a
+/// limit reached, an event that did not fire) has its parameters, NaN values and the reason in
+/// SweepTable::errors. Unknown parameters, columns and events are SceneErrors before any run.
+SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
+                         const SceneOptions& options, const std::vector<SweepSpec>& specs,
+                         const std::vector<SweepQuantity>& quantities,
+                         const SimulateSweepOptions& sweep_options, std::int64_t max_rows);
+
+/// The quantities a mass sweep can tabulate per body, named as in the mass JSON report:
+/// mass, volume, surface_area, center_of_mass_x/y/z, Ixx Iyy Izz Ixy Ixz Iyz (the central
+/// inertia matrix, "inertia_about_center_of_mass"), I1 I2 I3 (principal moments, ascending),
+/// k1 k2 k3 (radii of gyration about the principal axes) and kx ky kz (about the body axes).
+std::vector<std::string> MassSweepQuantityNames();
+
+/// The mass properties of every point of the grid of `specs`: each quantity is NAME for a scene
+/// of one body or BODY.NAME (MassSweepQuantityNames). Rows and errors as SimulateSweep.
+SweepTable MassSweep(const std::function<Scene(const SceneOptions&)>& load,
+                     const SceneOptions& options, const std::vector<SweepSpec>& specs,
+                     const std::vector<std::string>& quantities, int jobs,
+                     const std::function<void(std::int64_t done, std::int64_t total)>& progress,
+                     std::int64_t max_rows);
+
+}  // namespace chasles

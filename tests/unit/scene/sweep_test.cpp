@@ -1,0 +1,129 @@
+// The pieces of a sweep (chasles/scene/sweep.h): the grid's order and values, the quantities'
+// grammar and values, and the thread pool.
+
+#include "chasles/scene/sweep.h"
+
+#include <atomic>
+#include <cstdint>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "chasles/error.h"
+#include "chasles/scene/scene.h"
+#include "chasles/scene/scene_error.h"
+
+namespace chasles {
+namespace {
+
+constexpr const char* kScene = R"(chasles: 1
+parameters:
+  a: 2 m
+  b: 30 deg
+  c: 5
+bodies:
+  - name: box
+    parts: [{shape: box, size: [a, 1 m, 1 m], mass: 1 kg}]
+)";
+
+TEST(SweepGrid, LastParameterVariesFastestAndValuesAreEvenlySpaced) {
+  const Scene scene = LoadSceneText(kScene, "grid.yaml");
+  const SweepGrid grid =
+      MakeSweepGrid(scene, {ParseSweep("a=1 m:3 m:3"), ParseSweep("b=0 deg:90 deg:4")}, 100);
+  ASSERT_EQ(grid.size, 12);
+  EXPECT_EQ(grid.units[0], "m");
+  // Point k = 4 i_a + i_b.
+  for (std::int64_t k = 0; k < grid.size; ++k) {
+    const std::vector<int> i = grid.Indices(k);
+    EXPECT_EQ(i[0], k / 4);
+    EXPECT_EQ(i[1], k % 4);
+    const std::vector<double> v = grid.Values(k);
+    // START + (STOP - START) i / (COUNT - 1), with 90 deg = pi/2 rad.
+    EXPECT_DOUBLE_EQ(v[0], 1.0 + i[0]);
+    EXPECT_NEAR(v[1], 3.14159265358979323846 / 2 * i[1] / 3, 1e-15);
+    // The loaded scene's values are the grid's.
+    const Scene at = LoadSceneText(kScene, "grid.yaml", grid.PointOptions({}, k));
+    EXPECT_EQ(at.parameters[0].second.value, v[0]);
+    EXPECT_EQ(at.parameters[1].second.value, v[1]);
+  }
+  EXPECT_THROW(MakeSweepGrid(scene, {ParseSweep("a=1 m:3 m:11"), ParseSweep("c=0:1:10")}, 100),
+               SceneError);
+  EXPECT_THROW(MakeSweepGrid(scene, {ParseSweep("a=1 s:3 m:3")}, 100), SceneError);
+  EXPECT_THROW(MakeSweepGrid(scene, {ParseSweep("d=1:3:3")}, 100), SceneError);
+}
+
+TEST(SweepQuantity, ReadsEachForm) {
+  using Kind = SweepQuantity::Kind;
+  EXPECT_EQ(ParseSweepQuantity("t_end").kind, Kind::kTEnd);
+  const SweepQuantity f = ParseSweepQuantity(" max( ball_vx ) ");
+  EXPECT_EQ(f.kind, Kind::kMax);
+  EXPECT_EQ(f.column, "ball_vx");
+  EXPECT_EQ(f.text, "max(ball_vx)");
+  const SweepQuantity e = ParseSweepQuantity("event(leaves wall, 2)");
+  EXPECT_EQ(e.kind, Kind::kEvent);
+  EXPECT_EQ(e.event, "leaves wall");
+  EXPECT_EQ(e.k, 2);
+  const SweepQuantity d = ParseSweepQuantity("event(starts-rolling, 3) - event(lift-off)");
+  EXPECT_EQ(d.kind, Kind::kEventDifference);
+  EXPECT_EQ(d.event, "starts-rolling");
+  EXPECT_EQ(d.k, 3);
+  EXPECT_EQ(d.event2, "lift-off");
+  EXPECT_EQ(d.k2, 1);
+  for (const char* bad : {"final()", "max(a,b)", "event()", "event(a,0)", "event(a,x)",
+                          "event(a)-event(b)-event(c)", "t", "final(a)-event(b)", "sum(x)"}) {
+    EXPECT_THROW(ParseSweepQuantity(bad), SceneError) << bad;
+  }
+}
+
+TEST(SweepQuantity, ValuesOfARun) {
+  StudyResult r;
+  r.columns = {"t", "x"};
+  r.rows = {{0.0, 1.0}, {1.0, 3.0}, {2.0, 2.0}};
+  r.t_end = 2.0;
+  // An event between samples, lower than any of them.
+  r.events.push_back({"low", 0.5, false, {}, {0.5, -4.0}});
+  r.events.push_back({"low", 1.5, false, {}, {1.5, 5.0}});
+  EXPECT_EQ(SweepQuantityValue(r, ParseSweepQuantity("final(x)")), 2.0);
+  EXPECT_EQ(SweepQuantityValue(r, ParseSweepQuantity("min(x)")), -4.0);
+  EXPECT_EQ(SweepQuantityValue(r, ParseSweepQuantity("max(x)")), 5.0);
+  EXPECT_EQ(SweepQuantityValue(r, ParseSweepQuantity("event(low,2)-event(low)")), 1.0);
+  EXPECT_EQ(SweepQuantityValue(r, ParseSweepQuantity("t_end")), 2.0);
+  EXPECT_THROW(SweepQuantityValue(r, ParseSweepQuantity("event(low, 3)")), InputError);
+  EXPECT_THROW(SweepQuantityValue(r, ParseSweepQuantity("final(y)")), InputError);
+}
+
+// Every index runs once whatever the thread count; results land by index; an exception stops
+// the pool and comes back to the caller.
+TEST(RunParallel, EachIndexOnceAndErrorsPropagate) {
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 5; ++trial) {
+    const auto count = static_cast<std::int64_t>(random() % 200);
+    const int jobs = 1 + static_cast<int>(random() % 4);
+    std::vector<std::atomic<int>> seen(static_cast<size_t>(count));
+    std::vector<double> out(static_cast<size_t>(count));
+    std::int64_t last_done = 0;
+    RunParallel(
+        count, jobs,
+        [&](std::int64_t k) {
+          ++seen[static_cast<size_t>(k)];
+          out[static_cast<size_t>(k)] = 0.5 * static_cast<double>(k);
+        },
+        [&](std::int64_t done) { last_done = done; });
+    EXPECT_EQ(last_done, count);
+    for (std::int64_t k = 0; k < count; ++k) {
+      EXPECT_EQ(seen[static_cast<size_t>(k)], 1);
+      EXPECT_EQ(out[static_cast<size_t>(k)], 0.5 * static_cast<double>(k));
+    }
+  }
+  EXPECT_THROW(RunParallel(50, 3,
+                           [](std::int64_t k) {
+                             if (k == 17) throw std::runtime_error("point 17");
+                           }),
+               std::runtime_error);
+}
+
+}  // namespace
+}  // namespace chasles
