@@ -59,21 +59,27 @@ struct SimulateArgs {
   double timeout = std::numeric_limits<double>::quiet_NaN();   // [s]; 0: none
   double min_step = std::numeric_limits<double>::quiet_NaN();  // [s]
   bool quiet = false;                                          // no progress on stderr
-  double progress_interval = 10.0;  // [s] between progress lines off a terminal
-  std::string html;                 // --html: also write the browser report here
+  double progress_interval = 10.0;    // [s] between progress lines off a terminal
+  std::string html;                   // --html: also write the browser report here
+  std::string precision = "default";  // CSV numbers: default | full (%.17g)
+  bool full_precision = false;        // --full-precision: precision "full"
 };
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args);
 int RunSimulate(const SimulateArgs& args);
 
 struct SolveArgs {
   SceneArgs scene;
-  std::string sweep;                // NAME=START:STOP:COUNT, or "" for one solve
-  std::string format = "text";      // text | json
-  bool strict = false;              // a failed check exits with kExitCheckFailed
-  std::int64_t max_rows = 0;        // most sweep values; 0: the default limit
-  bool quiet = false;               // no progress on stderr
-  double progress_interval = 10.0;  // [s] between progress lines off a terminal
-  std::string html;                 // --html: also write the browser report here (one solve)
+  std::string sweep;                  // NAME=START:STOP:COUNT, or "" for one solve
+  std::string format = "text";        // text | json
+  bool strict = false;                // a failed check exits with kExitCheckFailed
+  std::int64_t max_rows = 0;          // most sweep values; 0: the default limit
+  bool quiet = false;                 // no progress on stderr
+  double progress_interval = 10.0;    // [s] between progress lines off a terminal
+  std::string html;                   // --html: also write the browser report here (one solve)
+  std::string units;                  // text report units; "" = the scene's
+  std::string output;                 // -o/--out: write the report here, "" = standard output
+  std::string precision = "default";  // CSV numbers: default | full (%.17g)
+  bool full_precision = false;        // --full-precision: precision "full"
 };
 CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args);
 int RunSolve(const SolveArgs& args);
@@ -91,6 +97,7 @@ int RunReport(const ReportArgs& args);
 
 CLI::App* AddMaterialsCommand(CLI::App& app);
 int RunMaterials();
+
 
 /// The built-in demonstration scene (the chapter's disk-and-axle assembly, Section 8.3).
 extern const char* const kDemoScene;

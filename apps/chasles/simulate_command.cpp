@@ -442,6 +442,11 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "Also write the browser report (a 3-D replay with plots, one HTML file) here; "
                   "the CSV then also holds the columns the report needs (poses, ledger, "
                   "reactions, contacts)");
+  cmd->add_option("--precision", args.precision,
+                  "Digits of the CSV's numbers: default (the shortest text that reads back as "
+                  "the same double) or full (every double with %.17g)")
+      ->check(CLI::IsMember({"default", "full"}));
+  cmd->add_flag("--full-precision", args.full_precision, "The same as --precision full");
   AddRunLimitOptions(*cmd, args);
   cmd->footer(
       "Examples:\n"
@@ -496,7 +501,8 @@ int RunSimulate(const SimulateArgs& args) {
   const std::string json_path = (dir / (stem + ".json")).string();
   // Every output is made and checked (no non-finite number) before any file appears; then
   // the CSV and the JSON appear together or not at all (output_set.h).
-  const std::string csv_text = SimulationCsv(r);
+  const std::string csv_text = SimulationCsv(
+      r, args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision));
   const std::string json_text = DumpJson(
       SimulationJson(r, ReportHeader{scene.file, scene.title, scene.planar, scene.warnings},
                      csv_path),

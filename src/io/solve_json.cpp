@@ -11,7 +11,6 @@
 #include "chasles/io/certificate_json.h"
 #include "chasles/io/json_report.h"
 #include "chasles/model/contact.h"
-#include "io/internal/csv_field.h"
 
 namespace chasles {
 
@@ -128,21 +127,23 @@ nlohmann::json SolveJson(const SolveReport& s) {
 }
 
 nlohmann::json SweepJson(const SweepTable& table) {
-  return {{"parameter", table.parameter}, {"columns", table.columns}, {"rows", table.rows}};
+  return {{"parameter", table.parameter},
+          {"units", "SI"},
+          {"columns", table.columns},
+          {"column_units", table.units},
+          {"rows", table.rows}};
 }
 
-std::string SweepCsv(const SweepTable& table) {
-  CheckFiniteTable(table.columns, table.rows, "the sweep table");
-  std::string out = fmt::format("# {} swept (SI values); one row per value\n", table.parameter);
-  for (size_t c = 0; c < table.columns.size(); ++c) {
-    out += fmt::format("{}{}", c ? "," : "", internal::CsvField(table.columns[c]));
-  }
-  out += "\n";
-  for (const auto& row : table.rows) {
-    for (size_t c = 0; c < row.size(); ++c) out += fmt::format("{}{:.12g}", c ? "," : "", row[c]);
-    out += "\n";
-  }
-  return out;
+std::string SweepCsv(const SweepTable& table, CsvPrecision precision) {
+  return CsvText({table.columns, table.units, table.rows},
+                 precision == CsvPrecision::kFull ? 17 : 12, "the sweep table");
+}
+
+std::string SolveCsv(const SolveReport& report, CsvPrecision precision) {
+  CsvTable t;
+  t.rows.emplace_back();
+  SolutionTableRow(report, &t.columns, &t.units, &t.rows.back());
+  return CsvText(t, precision == CsvPrecision::kFull ? 17 : 12, "the solve table");
 }
 
 }  // namespace chasles
