@@ -98,6 +98,15 @@ int RunReport(const ReportArgs& args);
 CLI::App* AddMaterialsCommand(CLI::App& app);
 int RunMaterials();
 
+struct PlotArgs {
+  std::string input;                 // a run's JSON, a run's CSV or a sweep's CSV
+  std::vector<std::string> columns;  // X, then the Y columns
+  std::string output;                // .svg or .png
+  std::string title;
+};
+/// Built only with PLplot (CHASLES_HAVE_PLOT).
+CLI::App* AddPlotCommand(CLI::App& app, PlotArgs& args);
+int RunPlot(const PlotArgs& args);
 
 /// The built-in demonstration scene (the chapter's disk-and-axle assembly, Section 8.3).
 extern const char* const kDemoScene;
