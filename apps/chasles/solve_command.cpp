@@ -58,11 +58,15 @@ constexpr Dimension kAngularMomentumDim{2, 1, -1};
 /// JSON and CSV stay SI. Each value is converted from SI after its round-off is cleaned.
 struct Show {
   const UnitSystem& u;
-  /// " unit" (nothing for a pure number); an energy in SI is in J, not N*m.
+  /// " unit" (nothing for a pure number).
   std::string Unit(const Dimension& d, Angular a = Angular::kNo) const {
     const std::string unit = u.FormatUnit(d, a);
-    if (d == kEnergyDim && a == Angular::kNo && unit == "N*m") return " J";
     return unit.empty() ? "" : " " + unit;
+  }
+  /// An energy: as a moment (same dimension), but in SI its own name, the joule.
+  std::string E(double si) const {
+    const std::string unit = u.FormatUnit(kEnergyDim);
+    return Num(si, kEnergyDim) + (unit == "N*m" ? " J" : " " + unit);
   }
   std::string Num(double si, const Dimension& d, Angular a = Angular::kNo) const {
     return fmt::format("{:.9g}", u.FromSI(Finite(si, "a value of the solve report"), d, a));
@@ -265,9 +269,8 @@ std::string Text(const Scene& scene, const SolveReport& s, const UnitSystem& uni
   out += ContactsText(s, k, u);
   out += "\nKinetic energy and momenta (H about each centre of mass, H_O about the origin)\n";
   const auto motion = [&out, &k, &s, &u](const BodyMotionReport& m, const char* cm) {
-    out += fmt::format("    T {} (translational {}, rotational {})\n",
-                       u(m.T_trans + m.T_rot, kEnergyDim), u(m.T_trans, kEnergyDim),
-                       u(m.T_rot, kEnergyDim));
+    out += fmt::format("    T {} (translational {}, rotational {})\n", u.E(m.T_trans + m.T_rot),
+                       u.E(m.T_trans), u.E(m.T_rot));
     if (s.planar) {
       // In the plane: p = (p_x, p_y), H about z (eq. 8.40).
       out += fmt::format("    p   {}\n", u.InPlane(true, m.P, kMomentumDim, k.p));

@@ -147,11 +147,20 @@ TEST(Outputs, SolveUnitsConvertTheTextReport) {
   EXPECT_THAT(si.out, HasSubstr(fmt::format("a_cm  [{:.9g}, 0, {:.9g}] m/s^2",
                                             a.at(0).get<double>(), a.at(2).get<double>())));
   EXPECT_THAT(si.out, HasSubstr("T 0 J"));
+  // A moment has the energy's dimension but stays N*m (dH/dt, eq. 8.30).
+  EXPECT_THAT(si.out, HasSubstr("dH/dt   [0, "));
+  EXPECT_THAT(si.out, ::testing::Not(HasSubstr(" J\n    dH_O/dt")));
+  EXPECT_THAT(si.out, HasSubstr("] N*m\n    dH_O/dt"));
   // The scene's own `units: in, lb` by default.
   const CliResult cube = RunCli("solve " + Quote(SourcePath("examples/section-8.5-cube.yaml")));
   ASSERT_EQ(cube.exit_code, 0) << cube.err;
   EXPECT_THAT(cube.out, HasSubstr("report in in, lb units"));
   EXPECT_THAT(cube.out, HasSubstr("in/s^2"));
+  // A sweep's table is SI: --units there is refused.
+  const CliResult sweep = RunCli("solve " + Quote(SourcePath(kIncline)) +
+                                 " --quiet --sweep 'theta=10 deg:50 deg:3' --units US");
+  EXPECT_EQ(sweep.exit_code, 2);
+  EXPECT_THAT(sweep.err, HasSubstr("--units"));
   const CliResult bad = RunCli("solve " + Quote(SourcePath(kIncline)) + " --units furlong");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_THAT(bad.err, HasSubstr("furlong"));
