@@ -11,8 +11,10 @@ packages=(
   libfmt-dev           # formatting
   libboost-dev         # Boost.Math: quadrature, special functions (header-only)
   nlohmann-json3-dev   # JSON reports
+  libplplot-dev plplot-driver-cairo  # chasles plot: axes, legend and series drawn by PLplot (svg, pngcairo)
   libassimp-dev        # bench/ only: the comparison with chasles' own STL reader
   libgtest-dev libgmock-dev  # tests
+  libpng-dev           # tests: decode the PNG of chasles plot
   libbenchmark-dev     # benchmarks in bench/
   clang-format         # formatting check
   clang libclang-rt-dev  # libFuzzer, for scripts/fuzz.sh

@@ -32,10 +32,12 @@ struct MassArgs {
   std::string html;  // --html: also write the browser report here
   // --sweep NAME=START:STOP:COUNT (repeatable: a grid) with --quantity (docs/sweeps.md).
   std::vector<std::string> sweep, quantity;
-  int jobs = 0;                     // threads of a sweep; 0: the hardware's concurrency
-  std::int64_t max_runs = 0;        // most points of a sweep; 0: the default limit
-  bool quiet = false;               // no progress of a sweep on stderr
-  double progress_interval = 10.0;  // [s] between progress lines off a terminal
+  int jobs = 0;                       // threads of a sweep; 0: the hardware's concurrency
+  std::int64_t max_runs = 0;          // most points of a sweep; 0: the default limit
+  bool quiet = false;                 // no progress of a sweep on stderr
+  double progress_interval = 10.0;    // [s] between progress lines off a terminal
+  std::string precision = "default";  // a sweep table's numbers: default | full (%.17g)
+  bool full_precision = false;        // --full-precision: precision "full"
   // A mesh file given instead of a scene (chasles mass part.stl --unit mm --density 7850):
   // these say what the scene's mesh part would.
   std::string mesh_unit, mesh_mode, mesh_density, mesh_material, mesh_mass, mesh_areal_density,
@@ -69,22 +71,28 @@ struct SimulateArgs {
   std::string html;                 // --html: also write the browser report here
   // --sweep NAME=START:STOP:COUNT (repeatable: a grid) with --quantity (docs/sweeps.md).
   std::vector<std::string> sweep, quantity;
-  int jobs = 0;               // threads of a sweep; 0: the hardware's concurrency
-  std::string keep_runs;      // write each run's CSV and JSON here
-  std::int64_t max_runs = 0;  // most points of a sweep; 0: the default limit
+  int jobs = 0;                       // threads of a sweep; 0: the hardware's concurrency
+  std::string keep_runs;              // write each run's CSV and JSON here
+  std::int64_t max_runs = 0;          // most points of a sweep; 0: the default limit
+  std::string precision = "default";  // CSV numbers: default | full (%.17g)
+  bool full_precision = false;        // --full-precision: precision "full"
 };
 CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args);
 int RunSimulate(const SimulateArgs& args);
 
 struct SolveArgs {
   SceneArgs scene;
-  std::string sweep;                // NAME=START:STOP:COUNT, or "" for one solve
-  std::string format = "text";      // text | json
-  bool strict = false;              // a failed check exits with kExitCheckFailed
-  std::int64_t max_rows = 0;        // most sweep values; 0: the default limit
-  bool quiet = false;               // no progress on stderr
-  double progress_interval = 10.0;  // [s] between progress lines off a terminal
-  std::string html;                 // --html: also write the browser report here (one solve)
+  std::string sweep;                  // NAME=START:STOP:COUNT, or "" for one solve
+  std::string format = "text";        // text | json
+  bool strict = false;                // a failed check exits with kExitCheckFailed
+  std::int64_t max_rows = 0;          // most sweep values; 0: the default limit
+  bool quiet = false;                 // no progress on stderr
+  double progress_interval = 10.0;    // [s] between progress lines off a terminal
+  std::string html;                   // --html: also write the browser report here (one solve)
+  std::string units;                  // text report units; "" = the scene's
+  std::string output;                 // -o/--out: write the report here, "" = standard output
+  std::string precision = "default";  // CSV numbers: default | full (%.17g)
+  bool full_precision = false;        // --full-precision: precision "full"
 };
 CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args);
 int RunSolve(const SolveArgs& args);
@@ -102,6 +110,17 @@ int RunReport(const ReportArgs& args);
 
 CLI::App* AddMaterialsCommand(CLI::App& app);
 int RunMaterials();
+
+struct PlotArgs {
+  std::string input;                 // a run's JSON, a run's CSV or a sweep's CSV
+  std::vector<std::string> columns;  // X, then the Y columns
+  std::string output;                // .svg or .png
+  std::string title;
+  std::string by;  // one line per value of this column (a grid sweep's other parameter)
+};
+/// Built only with PLplot (CHASLES_HAVE_PLOT).
+CLI::App* AddPlotCommand(CLI::App& app, PlotArgs& args);
+int RunPlot(const PlotArgs& args);
 
 /// The built-in demonstration scene (the chapter's disk-and-axle assembly, Section 8.3).
 extern const char* const kDemoScene;

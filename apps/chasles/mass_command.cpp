@@ -278,6 +278,11 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
                   fmt::format("NAME for a scene of one body, else BODY.NAME, with NAME one of {} "
                               "(repeatable)",
                               fmt::join(MassSweepQuantityNames(), ", ")));
+  cmd->add_option("--precision", args.precision,
+                  "With --sweep, digits of the CSV table's numbers: default (12 significant "
+                  "digits) or full (every double with %.17g, reads back bitwise)")
+      ->check(CLI::IsMember({"default", "full"}));
+  cmd->add_flag("--full-precision", args.full_precision, "The same as --precision full");
   cmd->add_flag("--quiet", args.quiet,
                 "No progress of a sweep on standard error (otherwise: redrawn on a terminal, one "
                 "line every 10 s off it)");
@@ -369,7 +374,9 @@ int RunMassSweep(const MassArgs& args) {
         },
         args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns);
   }
-  EmitSweepTable(table, args.format, args.output);
+  EmitSweepTable(table, args.format,
+                 args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision),
+                 args.output);
   return 0;
 }
 

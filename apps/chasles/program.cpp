@@ -39,6 +39,9 @@ std::unique_ptr<Program> MakeProgram() {
   p->solve = AddSolveCommand(app, p->solve_args);
   p->materials = AddMaterialsCommand(app);
   p->report = AddReportCommand(app, p->report_args);
+#ifdef CHASLES_HAVE_PLOT
+  p->plot = AddPlotCommand(app, p->plot_args);
+#endif
   return p;
 }
 
@@ -50,6 +53,7 @@ int RunParsed(Program& p) {
     if (p.solve->parsed()) return RunSolve(p.solve_args);
     if (p.materials->parsed()) return RunMaterials();
     if (p.report->parsed()) return RunReport(p.report_args);
+    if (p.plot && p.plot->parsed()) return RunPlot(p.plot_args);
     std::fprintf(stderr,
                  "chasles: no command given, so here is the built-in demonstration scene "
                  "(chasles --help lists the commands).\n\n");

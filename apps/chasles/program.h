@@ -26,12 +26,14 @@ struct Program {
   SimulateArgs simulate_args;
   SolveArgs solve_args;
   ReportArgs report_args;
+  PlotArgs plot_args;
   CLI::App* mass = nullptr;
   CLI::App* check = nullptr;
   CLI::App* simulate = nullptr;
   CLI::App* solve = nullptr;
   CLI::App* materials = nullptr;
   CLI::App* report = nullptr;
+  CLI::App* plot = nullptr;  // null in a build without PLplot
 };
 
 /// A fresh parser (CLI11 apps are not reusable across parses).

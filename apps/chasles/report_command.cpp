@@ -4,9 +4,7 @@
 // forces at every sample, which only a run made with --html records: this report has the
 // replay, the plots and the events, without arrows.
 
-#include <cerrno>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,6 +16,7 @@
 
 #include "chasles/error.h"
 #include "chasles/io/atomic_file.h"
+#include "chasles/io/csv_table.h"
 #include "chasles/scene/report_data.h"
 #include "chasles/scene/scene.h"
 #include "commands.h"
@@ -45,61 +44,13 @@ std::string Resolve(const std::string& path, const std::string& json_path) {
   return std::filesystem::exists(beside) ? beside.string() : path;
 }
 
-/// The fields of one CSV line (quoted fields with doubled quotes, as SimulationCsv writes).
-std::vector<std::string> CsvFields(const std::string& line) {
-  std::vector<std::string> out(1);
-  bool quoted = false;
-  for (size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        out.back() += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        out.back() += c;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      out.emplace_back();
-    } else if (c != '\r') {
-      out.back() += c;
-    }
-  }
-  return out;
-}
-
-/// The run's table from its CSV: column names and rows. Errors name the file, line and column.
+/// The run's table from its CSV (chasles/io/csv_table.h: columns by name, their units
+/// dropped). Errors name the file, line and column.
 void ReadCsv(const std::string& path, StudyResult& r) {
-  std::istringstream in(ReadText(path, "the run's CSV"));
-  std::string line;
-  if (!std::getline(in, line)) throw InputError(fmt::format("{}: empty CSV", path));
-  r.columns = CsvFields(line);
-  int number = 1;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.empty() || line == "\r") continue;
-    const std::vector<std::string> f = CsvFields(line);
-    if (f.size() != r.columns.size()) {
-      throw InputError(fmt::format("{}:{}: expected {} values (one per column), got {}", path,
-                                   number, r.columns.size(), f.size()));
-    }
-    std::vector<double> row;
-    row.reserve(f.size());
-    for (size_t c = 0; c < f.size(); ++c) {
-      errno = 0;
-      char* end = nullptr;
-      const double v = std::strtod(f[c].c_str(), &end);
-      if (f[c].empty() || *end != '\0' || errno == ERANGE) {
-        throw InputError(fmt::format("{}:{}: column '{}': expected a number, got '{}'", path,
-                                     number, r.columns[c], f[c]));
-      }
-      row.push_back(v);
-    }
-    r.rows.push_back(std::move(row));
-  }
+  CsvTable t = ReadCsvTable(ReadText(path, "the run's CSV"), path);
+  r.columns = std::move(t.columns);
+  r.units = std::move(t.units);
+  r.rows = std::move(t.rows);
 }
 
 template <typename T>

@@ -449,6 +449,11 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "Also write the browser report (a 3-D replay with plots, one HTML file) here; "
                   "the CSV then also holds the columns the report needs (poses, ledger, "
                   "reactions, contacts)");
+  cmd->add_option("--precision", args.precision,
+                  "Digits of the CSV's numbers: default (the shortest text that reads back as "
+                  "the same double) or full (every double with %.17g)")
+      ->check(CLI::IsMember({"default", "full"}));
+  cmd->add_flag("--full-precision", args.full_precision, "The same as --precision full");
   AddRunLimitOptions(*cmd, args);
   AddSweepOptions(*cmd, args.sweep, args.quantity, args.jobs, args.max_runs,
                   "final(COLUMN), max(COLUMN), min(COLUMN) (over the samples and the events), "
@@ -543,7 +548,9 @@ int RunSimulateSweep(const SimulateArgs& args) {
   for (const auto& [k, list] : warnings) {
     for (const std::string& w : list) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
-  const int failed = EmitSweepTable(table, args.format);
+  const int failed =
+      EmitSweepTable(table, args.format,
+                     args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision));
   return args.strict && (failed > 0 || check_failed) ? kExitCheckFailed : 0;
 }
 
@@ -596,7 +603,8 @@ int RunSimulate(const SimulateArgs& args) {
   const std::string json_path = (dir / (stem + ".json")).string();
   // Every output is made and checked (no non-finite number) before any file appears; then
   // the CSV and the JSON appear together or not at all (output_set.h).
-  const std::string csv_text = SimulationCsv(r);
+  const std::string csv_text = SimulationCsv(
+      r, args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision));
   const std::string json_text = DumpJson(
       SimulationJson(r, ReportHeader{scene.file, scene.title, scene.planar, scene.warnings},
                      csv_path),

@@ -20,6 +20,7 @@
 #include "chasles/error.h"
 #include "chasles/io/atomic_file.h"
 #include "chasles/io/json_report.h"
+#include "chasles/io/output_set.h"
 #include "chasles/io/solve_json.h"
 #include "chasles/model/model.h"
 #include "chasles/scene/report_data.h"
@@ -27,6 +28,7 @@
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/solve.h"
 #include "chasles/scene/study.h"
+#include "chasles/scene/units.h"
 #include "commands.h"
 #include "html_report.h"
 #include "progress.h"
@@ -36,28 +38,59 @@ namespace chasles::cli {
 
 namespace {
 
-// A vector for the report: components that are round-off against the vector's own size
-// (1e-12 of it) show as 0, so a student reads [2.83, 0, -1.63], not [2.83, -2.5e-32, -1.63].
 /// `x` with round-off against `scale` shown as 0: a component below 1e-12 of the scale is the
 /// solve's rounding, not a physical value (the JSON keeps every digit).
 double Clean(double x, double scale) {
   return std::abs(Finite(x, "a value of the solve report")) <= 1e-12 * scale ? 0.0 : x;
 }
 
-/// A vector for the text report; `scale` is the size of the largest quantity of its kind in
-/// the report (e.g. the largest acceleration of any body), so that 1e-15 m/s² next to 2 m/s²
-/// prints as 0.
-std::string V(const Vec3& v, double scale = 0.0) {
-  const double s = std::max(v.stableNorm(), scale);
-  return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", Clean(v.x(), s), Clean(v.y(), s), Clean(v.z(), s));
-}
+constexpr Dimension kAccelDim{1, 0, -2};
+constexpr Dimension kAlphaDim{0, 0, -2};
+constexpr Dimension kVelocityDim{1, 0, -1};
+constexpr Dimension kRateDim{0, 0, -1};
+constexpr Dimension kForceDim{1, 1, -2};
+constexpr Dimension kMomentDim{2, 1, -2};
+constexpr Dimension kEnergyDim{2, 1, -2};
+constexpr Dimension kMomentumDim{1, 1, -1};
+constexpr Dimension kAngularMomentumDim{2, 1, -1};
 
-/// An in-plane vector of a planar scene's text report, [x, y] (its z is 0); V otherwise.
-std::string VInPlane(bool planar, const Vec3& v, double scale = 0.0) {
-  if (!planar) return V(v, scale);
-  const double s = std::max(v.stableNorm(), scale);
-  return fmt::format("[{:.9g}, {:.9g}]", Clean(v.x(), s), Clean(v.y(), s));
-}
+/// The text report's values in the units asked for (--units, else the scene's `units:`); the
+/// JSON and CSV stay SI. Each value is converted from SI after its round-off is cleaned.
+struct Show {
+  const UnitSystem& u;
+  /// " unit" (nothing for a pure number).
+  std::string Unit(const Dimension& d, Angular a = Angular::kNo) const {
+    const std::string unit = u.FormatUnit(d, a);
+    return unit.empty() ? "" : " " + unit;
+  }
+  /// An energy: as a moment (same dimension), but in SI its own name, the joule.
+  std::string E(double si) const {
+    const std::string unit = u.FormatUnit(kEnergyDim);
+    return Num(si, kEnergyDim) + (unit == "N*m" ? " J" : " " + unit);
+  }
+  std::string Num(double si, const Dimension& d, Angular a = Angular::kNo) const {
+    return fmt::format("{:.9g}", u.FromSI(Finite(si, "a value of the solve report"), d, a));
+  }
+  /// "value unit".
+  std::string operator()(double si, const Dimension& d, Angular a = Angular::kNo) const {
+    return Num(si, d, a) + Unit(d, a);
+  }
+  /// "[x, y, z] unit"; `scale` is the size of the largest quantity of its kind in the report
+  /// (e.g. the largest acceleration of any body), so that 1e-15 m/s² next to 2 m/s² prints as
+  /// 0: a student reads [2.83, 0, -1.63], not [2.83, -2.5e-32, -1.63].
+  std::string Vec(const Vec3& v, const Dimension& d, double scale = 0.0,
+                  Angular a = Angular::kNo) const {
+    const double s = std::max(v.stableNorm(), scale);
+    return fmt::format("[{}, {}, {}]{}", Num(Clean(v.x(), s), d, a), Num(Clean(v.y(), s), d, a),
+                       Num(Clean(v.z(), s), d, a), Unit(d, a));
+  }
+  /// An in-plane vector of a planar scene's report, "[x, y] unit" (its z is 0); Vec otherwise.
+  std::string InPlane(bool planar, const Vec3& v, const Dimension& d, double scale = 0.0) const {
+    if (!planar) return Vec(v, d, scale);
+    const double s = std::max(v.stableNorm(), scale);
+    return fmt::format("[{}, {}]{}", Num(Clean(v.x(), s), d), Num(Clean(v.y(), s), d), Unit(d));
+  }
+};
 
 /// The scales of the report's quantities: the largest of each kind over bodies and reactions.
 struct ReportScales {
@@ -97,97 +130,97 @@ ReportScales CalcScales(const SolveReport& s) {
 }
 
 /// The velocities, the named points' velocities and accelerations and dH/dt of every body.
-std::string KinematicsText(const SolveReport& s, const ReportScales& k) {
+std::string KinematicsText(const SolveReport& s, const ReportScales& k, const Show& u) {
   std::string out;
   // ΣM = dH/dt (eq. 8.30): the Checks section's angular momentum balance compares the
   // moments on each body with this dH_cm/dt.
   out +=
       "\nVelocities, named points and dH/dt (about each centre of mass; dH_O/dt about the "
       "origin)\n";
+  const auto hdot = [&](const Vec3& cm, const Vec3& o) {
+    if (s.planar) {
+      return fmt::format("    dH_z/dt  {}\n    dH_Oz/dt {}\n", u(Clean(cm.z(), k.hdot), kMomentDim),
+                         u(Clean(o.z(), k.hdot), kMomentDim));
+    }
+    return fmt::format("    dH/dt   {}\n    dH_O/dt {}\n", u.Vec(cm, kMomentDim, k.hdot),
+                       u.Vec(o, kMomentDim, k.hdot));
+  };
   for (const BodyMotionReport& m : s.motion) {
     out += fmt::format("  {}\n", m.name);
     if (s.planar) {
-      out += fmt::format("    v_x   {:.9g} m/s\n    v_y   {:.9g} m/s\n    omega {:.9g} rad/s\n",
-                         Clean(m.v_WBcm_W.x(), k.v), Clean(m.v_WBcm_W.y(), k.v),
-                         Clean(m.w_WB_W.z(), k.w));
+      out += fmt::format("    v_x   {}\n    v_y   {}\n    omega {}\n",
+                         u(Clean(m.v_WBcm_W.x(), k.v), kVelocityDim),
+                         u(Clean(m.v_WBcm_W.y(), k.v), kVelocityDim),
+                         u(Clean(m.w_WB_W.z(), k.w), kRateDim, Angular::kYes));
     } else {
-      out += fmt::format("    v_cm  {} m/s\n    omega {} rad/s\n", V(m.v_WBcm_W, k.v),
-                         V(m.w_WB_W, k.w));
+      out += fmt::format("    v_cm  {}\n    omega {}\n", u.Vec(m.v_WBcm_W, kVelocityDim, k.v),
+                         u.Vec(m.w_WB_W, kRateDim, k.w, Angular::kYes));
     }
     for (const PointMotionReport& p : m.points) {
       if (s.planar) {
-        out += fmt::format(
-            "    point {} at [{:.9g}, {:.9g}] m: v [{:.9g}, {:.9g}] m/s, a [{:.9g}, {:.9g}] "
-            "m/s^2\n",
-            p.name, p.p_WP.x(), p.p_WP.y(), Clean(p.v_WP_W.x(), k.v), Clean(p.v_WP_W.y(), k.v),
-            Clean(p.a_WP_W.x(), k.a), Clean(p.a_WP_W.y(), k.a));
+        out += fmt::format("    point {} at {}: v {}, a {}\n", p.name,
+                           u.InPlane(true, p.p_WP, kLength),
+                           u.InPlane(true, p.v_WP_W, kVelocityDim, k.v),
+                           u.InPlane(true, p.a_WP_W, kAccelDim, k.a));
       } else {
-        out += fmt::format("    point {} at {} m\n      v {} m/s\n      a {} m/s^2\n", p.name,
-                           V(p.p_WP), V(p.v_WP_W, k.v), V(p.a_WP_W, k.a));
+        out += fmt::format("    point {} at {}\n      v {}\n      a {}\n", p.name,
+                           u.Vec(p.p_WP, kLength), u.Vec(p.v_WP_W, kVelocityDim, k.v),
+                           u.Vec(p.a_WP_W, kAccelDim, k.a));
       }
     }
-    if (s.planar) {
-      out += fmt::format("    dH_z/dt  {:.9g} N*m\n    dH_Oz/dt {:.9g} N*m\n",
-                         Clean(m.Hdot_cm.z(), k.hdot), Clean(m.Hdot_O.z(), k.hdot));
-    } else {
-      out += fmt::format("    dH/dt   {} N*m\n    dH_O/dt {} N*m\n", V(m.Hdot_cm, k.hdot),
-                         V(m.Hdot_O, k.hdot));
-    }
+    out += hdot(m.Hdot_cm, m.Hdot_O);
   }
   if (s.motion.size() > 1) {
     out += "  all bodies (dH/dt about the system's centre of mass)\n";
-    if (s.planar) {
-      out += fmt::format("    dH_z/dt  {:.9g} N*m\n    dH_Oz/dt {:.9g} N*m\n",
-                         Clean(s.total.Hdot_cm.z(), k.hdot), Clean(s.total.Hdot_O.z(), k.hdot));
-    } else {
-      out += fmt::format("    dH/dt   {} N*m\n    dH_O/dt {} N*m\n", V(s.total.Hdot_cm, k.hdot),
-                         V(s.total.Hdot_O, k.hdot));
-    }
+    out += hdot(s.total.Hdot_cm, s.total.Hdot_O);
   }
   return out;
 }
 
-std::string Text(const Scene& scene, const SolveReport& s) {
-  std::string out = fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
-                                scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
-  out += fmt::format("Instantaneous solution at the initial state (SI, {})\n\nAccelerations\n",
-                     s.planar ? "planar: x-y plane, moments about z" : "world frame");
-  const ReportScales k = CalcScales(s);
+/// Each body's acceleration and angular acceleration.
+std::string AccelerationsText(const SolveReport& s, const ReportScales& k, const Show& u) {
+  std::string out;
   for (const auto& b : s.solution.bodies) {
     if (s.planar) {
-      out += fmt::format("  {}\n    a_x   {:.9g} m/s^2\n    a_y   {:.9g} m/s^2\n", b.name,
-                         Clean(b.a_WBcm_W.x(), k.a), Clean(b.a_WBcm_W.y(), k.a));
-      out += fmt::format("    alpha {:.9g} rad/s^2\n", Clean(b.alpha_WB_W.z(), k.alpha));
+      out += fmt::format("  {}\n    a_x   {}\n    a_y   {}\n    alpha {}\n", b.name,
+                         u(Clean(b.a_WBcm_W.x(), k.a), kAccelDim),
+                         u(Clean(b.a_WBcm_W.y(), k.a), kAccelDim),
+                         u(Clean(b.alpha_WB_W.z(), k.alpha), kAlphaDim, Angular::kYes));
       continue;
     }
-    out += fmt::format("  {}\n    a_cm  {} m/s^2\n", b.name, V(b.a_WBcm_W, k.a));
-    out += fmt::format("    alpha {} rad/s^2\n", V(b.alpha_WB_W, k.alpha));
+    out +=
+        fmt::format("  {}\n    a_cm  {}\n    alpha {}\n", b.name, u.Vec(b.a_WBcm_W, kAccelDim, k.a),
+                    u.Vec(b.alpha_WB_W, kAlphaDim, k.alpha, Angular::kYes));
   }
-  if (!s.solution.reactions.empty()) {
-    out += "\nReactions (on the child at the joint point)\n";
-  }
+  return out;
+}
+
+/// Each constraint's reaction; for a string its mode, for rolling the friction it needs.
+std::string ReactionsText(const SolveReport& s, const ReportScales& k, const Show& u) {
+  if (s.solution.reactions.empty()) return "";
+  std::string out = "\nReactions (on the child at the joint point)\n";
   for (size_t i = 0; i < s.solution.reactions.size(); ++i) {
     const ReactionReport& r = s.solution.reactions[i];
     if (s.planar) {
-      out +=
-          fmt::format("  {} ({}) at [{:.9g}, {:.9g}] m\n", r.name, r.kind, r.p_WJ.x(), r.p_WJ.y());
-      out +=
-          fmt::format("    Fx {:.9g} N, Fy {:.9g} N, Mz {:.9g} N*m\n", Clean(r.F_Jc_W.x(), k.force),
-                      Clean(r.F_Jc_W.y(), k.force), Clean(r.M_Jc_W.z(), k.moment));
+      out += fmt::format("  {} ({}) at {}\n", r.name, r.kind, u.InPlane(true, r.p_WJ, kLength));
+      out += fmt::format("    Fx {}, Fy {}, Mz {}\n", u(Clean(r.F_Jc_W.x(), k.force), kForceDim),
+                         u(Clean(r.F_Jc_W.y(), k.force), kForceDim),
+                         u(Clean(r.M_Jc_W.z(), k.moment), kMomentDim));
     } else {
-      out += fmt::format("  {} ({}) at {} m\n", r.name, r.kind, V(r.p_WJ));
-      out += fmt::format("    force  {} N\n", V(r.F_Jc_W, k.force));
-      out += fmt::format("    moment {} N*m\n", V(r.M_Jc_W, k.moment));
+      out += fmt::format("  {} ({}) at {}\n", r.name, r.kind, u.Vec(r.p_WJ, kLength));
+      out += fmt::format("    force  {}\n", u.Vec(r.F_Jc_W, kForceDim, k.force));
+      out += fmt::format("    moment {}\n", u.Vec(r.M_Jc_W, kMomentDim, k.moment));
     }
     if (!r.mode.empty()) {
       out += fmt::format(
-          "    {}: tension {:.9g} N, slack {:.9g} m (chosen by T >= 0, slack acceleration >= 0, "
+          "    {}: tension {}, slack {} (chosen by T >= 0, slack acceleration >= 0, "
           "T * slack acceleration = 0)\n",
-          r.mode, Clean(r.lambda[0], k.force), r.gap);
+          r.mode, u(Clean(r.lambda[0], k.force), kForceDim), u(r.gap, kLength));
     }
     if (r.is_rolling) {
-      out += fmt::format("    normal force {:.9g} N, friction {:.9g} N, f/N = {:.9g}",
-                         r.normal_force, r.friction_W.norm(), r.friction_needed);
+      out += fmt::format("    normal force {}, friction {}, f/N = {:.9g}",
+                         u(r.normal_force, kForceDim), u(r.friction_W.norm(), kForceDim),
+                         r.friction_needed);
       if (!std::isnan(s.mu_s[i])) {
         out += fmt::format(" against mu_s = {:.6g}: {}", s.mu_s[i],
                            r.friction_needed <= s.mu_s[i] ? "rolls" : "slips");
@@ -195,40 +228,60 @@ std::string Text(const Scene& scene, const SolveReport& s) {
       out += "\n";
     }
   }
-  if (!s.contacts.empty()) {
-    out += "\nContacts (modes chosen at the initial state; friction on the body)\n";
-  }
+  return out;
+}
+
+/// Each contact point's mode and forces.
+std::string ContactsText(const SolveReport& s, const ReportScales& k, const Show& u) {
+  if (s.contacts.empty()) return "";
+  std::string out = "\nContacts (modes chosen at the initial state; friction on the body)\n";
   for (const ContactPointReport& c : s.contacts) {
     out += fmt::format("  {}: {} ({})\n", c.point, c.Regime(), ContactModeName(c.out.mode));
     if (c.out.mode == ContactMode::kSeparated) {
-      out += fmt::format("    gap {:.9g} m\n", c.out.gap);
+      out += fmt::format("    gap {}\n", u(c.out.gap, kLength));
       continue;
     }
-    out += fmt::format("    normal force {:.9g} N, friction {} N (|f| {:.9g} N)\n",
-                       c.out.normal_force, VInPlane(s.planar, c.out.friction_force_W, k.force),
-                       c.out.friction_force_W.norm());
+    out +=
+        fmt::format("    normal force {}, friction {} (|f| {})\n", u(c.out.normal_force, kForceDim),
+                    u.InPlane(s.planar, c.out.friction_force_W, kForceDim, k.force),
+                    u(c.out.friction_force_W.norm(), kForceDim));
     if (c.out.mode == ContactMode::kSticking) {
       out += fmt::format("    f/N = {:.9g} against mu_s = {:.6g}\n", c.FrictionRatio(), c.mu_s);
     } else {
-      out += fmt::format("    slip velocity {} m/s, f/N = mu_k = {:.6g}\n",
-                         VInPlane(s.planar, c.out.slip_velocity_W), c.mu_k);
+      out += fmt::format("    slip velocity {}, f/N = mu_k = {:.6g}\n",
+                         u.InPlane(s.planar, c.out.slip_velocity_W, kVelocityDim), c.mu_k);
     }
   }
+  return out;
+}
+
+std::string Text(const Scene& scene, const SolveReport& s, const UnitSystem& units) {
+  const Show u{units};
+  std::string out = fmt::format("{}{}\n", scene.title.empty() ? scene.file : scene.title,
+                                scene.title.empty() ? "" : fmt::format(" ({})", scene.file));
+  out += fmt::format(
+      "Instantaneous solution at the initial state (report in {} units; JSON and CSV in SI; "
+      "{})\n\nAccelerations\n",
+      units.spec(), s.planar ? "planar: x-y plane, moments about z" : "world frame");
+  const ReportScales k = CalcScales(s);
+  out += AccelerationsText(s, k, u);
+  out += ReactionsText(s, k, u);
+  out += ContactsText(s, k, u);
   out += "\nKinetic energy and momenta (H about each centre of mass, H_O about the origin)\n";
-  const auto motion = [&out, &k, &s](const BodyMotionReport& m, const char* cm) {
-    out += fmt::format("    T {:.9g} J (translational {:.9g} J, rotational {:.9g} J)\n",
-                       m.T_trans + m.T_rot, m.T_trans, m.T_rot);
+  const auto motion = [&out, &k, &s, &u](const BodyMotionReport& m, const char* cm) {
+    out += fmt::format("    T {} (translational {}, rotational {})\n", u.E(m.T_trans + m.T_rot),
+                       u.E(m.T_trans), u.E(m.T_rot));
     if (s.planar) {
       // In the plane: p = (p_x, p_y), H about z (eq. 8.40).
-      out += fmt::format("    p   [{:.9g}, {:.9g}] kg*m/s\n", Clean(m.P.x(), k.p),
-                         Clean(m.P.y(), k.p));
-      out += fmt::format("    H_z {:.9g} kg*m^2/s (about {})\n", Clean(m.H_cm.z(), k.h), cm);
-      out += fmt::format("    H_Oz {:.9g} kg*m^2/s\n", Clean(m.H_O.z(), k.h));
+      out += fmt::format("    p   {}\n", u.InPlane(true, m.P, kMomentumDim, k.p));
+      out += fmt::format("    H_z {} (about {})\n", u(Clean(m.H_cm.z(), k.h), kAngularMomentumDim),
+                         cm);
+      out += fmt::format("    H_Oz {}\n", u(Clean(m.H_O.z(), k.h), kAngularMomentumDim));
       return;
     }
-    out += fmt::format("    p   {} kg*m/s\n", V(m.P, k.p));
-    out += fmt::format("    H   {} kg*m^2/s (about {})\n", V(m.H_cm, k.h), cm);
-    out += fmt::format("    H_O {} kg*m^2/s\n", V(m.H_O, k.h));
+    out += fmt::format("    p   {}\n", u.Vec(m.P, kMomentumDim, k.p));
+    out += fmt::format("    H   {} (about {})\n", u.Vec(m.H_cm, kAngularMomentumDim, k.h), cm);
+    out += fmt::format("    H_O {}\n", u.Vec(m.H_O, kAngularMomentumDim, k.h));
   };
   for (const BodyMotionReport& m : s.motion) {
     out += fmt::format("  {}\n", m.name);
@@ -238,7 +291,7 @@ std::string Text(const Scene& scene, const SolveReport& s) {
     out += "  all bodies\n";
     motion(s.total, "the system's centre of mass");
   }
-  out += KinematicsText(s, k);
+  out += KinematicsText(s, k, u);
   for (const auto& w : s.solution.warnings) out += fmt::format("warning: {}\n", w);
   for (const auto& w : s.certificate.FailureMessages()) out += fmt::format("warning: {}\n", w);
   out += CertificateText(s.certificate);
@@ -260,8 +313,21 @@ CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args) {
   cmd->add_option("--sweep", args.sweep,
                   "Repeat over a parameter range: NAME=START:STOP:COUNT (START and STOP are "
                   "expressions with units, e.g. 'theta=0 deg:60 deg:7'); prints a table");
-  cmd->add_option("--format", args.format, "text (default) or json")
-      ->check(CLI::IsMember({"text", "json"}));
+  cmd->add_option("--format", args.format,
+                  "text (default; with --sweep the CSV table), json, or csv (one row of the "
+                  "solved quantities, the columns of a sweep after its parameter)")
+      ->check(CLI::IsMember({"text", "json", "csv"}));
+  cmd->add_option("--units", args.units,
+                  "Units of the text report: SI, US (in, lb, lbf), or a list such as 'ft,slug' "
+                  "(default: the scene's own units; JSON and CSV are always SI)");
+  cmd->add_option("-o,--out,--output", args.output,
+                  "Write the report (or the sweep's table) to this file instead of standard "
+                  "output; the file appears complete or not at all");
+  cmd->add_option("--precision", args.precision,
+                  "Digits of a CSV's numbers: default (12 significant digits) or full (every "
+                  "double with %.17g, reads back bitwise)")
+      ->check(CLI::IsMember({"default", "full"}));
+  cmd->add_flag("--full-precision", args.full_precision, "The same as --precision full");
   cmd->add_flag("--strict", args.strict,
                 "Exit with code 3 when a check of the answer fails (the report's Checks section; "
                 "otherwise a failed check is only a warning)");
@@ -279,6 +345,8 @@ CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args) {
       "  chasles solve examples/example-8.3-cylinder-incline.yaml\n"
       "  chasles solve examples/example-8.3-cylinder-incline.yaml --sweep 'theta=10 deg:50 "
       "deg:5'\n"
+      "  chasles solve examples/example-8.3-cylinder-incline.yaml --units US -o incline.txt\n"
+      "  chasles solve examples/example-8.3-cylinder-incline.yaml --format csv --full-precision\n"
       "Scene keys: docs/scene-format.md, section Joints, rolling and drivers.\n"
       "Exit codes: 0 success, 2 bad input, 3 a check failed with --strict, 1 internal error.");
   return cmd;
@@ -288,18 +356,40 @@ int RunSolve(const SolveArgs& args) {
   if (args.scene.scene.empty()) {
     throw InputError("chasles solve needs a scene file (chasles solve --help)");
   }
+  const CsvPrecision precision =
+      args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision);
+  // The output file's folder is checked before the solve, so a mistyped path does not waste a
+  // long sweep.
+  if (!args.output.empty()) CheckOutputTarget(args.output);
   if (args.sweep.empty()) {
     const Scene scene = LoadScene(args.scene);
+    // Checked before the solve: a mistyped unit is bad input (exit 2).
+    const UnitSystem units = UnitSystem::Parse(args.units.empty() ? scene.units : args.units);
     const SolveReport s = SolveScene(scene);
-    // Every value of either report is in the JSON form: checked there first, by name.
+    // Every value of any report is in the JSON form: checked there first, by name.
     const nlohmann::json j = SolveJson(s);
+    std::string report;
+    if (args.format == "json") {
+      report = DumpJson(j, "the solve report");
+    } else if (args.format == "csv") {
+      report = SolveCsv(s, precision);
+    } else {
+      CheckFiniteJson(j, "the solve report");
+      report = Text(scene, s, units);
+    }
     if (!args.html.empty()) {
       RequireHtmlReport("--html");
       WriteFileAtomically(args.html, HtmlReport(SolveReportData(scene, s)));
     }
-    Emit("", args.format == "json" ? DumpJson(j, "the solve report")
-                                   : (CheckFiniteJson(j, "the solve report"), Text(scene, s)));
+    if (args.output.empty()) {
+      Emit("", report);
+    } else {
+      WriteFileAtomically(args.output, report);
+    }
     return args.strict && !s.certificate.passed() ? kExitCheckFailed : 0;
+  }
+  if (!args.units.empty()) {
+    throw InputError("--units sets the units of the text report; a sweep's table is SI");
   }
   if (!args.html.empty()) {
     throw InputError("--html draws one solved instant; it does not go with --sweep");
@@ -328,7 +418,13 @@ int RunSolve(const SolveArgs& args) {
   const SweepTable table =
       SolveSweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), sweep, options);
   CheckFiniteTable(table.columns, table.rows, "the sweep table");
-  Emit("", args.format == "json" ? DumpJson(SweepJson(table), "the sweep table") : SweepCsv(table));
+  const std::string text = args.format == "json" ? DumpJson(SweepJson(table), "the sweep table")
+                                                 : SweepCsv(table, precision);
+  if (args.output.empty()) {
+    Emit("", text);
+  } else {
+    WriteFileAtomically(args.output, text);
+  }
   return args.strict && table.failed ? kExitCheckFailed : 0;
 }
 

@@ -37,9 +37,10 @@ std::vector<SweepSpec> ParseSweeps(const std::vector<std::string>& texts) {
   return specs;
 }
 
-int EmitSweepTable(const SweepTable& table, const std::string& format, const std::string& output) {
+int EmitSweepTable(const SweepTable& table, const std::string& format, CsvPrecision precision,
+                   const std::string& output) {
   const std::string text =
-      format == "json" ? DumpJson(SweepJson(table), "the sweep table") : SweepCsv(table);
+      format == "json" ? DumpJson(SweepJson(table), "the sweep table") : SweepCsv(table, precision);
   int failed = 0;
   for (size_t r = 0; r < table.errors.size(); ++r) {
     if (table.errors[r].empty()) continue;

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "chasles/analysis/solve_report.h"
+#include "chasles/io/csv_table.h"
 #include "chasles/scene/solve.h"
 
 namespace chasles::cli {
@@ -26,10 +27,10 @@ void AddSweepOptions(CLI::App& cmd, std::vector<std::string>& sweep,
 /// Each --sweep read (ParseSweep at "command line", "--sweep").
 std::vector<SweepSpec> ParseSweeps(const std::vector<std::string>& texts);
 
-/// Writes the table (CSV, or JSON for `format` "json") to `output` (standard output when
-/// empty) and one warning per failed row on standard error ("warning: L = 2, theta0 = 0.5:
-/// why"). Returns the number of failed rows.
-int EmitSweepTable(const SweepTable& table, const std::string& format,
+/// Writes the table (CSV with `precision`, or JSON for `format` "json") to `output` (standard
+/// output when empty) and one warning per failed row on standard error ("warning: L = 2,
+/// theta0 = 0.5: why"). Returns the number of failed rows.
+int EmitSweepTable(const SweepTable& table, const std::string& format, CsvPrecision precision,
                    const std::string& output = "");
 
 }  // namespace chasles::cli

@@ -251,16 +251,22 @@ void BindSolve(py::module_& m) {
         return SolveScene(s.scene);
       },
       py::arg("scene"));
-  py::class_<SweepTable>(m, "SweepTable", "A sweep's table (SI).") RO(SweepTable, parameter, "")
-      RO(SweepTable, columns, "") RO(SweepTable, units, "") RO(SweepTable, warnings, "")
-          RO(SweepTable, failed, "")
-              .def_property_readonly(
-                  "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); })
-              .def(
-                  "to_json",
-                  [](const SweepTable& t) { return DumpJson(SweepJson(t), "the sweep table"); },
-                  "The table as `chasles solve --sweep ... --format json` prints it")
-              .def("to_csv", &SweepCsv, "The table as `chasles solve --sweep ...` prints it");
+  py::class_<SweepTable>(m, "SweepTable", "A sweep's table (SI).") RO(SweepTable, parameter, "") RO(
+      SweepTable, columns, "") RO(SweepTable, units, "") RO(SweepTable, warnings, "") RO(SweepTable,
+                                                                                         failed, "")
+      .def_property_readonly(
+          "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); })
+      .def(
+          "to_json", [](const SweepTable& t) { return DumpJson(SweepJson(t), "the sweep table"); },
+          "The table as `chasles solve --sweep ... --format json` prints it")
+      .def(
+          "to_csv",
+          [](const SweepTable& t, bool full_precision) {
+            return SweepCsv(t, full_precision ? CsvPrecision::kFull : CsvPrecision::kDefault);
+          },
+          py::arg("full_precision") = false,
+          "The table as `chasles solve --sweep ...` prints it (full_precision: "
+          "--full-precision, every value %.17g)");
   m.def(
       "_sweep",
       [](const PyScene& s, const std::string& name, const std::string& start,
@@ -340,17 +346,31 @@ void BindStudyParts(py::module_& m) {
 
 void BindStudy(py::module_& m) {
   py::class_<StudyResult>(m, "StudyResult", "The result of a scene's run (RunStudy).")
-      RO(StudyResult, columns, "") RO(StudyResult, events, "") RO(StudyResult, jumps, "") RO(
-          StudyResult, contact_events, "") RO(StudyResult, impacts, "")
-          RO(StudyResult, final_contacts, "") RO(StudyResult, t_end, "") RO(
-              StudyResult, stopped_by_event, "") RO(StudyResult, final_bodies, "")
-              RO(StudyResult, final_reactions, "") RO(StudyResult, ledger, "") RO(
-                  StudyResult, integrator, "") RO(StudyResult, stats, "") RO(StudyResult, notes, "")
-                  RO(StudyResult, warnings, "") RO(StudyResult, certificate, "")
-                      .def_property_readonly(
-                          "data",
-                          [](const StudyResult& r) { return TableArray(r.rows, r.columns.size()); })
-                      .def("to_csv", &SimulationCsv, "The CSV file `chasles simulate` writes");
+      RO(StudyResult, columns, "") RO(StudyResult, events, "") RO(StudyResult, jumps, "")
+          RO(StudyResult, contact_events, "") RO(StudyResult, impacts, "")
+              RO(StudyResult, final_contacts, "") RO(StudyResult, t_end, "")
+                  RO(StudyResult, stopped_by_event, "") RO(StudyResult, final_bodies, "")
+                      RO(StudyResult, final_reactions, "") RO(StudyResult, ledger, "")
+                          RO(StudyResult, integrator, "") RO(StudyResult, stats, "")
+                              RO(StudyResult, notes, "")
+                                  RO(StudyResult, warnings, "")
+                                      RO(StudyResult, certificate, "")
+                                          .def_property_readonly("data",
+                                                                 [](const StudyResult& r) {
+                                                                   return TableArray(
+                                                                       r.rows, r.columns.size());
+                                                                 })
+                                          .def(
+                                              "to_csv",
+                                              [](const StudyResult& r, bool full_precision) {
+                                                return SimulationCsv(
+                                                    r, full_precision ? CsvPrecision::kFull
+                                                                      : CsvPrecision::kDefault);
+                                              },
+                                              py::arg("full_precision") = false,
+                                              "The CSV file `chasles simulate` writes "
+                                              "(full_precision: "
+                                              "--full-precision, every value %.17g)");
   m.def(
       "_run_json",
       [](const PyScene& s, const StudyResult& r, const std::string& csv_path) {

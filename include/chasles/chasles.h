@@ -30,6 +30,7 @@
 #include "chasles/integrate/stats.h"
 #include "chasles/io/atomic_file.h"
 #include "chasles/io/certificate_json.h"
+#include "chasles/io/csv_table.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/mesh_reader.h"
 #include "chasles/io/output_set.h"

@@ -10,27 +10,13 @@
 #include "chasles/io/certificate_json.h"
 #include "chasles/io/json_report.h"
 #include "chasles/math/quaternion.h"
-#include "io/internal/csv_field.h"
 
 namespace chasles {
 
-std::string SimulationCsv(const StudyResult& r) {
-  CheckFiniteTable(r.columns, r.rows, "the CSV time series");
-  std::string out;
-  for (size_t i = 0; i < r.columns.size(); ++i) {
-    if (i) out += ',';
-    out += internal::CsvField(r.columns[i]);
-  }
-  out += '\n';
-  for (const auto& row : r.rows) {
-    for (size_t i = 0; i < row.size(); ++i) {
-      // Shortest text that reads back as the same double.
-      if (i) out += ',';
-      out += fmt::format("{}", row[i]);
-    }
-    out += '\n';
-  }
-  return out;
+std::string SimulationCsv(const StudyResult& r, CsvPrecision precision) {
+  // Default: the shortest text that reads back as the same double (digits 0).
+  return CsvText({r.columns, r.units, r.rows, {}}, precision == CsvPrecision::kFull ? 17 : 0,
+                 "the CSV time series");
 }
 
 nlohmann::json SnapshotJson(const StudySnapshot& snap, bool planar) {
@@ -183,6 +169,8 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
   j["planar"] = header.planar;
   j["csv"] = csv_path;
   j["columns"] = r.columns;
+  // The unit of each column, as the CSV header gives it after the name ("" for a pure number).
+  if (r.units.size() == r.columns.size()) j["column_units"] = r.units;
   j["t_end"] = r.t_end;
   j["stopped_by_event"] = r.stopped_by_event;
   j["events"] = nlohmann::json::array();

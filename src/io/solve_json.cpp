@@ -11,7 +11,6 @@
 #include "chasles/io/certificate_json.h"
 #include "chasles/io/json_report.h"
 #include "chasles/model/contact.h"
-#include "io/internal/csv_field.h"
 
 namespace chasles {
 
@@ -128,7 +127,10 @@ nlohmann::json SolveJson(const SolveReport& s) {
 }
 
 nlohmann::json SweepJson(const SweepTable& table) {
-  nlohmann::json j = {{"parameter", table.parameter}, {"columns", table.columns}};
+  nlohmann::json j = {{"parameter", table.parameter},
+                      {"units", "SI"},
+                      {"columns", table.columns},
+                      {"column_units", table.units}};
   if (!table.parameters.empty()) j["parameters"] = table.parameters;
   if (table.errors.empty()) {
     j["rows"] = table.rows;
@@ -149,35 +151,16 @@ nlohmann::json SweepJson(const SweepTable& table) {
   return j;
 }
 
-std::string SweepCsv(const SweepTable& table) {
-  // Rows whose run failed print their non-finite values as empty fields, with the reason in
-  // the "error" column; every other value must be finite.
-  std::vector<std::vector<double>> ran;
-  for (size_t r = 0; r < table.rows.size(); ++r) {
-    if (r >= table.errors.size() || table.errors[r].empty()) ran.push_back(table.rows[r]);
-  }
-  CheckFiniteTable(table.columns, ran, "the sweep table");
-  const bool grid = table.parameters.size() > 1;
-  std::string out = fmt::format("# {} swept (SI values); one row per {}\n", table.parameter,
-                                grid ? "combination (the last varying fastest)" : "value");
-  for (size_t c = 0; c < table.columns.size(); ++c) {
-    out += fmt::format("{}{}", c ? "," : "", internal::CsvField(table.columns[c]));
-  }
-  if (!table.errors.empty()) out += ",error";
-  out += "\n";
-  for (size_t r = 0; r < table.rows.size(); ++r) {
-    const auto& row = table.rows[r];
-    for (size_t c = 0; c < row.size(); ++c) {
-      if (c > 0) out.push_back(',');
-      if (std::isfinite(row[c])) out += fmt::format("{:.12g}", row[c]);
-    }
-    if (!table.errors.empty()) {
-      out.push_back(',');
-      out += internal::CsvField(r < table.errors.size() ? table.errors[r] : std::string());
-    }
-    out += "\n";
-  }
-  return out;
+std::string SweepCsv(const SweepTable& table, CsvPrecision precision) {
+  return CsvText({table.columns, table.units, table.rows, table.errors},
+                 precision == CsvPrecision::kFull ? 17 : 12, "the sweep table");
+}
+
+std::string SolveCsv(const SolveReport& report, CsvPrecision precision) {
+  CsvTable t;
+  t.rows.emplace_back();
+  SolutionTableRow(report, &t.columns, &t.units, &t.rows.back());
+  return CsvText(t, precision == CsvPrecision::kFull ? 17 : 12, "the solve table");
 }
 
 }  // namespace chasles

@@ -3,6 +3,7 @@
 #include "chasles/scene/solve.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -145,6 +146,26 @@ SolveReport SolveScene(const Scene& scene) {
   }
 }
 
+std::string SweepParameterUnit(const SweepSpec& spec, const Dimension& dim) {
+  // An identifier of START or STOP that names an angle unit marks the parameter as an angle
+  // (the Dimension alone cannot: an angle is a pure number).
+  bool angle = false;
+  for (const std::string* text : {&spec.start, &spec.stop}) {
+    std::string word;
+    for (size_t i = 0; i <= text->size(); ++i) {
+      const char c = i < text->size() ? (*text)[i] : ' ';
+      if (std::isalnum(static_cast<unsigned char>(c)) || c == '_') {
+        word += c;
+        continue;
+      }
+      angle = angle || word == "rad" || word == "deg" || word == "rev" || word == "rpm" ||
+              word == "cps";
+      word.clear();
+    }
+  }
+  return UnitSystem().FormatUnit(dim, angle ? Angular::kYes : Angular::kNo);
+}
+
 SweepSpec ParseSweep(const std::string& text, const std::string& source, const std::string& key) {
   const auto fail = [&](const std::string& why) { throw SceneError(source, 0, 0, key, why); };
   const auto eq = text.find('=');
@@ -190,7 +211,7 @@ SweepTable SolveSweep(const std::function<Scene(const SceneOptions&)>& load,
     std::vector<std::string> known;
     for (const auto& [n, q] : scene.parameters) {
       known.push_back(n);
-      if (n == spec.name) parameter_unit = UnitSystem::Parse("SI").FormatUnit(q.dim);
+      if (n == spec.name) parameter_unit = SweepParameterUnit(spec, q.dim);
     }
     if (std::find(known.begin(), known.end(), spec.name) == known.end()) {
       throw SceneError(spec.source, 0, 0, spec.key,

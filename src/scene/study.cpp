@@ -27,6 +27,7 @@
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/string_constraint.h"
+#include "chasles/scene/column_units.h"
 #include "chasles/scene/scene_error.h"
 #include "internal/initial_state.h"
 #include "internal/study_columns.h"
@@ -1001,7 +1002,9 @@ namespace {
 StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
   const StudyDefinition definition = MakeStudyDefinition(scene, options);
   try {
-    return RunStudy(definition);
+    StudyResult r = RunStudy(definition);
+    r.units = StudyColumnUnits(scene, r.columns);
+    return r;
   } catch (const LimitError& e) {
     ThrowLimitReached(scene, e);
   }

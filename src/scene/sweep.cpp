@@ -231,7 +231,7 @@ SweepGrid MakeSweepGrid(const Scene& scene, const std::vector<SweepSpec>& specs,
     grid.specs.push_back(s);
     grid.start.push_back(ends[0]);
     grid.stop.push_back(ends[1]);
-    grid.units.push_back(UnitSystem::Parse("SI").FormatUnit(q.dim));
+    grid.units.push_back(SweepParameterUnit(s, q.dim));
   }
   if (grid.size > max_rows) {
     throw SceneError(specs.front().source, 0, 0, specs.front().key,

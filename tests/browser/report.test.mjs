@@ -33,7 +33,9 @@ function example(name) {
 /** The CSV as column names and numeric rows (the program writes plain numbers). */
 function readCsv(path) {
   const lines = readFileSync(path, 'utf8').trim().split('\n');
-  const names = lines[0].split(',').map((s) => s.replace(/^"|"$/g, ''));
+  // A header field is the column's name, then, for a column with a unit, one space and the
+  // unit in brackets ("t [s]"): the column is found by its name.
+  const names = lines[0].split(',').map((s) => s.replace(/^"|"$/g, '').replace(/ \[[^\]]*\]$/, ''));
   const rows = lines.slice(1).map((l) => l.split(',').map(Number));
   return { names, rows, col: (n) => names.indexOf(n) };
 }

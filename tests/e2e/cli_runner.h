@@ -80,14 +80,22 @@ inline Eigen::Vector3d ToVec(const nlohmann::json& j) {
   return Eigen::Vector3d(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
 }
 
-/// A CSV file written by `chasles simulate`, as columns by name.
+/// A column's name from its CSV header field: the field without a trailing " [unit]" (the
+/// header is name, one space, the SI unit in brackets: "t [s]"; no brackets for a pure number).
+inline std::string CsvColumnName(const std::string& field) {
+  const size_t open = field.rfind(" [");
+  if (field.empty() || field.back() != ']' || open == std::string::npos) return field;
+  return field.substr(0, open);
+}
+
+/// A CSV file written by `chasles simulate`, as columns by name (units dropped).
 inline std::map<std::string, std::vector<double>> ReadCsv(const std::string& path) {
   std::ifstream in(path);
   std::string line;
   std::getline(in, line);
   std::vector<std::string> names;
   std::stringstream header(line);
-  for (std::string cell; std::getline(header, cell, ',');) names.push_back(cell);
+  for (std::string cell; std::getline(header, cell, ',');) names.push_back(CsvColumnName(cell));
   std::map<std::string, std::vector<double>> cols;
   while (std::getline(in, line)) {
     std::stringstream row(line);

@@ -288,7 +288,9 @@ TEST(Joints, ReactionColumnsAreNamedByConstraint) {
   std::ifstream in(j.at("csv").get<std::string>());
   std::string header;
   std::getline(in, header);
-  EXPECT_THAT(header, ::testing::HasSubstr("pin_Fx,pin_Fy,pin_Fz,pin_Mx,pin_My,pin_Mz"));
+  EXPECT_THAT(header,
+              ::testing::HasSubstr(
+                  "pin_Fx [N],pin_Fy [N],pin_Fz [N],pin_Mx [N*m],pin_My [N*m],pin_Mz [N*m]"));
   EXPECT_THAT(header, ::testing::HasSubstr("W_pin"));
 }
 
@@ -339,13 +341,14 @@ TEST(Solve, SweepTabulatesOverAParameterRange) {
     EXPECT_NEAR(At(row, 0), theta, 1e-15);
     EXPECT_NEAR(At(row, ratio), std::tan(theta) / 3, 1e-9);
   }
-  // The text table has a header and one line per value.
+  // The text table has a header (names with their SI units, a pure number bare) and one line
+  // per value.
   const CliResult t =
       RunCli("solve " + Quote(SourcePath("examples/example-8.3-cylinder-incline.yaml")) +
              " --sweep 'theta=10 deg:50 deg:5'");
   ASSERT_EQ(t.exit_code, 0) << t.err;
-  EXPECT_THAT(t.out, ::testing::HasSubstr("theta,cylinder_ax"));
-  EXPECT_EQ(std::count(t.out.begin(), t.out.end(), '\n'), 7);
+  EXPECT_THAT(t.out, ::testing::HasSubstr("theta [rad],cylinder_ax [m/s^2]"));
+  EXPECT_EQ(std::count(t.out.begin(), t.out.end(), '\n'), 6);
 }
 
 TEST(Solve, BadSweepIsAClearError) {

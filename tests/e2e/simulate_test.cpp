@@ -271,7 +271,9 @@ TEST(SimulateCli, ColumnsFromTheCommandLine) {
   std::ifstream csv(dir / "spring-mass.csv");
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header, "t,block_x,block_y,block_z,T_trans,T_rot,T,V,E");
+  // Name, one space, the SI unit in brackets (docs/scene-format.md, "Output").
+  EXPECT_EQ(header,
+            "t [s],block_x [m],block_y [m],block_z [m],T_trans [J],T_rot [J],T [J],V [J],E [J]");
   const CliResult bad = RunCli("simulate " + Quote(SourcePath("examples/spring-mass.yaml")) +
                                " --out " + Quote(dir.string()) + " --columns postion");
   EXPECT_EQ(bad.exit_code, 2);

@@ -89,23 +89,26 @@ Table ParseTable(const std::string& text) {
   return t;
 }
 
-// The physical pendulum about the pin: I_O theta'' = -m g L sin(theta) with I_O = m r^2 + m L^2
-// (parallel axes, eq. 8.39), so w0^2 = g L / (r^2 + L^2). From rest at theta0, energy gives
+// The physical pendulum about the pin: I_O theta'' = -m g L sin(theta) with I_O = m k^2 + m L^2
+// (k the radius of gyration about the centre of mass; parallel axes, eq. 8.39), so
+// w0^2 = g L / (k^2 + L^2). From rest at theta0, energy gives
 // theta'^2 = 2 w0^2 (cos theta - cos theta0), and the time to the bottom (a quarter period) is
 //   T/4 = K(k) / w0,  k = sin(theta0 / 2)   (K: the complete elliptic integral of the first
 // kind, modulus k). At the bottom the bob moves at v = L theta' = L w0 sqrt(2 (1 - cos theta0))
 // in -x.
-double QuarterPeriod(double L, double theta0, double r = 0.05) {
-  const double w0 = std::sqrt(kG * L / (r * r + L * L));
-  return boost::math::ellint_1(std::sin(theta0 / 2)) / w0;
+double W0(double L, double k2) {
+  return std::sqrt(kG * L / (k2 + L * L));
+}
+double QuarterPeriod(double L, double theta0, double k2 = 0.05 * 0.05) {
+  return boost::math::ellint_1(std::sin(theta0 / 2)) / W0(L, k2);
 }
 
+// The shipped examples/pendulum.yaml: a ball of radius r = 5 cm, k^2 = (2/5) r^2.
 TEST(SimulateSweep, PendulumQuarterPeriodOverLengthAndAmplitude) {
-  const std::string scene =
-      Pendulum("pendulum", "{name: bottom, when: bob_x, crosses: 0 m, direction: falling}", "5 s");
-  const CliResult r = RunCli("simulate " + Quote(scene) +
+  const double k2 = 0.4 * 0.05 * 0.05;
+  const CliResult r = RunCli("simulate " + Quote(SourcePath("examples/pendulum.yaml")) +
                              " --sweep 'L=0.5 m:2 m:3' --sweep 'theta0=10 deg:70 deg:4' "
-                             "--quantity 'event(bottom)' --quantity 'min(bob_vx)' "
+                             "--quantity 'event(bottom)' --quantity 'min(ball_vx)' "
                              "--quantity t_end --format json --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Table t = ParseTable(r.out);
@@ -118,13 +121,12 @@ TEST(SimulateSweep, PendulumQuarterPeriodOverLengthAndAmplitude) {
     EXPECT_TRUE(t.errors[k].is_null()) << t.errors[k];
     EXPECT_TRUE(Near(row.at("L").get<double>(), L, 1e-15));
     EXPECT_TRUE(Near(row.at("theta0").get<double>(), theta0, 1e-15));
-    const double tq = QuarterPeriod(L, theta0);
+    const double tq = QuarterPeriod(L, theta0, k2);
     EXPECT_TRUE(Near(row.at("event(bottom)").get<double>(), tq, kRun)) << L << " " << theta0;
     EXPECT_TRUE(Near(row.at("t_end").get<double>(), tq, kRun));
     // The fastest swing is at the bottom, the event's state (between samples).
-    const double w0 = std::sqrt(kG * L / (0.05 * 0.05 + L * L));
-    const double v = L * w0 * std::sqrt(2 * (1 - std::cos(theta0)));
-    EXPECT_TRUE(Near(row.at("min(bob_vx)").get<double>(), -v, kRun)) << L << " " << theta0;
+    const double v = L * W0(L, k2) * std::sqrt(2 * (1 - std::cos(theta0)));
+    EXPECT_TRUE(Near(row.at("min(ball_vx)").get<double>(), -v, kRun)) << L << " " << theta0;
   }
 }
 
@@ -165,7 +167,7 @@ TEST(SimulateSweep, ExtremesIncludeTheEventStates) {
   const double theta0 = 50 * kPi / 180;
   for (size_t k = 0; k < 3; ++k) {
     const double L = 0.5 + 0.5 * static_cast<double>(k);
-    const double w0 = std::sqrt(kG * L / (0.05 * 0.05 + L * L));
+    const double w0 = W0(L, 0.05 * 0.05);
     EXPECT_TRUE(Near(t.rows[k].at("min(bob_y)").get<double>(), -L, kRun)) << L;
     EXPECT_TRUE(Near(t.rows[k].at("max(bob_omega)").get<double>(),
                      w0 * std::sqrt(2 * (1 - std::cos(theta0))), kRun))
@@ -215,13 +217,11 @@ TEST(SimulateSweep, JobsGiveIdenticalBytes) {
   ASSERT_EQ(three.exit_code, 0) << three.err;
   EXPECT_EQ(one.out, two.out);
   EXPECT_EQ(ParseTable(three.out).rows.size(), 12u);
-  // The CSV: a comment line, the header (parameters, quantities, error), 12 rows.
+  // The CSV: the header (parameters, quantities with their SI units, error), 12 rows.
   std::stringstream lines(one.out);
   std::string line;
   std::getline(lines, line);
-  EXPECT_THAT(line, ::testing::StartsWith("# L, theta0 swept"));
-  std::getline(lines, line);
-  EXPECT_EQ(line, "L,theta0,event(bottom),max(bob_omega),error");
+  EXPECT_EQ(line, "L [m],theta0 [rad],event(bottom) [s],max(bob_omega) [rad/s],error");
   int rows = 0;
   while (std::getline(lines, line)) ++rows;
   EXPECT_EQ(rows, 12);

@@ -51,3 +51,17 @@ def test_run_csv_and_json_are_the_files_the_program_writes(chasles, tmp_path):
     run = chasles.run(chasles.load_scene(INCLINE))
     assert run.to_csv() == csv_path.read_text()
     assert run.to_json(str(csv_path)) == json_path.read_text()
+
+
+@needs_cli
+def test_read_csv_finds_columns_by_name_and_full_precision_reads_back_bitwise(chasles, tmp_path):
+    # --full-precision writes every double with %.17g, which reads back as the same double.
+    cli("simulate", INCLINE, "--quiet", "--out", str(tmp_path), "--full-precision")
+    csv_path = tmp_path / "example-8.3-cylinder-incline.csv"
+    run = chasles.run(chasles.load_scene(INCLINE))
+    assert run.to_csv(full_precision=True) == csv_path.read_text()
+    t = chasles.read_csv(str(csv_path))
+    assert t.columns == run.columns
+    assert t.units == run.units
+    assert t.unit("t") == "s"
+    assert (t.data == run.data).all()

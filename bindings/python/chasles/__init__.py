@@ -104,9 +104,10 @@ class Run(Table):
                      "warnings", "t_end", "stopped_by_event", "integrator", "stats"):
             setattr(self, name, getattr(result, name))
 
-    def to_csv(self):
-        """The CSV time series, as ``chasles simulate`` writes it (text)."""
-        return self.result.to_csv()
+    def to_csv(self, full_precision=False):
+        """The CSV time series, as ``chasles simulate`` writes it (text); ``full_precision``:
+        every value with %.17g, as ``--full-precision`` writes it."""
+        return self.result.to_csv(full_precision)
 
     def to_json(self, csv_path=""):
         """The JSON summary, as ``chasles simulate`` writes it (text); ``csv_path`` is
@@ -135,9 +136,10 @@ class Sweep(Table):
         self.warnings = list(table.warnings)
         self.failed = table.failed
 
-    def to_csv(self):
-        """The table as ``chasles solve --sweep`` prints it (text)."""
-        return self._table.to_csv()
+    def to_csv(self, full_precision=False):
+        """The table as ``chasles solve --sweep`` prints it (text); ``full_precision``: every
+        value with %.17g, as ``--full-precision`` prints it."""
+        return self._table.to_csv(full_precision)
 
     def to_json(self):
         """The table as ``chasles solve --sweep ... --format json`` prints it (text)."""
@@ -242,6 +244,31 @@ SimulationResult.table = _simulation_table
 def mass_properties(scene):
     """Mass properties of every body of ``scene`` (``chasles mass``): name -> MassProperties."""
     return scene.mass_properties()
+
+
+def _csv_header_name(field):
+    """A CSV header field's name and unit: "car_ax [m/s^2]" -> ("car_ax", "m/s^2"); a field
+    without a trailing " [unit]" is a bare name (a pure number)."""
+    if field.endswith("]") and " [" in field:
+        i = field.rindex(" [")
+        if i > 0:
+            return field[:i], field[i + 2:-1]
+    return field, ""
+
+
+def read_csv(path):
+    """A CSV file the program wrote (``chasles simulate``'s time series, ``chasles solve
+    --sweep``'s table) as a ``Table``: each header field is the column's name, then, when it
+    has one, one space and its SI unit in brackets (``t [s]``)."""
+    import csv
+
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    if not rows:
+        raise InputError(f"{path}: empty CSV")
+    names, units = zip(*(_csv_header_name(h) for h in rows[0])) if rows[0] else ((), ())
+    data = [[float(x) for x in r] for r in rows[1:] if r]
+    return Table(names, units, data)
 
 
 __all__ = sorted(name for name in dir() if not name.startswith("_"))

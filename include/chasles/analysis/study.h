@@ -349,6 +349,10 @@ struct StudyEvent {
 struct StudyResult {
   /// CSV column names and one row per output sample (plus the states just after jumps).
   std::vector<std::string> columns;
+  /// SI unit of each column ("s", "m/s^2", "rad"; "" for a pure number), filled by the scene
+  /// layer's RunStudy (chasles/scene/column_units.h); empty when the program ran a
+  /// StudyDefinition itself (the CSV header then has no units).
+  std::vector<std::string> units;
   std::vector<std::vector<double>> rows;
   std::vector<StudyEvent> events;
   std::vector<StudyJump> jumps;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/analysis/study.h"
+#include "chasles/io/csv_table.h"
 
 namespace chasles {
 
@@ -27,11 +28,13 @@ struct ReportHeader {
   std::vector<std::string> warnings;
 };
 
-/// The CSV time series: a header of the column names (quoted when they hold a comma, a quote
-/// or a newline, a quote doubled), then one line per row, each value the shortest text that
-/// reads back as the same double. Throws InputError naming the column and row of a value that
-/// is not finite (CheckFiniteTable, "the CSV time series").
-std::string SimulationCsv(const StudyResult& result);
+/// The CSV time series (chasles/io/csv_table.h): a header of the column names with their
+/// units ("t [s]", "car_x [m]"; result.units, none when it is empty), then one line per row,
+/// each value the shortest text that reads back as the same double, or with kFull every value
+/// %.17g. Throws InputError naming the column and row of a value that is not finite
+/// (CheckFiniteTable, "the CSV time series").
+std::string SimulationCsv(const StudyResult& result,
+                          CsvPrecision precision = CsvPrecision::kDefault);
 
 /// The bodies, reactions and contact points of one instant: {"bodies": [...], "reactions":
 /// [...]} and "contacts" when there are contact points.

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/analysis/solve_report.h"
+#include "chasles/io/csv_table.h"
 
 namespace chasles {
 
@@ -21,17 +22,25 @@ namespace chasles {
 /// writing it.
 nlohmann::json SolveJson(const SolveReport& report);
 
-/// {"parameter": name, "columns": [...], "rows": [[...], ...]}; with "parameters" (a grid's
-/// names) when the table has them, and with "errors" (per row the reason its run failed, or
-/// null) when its rows can fail, a failed row's values then null.
+/// {"parameter": name, "units": "SI", "columns": [...], "column_units": [...], "rows":
+/// [[...], ...]}: one row per value of the parameter (per point of a grid), every value SI;
+/// with "parameters" (a grid's names) when the table has them, and with "errors" (per row the
+/// reason its run failed, or null) when its rows can fail, a failed row's values then null.
 nlohmann::json SweepJson(const SweepTable& table);
 
-/// The table as the program prints it: a comment line "# NAME swept (SI values); one row per
-/// value" (a grid: "per combination"), the column names (quoted when they hold a comma, a
-/// quote or a newline), then one line per value, each number with 12 significant digits.
-/// When its rows can fail (SweepTable::errors), a last column "error": the reason, with the
-/// failed row's values as empty fields. Throws InputError naming the column and row of a value
-/// of a row that ran that is not finite (CheckFiniteTable, "the sweep table").
-std::string SweepCsv(const SweepTable& table);
+/// The table as the program prints it (chasles/io/csv_table.h): the header of the column
+/// names with their SI units ("theta", "cylinder_ax [m/s^2]"), then one line per value (per
+/// point of a grid, the last parameter varying fastest), each number with 12 significant
+/// digits, or with kFull %.17g. When its rows can fail (SweepTable::errors), a last column
+/// "error": the reason, with the failed row's values as empty fields. Throws InputError naming
+/// the column and row of a value of a row that ran that is not finite (CheckFiniteTable, "the
+/// sweep table").
+std::string SweepCsv(const SweepTable& table, CsvPrecision precision = CsvPrecision::kDefault);
+
+/// One solve as a one-row table: the columns of a sweep after its parameter
+/// (SolutionTableRow's names with their SI units), the values with 12 significant digits, or
+/// with kFull %.17g. Throws InputError naming the column of a value that is not finite
+/// (CheckFiniteTable, "the solve table").
+std::string SolveCsv(const SolveReport& report, CsvPrecision precision = CsvPrecision::kDefault);
 
 }  // namespace chasles

@@ -37,6 +37,11 @@ struct SweepSpec {
 SweepSpec ParseSweep(const std::string& text, const std::string& source = "sweep",
                      const std::string& key = "sweep");
 
+/// The SI unit of a swept parameter of dimension `dim`, for its column: FormatUnit(dim), and
+/// "rad" ("rad/s", ...) when the dimension can carry an angle and START or STOP is written
+/// with an angle unit (rad, deg, rev, rpm, cps), e.g. 'theta=10 deg:50 deg:5' -> "rad".
+std::string SweepParameterUnit(const SweepSpec& spec, const Dimension& dim);
+
 struct SweepOptions {
   /// Called before value k of count is solved (e.g. for a progress display).
   std::function<void(int k, int count)> progress;

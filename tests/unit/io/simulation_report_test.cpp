@@ -1,7 +1,10 @@
 #include "chasles/io/simulation_report.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -40,6 +43,7 @@ std::vector<std::string> SplitCsvLine(const std::string& line) {
 StudyResult TwoRows() {
   StudyResult r;
   r.columns = {"t", "x,y", "say \"hi\""};
+  r.units = {"s", "m", ""};
   r.rows = {{0.0, 0.1, 1.0 / 3.0}, {0.5, -2.5e-8, 1e21}};
   return r;
 }
@@ -47,8 +51,9 @@ StudyResult TwoRows() {
 TEST(SimulationCsv, QuotesNamesThatNeedItAndWritesShortestRoundTripNumbers) {
   // 0.1, 1/3, -2.5e-8 and 1e21 in their shortest decimal form that reads back as the same
   // double: 0.1 has none shorter than "0.1", 1/3 needs 16 significant digits.
+  // The header: name, one space, the unit in brackets; a pure number without brackets.
   EXPECT_EQ(SimulationCsv(TwoRows()),
-            "t,\"x,y\",\"say \"\"hi\"\"\"\n"
+            "t [s],\"x,y [m]\",\"say \"\"hi\"\"\"\n"
             "0,0.1,0.3333333333333333\n"
             "0.5,-2.5e-08,1e+21\n");
 }
@@ -58,13 +63,43 @@ TEST(SimulationCsv, EveryFieldReadsBackAsTheSameValue) {
   std::istringstream in(SimulationCsv(r));
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(SplitCsvLine(line), r.columns);
+  EXPECT_EQ(SplitCsvLine(line), (std::vector<std::string>{"t [s]", "x,y [m]", "say \"hi\""}));
   for (const auto& row : r.rows) {
     ASSERT_TRUE(std::getline(in, line));
     const std::vector<std::string> fields = SplitCsvLine(line);
     ASSERT_EQ(fields.size(), row.size());
     for (size_t i = 0; i < row.size(); ++i) EXPECT_EQ(std::stod(fields[i]), row[i]) << fields[i];
   }
+}
+
+TEST(SimulationCsv, FullPrecisionReadsBackBitwise) {
+  // Seeded random doubles over many magnitudes: each %.17g field reads back (strtod) as the
+  // same bits, and the header's names and units come back apart.
+  StudyResult r;
+  r.columns = {"t", "a", "b"};
+  r.units = {"s", "m/s^2", ""};
+  std::mt19937_64 gen(12345);
+  std::uniform_real_distribution<double> mant(-1.0, 1.0);
+  std::uniform_int_distribution<int> exp(-30, 30);
+  for (int i = 0; i < 200; ++i) {
+    r.rows.push_back({i * 0.1, std::ldexp(mant(gen), exp(gen)), std::ldexp(mant(gen), exp(gen))});
+  }
+  const CsvTable back = ReadCsvTable(SimulationCsv(r, CsvPrecision::kFull), "run.csv");
+  EXPECT_EQ(back.columns, r.columns);
+  EXPECT_EQ(back.units, r.units);
+  ASSERT_EQ(back.rows.size(), r.rows.size());
+  for (size_t i = 0; i < r.rows.size(); ++i) {
+    for (size_t c = 0; c < 3; ++c) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(back.rows[i][c]),
+                std::bit_cast<std::uint64_t>(r.rows[i][c]));
+    }
+  }
+}
+
+TEST(SimulationCsv, WithoutUnitsTheHeaderIsTheBareNames) {
+  StudyResult r = TwoRows();
+  r.units.clear();
+  EXPECT_THAT(SimulationCsv(r), StartsWith("t,\"x,y\",\"say \"\"hi\"\"\"\n"));
 }
 
 TEST(SimulationCsv, RefusesANonFiniteValueByColumnAndRow) {

@@ -133,13 +133,28 @@ SweepTable TwoValues() {
   return t;
 }
 
-TEST(SweepCsv, PrintsTheCommentTheQuotedNamesAndTwelveSignificantDigits) {
-  // 1/3 to 12 significant digits is 0.333333333333; 0.1 prints as 0.1.
+TEST(SweepCsv, PrintsTheNamesWithUnitsQuotedWhereNeededAndTwelveSignificantDigits) {
+  // 1/3 to 12 significant digits is 0.333333333333; 0.1 prints as 0.1. No comment line: the
+  // header comes first, a pure number without brackets.
   EXPECT_EQ(SweepCsv(TwoValues()),
-            "# theta swept (SI values); one row per value\n"
-            "theta,disk_ax,\"a,b\"\n"
+            "theta,disk_ax [m/s^2],\"a,b\"\n"
             "0,0.1,0.333333333333\n"
             "0.5,-2,1e-20\n");
+}
+
+TEST(SweepCsv, FullPrecisionWritesSeventeenDigitsThatReadBackBitwise) {
+  // %.17g: 1/3 is 0.33333333333333331, 0.1 is 0.10000000000000001; strtod gives back the
+  // same bits.
+  const SweepTable t = TwoValues();
+  const std::string text = SweepCsv(t, CsvPrecision::kFull);
+  EXPECT_EQ(text,
+            "theta,disk_ax [m/s^2],\"a,b\"\n"
+            "0,0.10000000000000001,0.33333333333333331\n"
+            "0.5,-2,9.9999999999999995e-21\n");
+  const CsvTable back = ReadCsvTable(text, "sweep.csv");
+  EXPECT_EQ(back.columns, t.columns);
+  EXPECT_EQ(back.units, t.units);
+  EXPECT_EQ(back.rows, t.rows);
 }
 
 TEST(SweepCsv, RefusesANonFiniteValueByColumnAndRow) {
@@ -155,9 +170,12 @@ TEST(SweepCsv, RefusesANonFiniteValueByColumnAndRow) {
 
 TEST(SweepJson, HoldsTheParameterColumnsAndRows) {
   const SweepTable t = TwoValues();
-  EXPECT_EQ(SweepJson(t),
-            nlohmann::json({{"parameter", "theta"}, {"columns", t.columns}, {"rows", t.rows}}));
-  EXPECT_EQ(DumpJson(SweepJson(t), "r").substr(0, 16), "{\n  \"columns\": [");
+  EXPECT_EQ(SweepJson(t), nlohmann::json({{"parameter", "theta"},
+                                          {"units", "SI"},
+                                          {"columns", t.columns},
+                                          {"column_units", t.units},
+                                          {"rows", t.rows}}));
+  EXPECT_EQ(DumpJson(SweepJson(t), "r").substr(0, 21), "{\n  \"column_units\": [");
 }
 
 }  // namespace

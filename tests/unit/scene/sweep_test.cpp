@@ -35,6 +35,7 @@ TEST(SweepGrid, LastParameterVariesFastestAndValuesAreEvenlySpaced) {
       MakeSweepGrid(scene, {ParseSweep("a=1 m:3 m:3"), ParseSweep("b=0 deg:90 deg:4")}, 100);
   ASSERT_EQ(grid.size, 12);
   EXPECT_EQ(grid.units[0], "m");
+  EXPECT_EQ(grid.units[1], "rad");  // swept in deg: an angle, its column SI rad
   // Point k = 4 i_a + i_b.
   for (std::int64_t k = 0; k < grid.size; ++k) {
     const std::vector<int> i = grid.Indices(k);
@@ -53,6 +54,17 @@ TEST(SweepGrid, LastParameterVariesFastestAndValuesAreEvenlySpaced) {
                SceneError);
   EXPECT_THROW(MakeSweepGrid(scene, {ParseSweep("a=1 s:3 m:3")}, 100), SceneError);
   EXPECT_THROW(MakeSweepGrid(scene, {ParseSweep("d=1:3:3")}, 100), SceneError);
+}
+
+TEST(SweepGrid, AParameterIsAnAngleWhenItsEndsAreWrittenInAngleUnits) {
+  // A pure number carries an angle only by its unit: START or STOP in rad, deg, rev, rpm or
+  // cps; "rpm" makes 1/time an angular velocity.
+  EXPECT_EQ(SweepParameterUnit(ParseSweep("b=0 deg:1:3"), kDimensionless), "rad");
+  EXPECT_EQ(SweepParameterUnit(ParseSweep("b=0:0.5*rev:3"), kDimensionless), "rad");
+  EXPECT_EQ(SweepParameterUnit(ParseSweep("c=0:1:3"), kDimensionless), "");
+  EXPECT_EQ(SweepParameterUnit(ParseSweep("c=0:degree_of_x:3"), kDimensionless), "");
+  EXPECT_EQ(SweepParameterUnit(ParseSweep("w=0 rpm:10 rpm:3"), Dimension{0, 0, -1}), "rad/s");
+  EXPECT_EQ(SweepParameterUnit(ParseSweep("f=0/s:10/s:3"), Dimension{0, 0, -1}), "1/s");
 }
 
 TEST(SweepQuantity, ReadsEachForm) {
