@@ -11,6 +11,7 @@
 #include "chasles/io/json_report.h"
 #include "chasles/scene/mass_report.h"
 #include "chasles/scene/mesh_file.h"
+#include "chasles/io/output_set.h"
 #include "chasles/scene/report_data.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
@@ -255,7 +256,8 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
   cmd->add_flag("--no-parts", args.hide_parts, "Leave out the table of parts");
   cmd->add_option("--html", args.html,
                   "Also write the browser report here: the bodies drawn with their principal "
-                  "axes and inertia ellipsoids (one HTML file)");
+                  "axes and inertia ellipsoids (one HTML file); with --sweep, the quantities "
+                  "plotted against the swept parameters");
   // A help heading (Option::group), not an Option_group: CLI11 2.1's option groups are
   // subcommands inside, and `mass a "" --x` (an empty extra argument, then an unknown option)
   // sent its parser round them forever (found by the command-line fuzz target).
@@ -354,10 +356,14 @@ int RunMassSweep(const MassArgs& args) {
   if (args.scene.scene.empty()) {
     throw InputError("chasles mass --sweep needs a scene file (chasles mass --help)");
   }
-  if (!args.about.empty() || !args.frame.empty() || !args.html.empty() || !args.units.empty()) {
+  if (!args.about.empty() || !args.frame.empty() || !args.units.empty()) {
     throw InputError(
-        "--about, --frame, --html and --units go with one report, not with --sweep (the table "
-        "is in SI)");
+        "--about, --frame and --units go with one report, not with --sweep (the table is in "
+        "SI)");
+  }
+  if (!args.html.empty()) {
+    RequireHtmlReport("--html");
+    CheckOutputTarget(args.html);
   }
   if (!(args.progress_interval > 0) || !std::isfinite(args.progress_interval)) {
     throw InputError(fmt::format("--progress-interval must be a positive time in seconds, got {}",
@@ -377,6 +383,10 @@ int RunMassSweep(const MassArgs& args) {
   EmitSweepTable(table, args.format,
                  args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision),
                  args.output);
+  if (!args.html.empty()) {
+    WriteFileAtomically(args.html,
+                        HtmlReport(SweepReportData(LoadScene(args.scene), table, "mass")));
+  }
   return 0;
 }
 

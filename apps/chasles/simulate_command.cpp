@@ -12,6 +12,7 @@
 #include "certificate_report.h"
 #include "chasles/error.h"
 #include "chasles/io/json_report.h"
+#include "chasles/io/atomic_file.h"
 #include "chasles/io/output_set.h"
 #include "chasles/io/simulation_report.h"
 #include "chasles/math/quaternion.h"
@@ -448,7 +449,8 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
   cmd->add_option("--html", args.html,
                   "Also write the browser report (a 3-D replay with plots, one HTML file) here; "
                   "the CSV then also holds the columns the report needs (poses, ledger, "
-                  "reactions, contacts)");
+                  "reactions, contacts); with --sweep, the quantities plotted against the swept "
+                  "parameters");
   cmd->add_option("--precision", args.precision,
                   "Digits of the CSV's numbers: default (the shortest text that reads back as "
                   "the same double) or full (every double with %.17g)")
@@ -486,10 +488,14 @@ int RunSimulateSweep(const SimulateArgs& args) {
   if (args.scene.scene.empty()) {
     throw InputError("chasles simulate --sweep needs a scene file (chasles simulate --help)");
   }
-  if (!args.html.empty() || !args.out_dir.empty()) {
-    throw InputError(fmt::format(
-        "{} writes one run's files; with --sweep use --keep-runs DIR for every run's CSV and JSON",
-        args.html.empty() ? "--out" : "--html"));
+  if (!args.out_dir.empty()) {
+    throw InputError(
+        "--out writes one run's files; with --sweep use --keep-runs DIR for every run's CSV and "
+        "JSON");
+  }
+  if (!args.html.empty()) {
+    RequireHtmlReport("--html");
+    CheckOutputTarget(args.html);
   }
   if (!args.units.empty()) {
     throw InputError("--units sets the text report's units; a sweep's table is in SI");
@@ -551,6 +557,10 @@ int RunSimulateSweep(const SimulateArgs& args) {
   const int failed =
       EmitSweepTable(table, args.format,
                      args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision));
+  if (!args.html.empty()) {
+    WriteFileAtomically(args.html,
+                        HtmlReport(SweepReportData(LoadScene(args.scene), table, "simulate")));
+  }
   return args.strict && (failed > 0 || check_failed) ? kExitCheckFailed : 0;
 }
 

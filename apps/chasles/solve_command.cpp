@@ -309,7 +309,8 @@ CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args) {
   AddSceneArgs(*cmd, args.scene);
   cmd->add_option("--html", args.html,
                   "Also write the browser report here: the configuration with the force arrows "
-                  "of the solved instant (one HTML file; not with --sweep)");
+                  "of the solved instant (one HTML file); with --sweep, every column plotted "
+                  "against the swept parameter");
   cmd->add_option("--sweep", args.sweep,
                   "Repeat over a parameter range: NAME=START:STOP:COUNT (START and STOP are "
                   "expressions with units, e.g. 'theta=0 deg:60 deg:7'); prints a table");
@@ -392,7 +393,8 @@ int RunSolve(const SolveArgs& args) {
     throw InputError("--units sets the units of the text report; a sweep's table is SI");
   }
   if (!args.html.empty()) {
-    throw InputError("--html draws one solved instant; it does not go with --sweep");
+    RequireHtmlReport("--html");
+    CheckOutputTarget(args.html);
   }
   const SweepSpec sweep = ParseSweep(args.sweep, "command line", "--sweep");
   const std::int64_t max_rows = args.max_rows > 0 ? args.max_rows : kDefaultMaxRows;
@@ -424,6 +426,10 @@ int RunSolve(const SolveArgs& args) {
     Emit("", text);
   } else {
     WriteFileAtomically(args.output, text);
+  }
+  if (!args.html.empty()) {
+    WriteFileAtomically(args.html,
+                        HtmlReport(SweepReportData(LoadScene(args.scene), table, "solve")));
   }
   return args.strict && table.failed ? kExitCheckFailed : 0;
 }

@@ -4,6 +4,7 @@
 import { readData, eventMarks, sampleAt } from './data.js';
 import { View, makeBody, partSize, quat, ForceArrow, FORCE_COLORS, THREE } from './scene3d.js';
 import { Plot, MODE_COLORS, MODE_NAMES } from './plots.js';
+import { sweepPlots } from './sweep.js';
 
 const api = {
   ready: false,
@@ -36,7 +37,7 @@ function vec(v, digits = 6) {
 
 /** The layout: header, the 3-D view and its controls, the side panel. */
 function layout(data) {
-  const kinds = { simulate: 'simulation', mass: 'mass properties', solve: 'instantaneous solve' };
+  const kinds = { simulate: 'simulation', mass: 'mass properties', solve: 'instantaneous solve', sweep: 'sweep' };
   const header = el(
     'header',
     {},
@@ -453,6 +454,41 @@ function solveReport(data, parts) {
   api.seek = () => view.render();
 }
 
+/** A sweep: the scene at its own parameter values, and each quantity against the parameters. */
+function sweepReport(data, parts) {
+  const poses = (data.poses || []).map((p) => [...p.origin, ...p.quaternion].map((x) => [x]));
+  const { center, size, body, floor } = extent(data, poses);
+  const view = new View(parts.view, { planar: data.planar, center, size, floor });
+  addPlanes(view, data, size, center);
+  data.bodies.forEach((b, i) => {
+    const g = makeBody(b, i, body);
+    const p = (data.poses || [])[i];
+    if (p) {
+      g.position.fromArray(p.origin);
+      g.quaternion.copy(quat(p.quaternion));
+    }
+    view.scene.add(g);
+  });
+  const swept = new Set(data.sweep.parameters && data.sweep.parameters.length ? data.sweep.parameters : [data.sweep.columns[0]]);
+  const own = Object.entries(data.parameter_values || {})
+    .filter(([k]) => swept.has(k))
+    .map(([k, v]) => `${k} = ${fmt(v, 9)}`);
+  parts.legend.append(
+    el('span', { class: 'legend-item' }, `drawn at the scene's own values${own.length ? ` (${own.join(', ')}, SI)` : ''}`),
+    el('span', { class: 'legend-item' }, 'axes: x red, y green, z blue'),
+  );
+  view.render();
+  const plots = sweepPlots(data, parts.side, el);
+  api.plots = () => plots.map((p) => p.describe());
+  api.bodyPose = (name) => {
+    const k = data.bodies.findIndex((b) => b.name === name);
+    if (k < 0) return null;
+    const p = (data.poses || [])[k];
+    return p ? { position: p.origin.slice(), quaternion: p.quaternion.slice() } : { position: [0, 0, 0], quaternion: [1, 0, 0, 0] };
+  };
+  api.seek = () => view.render();
+}
+
 function start() {
   try {
     const data = readData(document);
@@ -461,6 +497,7 @@ function start() {
     if (data.kind === 'simulate') simulateReport(data, parts);
     else if (data.kind === 'mass') massReport(data, parts);
     else if (data.kind === 'solve') solveReport(data, parts);
+    else if (data.kind === 'sweep') sweepReport(data, parts);
     else throw new Error(`unknown report kind '${data.kind}'`);
     api.ready = true;
   } catch (e) {

@@ -106,3 +106,57 @@ export class Plot {
     return { title: this.title, series: this.names.slice(), eventMarks: this.marks.map((m) => m.t) };
   }
 }
+
+/**
+ * A plot of one quantity of a sweep against a swept parameter, one line (with its points) per
+ * combination of the other parameters. `xs`: the parameter's values, ascending; `lines`:
+ * [{label, y}] with y aligned to xs (null where the sweep has no value: a failed point).
+ */
+export class SweepPlot {
+  constructor(parent, title, xLabel, yLabel, xs, lines) {
+    this.title = title;
+    this.xLabel = xLabel;
+    this.xs = xs;
+    this.lines = lines;
+    const box = document.createElement('div');
+    box.className = 'plot';
+    const head = document.createElement('div');
+    head.className = 'plot-title';
+    head.textContent = title;
+    box.appendChild(head);
+    parent.appendChild(box);
+    this.box = box;
+    const series = [{ label: xLabel }];
+    lines.forEach((l, i) => {
+      const color = SERIES_COLORS[i % SERIES_COLORS.length];
+      series.push({ label: l.label, stroke: color, width: 1.5, points: { show: true, size: 5, fill: color } });
+    });
+    this.u = new uPlot(
+      {
+        width: Math.max(parent.clientWidth - 16, 300),
+        height: 230,
+        scales: { x: { time: false } },
+        series,
+        axes: [{ label: xLabel }, { label: yLabel }],
+        legend: { live: true },
+      },
+      [xs, ...lines.map((l) => l.y)],
+      box,
+    );
+  }
+
+  resize(width) {
+    this.u.setSize({ width: Math.max(width - 16, 300), height: 230 });
+  }
+
+  describe() {
+    return {
+      title: this.title,
+      x: this.xLabel,
+      series: this.lines.map((l) => l.label),
+      xs: this.xs.slice(),
+      ys: this.lines.map((l) => l.y.slice()),
+      eventMarks: [],
+    };
+  }
+}

@@ -14,6 +14,7 @@
 
 #include "chasles/error.h"
 #include "chasles/io/json_report.h"
+#include "chasles/io/solve_json.h"
 #include "chasles/io/mesh_reader.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/scene/column_units.h"
@@ -291,9 +292,11 @@ nlohmann::json MassReportData(const Scene& scene) {
   return j;
 }
 
-nlohmann::json SolveReportData(const Scene& scene, const SolveReport& report) {
-  nlohmann::json j = ReportSceneJson(scene, "solve");
-  // The solved instant is the scene's initial state (on its constraints).
+namespace {
+
+/// The bodies' frames in the scene's initial state (on its constraints): name, origin Bo and
+/// quaternion q_WB.
+nlohmann::json InitialPosesJson(const Scene& scene) {
   const StudyDefinition def = MakeStudyDefinition(scene);
   nlohmann::json poses = nlohmann::json::array();
   for (size_t b = 0; b < scene.bodies.size() && b < def.initial.bodies.size(); ++b) {
@@ -305,7 +308,28 @@ nlohmann::json SolveReportData(const Scene& scene, const SolveReport& report) {
                      {"origin", VecJson(p_WBo)},
                      {"quaternion", QuatJson(s.q_WB)}});
   }
-  j["poses"] = poses;
+  return poses;
+}
+
+}  // namespace
+
+nlohmann::json SweepReportData(const Scene& scene, const SweepTable& table,
+                               const std::string& command) {
+  nlohmann::json j = ReportSceneJson(scene, "sweep");
+  j["command"] = command;
+  if (command != "mass") j["poses"] = InitialPosesJson(scene);
+  nlohmann::json base = nlohmann::json::object();
+  for (const auto& [name, q] : scene.parameters) base[name] = q.value;
+  j["parameter_values"] = base;
+  j["sweep"] = SweepJson(table);
+  CheckFiniteJson(j, "the report data");
+  return j;
+}
+
+nlohmann::json SolveReportData(const Scene& scene, const SolveReport& report) {
+  nlohmann::json j = ReportSceneJson(scene, "solve");
+  // The solved instant is the scene's initial state (on its constraints).
+  j["poses"] = InitialPosesJson(scene);
   nlohmann::json reactions = nlohmann::json::array();
   for (const ReactionReport& x : report.solution.reactions) {
     reactions.push_back({{"name", x.name},

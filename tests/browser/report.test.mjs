@@ -317,3 +317,74 @@ test('solve report: the ladder at its solved instant', async () => {
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+/**
+ * A sweep report against its table: every plot's points equal the table's (the JSON form, full
+ * doubles) at the same parameter values, one line per value of the other parameter.
+ */
+function checkSweepPlots(plots, table, xName, otherName) {
+  const col = (n) => table.columns.indexOf(n);
+  for (const p of plots) {
+    const q = p.title.replace(/ \[[^\]]*\]/, '').replace(/ against .*$/, '');
+    assert.ok(col(q) >= 0, `plot '${p.title}' of no column`);
+    const xs = [...new Set(table.rows.map((r) => r[col(xName)]))].sort((a, b) => a - b);
+    assert.deepEqual(p.xs, xs);
+    table.rows.forEach((r, k) => {
+      const line = otherName ? [...new Set(table.rows.map((s) => s[col(otherName)]))].indexOf(r[col(otherName)]) : 0;
+      const got = p.ys[line][xs.indexOf(r[col(xName)])];
+      const want = r[col(q)];
+      if (want === null) assert.equal(got, null, `row ${k}`);
+      else assert.ok(Math.abs(got - want) <= 1e-9 * Math.max(1, Math.abs(want)), `${q} row ${k}: ${got} vs ${want}`);
+    });
+  }
+}
+
+test('sweep report: a planar pendulum over length and amplitude (simulate --sweep)', async () => {
+  const html = join(work, 'pendulum-sweep.html');
+  const args = ['simulate', example('pendulum.yaml'), '--sweep', 'L=0.5 m:2 m:4', '--sweep', 'theta0=10 deg:80 deg:8',
+    '--quantity', 'event(bottom)', '--quantity', 'min(ball_vx)', '--quiet'];
+  const table = JSON.parse(chaslesRun([...args, '--format', 'json', '--html', html]));
+  assert.equal(table.rows.length, 32);
+  const { page, problems } = await openReport(html);
+  assert.equal(await page.evaluate(() => window.chasles.data.planar), true);
+  const plots = await page.evaluate(() => window.chasles.plots());
+  // One plot per quantity against theta0 (the last parameter), one line per length.
+  assert.deepEqual(plots.map((p) => p.title), ['event(bottom) [s] against theta0', 'min(ball_vx) [m/s] against theta0']);
+  for (const p of plots) assert.deepEqual(p.series, ['L = 0.5 m', 'L = 1 m', 'L = 1.5 m', 'L = 2 m']);
+  checkSweepPlots(plots, table, 'theta0', 'L');
+  // The quarter period grows with the amplitude on every line (K(sin(theta0/2)) increases).
+  for (const y of plots[0].ys) for (let i = 1; i < y.length; i++) assert.ok(y[i] > y[i - 1]);
+  // Against L instead: one line per amplitude.
+  await page.select('#sweep-x', 'L');
+  const byL = await page.evaluate(() => window.chasles.plots());
+  assert.equal(byL[0].series.length, 8);
+  checkSweepPlots(byL, table, 'L', 'theta0');
+  // The scene drawn at its own values: the body frame at the pin, the ball's centre at
+  // L (sin 30°, -cos 30°) in it with L = 1 m.
+  const pose = await page.evaluate(() => window.chasles.bodyPose('ball'));
+  assert.deepEqual(pose, { position: [0, 0, 0], quaternion: [1, 0, 0, 0] });
+  const c = await page.evaluate(() => window.chasles.data.bodies[0].center_of_mass);
+  assert.ok(Math.abs(c[0] - 0.5) < 1e-12 && Math.abs(c[1] + Math.sqrt(3) / 2) < 1e-12, `${c}`);
+  await checkNotBlank(page);
+  await screenshot(page, 'report-sweep.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('sweep report: a failed point is listed and left out of the plots (mass --sweep)', async () => {
+  const html = join(work, 'cylinder-sweep.html');
+  // R from -1 cm: the first point is a negative radius, a failed row with its reason.
+  const table = JSON.parse(chaslesRun(['mass', example('example-8.1-cylinder.yaml'), '--sweep', 'R=-1 cm:8 cm:4',
+    '--quantity', 'cylinder.Izz', '--quantity', 'cylinder.mass', '--format', 'json', '--quiet', '--html', html]));
+  assert.ok(table.errors[0], 'the negative radius fails');
+  const { page, problems } = await openReport(html);
+  const plots = await page.evaluate(() => window.chasles.plots());
+  assert.equal(plots.length, 2);
+  checkSweepPlots(plots, table, 'R', null);
+  assert.equal(plots[0].ys[0][0], null);
+  const text = await page.evaluate(() => document.body.innerText);
+  assert.ok(text.includes('Failed points'), 'the failed points are listed');
+  assert.ok(text.includes(table.errors[0]), 'with their reason');
+  assert.deepEqual(problems, []);
+  await page.close();
+});

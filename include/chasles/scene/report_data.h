@@ -43,6 +43,14 @@ nlohmann::json MassReportData(const Scene& scene);
 /// state), reactions and contact points with their forces, in W.
 nlohmann::json SolveReportData(const Scene& scene, const SolveReport& report);
 
+/// The report of a sweep (`command`: "simulate", "solve" or "mass"): ReportSceneJson(scene,
+/// "sweep") of the scene at its own parameter values, "command", "poses" (the scene's initial
+/// configuration, as SolveReportData; none for "mass": the bodies at their frames) and "sweep"
+/// (SweepJson of the table: parameters, columns, units, rows with null for a failed point's
+/// values, errors).
+nlohmann::json SweepReportData(const Scene& scene, const SweepTable& table,
+                               const std::string& command);
+
 /// `bytes` as base64 (RFC 4648, with padding).
 std::string Base64(const void* bytes, size_t size);
 
