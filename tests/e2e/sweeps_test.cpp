@@ -360,7 +360,7 @@ TEST(Sweep, BadInputExitsTwoWithAClearMessage) {
       {sim + "--quantity t_end", "--quantity goes with --sweep"},
       {sim + "--sweep 'L=1 m:2 m:2' --quantity t_end --columns bob_x,nope",
        "unknown column 'nope'"},
-      {sim + "--sweep 'L=1 m:2 m:2' --quantity t_end --html x.html", "--keep-runs"},
+      {sim + "--sweep 'L=1 m:2 m:2' --quantity t_end --out results", "--keep-runs"},
       {sim + "--sweep 'L=1 m:2 m:10' --sweep 'theta0=0:1:10' --quantity t_end --max-runs 50",
        "more than the limit of 50"},
       {"mass " + Quote(scene) + " --sweep 'L=1 m:2 m:2' --quantity Iqq", "unknown quantity 'Iqq'"},
