@@ -44,6 +44,7 @@ export function readData(doc) {
   data.time = data.byName.has('t') ? data.byName.get('t').values : new Float64Array(0);
   for (const r of data.reactions || []) r.values = f4(r.data);
   for (const c of data.contacts || []) c.values = f4(c.data);
+  for (const f of data.forces || []) f.values = f4(f.data);
   for (const b of data.bodies) {
     for (const p of b.parts) {
       if (p.mesh) {

@@ -13,6 +13,7 @@ const api = {
   seek: () => {},
   bodyPose: () => null,
   plots: () => [],
+  arrows: () => [],
 };
 window.chasles = api;
 window.addEventListener('error', (e) => api.errors.push(String(e.message || e)));
@@ -165,7 +166,12 @@ function simulateReport(data, parts) {
       fmax = Math.max(fmax, Math.hypot(c.values[o + 6], c.values[o + 7], c.values[o + 8]));
     }
   }
+  const applied = data.forces || [];
+  for (const f of applied) {
+    for (let i = 0; i < n; i++) fmax = Math.max(fmax, Math.hypot(f.values[6 * i + 3], f.values[6 * i + 4], f.values[6 * i + 5]));
+  }
   const forceScale = fmax > 0 ? (0.6 * size) / fmax : 0;
+  const appliedArrows = applied.map(() => new ForceArrow(FORCE_COLORS.applied, view.scene, size));
   const reactionArrows = data.reactions.map(() => new ForceArrow(FORCE_COLORS.reaction, view.scene, size));
   const contactArrows = data.contacts.map(() => ({
     normal: new ForceArrow(FORCE_COLORS.normal, view.scene, size),
@@ -178,6 +184,7 @@ function simulateReport(data, parts) {
   }));
 
   // Legend.
+  if (applied.length) parts.legend.append(legendItem(FORCE_COLORS.applied, 'applied force (gravity, forces, springs, dampers, drag, cables)'));
   if (data.reactions.length) parts.legend.append(legendItem(FORCE_COLORS.reaction, 'reaction on the child (at the joint point)'));
   if (data.contacts.length) {
     parts.legend.append(legendItem(FORCE_COLORS.normal, 'contact normal force'), legendItem(FORCE_COLORS.friction, 'friction force'));
@@ -218,6 +225,12 @@ function simulateReport(data, parts) {
       g.quaternion.copy(quat(p.quaternion));
     });
     trails.forEach((line) => line.geometry.setDrawRange(0, current + 1));
+    applied.forEach((f, k) => {
+      const o = 6 * current;
+      const v = f.values;
+      if (showArrows.on) appliedArrows[k].set([v[o], v[o + 1], v[o + 2]], [v[o + 3], v[o + 4], v[o + 5]], forceScale);
+      else appliedArrows[k].arrow.visible = false;
+    });
     data.reactions.forEach((r, k) => {
       const o = 6 * current;
       const v = r.values;
@@ -366,6 +379,20 @@ function simulateReport(data, parts) {
     return poseAt(k, shownTime);
   };
   api.plots = () => plots.map((p) => p.describe());
+  // The arrows drawn at the time shown: kind, name, the point and the force (N, unscaled).
+  api.arrows = () => {
+    const out = [];
+    const add = (kind, name, a) => {
+      if (a.arrow.visible && a.shown) out.push({ kind, name, origin: a.shown.origin, force: a.shown.force });
+    };
+    applied.forEach((f, k) => add('applied', `${f.element} on ${f.body}`, appliedArrows[k]));
+    data.reactions.forEach((r, k) => add('reaction', r.name, reactionArrows[k]));
+    data.contacts.forEach((c, k) => {
+      add('normal', c.name, contactArrows[k].normal);
+      add('friction', c.name, contactArrows[k].friction);
+    });
+    return out;
+  };
   Object.defineProperty(api, 'time', { get: () => shownTime, configurable: true });
   update(t0);
 }

@@ -178,6 +178,7 @@ export class ForceArrow {
   }
 
   set(origin, force, scale) {
+    this.shown = { origin: Array.from(origin), force: Array.from(force) };
     const f = new THREE.Vector3(force[0], force[1], force[2]);
     const L = f.length() * scale;
     if (!(L > 1e-12)) {

@@ -341,11 +341,27 @@ StudySnapshot MakeSnapshot(const Model& model, const State& state, int num_repor
   const int reported = num_reported_constraints < 0
                            ? model.num_constraints()
                            : std::min(num_reported_constraints, model.num_constraints());
-  if (model.num_constraints() > 0) {
-    // The reactions at `state` (the constraint stage of CalcAccelerations).
+  if (model.num_constraints() > 0 || model.num_force_elements() > 0) {
+    // The reactions at `state` (the constraint stage of CalcAccelerations), and each force
+    // element's forces again, listed this time (into a scratch copy of the resultants).
     Data data = MakeData(model);
     CalcAccelerations(model, state, data);
     for (int i = 0; i < reported; ++i) out.reactions.push_back(MakeReactionReport(model, data, i));
+    Data scratch = data;
+    WrenchAccumulator acc(state, scratch);
+    std::vector<AppliedForceRecord> records;
+    acc.Record(&records);
+    for (int e = 0; e < model.num_force_elements(); ++e) {
+      ForceElementOutput element_out;
+      acc.Begin(&element_out);
+      records.clear();
+      const ForceElement& fe = model.force_element(e);
+      fe.AddForces(model, state, scratch, acc);
+      for (const AppliedForceRecord& r : records) {
+        out.forces.push_back(
+            {fe.name(), model.body(r.body).name(), r.p_WP, r.F_W, r.M_W, r.is_moment});
+      }
+    }
   }
   if (model.num_contacts() > 0) {
     const std::vector<ContactPointOutput> outputs = CalcContactOutputs(model, state);

@@ -18,6 +18,7 @@ void WrenchAccumulator::AddForceAtCenterOfMass(BodyIndex b, const Vec3& F_W) {
   data_.F_Bcm_W[i] += F_W;
   out_->force_W += F_W;
   out_->moment_Wo_W += bs.p_WBcm.cross(F_W);
+  if (records_) records_->push_back({b, bs.p_WBcm, F_W, Vec3::Zero(), false});
   out_->power += F_W.dot(bs.v_WBcm_W);
 }
 
@@ -29,6 +30,7 @@ void WrenchAccumulator::AddForceAtPoint(BodyIndex b, const Vec3& p_BcmP_W, const
   data_.M_Bcm_W[i] += M;
   out_->force_W += F_W;
   out_->moment_Wo_W += (bs.p_WBcm + p_BcmP_W).cross(F_W);
+  if (records_) records_->push_back({b, bs.p_WBcm + p_BcmP_W, F_W, Vec3::Zero(), false});
   // Power of a force at P: F·v_P with v_P = v_Bcm + w × p_BcmP.
   out_->power += F_W.dot(bs.v_WBcm_W + data_.w_WB_W[i].cross(p_BcmP_W));
 }
@@ -37,6 +39,7 @@ void WrenchAccumulator::AddMoment(BodyIndex b, const Vec3& M_W) {
   const auto i = static_cast<size_t>(b);
   data_.M_Bcm_W[i] += M_W;
   out_->moment_Wo_W += M_W;
+  if (records_) records_->push_back({b, state_.bodies[i].p_WBcm, Vec3::Zero(), M_W, true});
   out_->power += M_W.dot(data_.w_WB_W[i]);
 }
 

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <map>
 #include <string_view>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -185,6 +186,44 @@ nlohmann::json ReportSceneJson(const Scene& scene, const std::string& kind) {
           {"planar", scene.planar}, {"units", "SI"}, {"bodies", bodies},     {"planes", planes}};
 }
 
+namespace {
+
+/// The forces of the force elements at each sample (the row snapshots' `forces`), one entry per
+/// force an element applies to a body (gravity on each body, each end of a spring, ...):
+/// element, body, and per sample the point and the force in W (f4; zeros at a sample where it
+/// is absent). Pure moments are left out (nothing to draw at a point).
+nlohmann::json AppliedForcesJson(const std::vector<StudySnapshot>& snapshots, size_t n) {
+  nlohmann::json out = nlohmann::json::array();
+  if (snapshots.size() != n) return out;
+  // The k-th force of element e on body b, in the order first seen.
+  using Key = std::tuple<std::string, std::string, int>;
+  std::map<Key, size_t> index;
+  std::vector<Key> keys;
+  std::vector<std::vector<double>> values;
+  for (size_t i = 0; i < n; ++i) {
+    std::map<std::pair<std::string, std::string>, int> seen;
+    for (const StudyAppliedForce& f : snapshots[i].forces) {
+      if (f.is_moment) continue;
+      const Key key{f.element, f.body, seen[{f.element, f.body}]++};
+      auto [it, added] = index.emplace(key, keys.size());
+      if (added) {
+        keys.push_back(key);
+        values.emplace_back(6 * n, 0.0);
+      }
+      double* v = values[it->second].data() + 6 * i;
+      for (int a = 0; a < 3; ++a) v[a] = f.p_WP[a], v[3 + a] = f.F_W[a];
+    }
+  }
+  for (size_t k = 0; k < keys.size(); ++k) {
+    out.push_back({{"element", std::get<0>(keys[k])},
+                   {"body", std::get<1>(keys[k])},
+                   {"data", F4(values[k])}});
+  }
+  return out;
+}
+
+}  // namespace
+
 nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r) {
   nlohmann::json j = ReportSceneJson(scene, "simulate");
   const size_t n = r.rows.size();
@@ -282,6 +321,7 @@ nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r) {
   }
   j["reactions"] = reactions;
   j["contacts"] = contacts;
+  j["forces"] = AppliedForcesJson(r.row_snapshots, n);
   CheckFiniteJson(j, "the report data");
   return j;
 }

@@ -4,11 +4,11 @@
 import { createRequire } from 'node:module';
 import { mkdtempSync, writeFileSync, statSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { join, resolve } from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { pathToFileURL } from 'node:url';
 
-const [source, chasles] = process.argv.slice(2);
+const [source, chasles] = process.argv.slice(2).map((p) => resolve(p));
 const require = createRequire(join(source, 'report/package.json'));
 const puppeteer = require('puppeteer-core');
 const work = mkdtempSync(join(tmpdir(), 'chasles-bench-'));

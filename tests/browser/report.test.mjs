@@ -291,6 +291,31 @@ test('simulate report: planar sliding ladder (Example 8.4), reactions', async ()
   await page.close();
 });
 
+test('simulate report: applied forces drawn where they act (a pinned rod pushed sideways)', async () => {
+  const { page, csv } = await checkSimulation('pinned-rod-world-force', 'pinned-rod-world-force.yaml');
+  // The push (5 N along +x, world-fixed) and gravity (m g = 2 kg × 9.81 m/s² down) act at the
+  // rod's centre of mass; the arrows' points and forces are the run's to f4 precision.
+  const random = lcg(7);
+  for (let k = 0; k < 4; k++) {
+    const i = Math.floor(random() * csv.rows.length);
+    await page.evaluate((x) => window.chasles.seek(x), csv.rows[i][csv.col('t')]);
+    const arrows = await page.evaluate(() => window.chasles.arrows());
+    const cm = ['rod_x', 'rod_y', 'rod_z'].map((c) => csv.rows[i][csv.col(c)]);
+    for (const [name, force] of [['push on rod', [5, 0, 0]], ['gravity on rod', [0, 0, -2 * 9.81]]]) {
+      const a = arrows.find((x) => x.kind === 'applied' && x.name === name);
+      assert.ok(a, `no arrow '${name}' at row ${i}; arrows: ${arrows.map((x) => x.name)}`);
+      for (let c = 0; c < 3; c++) {
+        assert.ok(Math.abs(a.force[c] - force[c]) <= 1e-6 * 19.62, `${name} force ${a.force}`);
+        assert.ok(Math.abs(a.origin[c] - cm[c]) <= 1e-6, `${name} at ${a.origin}, centre of mass ${cm}`);
+      }
+    }
+    assert.ok(arrows.some((x) => x.kind === 'reaction' && x.name === 'pin'), 'the pin reaction');
+  }
+  const legend = await page.evaluate(() => document.getElementById('legend').innerText);
+  assert.ok(legend.includes('applied force'), legend);
+  await page.close();
+});
+
 test('report from a finished run: projectile with drag, apex and ground events', async () => {
   const { page, json } = await checkSimulation(
     'projectile-drag',

@@ -322,6 +322,18 @@ struct StudyLedger {
 /// ConstraintOutput by MakeReactionReport.
 using StudyReaction = ReactionReport;
 
+/// One force (or pure moment) a force element applies at one instant (AppliedForceRecord with
+/// names): gravity on each body, an applied force, each end of a spring, a drive's moment.
+struct StudyAppliedForce {
+  std::string element, body;
+  /// The point it acts at (the centre of mass for a pure moment), the force and the moment, W.
+  Vec3 p_WP = Vec3::Zero();
+  Vec3 F_W = Vec3::Zero();
+  Vec3 M_W = Vec3::Zero();
+  /// True for a pure moment, false for a force.
+  bool is_moment = false;
+};
+
 /// Bodies, reactions and contact points at one instant (an event, the end of the run).
 struct StudySnapshot {
   std::vector<StudyBodyState> bodies;
@@ -330,6 +342,8 @@ struct StudySnapshot {
   std::vector<StudyReaction> reactions;
   /// Every contact point (Model order), in the modes of that instant.
   std::vector<StudyContactPoint> contacts;
+  /// What every force element applies (Model order; per element in the order it adds them).
+  std::vector<StudyAppliedForce> forces;
 };
 
 struct StudyEvent {

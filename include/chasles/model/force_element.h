@@ -33,6 +33,18 @@ using ScalarFunction = std::function<double(const Model& model, const State& sta
 /// body it acts on (a thruster).
 enum class VectorFrame { kWorld, kBody };
 
+/// One force (or pure moment) an element applied, as WrenchAccumulator::Record lists them:
+/// body b, the point P it acts at (Bcm for a force at the centre of mass and for a pure
+/// moment), the force and the pure moment, in W.
+struct AppliedForceRecord {
+  BodyIndex body = 0;
+  Vec3 p_WP = Vec3::Zero();
+  Vec3 F_W = Vec3::Zero();
+  Vec3 M_W = Vec3::Zero();
+  /// True for a pure moment (AddMoment), false for a force.
+  bool is_moment = false;
+};
+
 /// Collects one element's forces into the per-body resultants of a Data, and at the same time
 /// the element's own totals (sum of forces, moment about the world origin, power).
 class WrenchAccumulator {
@@ -51,11 +63,15 @@ class WrenchAccumulator {
   void AddMoment(BodyIndex b, const Vec3& M_W);
   /// Power of everything this element has added so far [W].
   double power() const;
+  /// Also lists every force and moment added from now on in `records` (nullptr: none, the
+  /// default); for drawing them (the browser report), not for the dynamics.
+  void Record(std::vector<AppliedForceRecord>* records) { records_ = records; }
 
  private:
   const State& state_;
   Data& data_;
   ForceElementOutput* out_ = nullptr;
+  std::vector<AppliedForceRecord>* records_ = nullptr;
 };
 
 class ForceElement {
