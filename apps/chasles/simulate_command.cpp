@@ -98,6 +98,9 @@ ReportScales CalcReportScales(const StudyResult& r) {
   return k;
 }
 
+/// `x`, or 0 when it is round-off next to `scale` (at most 1e-12 of it).
+double Clean(double x, double scale) { return std::abs(x) <= 1e-12 * scale ? 0.0 : x; }
+
 constexpr Dimension kTimeDim{0, 0, 1};
 constexpr Dimension kVelocityDim{1, 0, -1};
 constexpr Dimension kRateDim{0, 0, -1};
@@ -117,11 +120,11 @@ std::string SnapshotText(const Scene& scene, const StudySnapshot& snap, const Sh
     const double v_s = i < k.body_speed.size() ? k.body_speed[i] : k.speed;
     const double w_s = i < k.body_rate.size() ? k.body_rate[i] : 0.0;
     if (scene.planar) {
-      out += fmt::format("    {}: x, y [{}, {}], theta {}; v [{}, {}], omega {}\n", b.name,
-                         show(b.p_WBcm.x(), kLength), show(b.p_WBcm.y(), kLength),
+      out += fmt::format("    {}: x, y {}, theta {}; v {}, omega {}\n", b.name,
+                         show.Xy(b.p_WBcm, kLength, k.length),
                          show(b.theta, kDimensionless, Angular::kYes),
-                         show(b.v_WBcm_W.x(), kVelocityDim), show(b.v_WBcm_W.y(), kVelocityDim),
-                         show(b.w_WB_W.z(), kRateDim, Angular::kYes));
+                         show.Xy(b.v_WBcm_W, kVelocityDim, v_s),
+                         show(Clean(b.w_WB_W.z(), w_s), kRateDim, Angular::kYes));
       continue;
     }
     out += fmt::format("    {}: position {}, velocity {}, angular velocity {}\n", b.name,
@@ -277,17 +280,13 @@ std::string FinalStateText(const Scene& scene, const StudyResult& r, const Show&
   for (size_t i = 0; i < r.final_bodies.size(); ++i) {
     const auto& b = r.final_bodies[i];
     const double v_s = k.body_speed[i], w_s = k.body_rate[i];
-    const auto clean = [](double x, double scale) {
-      return std::abs(x) <= 1e-12 * scale ? 0.0 : x;
-    };
+    const auto clean = Clean;
     if (scene.planar) {
       // Chapter eqs. 8.41-8.43: x, y, θ and their rates.
-      out += fmt::format("  {}\n    position [{}, {}], theta {}\n    velocity [{}, {}], omega {}\n",
-                         b.name, show(clean(b.p_WBcm.x(), k.length), kLength),
-                         show(clean(b.p_WBcm.y(), k.length), kLength),
+      out += fmt::format("  {}\n    position {}, theta {}\n    velocity {}, omega {}\n", b.name,
+                         show.Xy(b.p_WBcm, kLength, k.length),
                          show(b.theta, kDimensionless, Angular::kYes),
-                         show(clean(b.v_WBcm_W.x(), v_s), kVelocityDim),
-                         show(clean(b.v_WBcm_W.y(), v_s), kVelocityDim),
+                         show.Xy(b.v_WBcm_W, kVelocityDim, v_s),
                          show(clean(b.w_WB_W.z(), w_s), kRateDim, Angular::kYes));
       continue;
     }
@@ -313,10 +312,9 @@ std::string EndReactionsText(const Scene& scene, const StudyResult& r, const Sho
   std::string out = "\nReactions at the end (on the child at the joint point, world frame)\n";
   for (const auto& x : r.final_reactions) {
     if (scene.planar) {
-      out += fmt::format("  {} ({}) at [{}, {}]\n    force [{}, {}]\n    moment {}\n", x.name,
-                         x.kind, show(x.p_WJ.x(), kLength), show(x.p_WJ.y(), kLength),
-                         show(x.F_Jc_W.x(), kForceDim), show(x.F_Jc_W.y(), kForceDim),
-                         show(x.M_Jc_W.z(), kMomentDim));
+      out += fmt::format("  {} ({}) at {}\n    force {}\n    moment {}\n", x.name, x.kind,
+                         show.Xy(x.p_WJ, kLength, k.length), show.Xy(x.F_Jc_W, kForceDim, k.force),
+                         show(Clean(x.M_Jc_W.z(), k.moment), kMomentDim));
       continue;
     }
     out += fmt::format("  {} ({}) at {}\n    force {}\n    moment {}\n", x.name, x.kind,
@@ -345,30 +343,48 @@ std::string EndContactsText(const Scene& scene, const StudyResult& r, const Show
 
 std::string LedgerText(const Scene& scene, const StudyResult& r, const TextUnits& u) {
   const StudyLedger& L = r.ledger;
+  // Works below 1e-12 of the energy scale are round-off (an ideal joint's work) and print as
+  // 0; the balance residual prints as it is, being the check.
+  const auto W = [&](double w) {
+    return u.Energy(std::abs(w) <= 1e-12 * L.energy_scale ? 0.0 : w);
+  };
   std::string out = "\nLedger (from t = 0)\n";
   out += fmt::format("  kinetic energy      {} (translation {}, rotation {})\n",
                      u.Energy(L.kinetic_translational + L.kinetic_rotational),
                      u.Energy(L.kinetic_translational), u.Energy(L.kinetic_rotational));
-  out += fmt::format("  potential energy    {}\n", u.Energy(L.potential));
+  std::string parts;
+  for (const auto& [name, v] : L.potential_by_force) {
+    parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", name, u.Energy(v));
+  }
+  out += fmt::format("  potential energy    {}{}\n", u.Energy(L.potential),
+                     L.potential_by_force.size() > 1 ? " (" + parts + ")" : "");
   out += fmt::format("  mechanical energy   {} (initially {})\n", u.Energy(L.energy),
                      u.Energy(L.energy_initial));
-  out += fmt::format("  non-conservative work {}\n", u.Energy(L.work_nonconservative));
+  out += fmt::format("  non-conservative work {}\n", W(L.work_nonconservative));
+  // A purely conservative element (gravity) does no non-conservative work: its work is -ΔV,
+  // in the energy above, so it is not listed here.
+  const auto conservative = [&](const std::string& name, double w) {
+    for (const auto& [n, v] : L.potential_by_force) {
+      if (n == name && w == 0.0) return true;
+    }
+    return false;
+  };
   for (const auto& [name, w] : L.work_by_force) {
-    out += fmt::format("    {:<20} {}\n", name, u.Energy(w));
+    if (!conservative(name, w)) out += fmt::format("    {:<20} {}\n", name, W(w));
   }
   for (const auto& [name, w] : L.work_by_constraint) {
-    out += fmt::format("    {:<20} {} (constraint)\n", name, u.Energy(w));
+    out += fmt::format("    {:<20} {} (constraint)\n", name, W(w));
   }
   if (!r.final_contacts.empty()) {
-    out += fmt::format("    {:<20} {}\n", "friction (sliding)", u.Energy(L.friction_work));
+    out += fmt::format("    {:<20} {}\n", "friction (sliding)", W(L.friction_work));
     if (L.rolling_work != 0) {
-      out += fmt::format("    {:<20} {}\n", "rolling resistance", u.Energy(L.rolling_work));
+      out += fmt::format("    {:<20} {}\n", "rolling resistance", W(L.rolling_work));
     }
-    out += fmt::format("    {:<20} {}\n", "impacts", u.Energy(L.impact_work));
+    out += fmt::format("    {:<20} {}\n", "impacts", W(L.impact_work));
   } else if (!r.string_events.empty()) {
-    out += fmt::format("    {:<20} {}\n", "strings snapping", u.Energy(L.impact_work));
+    out += fmt::format("    {:<20} {}\n", "strings snapping", W(L.impact_work));
   }
-  out += fmt::format("  dissipated          {}\n", u.Energy(L.dissipated));
+  out += fmt::format("  dissipated          {}\n", W(L.dissipated));
   if (!r.jumps.empty()) out += fmt::format("  impulses and impacts {}\n", u.Energy(L.jumps));
   out += fmt::format(
       "  balance residual    {} ({:.2e} of the energy scale {})\n", u.Energy(L.residual),

@@ -162,6 +162,9 @@ StudyLedger FinalLedger(const StudyDefinition& definition, const Model& model, c
   if (forces.empty()) {
     for (const ForceLedger& fl : L.forces) forces.push_back(fl.name);
   }
+  for (const ForceLedger& fl : L.forces) {
+    if (fl.has_potential) out.potential_by_force.emplace_back(fl.name, fl.potential_energy);
+  }
   for (const std::string& name : forces) {
     double w = carried(name);
     for (const ForceLedger& fl : L.forces) {

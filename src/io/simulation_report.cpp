@@ -135,6 +135,8 @@ nlohmann::json ImpactsJson(const std::vector<StudyImpact>& impacts) {
 nlohmann::json LedgerJson(const StudyLedger& L) {
   nlohmann::json work = nlohmann::json::object();
   for (const auto& [name, w] : L.work_by_force) work[name] = w;
+  nlohmann::json potential = nlohmann::json::object();
+  for (const auto& [name, v] : L.potential_by_force) potential[name] = v;
   nlohmann::json constraint_work = nlohmann::json::object();
   for (const auto& [name, w] : L.work_by_constraint) constraint_work[name] = w;
   return {{"kinetic_translational", L.kinetic_translational},
@@ -144,6 +146,7 @@ nlohmann::json LedgerJson(const StudyLedger& L) {
           {"energy_initial", L.energy_initial},
           {"work_nonconservative", L.work_nonconservative},
           {"work_by_force", work},
+          {"potential_by_force", potential},
           {"work_by_constraint", constraint_work},
           {"friction_work", L.friction_work},
           {"rolling_work", L.rolling_work},

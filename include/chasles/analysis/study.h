@@ -293,6 +293,9 @@ struct StudyLedger {
   /// Non-conservative work of all force elements [J], and of each (scene order) [J].
   double work_nonconservative = 0.0;
   std::vector<std::pair<std::string, double>> work_by_force;
+  /// The potential energy of each force element that has one (gravity, a spring) [J]; their
+  /// sum is `potential`. Such an element's work is -ΔV, in the energy, not in W_nc.
+  std::vector<std::pair<std::string, double>> potential_by_force;
   /// Work of each joint, rolling contact and driver (Model order) [J]: zero for the ideal
   /// ones up to the integration error, a driver's input otherwise (part of W_nc).
   std::vector<std::pair<std::string, double>> work_by_constraint;
