@@ -1,10 +1,12 @@
 #include "html_report.h"
 
+#include <cstdio>
 #include <string_view>
 
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "chasles/io/atomic_file.h"
 #include "chasles/io/json_report.h"
 #include "report_bundle.h"
 
@@ -83,6 +85,11 @@ std::string HtmlReport(const nlohmann::json& data) {
   out += EscapeScript(std::string_view(kReportScript, kReportScriptSize));
   out += "\n</script>\n</body>\n</html>\n";
   return out;
+}
+
+void WriteHtmlReport(const std::string& path, const nlohmann::json& data) {
+  WriteFileAtomically(path, HtmlReport(data));
+  std::fprintf(stderr, "Wrote %s (the browser report)\n", path.c_str());
 }
 
 }  // namespace chasles::cli

@@ -9,9 +9,9 @@
 
 #include "chasles/io/atomic_file.h"
 #include "chasles/io/json_report.h"
+#include "chasles/io/output_set.h"
 #include "chasles/scene/mass_report.h"
 #include "chasles/scene/mesh_file.h"
-#include "chasles/io/output_set.h"
 #include "chasles/scene/report_data.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
@@ -384,8 +384,7 @@ int RunMassSweep(const MassArgs& args) {
                  args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision),
                  args.output);
   if (!args.html.empty()) {
-    WriteFileAtomically(args.html,
-                        HtmlReport(SweepReportData(LoadScene(args.scene), table, "mass")));
+    WriteHtmlReport(args.html, SweepReportData(LoadScene(args.scene), table, "mass"));
   }
   return 0;
 }
@@ -420,7 +419,7 @@ int RunMass(const MassArgs& args) {
                                                       TextReport(scene, P, args, extra, frame));
   if (!args.html.empty()) {
     RequireHtmlReport("--html");
-    WriteFileAtomically(args.html, HtmlReport(MassReportData(scene)));
+    WriteHtmlReport(args.html, MassReportData(scene));
   }
   Emit(args.output, report);
   return 0;

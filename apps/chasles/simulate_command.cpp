@@ -11,8 +11,8 @@
 
 #include "certificate_report.h"
 #include "chasles/error.h"
-#include "chasles/io/json_report.h"
 #include "chasles/io/atomic_file.h"
+#include "chasles/io/json_report.h"
 #include "chasles/io/output_set.h"
 #include "chasles/io/simulation_report.h"
 #include "chasles/math/quaternion.h"
@@ -99,7 +99,9 @@ ReportScales CalcReportScales(const StudyResult& r) {
 }
 
 /// `x`, or 0 when it is round-off next to `scale` (at most 1e-12 of it).
-double Clean(double x, double scale) { return std::abs(x) <= 1e-12 * scale ? 0.0 : x; }
+double Clean(double x, double scale) {
+  return std::abs(x) <= 1e-12 * scale ? 0.0 : x;
+}
 
 constexpr Dimension kTimeDim{0, 0, 1};
 constexpr Dimension kVelocityDim{1, 0, -1};
@@ -574,8 +576,7 @@ int RunSimulateSweep(const SimulateArgs& args) {
       EmitSweepTable(table, args.format,
                      args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision));
   if (!args.html.empty()) {
-    WriteFileAtomically(args.html,
-                        HtmlReport(SweepReportData(LoadScene(args.scene), table, "simulate")));
+    WriteHtmlReport(args.html, SweepReportData(LoadScene(args.scene), table, "simulate"));
   }
   return args.strict && (failed > 0 || check_failed) ? kExitCheckFailed : 0;
 }

@@ -380,7 +380,7 @@ int RunSolve(const SolveArgs& args) {
     }
     if (!args.html.empty()) {
       RequireHtmlReport("--html");
-      WriteFileAtomically(args.html, HtmlReport(SolveReportData(scene, s)));
+      WriteHtmlReport(args.html, SolveReportData(scene, s));
     }
     if (args.output.empty()) {
       Emit("", report);
@@ -428,8 +428,7 @@ int RunSolve(const SolveArgs& args) {
     WriteFileAtomically(args.output, text);
   }
   if (!args.html.empty()) {
-    WriteFileAtomically(args.html,
-                        HtmlReport(SweepReportData(LoadScene(args.scene), table, "solve")));
+    WriteHtmlReport(args.html, SweepReportData(LoadScene(args.scene), table, "solve"));
   }
   return args.strict && table.failed ? kExitCheckFailed : 0;
 }

@@ -216,3 +216,40 @@ TEST(Outputs, SolveCsvIsTheOnePointSweepRowWithoutTheParameter) {
 
 }  // namespace
 }  // namespace chasles::test
+
+namespace chasles::test {
+namespace {
+
+// --html for mass and for a sweep: the page is written and standard error says where (standard
+// output stays the report or the table); a build without the report refuses with exit 2.
+TEST(Outputs, HtmlReportIsWrittenAndSaid) {
+  const auto dir = OutDir("outputs_html");
+  const std::string mass_html = (dir / "rods.html").string();
+  const CliResult mass = RunCli("mass " + Quote(SourcePath("examples/example-8.2-two-rods.yaml")) +
+                                " --format json --html " + Quote(mass_html));
+  const std::string sweep_html = (dir / "sweep.html").string();
+  const CliResult sweep =
+      RunCli("solve " + Quote(SourcePath(kIncline)) +
+             " --quiet --sweep 'theta=10 deg:50 deg:3' --html " + Quote(sweep_html));
+  if (mass.exit_code == 2) {  // built without the report
+    EXPECT_THAT(mass.err, ::testing::HasSubstr("has no browser report"));
+    EXPECT_EQ(sweep.exit_code, 2);
+    return;
+  }
+  ASSERT_EQ(mass.exit_code, 0) << mass.err;
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  EXPECT_THAT(mass.err, ::testing::HasSubstr("Wrote " + mass_html + " (the browser report)"));
+  EXPECT_THAT(sweep.err, ::testing::HasSubstr("Wrote " + sweep_html + " (the browser report)"));
+  // Standard output is still the JSON report alone.
+  EXPECT_TRUE(nlohmann::json::parse(mass.out).contains("bodies")) << mass.out;
+  EXPECT_THAT(sweep.out, ::testing::StartsWith("theta [rad],"));
+  for (const std::string& f : {mass_html, sweep_html}) {
+    std::ifstream in(f);
+    std::stringstream s;
+    s << in.rdbuf();
+    EXPECT_THAT(s.str(), ::testing::HasSubstr("id=\"chasles-data\"")) << f;
+  }
+}
+
+}  // namespace
+}  // namespace chasles::test
