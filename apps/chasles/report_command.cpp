@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
@@ -85,11 +86,12 @@ CLI::App* AddReportCommand(CLI::App& app, ReportArgs& args) {
   cmd->add_option("--max-scene-bytes", args.max_scene_bytes, "Largest scene file read (bytes)");
   cmd->footer(
       "Example:\n"
-      "  chasles simulate examples/dzhanibekov.yaml --out results\n"
-      "  chasles report results/dzhanibekov.json -o dzhanibekov.html\n"
-      "The CSV must hold every body's origin and quaternion columns (the default columns of a "
-      "3-D scene hold the quaternion; add the output group origin, or run simulate with "
-      "--html, which writes the report with force arrows directly). docs/report.md.\n"
+      "  chasles simulate examples/pendulum.yaml --out results\n"
+      "  chasles report results/pendulum.json -o pendulum.html\n"
+      "The CSV must hold every body's pose: its origin and quaternion columns, or its centre "
+      "of mass and orientation to derive them from (position and quaternion; a planar "
+      "scene's default x, y and theta). Otherwise add those output groups, or run simulate "
+      "with --html, which writes the report with force arrows directly. docs/report.md.\n"
       "Exit codes: 0 success, 2 bad input, 1 internal error.");
   return cmd;
 }
@@ -147,6 +149,13 @@ int RunReport(const ReportArgs& args) {
     x.kind = Get<std::string>(e, "kind", where);
     x.description = Get<std::string>(e, "description", where);
     r.jumps.push_back(x);
+  }
+  // The poses the replay draws, from the centre of mass and orientation columns when the run
+  // has no origin columns (the default columns of a planar scene and of many 3-D ones).
+  const std::vector<std::string> derived = CompletePoseColumns(scene, r);
+  if (!derived.empty()) {
+    std::printf("note: the poses of %s derived from the centre of mass and orientation columns\n",
+                fmt::format("{}", fmt::join(derived, ", ")).c_str());
   }
   WriteFileAtomically(args.output, HtmlReport(SimulationReportData(scene, r)));
   std::printf("Wrote %s (the browser report of %s, %zu samples)\n", args.output.c_str(),

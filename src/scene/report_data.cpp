@@ -15,8 +15,8 @@
 
 #include "chasles/error.h"
 #include "chasles/io/json_report.h"
-#include "chasles/io/solve_json.h"
 #include "chasles/io/mesh_reader.h"
+#include "chasles/io/solve_json.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/study.h"
@@ -155,6 +155,47 @@ std::string Base64(const void* bytes, size_t size) {
   return out;
 }
 
+std::vector<std::string> CompletePoseColumns(const Scene& scene, StudyResult& r) {
+  std::vector<std::string> done;
+  const auto col = [&](const std::string& name) { return FindColumn(r.columns, name); };
+  for (const SceneBody& b : scene.bodies) {
+    bool has_pose = true;
+    for (const std::string& s : PoseSuffixes()) has_pose = has_pose && col(b.name + "_" + s) >= 0;
+    if (has_pose) continue;
+    const int x = col(b.name + "_x"), y = col(b.name + "_y"), z = col(b.name + "_z");
+    const int theta = col(b.name + "_theta");
+    std::vector<int> q;
+    for (const char* s : {"_qw", "_qx", "_qy", "_qz"}) q.push_back(col(b.name + s));
+    const bool has_q = std::all_of(q.begin(), q.end(), [](int c) { return c >= 0; });
+    if (x < 0 || y < 0 || (scene.planar ? theta < 0 && !has_q : z < 0 || !has_q)) continue;
+    const Vec3 p_BoBcm_B = b.mass_properties.p_BoBcm_B();
+    // Only the missing ones are added (a run may have the quaternion but not the origin).
+    std::vector<bool> missing;
+    for (const std::string& s : PoseSuffixes()) missing.push_back(col(b.name + "_" + s) < 0);
+    for (auto& row : r.rows) {
+      const auto at = [&](int c) { return row[static_cast<size_t>(c)]; };
+      // A planar body turns about z by θ; otherwise its quaternion [w, x, y, z].
+      const Quat q_WB = has_q ? Quat(at(q[0]), at(q[1]), at(q[2]), at(q[3])).normalized()
+                              : Quat(Eigen::AngleAxisd(at(theta), Vec3::UnitZ()));
+      const Vec3 p_WBcm(at(x), at(y), z >= 0 ? at(z) : 0.0);
+      const Vec3 p_WBo = p_WBcm - q_WB.toRotationMatrix() * p_BoBcm_B;
+      const Eigen::Vector4d w = QuatToWxyz(q_WB.w() < 0 ? Quat(-q_WB.coeffs()) : q_WB);
+      const double pose[7] = {p_WBo.x(), p_WBo.y(), p_WBo.z(), w[0], w[1], w[2], w[3]};
+      for (size_t k = 0; k < 7; ++k) {
+        if (missing[k]) row.push_back(pose[k]);
+      }
+    }
+    const bool with_units = r.units.size() == r.columns.size();
+    for (size_t k = 0; k < 7; ++k) {
+      if (!missing[k]) continue;
+      r.columns.push_back(b.name + "_" + PoseSuffixes()[k]);
+      if (with_units) r.units.push_back(k < 3 ? "m" : "");
+    }
+    done.push_back(b.name);
+  }
+  return done;
+}
+
 std::vector<std::string> ReportColumns(const Scene& scene,
                                        const std::vector<std::string>& columns) {
   std::vector<std::string> out = columns;
@@ -238,8 +279,9 @@ nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r) {
       const int c = FindColumn(r.columns, b.name + "_" + s);
       if (c < 0) {
         throw InputError(fmt::format(
-            "the report needs the column '{}_{}' (the pose of body '{}'): run chasles simulate "
-            "with --html, or add the output groups origin and quaternion",
+            "the report needs the column '{}_{}' (the pose of body '{}'), or its centre of "
+            "mass and orientation to derive it from: run chasles simulate with --html, or add "
+            "the output groups origin and quaternion (or position and quaternion)",
             b.name, s, b.name));
       }
       exact[static_cast<size_t>(c)] = true;

@@ -23,6 +23,13 @@ namespace chasles {
 /// columns (the plots). `columns` first, in order; missing ones appended.
 std::vector<std::string> ReportColumns(const Scene& scene, const std::vector<std::string>& columns);
 
+/// Adds the pose columns (ReportColumns) a run's table lacks, for each body whose centre of
+/// mass and orientation are in it: Bo = Bcm − R_WB p_BoBcm_B from `<body>_x, _y, _z` and the
+/// quaternion `<body>_qw..qz`, or for a planar scene from `<body>_x, _y` (and `_z`, else 0)
+/// and `<body>_theta` (q = [cos θ/2, 0, 0, sin θ/2]). Returns the names of the bodies it
+/// completed (`chasles report` says so); a body with neither stays without.
+std::vector<std::string> CompletePoseColumns(const Scene& scene, StudyResult& result);
+
 /// The scene part of every report: kind, title, scene file, planar flag, units, and per body
 /// its parts as primitives or meshes (in B), centre of mass, inertia about it, principal
 /// moments and axes, named points. Mesh files are read again (their vertices, scaled to m).

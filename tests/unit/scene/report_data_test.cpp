@@ -158,5 +158,70 @@ simulation: {until: 0.5 s, tolerance: 1e-12, output_interval: 0.1 s}
   EXPECT_TRUE(j["contacts"].empty());
 }
 
+// The poses derived from the centre of mass and orientation equal the recorded origin and
+// quaternion columns: Bo = Bcm − R_WB p_BoBcm_B, here with the centre of mass off the body
+// origin (a part at (0.3, 0.1, 0.2) m) and a spinning, tumbling body (3-D), and a planar body
+// turning about z.
+TEST(ReportData, PosesDerivedFromCentreOfMassAndOrientation) {
+  for (const bool planar : {false, true}) {
+    const std::string text = planar ? R"(
+planar: true
+bodies:
+  - name: b
+    parts: [{shape: sphere, radius: 0.1 m, mass: 1 kg, position: [0.3 m, 0.1 m]}]
+    initial: {velocity: [1 m/s, 2 m/s], omega: 3 rad/s}
+gravity: standard
+output: {columns: [planar, origin, quaternion]}
+simulation: {until: 1 s, tolerance: 1e-12, output_interval: 0.05 s}
+)"
+                                    : R"(
+bodies:
+  - name: b
+    parts: [{shape: box, size: [0.4 m, 0.2 m, 0.1 m], mass: 1 kg, position: [0.3 m, 0.1 m, 0.2 m]}]
+    initial: {velocity: [1 m/s, 2 m/s, 3 m/s], angular_velocity: [1 rad/s, 5 rad/s, 0.2 rad/s]}
+gravity: standard
+output: {columns: [position, origin, quaternion]}
+simulation: {until: 1 s, tolerance: 1e-12, output_interval: 0.05 s}
+)";
+    const Scene scene = LoadSceneText(text, "poses");
+    const StudyResult full = RunStudy(scene);
+    // The same run without the origin (and, planar, without the quaternion) columns.
+    StudyResult r = full;
+    std::vector<size_t> keep;
+    r.columns.clear();
+    r.units.clear();
+    for (size_t c = 0; c < full.columns.size(); ++c) {
+      const std::string& n = full.columns[c];
+      const bool origin = n == "b_ox" || n == "b_oy" || n == "b_oz";
+      const bool quaternion = n.rfind("b_q", 0) == 0;
+      if (origin || (planar && quaternion)) continue;
+      keep.push_back(c);
+      r.columns.push_back(n);
+      if (c < full.units.size()) r.units.push_back(full.units[c]);
+    }
+    for (size_t i = 0; i < full.rows.size(); ++i) {
+      r.rows[i].clear();
+      for (size_t c : keep) r.rows[i].push_back(full.rows[i][c]);
+    }
+    EXPECT_EQ(CompletePoseColumns(scene, r), std::vector<std::string>{"b"}) << planar;
+    const auto find = [](const std::vector<std::string>& cols, const std::string& n) {
+      for (size_t c = 0; c < cols.size(); ++c) {
+        if (cols[c] == n) return c;
+      }
+      ADD_FAILURE() << "no column " << n;
+      return size_t{0};
+    };
+    for (const char* s : {"b_ox", "b_oy", "b_oz", "b_qw", "b_qx", "b_qy", "b_qz"}) {
+      const size_t a = find(full.columns, s), b = find(r.columns, s);
+      for (size_t i = 0; i < full.rows.size(); ++i) {
+        EXPECT_NEAR(r.rows[i][b], full.rows[i][a], 1e-12)
+            << s << " row " << i << " planar " << planar;
+      }
+    }
+    // Nothing to add a second time; a body without orientation columns stays without.
+    EXPECT_TRUE(CompletePoseColumns(scene, r).empty());
+  }
+}
+
 }  // namespace
 }  // namespace chasles
