@@ -69,9 +69,10 @@ void SolutionTableRow(const SolveReport& s, std::vector<std::string>* names,
     add(prefix + "T_trans", "J", m.T_trans);
     add(prefix + "T_rot", "J", m.T_rot);
     add(prefix + "T", "J", m.T_trans + m.T_rot);
-    for (int k = 0; k < 3; ++k) add(prefix + "P" + xyz[k], "kg*m/s", m.P[k]);
-    for (int k = 0; k < 3; ++k) add(prefix + "H" + xyz[k], "kg*m^2/s", m.H_cm[k]);
-    for (int k = 0; k < 3; ++k) add(prefix + "HO" + xyz[k], "kg*m^2/s", m.H_O[k]);
+    // Planar: P in the plane, H about z (eqs. 8.34-8.38); the rest is zero by construction.
+    for (int k : in_plane) add(prefix + "P" + xyz[k], "kg*m/s", m.P[k]);
+    for (int k : normal) add(prefix + "H" + xyz[k], "kg*m^2/s", m.H_cm[k]);
+    for (int k : normal) add(prefix + "HO" + xyz[k], "kg*m^2/s", m.H_O[k]);
   };
   for (const BodyMotionReport& m : s.motion) motion(m.name + "_", m);
   motion("", s.total);

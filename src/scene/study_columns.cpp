@@ -73,6 +73,7 @@ std::vector<std::string> ColumnGroups() {
   }
   g.emplace_back("planar");
   g.emplace_back("reactions_3d");
+  g.emplace_back("momentum_3d");
   return g;
 }
 
@@ -127,11 +128,17 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
   cols.push_back({"dissipated", "work", -1, "dissipated", ""});
   cols.push_back({"jumps", "work", -1, "jumps", ""});
   cols.push_back({"residual", "residual", -1, "residual", ""});
-  for (const char* s : {"Px", "Py", "Pz"}) cols.push_back({s, "momentum", -1, s, ""});
-  for (const char* s : {"Hx", "Hy", "Hz"}) cols.push_back({s, "angular_momentum", -1, s, ""});
-  for (const char* s : {"HOx", "HOy", "HOz"}) {
-    cols.push_back({s, "angular_momentum_origin", -1, s, ""});
-  }
+  // A planar scene's momentum is in the plane and its angular momenta about z (eqs.
+  // 8.34-8.38): the other components are zero by construction and stay selectable by name
+  // only (the group momentum_3d), as the out-of-plane reactions do.
+  const auto momentum = [&](const char* s, const char* group) {
+    const std::string q = s;
+    const bool in_plane = q[0] == 'P' ? q != "Pz" : q.back() == 'z';
+    cols.push_back({s, scene.planar && !in_plane ? "momentum_3d" : group, -1, s, ""});
+  };
+  for (const char* s : {"Px", "Py", "Pz"}) momentum(s, "momentum");
+  for (const char* s : {"Hx", "Hy", "Hz"}) momentum(s, "angular_momentum");
+  for (const char* s : {"HOx", "HOy", "HOz"}) momentum(s, "angular_momentum_origin");
   // Reaction on the child at the joint point, in W, then in the child's frame B
   // (Data::constraints). A planar scene's reactions are Fx, Fy and Mz; the out-of-plane
   // components (held by the bodies' plane constraints, not physical for a planar body) stay
