@@ -1,6 +1,7 @@
 // Scenes: loading with overrides, mass properties, the instantaneous solve, the run
 // (RunStudy) and sweeps.
 
+#include <cmath>
 #include <utility>
 
 #include "bindings.h"
@@ -12,6 +13,7 @@
 #include "chasles/scene/scene.h"
 #include "chasles/scene/solve.h"
 #include "chasles/scene/study.h"
+#include "chasles/scene/sweep.h"
 
 // A read-only field; without a doc of its own it points at the C++ field, documented in its
 // header (chasles/scene/study.h, solve.h, scene.h, analysis/certificate.h).
@@ -256,6 +258,9 @@ void BindSolve(py::module_& m) {
                                                                                          failed, "")
       .def_property_readonly(
           "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); })
+      .def_readonly("parameters", &SweepTable::parameters, "A grid's parameter names")
+      .def_readonly("errors", &SweepTable::errors,
+                    "Per row why its run failed ('' when it ran); empty when no row can fail")
       .def(
           "to_json", [](const SweepTable& t) { return DumpJson(SweepJson(t), "the sweep table"); },
           "The table as `chasles solve --sweep ... --format json` prints it")
@@ -280,6 +285,35 @@ void BindSolve(py::module_& m) {
         return SolveSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, spec);
       },
       py::arg("scene"), py::arg("parameter"), py::arg("start"), py::arg("stop"), py::arg("count"));
+  m.def(
+      "_simulate_sweep",
+      [](const PyScene& s, const std::vector<std::string>& sweeps,
+         const std::vector<std::string>& quantities, double until, int jobs) {
+        std::vector<SweepSpec> specs;
+        for (const std::string& t : sweeps) specs.push_back(ParseSweep(t));
+        std::vector<SweepQuantity> qs;
+        for (const std::string& q : quantities)
+          qs.push_back(ParseSweepQuantity(q, "python", "quantities"));
+        SimulateSweepOptions options;
+        if (!std::isnan(until)) options.study.until = until;
+        options.jobs = jobs;
+        py::gil_scoped_release release;
+        return SimulateSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, specs,
+                             qs, options, 100'000);
+      },
+      py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("until"),
+      py::arg("jobs"));
+  m.def(
+      "_mass_sweep",
+      [](const PyScene& s, const std::vector<std::string>& sweeps,
+         const std::vector<std::string>& quantities, int jobs) {
+        std::vector<SweepSpec> specs;
+        for (const std::string& t : sweeps) specs.push_back(ParseSweep(t));
+        py::gil_scoped_release release;
+        return MassSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, specs,
+                         quantities, jobs, {}, 100'000);
+      },
+      py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("jobs"));
   m.def(
       "parse_sweep",
       [](const std::string& text) {

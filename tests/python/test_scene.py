@@ -246,3 +246,45 @@ def test_example_8_3_angular_momentum_rate_and_surface_area():
     assert_rel(s.table()["cylinder_dHy"][0], M * R * a / 2)
     # A solid cylinder's surface: two ends pi R^2 and the side 2 pi R h.
     assert_rel(chasles.cylinder(R, 0.3).surface_area(), 2 * math.pi * R * R + 2 * math.pi * R * 0.3)
+
+
+def _complete_elliptic_k(k):
+    """K(k) = pi / (2 AGM(1, sqrt(1 - k^2))), the arithmetic-geometric mean to round-off."""
+    a, b = 1.0, math.sqrt(1.0 - k * k)
+    while abs(a - b) > 1e-16 * a:
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+    return math.pi / (2.0 * a)
+
+
+def test_simulate_sweep_pendulum_quarter_period():
+    # examples/pendulum.yaml: a ball (r = 5 cm, k^2 = (2/5) r^2) on an arm of length L released
+    # at theta0: I_O theta'' = -m g L sin(theta), I_O = m (k^2 + L^2) (eq. 8.39), so the bottom
+    # is reached after T/4 = sqrt((k^2 + L^2) / (g L)) K(sin(theta0 / 2)).
+    scene = chasles.load_scene(example("pendulum.yaml"))
+    t = chasles.simulate_sweep(scene, ["L=0.5 m:1.5 m:3", "theta0=20 deg:60 deg:3"],
+                               ["event(bottom)", "t_end"], jobs=2)
+    assert t.parameters == ["L", "theta0"]
+    assert t.columns == ["L", "theta0", "event(bottom)", "t_end"]
+    assert t.units[:3] == ["m", "rad", "s"]
+    assert len(t.data) == 9 and t.errors == [""] * 9
+    k2 = 0.4 * 0.05**2
+    for L, theta0, tq, t_end in t.data:
+        want = math.sqrt((k2 + L * L) / (G0 * L)) * _complete_elliptic_k(math.sin(theta0 / 2))
+        assert_rel(tq, want, 1e-9)
+        assert tq == t_end
+    # The same table with one thread, and the CSV the command prints.
+    assert np.array_equal(chasles.simulate_sweep(scene, ["L=0.5 m:1.5 m:3", "theta0=20 deg:60 deg:3"],
+                                                 ["event(bottom)", "t_end"], jobs=1).data, t.data)
+    assert t.to_csv().splitlines()[0] == "L [m],theta0 [rad],event(bottom) [s],t_end [s],error"
+
+
+def test_mass_sweep_failed_point_and_closed_form():
+    # Example 8.1's cylinder: mass = rho_al pi R^2 h1 + rho_pb pi R^2 (h - h1) grows as R^2;
+    # a negative radius fails that point with its reason.
+    scene = chasles.load_scene(example("example-8.1-cylinder.yaml"))
+    t = chasles.mass_sweep(scene, "R=-1 cm:4 cm:3", ["cylinder.mass"])
+    assert "radius must be positive" in t.errors[0]
+    assert math.isnan(t.data[0][1])
+    (_, m1), (_, m2) = t.data[1][:2], t.data[2][:2]
+    assert t.errors[1:] == ["", ""]
+    assert_rel(m2 / m1, (0.04 / 0.015) ** 2, 1e-12)

@@ -27,6 +27,8 @@ from ._chasles import (  # noqa: F401
     _simulate,
     _solve,
     _sweep,
+    _simulate_sweep,
+    _mass_sweep,
     parse_sweep,
     study_column_units,
 )
@@ -133,8 +135,11 @@ class Sweep(Table):
         super().__init__(table.columns, table.units, table.data)
         self._table = table
         self.parameter = table.parameter
+        self.parameters = list(table.parameters) or [table.parameter]
         self.warnings = list(table.warnings)
         self.failed = table.failed
+        #: Per row why its run failed ("" when it ran; its values are then NaN).
+        self.errors = list(table.errors) or [""] * len(table.data)
 
     def to_csv(self, full_precision=False):
         """The table as ``chasles solve --sweep`` prints it (text); ``full_precision``: every
@@ -211,6 +216,33 @@ def sweep(scene, parameter, start=None, stop=None, count=None):
     if start is None or stop is None or count is None:
         raise TypeError("sweep needs start, stop and count (or one 'NAME=START:STOP:COUNT')")
     return Sweep(_sweep(scene, parameter, _quantity(start), _quantity(stop), int(count)))
+
+
+def simulate_sweep(scene, sweeps, quantities, until=None, jobs=0):
+    """Runs ``scene`` at every point of a grid and tabulates quantities (``chasles simulate
+    --sweep``, docs/sweeps.md).
+
+    ``sweeps``: one ``'NAME=START:STOP:COUNT'`` or a list of them (a grid, the last varying
+    fastest); ``quantities``: one or a list of ``final(COL)``, ``max(COL)``, ``min(COL)``,
+    ``event(NAME)``, ``event(NAME, k)``, ``event(A) - event(B)``, ``t_end``. ``until`` [s]
+    overrides the end time; ``jobs`` threads (0: every core; the table is the same for any).
+    Returns a Sweep: the parameters, then the quantities; a failed point has NaN values and
+    its reason in ``errors``.
+    """
+    sweeps = [sweeps] if isinstance(sweeps, str) else list(sweeps)
+    quantities = [quantities] if isinstance(quantities, str) else list(quantities)
+    return Sweep(_simulate_sweep(scene, sweeps, quantities,
+                                 _math.nan if until is None else float(until), int(jobs)))
+
+
+def mass_sweep(scene, sweeps, quantities, jobs=0):
+    """The mass properties of ``scene`` over a grid (``chasles mass --sweep``): quantities
+    named as in the mass JSON report (``mass``, ``Izz``, ``center_of_mass_z``, ``I1``, ``k1``,
+    ...; ``BODY.NAME`` for a scene of several bodies). Returns a Sweep as ``simulate_sweep``.
+    """
+    sweeps = [sweeps] if isinstance(sweeps, str) else list(sweeps)
+    quantities = [quantities] if isinstance(quantities, str) else list(quantities)
+    return Sweep(_mass_sweep(scene, sweeps, quantities, int(jobs)))
 
 
 def simulate(model, initial, options=None, **kwargs):
