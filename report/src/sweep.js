@@ -44,17 +44,31 @@ export function sweepLines(table, x, quantity, maxLines = 12) {
   return { xs, lines: all.slice(0, maxLines), dropped: Math.max(all.length - maxLines, 0) };
 }
 
-/** The quantities plotted at first: all when few; else those that vary, at most `n`. */
+/**
+ * The quantities plotted at first: all when few; else those that vary, at most `n`: forces and
+ * contact regimes first, then accelerations, then the rest. A column varies when its range is
+ * more than 1e-9 of the largest value of any column of its unit (round-off next to zero, such
+ * as an acceleration out of the plane of motion, does not).
+ */
 export function defaultQuantities(table, n = 8) {
   if (table.quantities.length <= n) return table.quantities;
+  const finite = (q) => q.values.filter((x) => x !== null);
+  const scale = new Map();
+  for (const q of table.quantities) {
+    const m = Math.max(0, ...finite(q).map(Math.abs));
+    scale.set(q.unit, Math.max(scale.get(q.unit) || 0, m));
+  }
   const varying = table.quantities.filter((q) => {
-    const v = q.values.filter((x) => x !== null);
+    const v = finite(q);
     if (!v.length) return false;
-    const lo = Math.min(...v);
-    const hi = Math.max(...v);
-    return hi - lo > 1e-9 * Math.max(Math.abs(lo), Math.abs(hi), 1e-300);
+    return Math.max(...v) - Math.min(...v) > 1e-9 * Math.max(scale.get(q.unit), 1e-300);
   });
-  return varying.slice(0, n);
+  const rank = (q) => (/_(N|f|f_over_N|mode|F[xyz]|M[xyz])$/.test(q.name) ? 0 : /_(a[xyz]|al[xyz]|a_[xy]|alpha)$/.test(q.name) ? 1 : 2);
+  return varying
+    .map((q, i) => ({ q, i }))
+    .sort((a, b) => rank(a.q) - rank(b.q) || a.i - b.i)
+    .slice(0, n)
+    .map((x) => x.q);
 }
 
 /** Fills the side panel with the sweep's plots; returns the plots (for the page's API). */

@@ -413,3 +413,22 @@ test('sweep report: a failed point is listed and left out of the plots (mass --s
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('sweep report: a solve sweep plots the forces and regimes that vary, not round-off (solve --sweep)', async () => {
+  const html = join(work, 'incline-sweep.html');
+  const table = JSON.parse(chaslesRun(['solve', example('contact-cylinder-incline.yaml'), '--sweep', 'theta=30 deg:40 deg:11',
+    '--format', 'json', '--quiet', '--html', html]));
+  const { page, problems } = await openReport(html);
+  const plots = await page.evaluate(() => window.chasles.plots());
+  const titles = plots.map((p) => p.title.replace(/ \[[^\]]*\]/, '').replace(/ against .*$/, ''));
+  assert.ok(plots.length <= 8 && plots.length > 0, titles.join(', '));
+  assert.equal(titles[0], 'incline_0_mode', titles.join(', '));
+  // y is out of the plane of motion: its acceleration is round-off, not plotted.
+  assert.ok(!titles.includes('cylinder_ay'), titles.join(', '));
+  checkSweepPlots(plots, table, 'theta', null);
+  // Rolls (2, sticking) while tan(theta) / 3 <= mu_s = 0.25, i.e. theta <= atan(0.75); slides (1) above.
+  const mode = plots[0];
+  mode.xs.forEach((x, i) => assert.equal(mode.ys[0][i], x <= Math.atan(0.75) ? 2 : 1, `theta ${x}`));
+  assert.deepEqual(problems, []);
+  await page.close();
+});
