@@ -4,6 +4,9 @@
 //   build/bench/mesh_mass_bench --benchmark_min_time=1
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -11,6 +14,8 @@
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "assimp_reader.h"
@@ -135,6 +140,62 @@ void BM_Weld(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * std::int64_t(soup.triangle_count()));
 }
 BENCHMARK(BM_Weld)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// Plain reference for welding, timed in the same run: exact duplicates only, through
+// std::unordered_map from the three coordinates' bits to the vertex index (what one writes
+// first), into the same triangle array.
+struct CornerHash {
+  std::size_t operator()(const std::array<std::uint32_t, 3>& k) const noexcept {
+    return (std::size_t{k[0]} * 0x9E3779B97F4A7C15ULL) ^
+           (std::size_t{k[1]} * 0xC2B2AE3D27D4EB4FULL) ^ k[2];
+  }
+};
+void BM_WeldReferenceUnorderedMap(benchmark::State& state) {
+  const MeshFileData& soup = Soup();
+  const std::size_t n = soup.xyz.size() / 3;
+  for (auto _ : state) {
+    std::unordered_map<std::array<std::uint32_t, 3>, std::uint32_t, CornerHash> index;
+    std::vector<Vec3> vertices;
+    std::vector<TriangleIndices> triangles(n / 3);
+    for (std::size_t i = 0; i < n; ++i) {
+      const float* p = soup.xyz.data() + 3 * i;
+      const std::array<std::uint32_t, 3> key{std::bit_cast<std::uint32_t>(p[0]),
+                                             std::bit_cast<std::uint32_t>(p[1]),
+                                             std::bit_cast<std::uint32_t>(p[2])};
+      const auto [it, added] = index.try_emplace(key, std::uint32_t(vertices.size()));
+      if (added) vertices.emplace_back(p[0], p[1], p[2]);
+      triangles[i / 3][i % 3] = it->second;
+    }
+    benchmark::DoNotOptimize(triangles.data());
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(soup.triangle_count()));
+}
+BENCHMARK(BM_WeldReferenceUnorderedMap)->Unit(benchmark::kMillisecond);
+
+// Plain reference for validation, timed in the same run: the textbook edge match, all
+// 3,000,000 half-edges as (lower vertex, upper vertex, half-edge) keys sorted with std::sort
+// and checked in pairs (no components, no volume).
+void BM_ValidateReferenceSort(benchmark::State& state) {
+  const TriangleMesh& mesh = Torus();
+  for (auto _ : state) {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;
+    edges.reserve(3 * mesh.triangles.size());
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const std::uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+        edges.emplace_back(std::uint64_t{std::min(a, b)} << 32 | std::max(a, b), 3 * t + k);
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    std::size_t unmatched = 0;
+    for (std::size_t i = 0; i < edges.size(); i += 2) {
+      unmatched += i + 1 >= edges.size() || edges[i].first != edges[i + 1].first;
+    }
+    benchmark::DoNotOptimize(unmatched);
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(mesh.triangles.size()));
+}
+BENCHMARK(BM_ValidateReferenceSort)->Unit(benchmark::kMillisecond);
 
 void BM_ReadBinaryStlDirect(benchmark::State& state) {
   const std::string& path = StlPath();

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "integrate/internal/compensated.h"
 #include "integrate/internal/ode.h"
 
 namespace chasles {
@@ -33,6 +34,9 @@ constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 3270041
 struct DormandPrince5Integrator::Work {
   internal::Vector y0, y1, yt, k1, k2, k3, k4, k5, k6, k7, err;
   internal::Vector r1, r2, r3, r4, r5;  // dense-output coefficients
+  // Compensation of y0 (integrate/internal/compensated.h) and of the attempted y1; reset by
+  // Initialize and by a projection.
+  internal::Vector c0, c1;
   double err_norm = 0.0;
 };
 
@@ -75,6 +79,7 @@ void DormandPrince5Integrator::Initialize(const State& state) {
     ode_->Project(state_, options_.project_contacts);
     ode_->Pack(state_, w.y0);
   }
+  w.c0.setZero(ode_->size());
   ode_->Derivative(state_.t, w.y0, w.k1);
   ++stats_.function_evaluations;
   t_prev_ = state_.t;
@@ -114,7 +119,11 @@ void DormandPrince5Integrator::Attempt(double h) {
   f.Derivative(t + c5 * h, w.yt, w.k5);
   w.yt = w.y0 + h * (a61 * w.k1 + a62 * w.k2 + a63 * w.k3 + a64 * w.k4 + a65 * w.k5);
   f.Derivative(t + h, w.yt, w.k6);
-  w.y1 = w.y0 + h * (a71 * w.k1 + a73 * w.k3 + a74 * w.k4 + a75 * w.k5 + a76 * w.k6);
+  // y₁ = y₀ + h Σ b_i k_i, added with compensation (kept in c1 until the step is accepted).
+  w.yt = h * (a71 * w.k1 + a73 * w.k3 + a74 * w.k4 + a75 * w.k5 + a76 * w.k6);
+  w.y1 = w.y0;
+  w.c1 = w.c0;
+  internal::CompensatedAdd(w.y1, w.yt, w.c1);
   f.Derivative(t + h, w.y1, w.k7);
   stats_.function_evaluations += 6;
   w.err = h * (e1 * w.k1 + e3 * w.k3 + e4 * w.k4 + e5 * w.k5 + e6 * w.k6 + e7 * w.k7);
@@ -166,11 +175,12 @@ void DormandPrince5Integrator::Step(double t_limit) {
   ++stats_.steps;
   t_prev_ = t;
   const double t_new = (h == t_limit - t) ? t_limit : t + h;
-  ode_->NormalizeQuaternions(w.y1, &w.k7);
+  ode_->NormalizeQuaternions(w.y1, &w.k7, &w.c1);
   dense_ready_ = false;
   // Keep y0/k1 of the step for the dense output: swap rather than copy.
   std::swap(w.y0, w.y1);
   std::swap(w.k1, w.k7);
+  std::swap(w.c0, w.c1);
   ode_->Unpack(t_new, w.y0, state_);
   ProjectAfterStep();
   internal::CheckFiniteState(ode_->model(), state_);
@@ -184,6 +194,7 @@ void DormandPrince5Integrator::ProjectAfterStep() {
   Work& w = *work_;
   ode_->Project(state_, options_.project_contacts);
   ode_->Pack(state_, w.y0);
+  w.c0.setZero();  // the projection moved y0 by far more than its compensation
   ode_->Derivative(state_.t, w.y0, w.k1);
   ++stats_.function_evaluations;
 }
@@ -195,10 +206,11 @@ void DormandPrince5Integrator::StepFixed(double h) {
   h_last_ = h;
   ++stats_.steps;
   t_prev_ = t;
-  ode_->NormalizeQuaternions(w.y1, &w.k7);
+  ode_->NormalizeQuaternions(w.y1, &w.k7, &w.c1);
   dense_ready_ = false;
   std::swap(w.y0, w.y1);
   std::swap(w.k1, w.k7);
+  std::swap(w.c0, w.c1);
   ode_->Unpack(t + h, w.y0, state_);
   ProjectAfterStep();
   internal::CheckFiniteState(ode_->model(), state_);

@@ -10,6 +10,7 @@
 #include "chasles/error.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/math/rotation.h"
+#include "integrate/internal/compensated.h"
 #include "integrate/internal/ode.h"
 
 namespace chasles {
@@ -29,11 +30,12 @@ void AddHalfStepIntegrals(const Data& data, double dt, State& s) {
 }
 }  // namespace
 
-void StepFreeRotation(const Mat3& I, const Mat3& I_inv, double h, Vec3& M, Quat& q) {
-  (void)I;
+namespace {
+// The rotation Q = cay(h ω̄) of one free-rotation step from the body-frame angular momentum M0
+// (see StepFreeRotation), as a unit quaternion.
+Quat FreeRotationIncrement(const Mat3& I_inv, double h, const Vec3& M0) {
   // Solve G(X) = X - M₀ - (h/2) X × (I⁻¹X) = 0 for the midpoint X = M̄.
   // dG = dX - (h/2)(dX × I⁻¹X + X × I⁻¹dX) = (E - (h/2)(-[I⁻¹X]× + [X]× I⁻¹)) dX.
-  const Vec3 M0 = M;
   Vec3 X = M0 + 0.5 * h * M0.cross(I_inv * M0);  // explicit predictor
   const double scale = M0.norm();
   // Newton until the correction stops shrinking: a residual left in X would break the exact
@@ -52,8 +54,14 @@ void StepFreeRotation(const Mat3& I, const Mat3& I_inv, double h, Vec3& M, Quat&
   }
   const Vec3 w_bar = I_inv * X;
   // M₁ = Qᵀ M₀ and R₁ = R₀ Q with Q = cay(h ω̄), Gibbs vector h ω̄ / 2.
-  const Quat dq = QuatFromGibbs(0.5 * h * w_bar);
-  M = dq.conjugate() * M0;
+  return QuatFromGibbs(0.5 * h * w_bar);
+}
+}  // namespace
+
+void StepFreeRotation(const Mat3& I, const Mat3& I_inv, double h, Vec3& M, Quat& q) {
+  (void)I;
+  const Quat dq = FreeRotationIncrement(I_inv, h, M);
+  M = dq.conjugate() * M;
   q = (q * dq).normalized();
 }
 
@@ -89,6 +97,8 @@ void EnergyMomentumIntegrator::Step(State& s, double h) {
   const int nb = model_.num_bodies();
   const bool reuse = cached_valid_ && SameState(s, cached_);
   if (!reuse) {
+    // A state from elsewhere: its compensations start from zero (internal/compensated.h).
+    compensation_.assign(static_cast<size_t>(nb), BodyCompensation{});
     M_B_.resize(static_cast<size_t>(nb));
     for (int b = 0; b < nb; ++b) {
       M_B_[static_cast<size_t>(b)] =
@@ -105,15 +115,26 @@ void EnergyMomentumIntegrator::Step(State& s, double h) {
     const auto i = static_cast<size_t>(b);
     const Body& body = model_.body(b);
     BodyState& bs = s.bodies[i];
-    // Kick.
-    bs.v_WBcm_W += (0.5 * h / body.mass()) * data_.F_Bcm_W[i];
+    BodyCompensation& c = compensation_[i];
+    // Kick, drift and free rotation, each update added with compensation.
+    internal::CompensatedAdd(bs.v_WBcm_W, (0.5 * h / body.mass()) * data_.F_Bcm_W[i], c.v);
     Vec3& M_B = M_B_[i];
-    M_B += 0.5 * h * (data_.R_WB[i].transpose() * data_.M_Bcm_W[i]);
-    // Drift and free rotation.
-    bs.p_WBcm += h * bs.v_WBcm_W;
-    StepFreeRotation(body.I_BBcm_B(), body.I_BBcm_B_inverse(), h, M_B, bs.q_WB);
+    internal::CompensatedAdd(M_B, 0.5 * h * (data_.R_WB[i].transpose() * data_.M_Bcm_W[i]), c.M);
+    internal::CompensatedAdd(bs.p_WBcm, h * bs.v_WBcm_W, c.p);
+    // M₁ = Qᵀ M₀ (its compensation rotated with it; the rounding of the rotation itself is not
+    // recovered), q₁ = q₀ ⊗ Q with the product's rounding recovered, then normalised.
+    const Quat dq = FreeRotationIncrement(body.I_BBcm_B_inverse(), h, M_B);
+    M_B = dq.conjugate() * M_B;
+    c.M = dq.conjugate() * c.M;
+    const Eigen::Vector4d q_wxyz(bs.q_WB.w(), bs.q_WB.x(), bs.q_WB.y(), bs.q_WB.z());
+    const Eigen::Vector4d dq_wxyz(dq.w(), dq.x(), dq.y(), dq.z());
+    Eigen::Vector4d q1 = internal::CompensatedQuatProduct(q_wxyz, dq_wxyz, c.q);
+    internal::NormalizeCompensated(q1, c.q);
+    bs.q_WB = Quat(q1[0], q1[1], q1[2], q1[3]);
   }
-  s.t += h;
+  if (s.t != t_end_) c_t_ = 0.0;
+  internal::CompensatedAdd(s.t, h, c_t_);
+  t_end_ = s.t;
   CalcKinematics(model_, s, data_);
   CalcForces(model_, s, data_);
   internal::CheckFiniteEvaluation(model_, s, data_, false);
@@ -123,9 +144,11 @@ void EnergyMomentumIntegrator::Step(State& s, double h) {
     const Body& body = model_.body(b);
     BodyState& bs = s.bodies[i];
     // Second kick with the end-of-step forces (moment taken into B at the new orientation).
-    bs.v_WBcm_W += (0.5 * h / body.mass()) * data_.F_Bcm_W[i];
+    BodyCompensation& c = compensation_[i];
+    internal::CompensatedAdd(bs.v_WBcm_W, (0.5 * h / body.mass()) * data_.F_Bcm_W[i], c.v);
     if (data_.M_Bcm_W[i].squaredNorm() != 0.0) {
-      M_B_[i] += 0.5 * h * (data_.R_WB[i].transpose() * data_.M_Bcm_W[i]);
+      internal::CompensatedAdd(M_B_[i], 0.5 * h * (data_.R_WB[i].transpose() * data_.M_Bcm_W[i]),
+                               c.M);
     }
     bs.w_WB_B = body.I_BBcm_B_inverse() * M_B_[i];
   }

@@ -9,6 +9,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
 #include "chasles/math/quaternion.h"
+#include "integrate/internal/compensated.h"
 
 namespace chasles::internal {
 
@@ -241,11 +242,16 @@ void OdeSystem::Project(State& state, bool contacts) {
   }
 }
 
-void OdeSystem::NormalizeQuaternions(Vector& y, Vector* ydot) const {
+void OdeSystem::NormalizeQuaternions(Vector& y, Vector* ydot, Vector* compensation) const {
   for (int b = 0; b < model_.num_bodies(); ++b) {
     auto q = y.segment<4>(kBodySize * b + 3);
     const double s = 1.0 / q.norm();
-    q *= s;
+    if (compensation) {
+      auto c = compensation->segment<4>(kBodySize * b + 3);
+      NormalizeCompensated(q, c);
+    } else {
+      q *= s;
+    }
     if (ydot) ydot->segment<4>(kBodySize * b + 3) *= s;
   }
 }

@@ -1,6 +1,7 @@
 #include "chasles/mass/triangle_mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -30,6 +31,40 @@ std::string FormatPoint(const Vec3& p) {
   return fmt::format("({:.9g}, {:.9g}, {:.9g})", p.x(), p.y(), p.z());
 }
 
+// Cell coordinates (offset by one, < 2^21) packed into one 64-bit key.
+inline std::uint64_t PackCell(std::int64_t ix, std::int64_t iy, std::int64_t iz) {
+  return static_cast<std::uint64_t>(ix + 1) << 42 | static_cast<std::uint64_t>(iy + 1) << 21 |
+         static_cast<std::uint64_t>(iz + 1);
+}
+
+// The slot of cell `key` in the weld table (open addressing, linear probing; a slot holds the
+// index of the cell's most recent kept vertex, whose key is kept_key[index]): holding its
+// head, or empty (kNone) where it would go.
+inline std::uint32_t& FindCell(std::vector<std::uint32_t>& table,
+                               const std::vector<std::uint64_t>& kept_key, std::uint64_t key) {
+  const std::size_t mask = table.size() - 1;
+  std::size_t slot = Mix(key) & mask;
+  while (table[slot] != kNone && kept_key[table[slot]] != key) slot = (slot + 1) & mask;
+  return table[slot];
+}
+
+// Doubles the weld table, re-inserting every cell's head.
+inline void GrowCells(std::vector<std::uint32_t>& table,
+                      const std::vector<std::uint64_t>& kept_key) {
+  std::vector<std::uint32_t> old(2 * table.size(), kNone);
+  old.swap(table);
+  for (std::uint32_t head : old) {
+    if (head != kNone) FindCell(table, kept_key, kept_key[head]) = head;
+  }
+}
+
+// The bits of input vertex i's coordinates (U: an unsigned integer of T's size).
+template <typename U, typename T>
+std::array<U, 3> CoordinateBits(std::span<const T> xyz, std::size_t i) {
+  return {std::bit_cast<U>(xyz[3 * i]), std::bit_cast<U>(xyz[3 * i + 1]),
+          std::bit_cast<U>(xyz[3 * i + 2])};
+}
+
 // Welding in one pass over the input vertices (an STL repeats each position once per incident
 // triangle, so this pass sees about six copies of every vertex). Positions are scaled to
 // double and sorted into grid cells of size h >= 2 tol: the tol-ball of a point then reaches
@@ -38,8 +73,8 @@ std::string FormatPoint(const Vec3& p) {
 // because h is made much larger than the default tol (h >= diagonal / 2^20). Exact
 // duplicates, at distance 0, are always found in the own cell. Each vertex maps to the
 // earliest kept vertex within tol; kept vertices are never merged later, so chains of near
-// points cannot drift. Cell coordinates (offset by one, < 2^21) pack into one 64-bit key;
-// the hash table grows with the number of kept vertices, not of input vertices, which keeps
+// points cannot drift. Cell coordinates pack into one 64-bit key (PackCell); the hash table
+// grows with the number of kept vertices, not of input vertices, which keeps
 // it small enough to stay in cache.
 // `put(i, k)` receives the kept vertex k of input vertex i.
 template <typename T, typename Put>
@@ -55,23 +90,14 @@ void Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo, doub
   // Four bytes a slot keep the table small enough for the caches: with 16-byte slots holding
   // the key the random probes made welding 1.4 times slower.
   std::vector<std::uint32_t> table(16, kNone);
-  std::size_t mask = table.size() - 1;
   std::vector<std::uint64_t> kept_key;
   std::vector<std::uint32_t> next;  // chain of kept vertices within a cell
   kept_key.reserve(n / 4);
   next.reserve(n / 4);
   kept->clear();
   kept->reserve(n / 4);
-  auto pack = [](std::int64_t ix, std::int64_t iy, std::int64_t iz) {
-    return static_cast<std::uint64_t>(ix + 1) << 42 | static_cast<std::uint64_t>(iy + 1) << 21 |
-           static_cast<std::uint64_t>(iz + 1);
-  };
-  // The slot of `key`: holding its head, or empty (kNone) where it would go.
-  auto find = [&](std::uint64_t key) -> std::uint32_t& {
-    std::size_t slot = Mix(key) & mask;
-    while (table[slot] != kNone && kept_key[table[slot]] != key) slot = (slot + 1) & mask;
-    return table[slot];
-  };
+  const auto pack = PackCell;
+  auto find = [&](std::uint64_t key) -> std::uint32_t& { return FindCell(table, kept_key, key); };
   // A small direct-mapped cache of recently seen exact positions in front of the grid: the
   // triangles of a file usually come in strips, so most repeated vertices were seen a few
   // hundred triangles earlier. A hit gives the same answer as the grid would (the earliest
@@ -91,15 +117,32 @@ void Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo, doub
         static_cast<std::int64_t>((static_cast<double>(xyz[3 * i + 2]) * scale - lo.z()) * inv_h));
   };
   // The table probes are cache misses; requesting the slot of the vertex kPrefetch places
-  // ahead lets several misses overlap (measured: welding 1.4 times faster).
+  // ahead lets several misses overlap (measured: welding 1.4 times faster). Only for a vertex
+  // the recent-position cache does not hold already (about one in six on an STL): computing
+  // the cell key of every vertex ahead cost more than the probes it saved. The cache slot of
+  // each vertex is computed once, kPrefetch places ahead, and kept in a ring until its turn.
   constexpr std::size_t kPrefetch = 16;
+  const auto bits = [&xyz](std::size_t i) { return CoordinateBits<U>(xyz, i); };
+  const auto recent_slot = [](const std::array<U, 3>& u) {
+    return Mix(std::uint64_t{u[0]} * 0x9E3779B97F4A7C15ULL +
+               std::uint64_t{u[1]} * 0xC2B2AE3D27D4EB4FULL + std::uint64_t{u[2]}) &
+           (kRecent - 1);
+  };
+  std::array<std::size_t, kPrefetch> ring{};
+  for (std::size_t j = 0; j < std::min(n, kPrefetch); ++j) ring[j] = recent_slot(bits(j));
   for (std::size_t i = 0; i < n; ++i) {
-    if (i + kPrefetch < n) __builtin_prefetch(&table[Mix(cell_key(i + kPrefetch)) & mask]);
-    const U ux = std::bit_cast<U>(xyz[3 * i]), uy = std::bit_cast<U>(xyz[3 * i + 1]),
-            uz = std::bit_cast<U>(xyz[3 * i + 2]);
-    Recent& r = recent[Mix(std::uint64_t{ux} * 0x9E3779B97F4A7C15ULL +
-                           std::uint64_t{uy} * 0xC2B2AE3D27D4EB4FULL + std::uint64_t{uz}) &
-                       (kRecent - 1)];
+    const std::size_t own_slot = ring[i % kPrefetch];
+    if (const std::size_t ahead = i + kPrefetch; ahead < n) {
+      const std::array<U, 3> a = bits(ahead);
+      const std::size_t slot = recent_slot(a);
+      const Recent& ra = recent[slot];
+      if (ra.id == kNone || ra.x != a[0] || ra.y != a[1] || ra.z != a[2]) {
+        __builtin_prefetch(&table[Mix(cell_key(ahead)) & (table.size() - 1)]);
+      }
+      ring[i % kPrefetch] = slot;
+    }
+    const auto [ux, uy, uz] = bits(i);
+    Recent& r = recent[own_slot];
     if (r.id != kNone && r.x == ux && r.y == uy && r.z == uz) {
       put(i, r.id);
       continue;
@@ -145,12 +188,7 @@ void Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo, doub
     std::uint32_t* target = &cell;
     kept_key.push_back(own);
     if (cell == kNone && 2 * (k + 1) > table.size()) {  // keep the load factor below 1/2
-      std::vector<std::uint32_t> old(2 * table.size(), kNone);
-      old.swap(table);
-      mask = table.size() - 1;
-      for (std::uint32_t head : old) {
-        if (head != kNone) find(kept_key[head]) = head;
-      }
+      GrowCells(table, kept_key);
       target = &find(own);
     }
     next.push_back(*target);
@@ -174,20 +212,40 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
   }
   const std::size_t nv = xyz.size() / 3;
   if (nv >= kNone) throw InputError("mesh: more than 2^32 - 1 vertices are not supported");
+  // The checks are done branch-free over whole arrays (so they vectorise) and the loops that
+  // name the first offender run only when one failed. A triangle soup (an STL: triangle t uses
+  // vertices 3t, 3t + 1, 3t + 2) is recognised in the same pass as the range check.
+  std::uint32_t max_index = 0;
+  bool soup = indices.size() == nv;
+  std::uint32_t not_identity = 0;
   for (std::size_t i = 0; i < indices.size(); ++i) {
-    if (indices[i] >= nv) {
-      throw InputError(
-          fmt::format("mesh: triangle {} refers to vertex {}, but there are only {} "
-                      "vertices",
-                      i / 3, indices[i], nv));
+    max_index = std::max(max_index, indices[i]);
+    not_identity |= indices[i] ^ static_cast<std::uint32_t>(i);
+  }
+  soup = soup && not_identity == 0;
+  if (!indices.empty() && max_index >= nv) {
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+      if (indices[i] >= nv) {
+        throw InputError(
+            fmt::format("mesh: triangle {} refers to vertex {}, but there are only {} "
+                        "vertices",
+                        i / 3, indices[i], nv));
+      }
     }
   }
-  for (std::size_t i = 0; i < xyz.size(); ++i) {
-    if (!std::isfinite(xyz[i])) {
-      throw InputError(
-          fmt::format("mesh: vertex {} has a non-finite coordinate ({}); the file is "
-                      "garbled",
-                      i / 3, static_cast<double>(xyz[i])));
+  using U = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+  constexpr U kExponent = static_cast<U>(sizeof(T) == 4 ? 0x7f800000ull : 0x7ff0000000000000ull);
+  U non_finite = 0;  // all exponent bits set: an infinity or a NaN
+  for (const T x : xyz)
+    non_finite |= static_cast<U>((std::bit_cast<U>(x) & kExponent) == kExponent);
+  if (non_finite != 0) {
+    for (std::size_t i = 0; i < xyz.size(); ++i) {
+      if (!std::isfinite(xyz[i])) {
+        throw InputError(
+            fmt::format("mesh: vertex {} has a non-finite coordinate ({}); the file is "
+                        "garbled",
+                        i / 3, static_cast<double>(xyz[i])));
+      }
     }
   }
   MeshRepairReport local;
@@ -195,15 +253,19 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
   rep.vertices_in = nv;
   rep.triangles_in = indices.size() / 3;
 
-  // Bounding box of the scaled input, for the default tolerance and the weld grid.
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
-  Vec3 hi = -lo;
+  // Bounding box of the scaled input, for the default tolerance and the weld grid (in the
+  // input's precision: the minimum and maximum of floats are floats, exact in double).
+  T box[6] = {std::numeric_limits<T>::infinity(),  std::numeric_limits<T>::infinity(),
+              std::numeric_limits<T>::infinity(),  -std::numeric_limits<T>::infinity(),
+              -std::numeric_limits<T>::infinity(), -std::numeric_limits<T>::infinity()};
   for (std::size_t i = 0; i < nv; ++i) {
-    const Vec3 p(static_cast<double>(xyz[3 * i]), static_cast<double>(xyz[3 * i + 1]),
-                 static_cast<double>(xyz[3 * i + 2]));
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
+    for (int k = 0; k < 3; ++k) {
+      box[k] = std::min(box[k], xyz[3 * i + k]);
+      box[3 + k] = std::max(box[3 + k], xyz[3 * i + k]);
+    }
   }
+  Vec3 lo(static_cast<double>(box[0]), static_cast<double>(box[1]), static_cast<double>(box[2]));
+  Vec3 hi(static_cast<double>(box[3]), static_cast<double>(box[4]), static_cast<double>(box[5]));
   lo *= scale;
   hi *= scale;
   const double diagonal = nv == 0 ? 0.0 : (hi - lo).norm();
@@ -213,10 +275,8 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
   }
   rep.weld_tolerance = tol;
   TriangleMesh mesh;
-  // A triangle soup (an STL: triangle t uses vertices 3t, 3t + 1, 3t + 2) is welded straight
-  // into the triangle array, without a separate vertex map: 12 bytes a triangle less memory.
-  bool soup = indices.size() == nv;
-  for (std::size_t i = 0; soup && i < nv; ++i) soup = indices[i] == i;
+  // A triangle soup is welded straight into the triangle array, without a separate vertex
+  // map: 12 bytes a triangle less memory.
   if (soup) {
     mesh.triangles.resize(nv / 3);
     TriangleIndices* tris = mesh.triangles.data();
@@ -281,14 +341,11 @@ TriangleMesh BuildTriangleMesh(std::span<const double> xyz, std::span<const std:
 
 namespace {
 
-// Twin of each half-edge, and the number of edges whose two triangles traverse it in the same
-// direction (inconsistent orientation). Throws InputError for a boundary or non-manifold edge.
-struct EdgeMatch {
-  std::vector<std::uint32_t> twin;
-  std::size_t inconsistent = 0;
-};
-
-EdgeMatch MatchEdges(const TriangleMesh& mesh) {
+// Calls pair(he0, he1) for the two half-edges of every undirected edge and returns the number
+// of edges whose two triangles traverse it in the same direction (inconsistent orientation).
+// Throws InputError for a boundary or non-manifold edge.
+template <typename Pair>
+std::size_t MatchEdges(const TriangleMesh& mesh, Pair pair) {
   const std::vector<TriangleIndices>& tris = mesh.triangles;
   const std::size_t nt = tris.size();
   const std::size_t nv = mesh.vertices.size();
@@ -303,22 +360,20 @@ EdgeMatch MatchEdges(const TriangleMesh& mesh) {
   for (std::size_t i = 0; i < nv; ++i) offset[i + 1] += offset[i];
   std::vector<std::uint64_t> entries(3 * nt);
   {
-    std::vector<std::uint32_t> fill(offset.begin(), offset.end() - 1);
-    for (std::uint32_t he = 0; he < 3 * nt; ++he) {
-      const std::uint32_t a = From(tris, he), b = To(tris, he);
-      entries[fill[std::min(a, b)]++] = (std::uint64_t{std::max(a, b)} << 32) | he;
+    // offset[v] serves as the fill position of bucket v, and ends as the start of bucket v + 1.
+    for (std::uint32_t t = 0; t < nt; ++t) {
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const std::uint32_t a = tris[t][k], b = tris[t][(k + 1) % 3];
+        entries[offset[std::min(a, b)]++] = (std::uint64_t{std::max(a, b)} << 32) | (3 * t + k);
+      }
     }
   }
-  EdgeMatch m;
-  std::vector<std::uint32_t>& twin = m.twin;
-  twin.assign(3 * nt, kNone);
-  std::size_t boundary = 0, nonmanifold = 0;
-  std::size_t& inconsistent = m.inconsistent;
+  std::size_t boundary = 0, nonmanifold = 0, inconsistent = 0;
   std::uint32_t first_bad = kNone;  // a half-edge of the first offending edge
   const char* first_kind = "";
   for (std::size_t v = 0; v < nv; ++v) {
-    std::uint64_t* b = entries.data() + offset[v];
-    std::uint64_t* e = entries.data() + offset[v + 1];
+    std::uint64_t* b = entries.data() + (v == 0 ? 0 : offset[v - 1]);
+    std::uint64_t* e = entries.data() + offset[v];
     if (e - b <= 16) {
       for (std::uint64_t* i = b + 1; i < e; ++i) {  // insertion sort: buckets are tiny
         const std::uint64_t x = *i;
@@ -335,8 +390,7 @@ EdgeMatch MatchEdges(const TriangleMesh& mesh) {
       const auto he0 = static_cast<std::uint32_t>(*g);
       if (h - g == 2) {
         const auto he1 = static_cast<std::uint32_t>(*(g + 1));
-        twin[he0] = he1;
-        twin[he1] = he0;
+        pair(he0, he1);
         if (From(tris, he0) == From(tris, he1)) ++inconsistent;
       } else {
         if (h - g == 1) {
@@ -362,8 +416,14 @@ EdgeMatch MatchEdges(const TriangleMesh& mesh) {
         "mode: shell with a thickness or areal density for sheet parts",
         boundary, nonmanifold, first_kind, FormatPoint(a), FormatPoint(b)));
   }
-  return m;
+  return inconsistent;
 }
+
+// Twin of each half-edge, and the number of inconsistently oriented edges (see MatchEdges).
+struct EdgeMatch {
+  std::vector<std::uint32_t> twin;
+  std::size_t inconsistent = 0;
+};
 
 // Connected components over shared edges: component[t] of each triangle, the triangles in
 // breadth-first order per component (queue, component c at [start[c], start[c + 1])), and
@@ -510,6 +570,31 @@ void OrientOutward(TriangleMesh& mesh, const Components& k, MeshRepairReport& re
   }
 }
 
+// Connected components of a consistently oriented mesh by union–find over the edge pairs
+// MatchEdges visits (Tarjan: union by linking the larger root under the smaller, path
+// halving), without twins or a search: each root is the smallest triangle of its component,
+// every parent index is smaller than its child's, so one ascending pass turns the parents
+// into component numbers in the order of each component's first triangle (the numbering of
+// FindComponents). `parent` holds the union–find forest and is turned into the numbers.
+Components LabelComponents(std::vector<std::uint32_t>&& parent) {
+  Components k;
+  const std::size_t nt = parent.size();
+  std::vector<std::uint32_t> size;
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    if (parent[t] == t) {
+      parent[t] = static_cast<std::uint32_t>(size.size());
+      size.push_back(0);
+    } else {
+      parent[t] = parent[parent[t]];  // parent[t] < t already holds its component's number
+    }
+    ++size[parent[t]];
+  }
+  k.component = std::move(parent);
+  k.start.assign(1, 0);
+  for (std::uint32_t n : size) k.start.push_back(k.start.back() + n);
+  return k;
+}
+
 }  // namespace
 
 void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
@@ -517,10 +602,39 @@ void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
   MeshRepairReport& rep = report ? *report : local;
   const std::size_t nt = mesh.triangles.size();
   if (3 * nt >= kNone) throw InputError("mesh: more than 2^32 / 3 triangles are not supported");
-  const EdgeMatch edges = MatchEdges(mesh);
+  // First pass: closed and manifold, consistently oriented, and the components by union–find.
+  std::vector<std::uint32_t> parent(nt);
+  for (std::uint32_t t = 0; t < nt; ++t) parent[t] = t;
+  const auto root = [&parent](std::uint32_t t) {
+    while (parent[t] != t) t = parent[t] = parent[parent[t]];
+    return t;
+  };
+  const std::size_t inconsistent = MatchEdges(mesh, [&](std::uint32_t he0, std::uint32_t he1) {
+    const std::uint32_t a = root(he0 / 3), b = root(he1 / 3);
+    if (a < b) {
+      parent[b] = a;
+    } else if (b < a) {
+      parent[a] = b;
+    }
+  });
+  if (inconsistent == 0) {
+    const Components components = LabelComponents(std::move(parent));
+    rep.components = components.count();
+    OrientOutward(mesh, components, rep);
+    return;
+  }
+  // Orientation to repair: twins, and a breadth-first search that finds each triangle's parity.
+  std::vector<std::uint32_t>().swap(parent);
+  EdgeMatch edges;
+  edges.twin.assign(3 * nt, kNone);
+  std::vector<std::uint32_t>& twin = edges.twin;
+  edges.inconsistent = MatchEdges(mesh, [&twin](std::uint32_t he0, std::uint32_t he1) {
+    twin[he0] = he1;
+    twin[he1] = he0;
+  });
   const Components components = FindComponents(mesh, edges);
   rep.components = components.count();
-  if (edges.inconsistent > 0) OrientConsistently(mesh, components, rep);
+  OrientConsistently(mesh, components, rep);
   OrientOutward(mesh, components, rep);
 }
 

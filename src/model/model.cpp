@@ -18,25 +18,21 @@ std::uint64_t ModelIdentity::Next() noexcept {
 
 BodyIndex Model::AddBody(std::string name, const MassProperties& mass_properties) {
   if (name.empty()) throw InputError("a body needs a non-empty name");
-  for (const Body& b : bodies_) {
-    if (b.name() == name) {
-      throw InputError(
-          fmt::format("body '{}' is defined twice; give each body its own name", name));
-    }
+  if (body_names_.Find(name) >= 0) {
+    throw InputError(fmt::format("body '{}' is defined twice; give each body its own name", name));
   }
   bodies_.emplace_back(std::move(name), mass_properties);
+  body_names_.Insert(bodies_.back().name(), num_bodies() - 1);
   id_.Renew();
   return num_bodies() - 1;
 }
 
 int Model::AddForceElement(std::shared_ptr<const ForceElement> element) {
   if (!element) throw InputError("force element is null");
-  for (const auto& f : forces_) {
-    if (f->name() == element->name()) {
-      throw InputError(
-          fmt::format("force element '{}' is defined twice; give each force element its own name",
-                      element->name()));
-    }
+  if (force_names_.Find(element->name()) >= 0) {
+    throw InputError(
+        fmt::format("force element '{}' is defined twice; give each force element its own name",
+                    element->name()));
   }
   for (BodyIndex b : element->bodies()) {
     if (b < 0 || b >= num_bodies()) {
@@ -45,6 +41,7 @@ int Model::AddForceElement(std::shared_ptr<const ForceElement> element) {
           element->name(), b, num_bodies(), num_bodies() - 1));
     }
   }
+  force_names_.Insert(element->name(), num_force_elements());
   forces_.push_back(std::move(element));
   id_.Renew();
   return num_force_elements() - 1;
@@ -52,11 +49,9 @@ int Model::AddForceElement(std::shared_ptr<const ForceElement> element) {
 
 int Model::AddConstraint(std::shared_ptr<const Constraint> constraint) {
   if (!constraint) throw InputError("constraint is null");
-  for (const auto& c : constraints_) {
-    if (c->name() == constraint->name()) {
-      throw InputError(fmt::format(
-          "constraint '{}' is defined twice; give each constraint its own name", c->name()));
-    }
+  if (constraint_names_.Find(constraint->name()) >= 0) {
+    throw InputError(fmt::format(
+        "constraint '{}' is defined twice; give each constraint its own name", constraint->name()));
   }
   for (BodyIndex b : {constraint->parent(), constraint->child()}) {
     if (b == kWorld) continue;
@@ -121,6 +116,7 @@ int Model::AddConstraint(std::shared_ptr<const Constraint> constraint) {
     throw InputError(fmt::format("constraint '{}' has {} rows; 1 to {} are supported",
                                  constraint->name(), rows, kMaxConstraintRows));
   }
+  constraint_names_.Insert(constraint->name(), num_constraints());
   row_offsets_.push_back(num_constraint_rows_);
   num_constraint_rows_ += rows;
   constraints_.push_back(std::move(constraint));
@@ -129,41 +125,33 @@ int Model::AddConstraint(std::shared_ptr<const Constraint> constraint) {
 }
 
 int Model::FindConstraint(std::string_view name) const {
+  if (const int i = constraint_names_.Find(name); i >= 0) return i;
   std::string known;
-  for (int i = 0; i < num_constraints(); ++i) {
-    if (constraint(i).name() == name) return i;
-    known += (i ? ", " : "") + constraint(i).name();
-  }
+  for (int i = 0; i < num_constraints(); ++i) known += (i ? ", " : "") + constraint(i).name();
   throw InputError(fmt::format("no constraint named '{}'; the constraints are: {}", name,
                                known.empty() ? "(none)" : known));
 }
 
 BodyIndex Model::FindBody(std::string_view name) const {
+  if (const int i = body_names_.Find(name); i >= 0) return i;
   std::string known;
-  for (int i = 0; i < num_bodies(); ++i) {
-    if (body(i).name() == name) return i;
-    known += (i ? ", " : "") + body(i).name();
-  }
+  for (int i = 0; i < num_bodies(); ++i) known += (i ? ", " : "") + body(i).name();
   throw InputError(fmt::format("no body named '{}'; the bodies are: {}", name,
                                known.empty() ? "(none)" : known));
 }
 
 int Model::FindForceElement(std::string_view name) const {
+  if (const int i = force_names_.Find(name); i >= 0) return i;
   std::string known;
-  for (int i = 0; i < num_force_elements(); ++i) {
-    if (force_element(i).name() == name) return i;
-    known += (i ? ", " : "") + force_element(i).name();
-  }
+  for (int i = 0; i < num_force_elements(); ++i) known += (i ? ", " : "") + force_element(i).name();
   throw InputError(fmt::format("no force element named '{}'; the force elements are: {}", name,
                                known.empty() ? "(none)" : known));
 }
 
 int Model::AddContact(const ContactSpec& spec) {
-  for (const Contact& c : contacts_) {
-    if (c.name() == spec.name) {
-      throw InputError(
-          fmt::format("contact '{}' is defined twice; give each contact its own name", spec.name));
-    }
+  if (contact_names_.Find(spec.name) >= 0) {
+    throw InputError(
+        fmt::format("contact '{}' is defined twice; give each contact its own name", spec.name));
   }
   contacts_.emplace_back(*this, spec);
   const Contact& added = contacts_.back();
@@ -186,6 +174,7 @@ int Model::AddContact(const ContactSpec& spec) {
       }
     }
   }
+  contact_names_.Insert(contacts_.back().name(), num_contacts() - 1);
   id_.Renew();
   contact_offsets_.push_back(num_contact_points_);
   const int n = contacts_.back().num_points();
@@ -200,11 +189,9 @@ std::string Model::contact_point_name(int p) const {
 }
 
 int Model::FindContact(std::string_view name) const {
+  if (const int i = contact_names_.Find(name); i >= 0) return i;
   std::string known;
-  for (int i = 0; i < num_contacts(); ++i) {
-    if (contact(i).name() == name) return i;
-    known += (i ? ", " : "") + contact(i).name();
-  }
+  for (int i = 0; i < num_contacts(); ++i) known += (i ? ", " : "") + contact(i).name();
   throw InputError(fmt::format("no contact named '{}'; the contacts are: {}", name,
                                known.empty() ? "(none)" : known));
 }

@@ -9,6 +9,9 @@
 /// reads), accept when err <= 1, next step h·min(5, max(0.2, 0.9 err^(-1/5))).
 /// Quaternions are renormalised after each accepted step; the FSAL derivative is rescaled with
 /// them (q̇ is linear in q), so the projection costs no evaluation.
+/// The accepted increment y₁ − y₀ = h Σ b_i k_i is added with compensation
+/// (src/integrate/internal/compensated.h), carried from step to step until Initialize or a
+/// projection starts it again from zero.
 /// Models with constraints, or with contact points in contact in the current modes: the state
 /// is projected onto the constraints and the active contact rows after each accepted step
 /// (ProjectOntoConstraints, ProjectOntoContactModes) and the FSAL derivative re-evaluated

@@ -24,6 +24,10 @@
 /// velocity-dependent forces (drag, dampers) are evaluated with the half-step velocities.
 /// One force evaluation per step (the end-of-step forces are reused by the next step unless
 /// the state was changed in between). Force integrals use the trapezoidal rule.
+/// Kicks, drift and the time step are added with compensation, and the orientation product
+/// q₁ = q₀ ⊗ Q keeps its rounding error (src/integrate/internal/compensated.h), carried while
+/// the state is the one the last step produced; the rotation M₁ = Qᵀ M₀ turns M's compensation
+/// with it but does not recover its own rounding.
 /// Use it for long torque-free or conservative runs; use Dormand–Prince for accuracy and
 /// events, RK4 for a fixed grid.
 
@@ -54,6 +58,14 @@ class EnergyMomentumIntegrator {
   std::vector<Vec3> M_B_;  // body-frame angular momenta of cached_ [kg·m²/s]; kept across
                            // steps so that w = I⁻¹M and back does not round off every step
   bool cached_valid_ = false;
+  /// Compensations of the updates (src/integrate/internal/compensated.h) of cached_, per body:
+  /// position, velocity, angular momentum M_B_ and quaternion (w, x, y, z).
+  struct BodyCompensation {
+    Vec3 p = Vec3::Zero(), v = Vec3::Zero(), M = Vec3::Zero();
+    Eigen::Vector4d q = Eigen::Vector4d::Zero();
+  };
+  std::vector<BodyCompensation> compensation_;
+  double c_t_ = 0.0, t_end_ = 0.0;  // of the time [s]
   IntegratorStats stats_;
 };
 

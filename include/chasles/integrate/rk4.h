@@ -7,6 +7,12 @@
 /// term) so the order stays 4 and |q| = 1 to round-off at every output.
 /// Models with constraints: the state is projected onto the constraint manifold after each
 /// step (ProjectOntoConstraints), so positions and velocities do not drift.
+/// The increment y₁ − y₀ = (h/6)(k₁ + 2k₂ + 2k₃ + k₄) and the time step are added with
+/// compensation (src/integrate/internal/compensated.h): the integrator keeps, per state
+/// component, the round-off the stored state could not hold and adds it back next step, as
+/// long as Step is handed the state the previous Step produced (otherwise, e.g. after a
+/// projection onto constraints, it starts again from zero). Round-off then no longer limits
+/// long runs of small steps.
 /// Use it for a fixed output grid and for predictable cost per step; use the adaptive
 /// Dormand–Prince integrator when accuracy must be guaranteed or events located.
 

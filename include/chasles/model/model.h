@@ -5,9 +5,11 @@
 /// unless a constraint (joint, rolling contact, prescribed motion) holds it.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "chasles/model/body.h"
@@ -16,6 +18,31 @@
 #include "chasles/model/force_element.h"
 
 namespace chasles {
+
+/// Name → index table for one kind of Model element, so that adding n elements (each checked
+/// for a duplicate name) and finding one by name cost O(n) and O(1) on average instead of
+/// O(n²) and O(n). Looks up by std::string_view without building a std::string.
+class NameIndex {
+ public:
+  /// Index of `name`, or -1 when absent.
+  int Find(std::string_view name) const {
+    const auto it = map_.find(name);
+    return it == map_.end() ? -1 : it->second;
+  }
+  /// Records `name` → `index`; false (and nothing recorded) when `name` is already present.
+  bool Insert(const std::string& name, int index) { return map_.emplace(name, index).second; }
+  /// Forgets `name` (undoes an Insert whose element was then refused).
+  void Erase(const std::string& name) { map_.erase(name); }
+
+ private:
+  struct Hash {
+    using is_transparent = void;
+    size_t operator()(std::string_view s) const noexcept {
+      return std::hash<std::string_view>{}(s);
+    }
+  };
+  std::unordered_map<std::string, int, Hash, std::equal_to<>> map_;
+};
 
 /// The identity of a Model object (Model::id()): unique among the Models of the process. A
 /// copy is another Model and gets a new identity; a move hands the identity over and gives
@@ -106,11 +133,15 @@ class Model {
 
  private:
   std::vector<Body> bodies_;
+  NameIndex body_names_;
   std::vector<std::shared_ptr<const ForceElement>> forces_;
+  NameIndex force_names_;
   std::vector<std::shared_ptr<const Constraint>> constraints_;
+  NameIndex constraint_names_;
   std::vector<int> row_offsets_;
   int num_constraint_rows_ = 0;
   std::vector<Contact> contacts_;
+  NameIndex contact_names_;
   std::vector<int> contact_offsets_;
   std::vector<int> point_owner_;
   int num_contact_points_ = 0;

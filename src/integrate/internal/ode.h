@@ -51,8 +51,11 @@ class OdeSystem {
   /// ydot = f(t, y). Uses an internal State and Data (no allocation).
   void Derivative(double t, const Vector& y, Vector& ydot);
   /// Scales each body's quaternion in y to unit length and the matching entries of `ydot` by
-  /// the same factor (q̇ = ½ q ⊗ w is linear in q, so ydot stays f(t, y) exactly).
-  void NormalizeQuaternions(Vector& y, Vector* ydot) const;
+  /// the same factor (q̇ = ½ q ⊗ w is linear in q, so ydot stays f(t, y) exactly). With a
+  /// `compensation` of y (internal/compensated.h), carries it across the normalisation: its
+  /// quaternion part becomes its tangential part scaled by 1/|q| plus the rounding error of
+  /// the scaling.
+  void NormalizeQuaternions(Vector& y, Vector* ydot, Vector* compensation = nullptr) const;
   /// True when the model has constraints (then the state is projected after each step).
   bool has_constraints() const { return model_.num_constraints() > 0; }
   /// True when the state is projected after each step: the model has constraints, or (with

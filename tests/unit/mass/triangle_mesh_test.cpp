@@ -50,6 +50,41 @@ TEST(TriangleMesh, WeldsExactDuplicates) {
   EXPECT_TRUE(rep.warnings.empty());
 }
 
+// Components are numbered in the order of their first triangle, whatever the order of the rest:
+// three closed cubes with their triangles interleaved (E, C, D, E, C, D, ...): E of side 1 at
+// x = 10, C of side 4 at the origin, and D of side 1 at (1, 1, 1) inside C, reversed (a cavity
+// of volume −1³). So E is component 0, C 1 and D 2, and the only warning is D's negative volume.
+TEST(TriangleMesh, NumbersInterleavedComponentsByTheirFirstTriangle) {
+  const auto cube = [](double side, const Vec3& at, bool reversed) {
+    std::vector<double> xyz = CubeSoup(side);
+    for (std::size_t i = 0; i < xyz.size(); ++i) xyz[i] += at[static_cast<int>(i % 3)];
+    if (reversed) {
+      for (std::size_t t = 0; t < 12; ++t) {
+        std::swap_ranges(xyz.begin() + 9 * t + 3, xyz.begin() + 9 * t + 6, xyz.begin() + 9 * t + 6);
+      }
+    }
+    return xyz;
+  };
+  const std::vector<double> e = cube(1, Vec3(10, 0, 0), false), c = cube(4, Vec3::Zero(), false),
+                            d = cube(1, Vec3(1, 1, 1), true);
+  std::vector<double> xyz;
+  for (std::size_t t = 0; t < 12; ++t) {
+    for (const std::vector<double>* part : {&e, &c, &d}) {
+      xyz.insert(xyz.end(), part->begin() + 9 * t, part->begin() + 9 * t + 9);
+    }
+  }
+  MeshRepairReport rep;
+  TriangleMesh m = BuildTriangleMesh(std::span<const double>(xyz),
+                                     std::span<const std::uint32_t>(Iota(108)), 1.0, 0.0, &rep);
+  EXPECT_EQ(m.vertices.size(), 24u);
+  ValidateSolid(m, &rep);
+  EXPECT_EQ(rep.components, 3u);
+  EXPECT_EQ(rep.triangles_flipped, 0u);
+  ASSERT_EQ(rep.warnings.size(), 1u);
+  EXPECT_THAT(rep.warnings[0],
+              HasSubstr("component 2 (12 triangles) encloses a negative volume (-1)"));
+}
+
 TEST(TriangleMesh, FloatInputAndScaleAndSignedZero) {
   std::vector<float> xyz;
   for (double x : CubeSoup(10.0)) xyz.push_back(static_cast<float>(x));

@@ -28,6 +28,37 @@ TEST(Model, RejectsDuplicateBodyAndUnknownIndex) {
   EXPECT_THAT([&] { m.FindBody("b"); }, ThrowsMessage<InputError>(HasSubstr("the bodies are: a")));
 }
 
+// The name table (NameIndex) keeps duplicate detection and FindBody exact for many bodies: a
+// repeat of any earlier name is refused with the same message as before, whichever body it
+// repeats, and the refused body leaves the model as it was.
+TEST(Model, RefusesDuplicatesAmongManyBodiesWithTheSameMessage) {
+  Model m;
+  const int n = 5000;
+  for (int i = 0; i < n; ++i) EXPECT_EQ(m.AddBody("b" + std::to_string(i), Unit()), i);
+  for (int i : {0, 1, 2499, n - 1}) {
+    const std::string name = "b" + std::to_string(i);
+    EXPECT_THAT([&] { m.AddBody(name, Unit()); },
+                ThrowsMessage<InputError>(testing::StrEq(
+                    "body '" + name + "' is defined twice; give each body its own name")));
+    EXPECT_EQ(m.FindBody(name), i);
+  }
+  EXPECT_EQ(m.num_bodies(), n);
+  // A body refused for its mass properties does not take its name.
+  EXPECT_THROW(m.AddBody("bad", MassProperties(1.0, Vec3::Zero(), RotationalInertia(0, 0, 1))),
+               InputError);
+  EXPECT_EQ(m.AddBody("bad", Unit()), n);
+  // A copy keeps the table; the names of force elements are checked the same way.
+  const Model copy = m;
+  EXPECT_EQ(copy.FindBody("b4321"), 4321);
+  m.AddForceElement(std::make_shared<LinearDrag>("d", 0, 1.0, 0.0));
+  EXPECT_THAT([&] { m.AddForceElement(std::make_shared<LinearDrag>("d", 1, 1.0, 0.0)); },
+              ThrowsMessage<InputError>(testing::StrEq(
+                  "force element 'd' is defined twice; give each force element its own name")));
+  EXPECT_EQ(m.FindForceElement("d"), 0);
+  EXPECT_THAT([&] { m.FindForceElement("e"); },
+              ThrowsMessage<InputError>(HasSubstr("the force elements are: d")));
+}
+
 TEST(Model, TakesSlenderRodsAndPointMassesRejectsNegativeStiffness) {
   Model m;
   // A rod (one zero moment) and a point mass (three) are bodies; a tensor with two zero moments
