@@ -28,27 +28,10 @@ namespace chasles::cli {
 
 namespace {
 
-std::string ReadText(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// `path` as written in the run's JSON: as it is when it exists (relative to the current
-/// folder, as the run wrote it), else beside the JSON file.
-std::string Resolve(const std::string& path, const std::string& json_path) {
-  if (path.empty() || std::filesystem::exists(path)) return path;
-  const std::filesystem::path beside =
-      std::filesystem::path(json_path).parent_path() / std::filesystem::path(path).filename();
-  return std::filesystem::exists(beside) ? beside.string() : path;
-}
-
 /// The run's table from its CSV (chasles/io/csv_table.h: columns by name, their units
 /// dropped). Errors name the file, line and column.
 void ReadCsv(const std::string& path, StudyResult& r) {
-  CsvTable t = ReadCsvTable(ReadText(path, "the run's CSV"), path);
+  CsvTable t = ReadCsvTable(ReadTextFile(path, "the run's CSV"), path);
   r.columns = std::move(t.columns);
   r.units = std::move(t.units);
   r.rows = std::move(t.rows);
@@ -98,7 +81,7 @@ CLI::App* AddReportCommand(CLI::App& app, ReportArgs& args) {
 
 int RunReport(const ReportArgs& args) {
   RequireHtmlReport("chasles report");
-  const std::string text = ReadText(args.run_json, "the run's JSON summary");
+  const std::string text = ReadTextFile(args.run_json, "the run's JSON summary");
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
@@ -110,7 +93,7 @@ int RunReport(const ReportArgs& args) {
         fmt::format("{}: expected a JSON object (a chasles simulate summary)", args.run_json));
   }
   SceneArgs scene_args;
-  scene_args.scene = Resolve(Get<std::string>(j, "scene", args.run_json), args.run_json);
+  scene_args.scene = ResolveBesideJson(Get<std::string>(j, "scene", args.run_json), args.run_json);
   scene_args.set = args.set;
   scene_args.max_scene_bytes = args.max_scene_bytes;
   if (scene_args.scene.empty()) {
@@ -119,7 +102,7 @@ int RunReport(const ReportArgs& args) {
   const Scene scene = LoadScene(scene_args);
 
   StudyResult r;
-  ReadCsv(Resolve(Get<std::string>(j, "csv", args.run_json), args.run_json), r);
+  ReadCsv(ResolveBesideJson(Get<std::string>(j, "csv", args.run_json), args.run_json), r);
   for (const auto& e : Get<nlohmann::json>(j, "events", args.run_json)) {
     StudyEvent ev;
     ev.name = Get<std::string>(e, "name", args.run_json + ": events");

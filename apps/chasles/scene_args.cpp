@@ -3,7 +3,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
+#include <fmt/format.h>
+
+#include "chasles/error.h"
 #include "chasles/io/output_set.h"
 #include "chasles/scene/scene_error.h"
 
@@ -61,6 +67,21 @@ std::function<Scene(const SceneOptions&)> SceneLoader(const SceneArgs& args) {
 
 Scene LoadScene(const SceneArgs& args) {
   return SceneLoader(args)(SceneOptionsFrom(args));
+}
+
+std::string ReadTextFile(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string ResolveBesideJson(const std::string& path, const std::string& json_path) {
+  if (path.empty() || std::filesystem::exists(path)) return path;
+  const std::filesystem::path beside =
+      std::filesystem::path(json_path).parent_path() / std::filesystem::path(path).filename();
+  return std::filesystem::exists(beside) ? beside.string() : path;
 }
 
 void Emit(const std::string& output, const std::string& text) {

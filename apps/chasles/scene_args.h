@@ -21,5 +21,11 @@ std::function<Scene(const SceneOptions&)> SceneLoader(const SceneArgs& args);
 Scene LoadScene(const SceneArgs& args);
 /// Writes text to the file named (atomically) or to standard output when the name is empty.
 void Emit(const std::string& output, const std::string& text);
+/// The whole file at `path`; InputError "PATH: cannot open WHAT" when it cannot be read.
+std::string ReadTextFile(const std::string& path, const std::string& what);
+/// A file a run's JSON summary at `json_path` names (its CSV, its scene): `path` as written
+/// when it exists (relative to the current folder, as the run wrote it), else the file of that
+/// name beside the JSON, else `path` (for the error that follows).
+std::string ResolveBesideJson(const std::string& path, const std::string& json_path);
 
 }  // namespace chasles::cli

@@ -9,6 +9,18 @@ const SERIES_COLORS = [
 export const MODE_COLORS = ['rgba(150,150,150,0.55)', 'rgba(224,123,0,0.7)', 'rgba(46,157,58,0.7)'];
 export const MODE_NAMES = ['separated', 'sliding', 'sticking'];
 
+/** A plot's box with its title, appended to `parent`; uPlot draws into it. */
+function plotBox(parent, title) {
+  const box = document.createElement('div');
+  box.className = 'plot';
+  const head = document.createElement('div');
+  head.className = 'plot-title';
+  head.textContent = title;
+  box.appendChild(head);
+  parent.appendChild(box);
+  return box;
+}
+
 /**
  * A plot of `names` (columns of `data`) against t in `parent`. `marks`: the event marks;
  * `bands`: [{name, modes: string of '0'/'1'/'2' per sample}] drawn as strips at the top.
@@ -20,13 +32,7 @@ export class Plot {
     this.marks = marks;
     this.bands = bands;
     this.time = data.time;
-    const box = document.createElement('div');
-    box.className = 'plot';
-    const head = document.createElement('div');
-    head.className = 'plot-title';
-    head.textContent = title;
-    box.appendChild(head);
-    parent.appendChild(box);
+    const box = plotBox(parent, title);
     this.box = box;
     const units = [...new Set(names.map((n) => data.byName.get(n).unit))];
     const series = [{ label: 't [s]' }];
@@ -118,13 +124,7 @@ export class SweepPlot {
     this.xLabel = xLabel;
     this.xs = xs;
     this.lines = lines;
-    const box = document.createElement('div');
-    box.className = 'plot';
-    const head = document.createElement('div');
-    head.className = 'plot-title';
-    head.textContent = title;
-    box.appendChild(head);
-    parent.appendChild(box);
+    const box = plotBox(parent, title);
     this.box = box;
     const series = [{ label: xLabel }];
     lines.forEach((l, i) => {

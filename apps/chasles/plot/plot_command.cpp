@@ -23,6 +23,7 @@
 #include "chasles/io/csv_table.h"
 #include "chasles/io/output_set.h"
 #include "commands.h"
+#include "scene_args.h"
 
 // Under LeakSanitizer (the sanitizer build, scripts/test.sh --sanitize): fontconfig's cache
 // (pngcairo's fonts) and PLplot's driver loader (libltdl) keep their memory until exit by
@@ -35,21 +36,13 @@ namespace chasles::cli {
 
 namespace {
 
-std::string ReadText(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 /// The CSV to plot: the file itself, or for a run's JSON summary the CSV it names under "csv"
 /// (as written when it exists, else beside the JSON, as `chasles report` finds it).
 std::string CsvPath(const std::string& input) {
   if (std::filesystem::path(input).extension() != ".json") return input;
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(ReadText(input, "the run's JSON summary"));
+    j = nlohmann::json::parse(ReadTextFile(input, "the run's JSON summary"));
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(fmt::format("{}: not JSON: {}", input, e.what()));
   }
@@ -57,11 +50,7 @@ std::string CsvPath(const std::string& input) {
     throw InputError(fmt::format(
         "{}: key 'csv' missing (expected a chasles simulate JSON summary naming its CSV)", input));
   }
-  const std::string csv = j.at("csv").get<std::string>();
-  if (std::filesystem::exists(csv)) return csv;
-  const std::filesystem::path beside =
-      std::filesystem::path(input).parent_path() / std::filesystem::path(csv).filename();
-  return std::filesystem::exists(beside) ? beside.string() : csv;
+  return ResolveBesideJson(j.at("csv").get<std::string>(), input);
 }
 
 /// PLplot reads '#' as the start of an escape sequence; "##" is a literal '#'.
@@ -203,7 +192,7 @@ int RunPlot(const PlotArgs& args) {
   }
   CheckOutputTarget(args.output);
   const std::string csv = CsvPath(args.input);
-  const CsvTable t = ReadCsvTable(ReadText(csv, "the table to plot"), csv);
+  const CsvTable t = ReadCsvTable(ReadTextFile(csv, "the table to plot"), csv);
   const size_t x = CsvColumnIndex(t, args.columns[0], csv);
   std::vector<size_t> ys;
   for (size_t i = 1; i < args.columns.size(); ++i) {
@@ -261,7 +250,7 @@ int RunPlot(const PlotArgs& args) {
   const std::string temp = fmt::format("{}.plot-{}.tmp", args.output, ::getpid());
   try {
     Render(series, Label(t, x), ylabel, ext == ".svg" ? "svg" : "pngcairo", temp, args.title);
-    const std::string bytes = ReadText(temp, "the plot just drawn");
+    const std::string bytes = ReadTextFile(temp, "the plot just drawn");
     WriteFileAtomically(args.output, bytes);
   } catch (...) {
     std::filesystem::remove(temp);
