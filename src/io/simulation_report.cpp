@@ -184,7 +184,8 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
                            {"state", SnapshotJson(e.snapshot, header.planar)}});
   }
   j["jumps"] = JumpsJson(r.jumps);
-  j["final"] = SnapshotJson({r.final_bodies, r.final_reactions, r.final_contacts, {}}, header.planar);
+  j["final"] =
+      SnapshotJson({r.final_bodies, r.final_reactions, r.final_contacts, {}}, header.planar);
   j["final"]["t"] = r.t_end;
   j["contact_events"] = ContactEventsJson(r.contact_events);
   j["impacts"] = ImpactsJson(r.impacts);
