@@ -23,65 +23,17 @@
 #include "chasles/integrate/dormand_prince.h"
 #include "chasles/integrate/rk4.h"
 #include "chasles/model/model.h"
+#include "reference/torque_free_top.h"
 
 namespace chasles {
 namespace {
 
-constexpr double kI[3] = {1.0, 2.0, 3.0};
-constexpr double kW0[3] = {0.01, 10.0, 0.01};
+using reference::Angle;
+using reference::FromState;
+using reference::PlainRk4;
+using reference::Top;
+
 constexpr double kDuration = 100.0;
-
-template <typename T>
-struct Top {
-  T y[7];  // ω (3), q (w, x, y, z)
-};
-
-template <typename T>
-Top<T> Derivative(const Top<T>& s) {
-  const T* w = s.y;
-  const T* q = s.y + 3;
-  const T I0 = kI[0], I1 = kI[1], I2 = kI[2];
-  Top<T> d;
-  d.y[0] = (I1 - I2) * w[1] * w[2] / I0;
-  d.y[1] = (I2 - I0) * w[2] * w[0] / I1;
-  d.y[2] = (I0 - I1) * w[0] * w[1] / I2;
-  d.y[3] = T(-0.5) * (q[1] * w[0] + q[2] * w[1] + q[3] * w[2]);
-  d.y[4] = T(0.5) * (q[0] * w[0] + q[2] * w[2] - q[3] * w[1]);
-  d.y[5] = T(0.5) * (q[0] * w[1] + q[3] * w[0] - q[1] * w[2]);
-  d.y[6] = T(0.5) * (q[0] * w[2] + q[1] * w[1] - q[2] * w[0]);
-  return d;
-}
-
-template <typename T>
-Top<T> PlainRk4(T h, long n) {
-  Top<T> s{{T(kW0[0]), T(kW0[1]), T(kW0[2]), T(1), T(0), T(0), T(0)}};
-  const auto axpy = [](const Top<T>& a, T c, const Top<T>& k) {
-    Top<T> r;
-    for (int i = 0; i < 7; ++i) r.y[i] = a.y[i] + c * k.y[i];
-    return r;
-  };
-  for (long step = 0; step < n; ++step) {
-    const Top<T> k1 = Derivative(s);
-    const Top<T> k2 = Derivative(axpy(s, h / 2, k1));
-    const Top<T> k3 = Derivative(axpy(s, h / 2, k2));
-    const Top<T> k4 = Derivative(axpy(s, h, k3));
-    for (int i = 0; i < 7; ++i) s.y[i] += h / 6 * (k1.y[i] + 2 * (k2.y[i] + k3.y[i]) + k4.y[i]);
-    const T norm = std::sqrt(s.y[3] * s.y[3] + s.y[4] * s.y[4] + s.y[5] * s.y[5] + s.y[6] * s.y[6]);
-    for (int i = 3; i < 7; ++i) s.y[i] /= norm;
-  }
-  return s;
-}
-
-template <typename A, typename B>
-double Angle(const Top<A>& ra, const Top<B>& rb) {
-  long double a[4], b[4];
-  for (int i = 0; i < 4; ++i) a[i] = ra.y[3 + i], b[i] = rb.y[3 + i];
-  const long double w = a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
-  const long double x = a[0] * b[1] - a[1] * b[0] - a[2] * b[3] + a[3] * b[2];
-  const long double y = a[0] * b[2] + a[1] * b[3] - a[2] * b[0] - a[3] * b[1];
-  const long double z = a[0] * b[3] - a[1] * b[2] + a[2] * b[1] - a[3] * b[0];
-  return static_cast<double>(2 * std::atan2(std::sqrt(x * x + y * y + z * z), std::fabs(w)));
-}
 
 const Top<long double>& Reference() {
   static const Top<long double> ref = PlainRk4<long double>(1e-4L, 1000000);
@@ -108,24 +60,6 @@ double PlainSeconds() {
     return best;
   }();
   return seconds;
-}
-
-Top<double> FromState(const State& s) {
-  const BodyState& b = s.bodies[0];
-  return {
-      {b.w_WB_B.x(), b.w_WB_B.y(), b.w_WB_B.z(), b.q_WB.w(), b.q_WB.x(), b.q_WB.y(), b.q_WB.z()}};
-}
-
-Model Body() {
-  Model m;
-  m.AddBody("top", MassProperties(1.0, Vec3::Zero(), RotationalInertia(kI[0], kI[1], kI[2])));
-  return m;
-}
-
-State Start(const Model& m) {
-  State s = MakeRestState(m);
-  s.bodies[0].w_WB_B = Vec3(kW0[0], kW0[1], kW0[2]);
-  return s;
 }
 
 // CPU seconds per iteration of a benchmark loop, from its own clock.
@@ -166,14 +100,14 @@ void PlainLoop(benchmark::State& st) {
 // chasles' RK4 (compensated updates) at h = range(0) microseconds.
 void ChaslesRk4(benchmark::State& st) {
   Reference();
-  const Model m = Body();
+  const Model m = reference::DzhanibekovModel();
   const double h = static_cast<double>(st.range(0)) * 1e-6;
   const auto n = static_cast<long>(std::lround(kDuration / h));
   State s;
   Clock clock;
   for (auto _ : st) {
     clock.Start();
-    s = Start(m);
+    s = reference::DzhanibekovStart(m);
     Rk4Integrator rk4(m);
     for (long i = 0; i < n; ++i) rk4.Step(s, h);
     benchmark::DoNotOptimize(s.bodies.data());
@@ -185,7 +119,7 @@ void ChaslesRk4(benchmark::State& st) {
 // chasles' Dormand–Prince 5(4) (compensated updates) at rtol = range(0) · 1e-14, atol = rtol/100.
 void ChaslesDormandPrince(benchmark::State& st) {
   Reference();
-  const Model m = Body();
+  const Model m = reference::DzhanibekovModel();
   AdaptiveOptions o;
   o.rtol = static_cast<double>(st.range(0)) * 1e-14;
   o.atol = o.rtol * 1e-2;
@@ -195,7 +129,7 @@ void ChaslesDormandPrince(benchmark::State& st) {
   for (auto _ : st) {
     clock.Start();
     DormandPrince5Integrator dp(m, o);
-    dp.Initialize(Start(m));
+    dp.Initialize(reference::DzhanibekovStart(m));
     while (dp.state().t < kDuration) dp.Step(kDuration);
     s = dp.state();
     steps = dp.stats().steps;
