@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,51 @@ TEST(CsvTable, AFailedRowHasEmptyValuesAndItsReasonInTheErrorColumn) {
   EXPECT_THROW(ReadCsvTable("L [m],T [s],error\n2,,\n", "sweep.csv"), InputError);
   EXPECT_THROW(ReadCsvTable("L [m],T [s]\n2,nan\n", "sweep.csv"), InputError);
   EXPECT_THROW(ReadCsvTable("L [m],T [s]\n2,1e999\n", "sweep.csv"), InputError);
+}
+
+// Hostile bytes: seeded mutations of a sweep table (bytes replaced, inserted, deleted; quotes,
+// commas, newlines, NUL) either read as a table whose every row has one value per column and
+// whose values are finite (or NaN only in a failed row), or throw InputError; nothing else.
+TEST(CsvTable, HostileBytesReadOrGiveInputError) {
+  const std::string good =
+      "L [m],theta0 [rad],event(bottom) [s],error\n0.5,0.1,0.36,\n1,0.2,,\"no, event\"\n";
+  const std::string alphabet = std::string("0123456789.,-+e\"\n\r []nai\x00\xff", 28);
+  std::mt19937 rng(20261124);
+  int read = 0, refused = 0;
+  for (int k = 0; k < 3000; ++k) {
+    std::string text = good;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits && !text.empty(); ++e) {
+      const size_t at = rng() % text.size();
+      const char c = alphabet[rng() % alphabet.size()];
+      switch (rng() % 3) {
+        case 0:
+          text[at] = c;
+          break;
+        case 1:
+          text.insert(text.begin() + static_cast<long>(at), c);
+          break;
+        default:
+          text.erase(at, 1);
+      }
+    }
+    try {
+      const CsvTable t = ReadCsvTable(text, "hostile.csv");
+      ++read;
+      for (size_t r = 0; r < t.rows.size(); ++r) {
+        ASSERT_EQ(t.rows[r].size(), t.columns.size()) << text;
+        const bool failed = r < t.errors.size() && !t.errors[r].empty();
+        for (double v : t.rows[r])
+          ASSERT_TRUE(std::isfinite(v) || (failed && std::isnan(v))) << text;
+      }
+    } catch (const InputError& e) {
+      ++refused;
+      EXPECT_THAT(e.what(), HasSubstr("hostile.csv")) << text;
+    }
+  }
+  // Both outcomes occur: the mutations reach past the reader's first check.
+  EXPECT_GT(read, 100);
+  EXPECT_GT(refused, 100);
 }
 
 TEST(CsvTable, AMissingColumnNamesTheColumns) {
