@@ -66,7 +66,8 @@ TEST(CsvTable, AFailedRowHasEmptyValuesAndItsReasonInTheErrorColumn) {
 TEST(CsvTable, HostileBytesReadOrGiveInputError) {
   const std::string good =
       "L [m],theta0 [rad],event(bottom) [s],error\n0.5,0.1,0.36,\n1,0.2,,\"no, event\"\n";
-  const std::string alphabet = std::string("0123456789.,-+e\"\n\r []nai\x00\xff", 28);
+  static const char kBytes[] = "0123456789.,-+e\"\n\r []nai\x00\xff";
+  const std::string alphabet(kBytes, sizeof kBytes - 1);  // with the NUL byte
   std::mt19937 rng(20261124);
   int read = 0, refused = 0;
   for (int k = 0; k < 3000; ++k) {
