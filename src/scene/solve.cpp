@@ -220,6 +220,10 @@ SweepTable SolveSweep(const std::function<Scene(const SceneOptions&)>& load,
     }
   }
   for (int k = 0; k < spec.count; ++k) {
+    if (!sweep_options.share.Has(k)) {
+      table.rows.emplace_back();
+      continue;
+    }
     if (sweep_options.progress) sweep_options.progress(k, spec.count);
     // The k-th value as an expression, so START and STOP keep their units.
     SceneOptions o = options;
@@ -232,7 +236,7 @@ SweepTable SolveSweep(const std::function<Scene(const SceneOptions&)>& load,
       if (n == spec.name) value = q.value;
     }
     const SolveReport s = SolveScene(scene);
-    if (sweep_options.on_solution) sweep_options.on_solution(value, s);
+    if (sweep_options.on_solution) sweep_options.on_solution(k, value, s);
     for (const std::string& w : s.certificate.FailureMessages()) {
       table.warnings.push_back(fmt::format("{} = {:.12g}: {}", spec.name, value, w));
       table.failed = true;

@@ -77,11 +77,12 @@ struct PointRow {
   std::string error;
 };
 
-/// Runs `point` at every point of the grid in parallel and assembles the table.
+/// Runs `point` at every point of the grid that is `share`'s, in parallel, and assembles the
+/// table (the other points' rows empty).
 SweepTable RunGrid(const SweepGrid& grid, const std::vector<std::string>& quantity_names,
                    const std::vector<std::string>& quantity_units, int jobs,
                    const std::function<void(std::int64_t, std::int64_t)>& progress,
-                   const std::function<PointRow(std::int64_t k)>& point) {
+                   const SweepShare& share, const std::function<PointRow(std::int64_t k)>& point) {
   SweepTable table;
   std::vector<std::string> names;
   for (const SweepSpec& s : grid.specs) names.push_back(s.name);
@@ -92,11 +93,16 @@ SweepTable RunGrid(const SweepGrid& grid, const std::vector<std::string>& quanti
   table.columns.insert(table.columns.end(), quantity_names.begin(), quantity_names.end());
   table.units.insert(table.units.end(), quantity_units.begin(), quantity_units.end());
   std::vector<PointRow> rows(static_cast<size_t>(grid.size));
-  if (progress) progress(0, grid.size);
+  const std::int64_t mine = share.Count(grid.size);
+  if (progress) progress(0, mine);
   RunParallel(
-      grid.size, jobs, [&](std::int64_t k) { rows[static_cast<size_t>(k)] = point(k); },
+      mine, jobs,
+      [&](std::int64_t i) {
+        const std::int64_t k = share.Point(i);
+        rows[static_cast<size_t>(k)] = point(k);
+      },
       [&](std::int64_t done) {
-        if (progress) progress(done, grid.size);
+        if (progress) progress(done, mine);
       });
   for (PointRow& r : rows) {
     table.rows.push_back(std::move(r.values));
@@ -422,7 +428,8 @@ SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
     }
     return row;
   };
-  return RunGrid(grid, names, units, sweep_options.jobs, sweep_options.progress, point);
+  return RunGrid(grid, names, units, sweep_options.jobs, sweep_options.progress,
+                 sweep_options.share, point);
 }
 
 std::vector<std::string> MassSweepQuantityNames() {
@@ -482,7 +489,7 @@ SweepTable MassSweep(const std::function<Scene(const SceneOptions&)>& load,
                      const SceneOptions& options, const std::vector<SweepSpec>& specs,
                      const std::vector<std::string>& quantities, int jobs,
                      const std::function<void(std::int64_t, std::int64_t)>& progress,
-                     std::int64_t max_rows) {
+                     std::int64_t max_rows, const SweepShare& share) {
   if (specs.empty()) throw InputError("a sweep needs at least one --sweep");
   const auto fail = [&](const std::string& why) {
     throw SceneError(specs.front().source, 0, 0, "--quantity", why);
@@ -549,7 +556,7 @@ SweepTable MassSweep(const std::function<Scene(const SceneOptions&)>& load,
     }
     return row;
   };
-  return RunGrid(grid, names, units, jobs, progress, point);
+  return RunGrid(grid, names, units, jobs, progress, share, point);
 }
 
 }  // namespace chasles

@@ -7,6 +7,7 @@
 /// scene parameter and returns a table. The report types are the analysis layer's
 /// (chasles/analysis/solve_report.h); the io layer writes them (chasles/io/solve_json.h).
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -42,11 +43,30 @@ SweepSpec ParseSweep(const std::string& text, const std::string& source = "sweep
 /// with an angle unit (rad, deg, rev, rpm, cps), e.g. 'theta=10 deg:50 deg:5' -> "rad".
 std::string SweepParameterUnit(const SweepSpec& spec, const Dimension& dim);
 
+/// The points of a sweep that one of several processes runs (a rank of `mpirun -np N chasles
+/// ... --sweep`, docs/sweeps.md): point k when k % size == rank. Dealt out in turn, the points
+/// of a grid whose cost grows along it spread evenly, and rank 0 always has point 0.
+struct SweepShare {
+  int rank = 0;
+  int size = 1;
+  bool Has(std::int64_t k) const { return k % size == rank; }
+  /// How many of the points 0 .. total-1 are this share's.
+  std::int64_t Count(std::int64_t total) const {
+    return total > rank ? (total - rank + size - 1) / size : 0;
+  }
+  /// The i-th point of this share.
+  std::int64_t Point(std::int64_t i) const { return rank + i * size; }
+};
+
 struct SweepOptions {
   /// Called before value k of count is solved (e.g. for a progress display).
   std::function<void(int k, int count)> progress;
-  /// Called after each value is solved, with the parameter's SI value and the solution.
-  std::function<void(double value, const SolveReport& solution)> on_solution;
+  /// Called after each value is solved, with its index, the parameter's SI value and the
+  /// solution.
+  std::function<void(int k, double value, const SolveReport& solution)> on_solution;
+  /// The values solved here; the rows of the others are left empty (no values) and no
+  /// warnings are made for them. Row 0, with the columns' names, is always rank 0's.
+  SweepShare share;
 };
 
 /// Loads the scene once per value with `options` plus the override NAME = START + (STOP -

@@ -88,6 +88,9 @@ struct SimulateSweepOptions {
   /// its scene and its result, e.g. to write the run's own files. An exception it throws fails
   /// that point's row.
   std::function<void(std::int64_t k, const Scene& scene, const StudyResult& r)> on_run;
+  /// The points run here (the others' rows are left empty, with no values); `progress`
+  /// counts this share's runs.
+  SweepShare share;
 };
 
 /// Runs the scene at every point of the grid of `specs` and tabulates `quantities`: columns
@@ -112,6 +115,6 @@ SweepTable MassSweep(const std::function<Scene(const SceneOptions&)>& load,
                      const SceneOptions& options, const std::vector<SweepSpec>& specs,
                      const std::vector<std::string>& quantities, int jobs,
                      const std::function<void(std::int64_t done, std::int64_t total)>& progress,
-                     std::int64_t max_rows);
+                     std::int64_t max_rows, const SweepShare& share = {});
 
 }  // namespace chasles
