@@ -16,6 +16,7 @@ packages=(
   libgtest-dev libgmock-dev  # tests
   libpng-dev           # tests: decode the PNG of chasles plot
   libbenchmark-dev     # benchmarks in bench/
+  openmpi-bin libopenmpi-dev  # mpirun -np N chasles ... --sweep: the MPI plugin and its tests
   clang-format         # formatting check
   clang libclang-rt-dev  # libFuzzer, for scripts/fuzz.sh
   python3-dev          # the Python module: Python's headers and library

@@ -17,6 +17,7 @@
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/sweep.h"
 #include "chasles/scene/units.h"
+#include "cluster.h"
 #include "commands.h"
 #include "html_report.h"
 #include "progress.h"
@@ -371,15 +372,21 @@ int RunMassSweep(const MassArgs& args) {
   }
   const std::vector<SweepSpec> specs = ParseSweeps(args.sweep);
   SweepTable table;
+  // Under mpirun: this rank's points; rank 0 gathers the rows and alone writes (cluster.h).
+  const Cluster& cluster = Cluster::Get();
   {
-    Progress progress("mass --sweep", "", args.quiet, args.progress_interval);
+    Progress progress("mass --sweep", "", args.quiet || cluster.rank() != 0,
+                      args.progress_interval);
     table = MassSweep(
         SceneLoader(args.scene), SceneOptionsFrom(args.scene), specs, args.quantity, args.jobs,
         [&progress](std::int64_t done, std::int64_t total) {
           progress.Update(static_cast<double>(done), static_cast<double>(total));
         },
-        args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns);
+        args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns, cluster.share());
   }
+  SweepWarnings warnings;
+  bool check_failed = false;
+  if (!GatherSweep(&table, &warnings, &check_failed)) return 0;
   EmitSweepTable(table, args.format,
                  args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision),
                  args.output);

@@ -4,10 +4,14 @@
 #include <exception>
 #include <filesystem>
 #include <new>
+#include <string>
+#include <utility>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
+#include "cluster.h"
 
 namespace chasles::cli {
 
@@ -45,54 +49,112 @@ std::unique_ptr<Program> MakeProgram() {
   return p;
 }
 
-int RunParsed(Program& p) {
+namespace {
+
+/// The exit code and the message line of the exception being handled.
+std::pair<int, std::string> Describe(std::exception_ptr failure) {
   try {
-    if (p.mass->parsed()) return RunMass(p.mass_args);
-    if (p.check->parsed()) return RunCheck(p.check_args);
-    if (p.simulate->parsed()) return RunSimulate(p.simulate_args);
-    if (p.solve->parsed()) return RunSolve(p.solve_args);
-    if (p.materials->parsed()) return RunMaterials();
-    if (p.report->parsed()) return RunReport(p.report_args);
-    if (p.plot && p.plot->parsed()) return RunPlot(p.plot_args);
-    std::fprintf(stderr,
-                 "chasles: no command given, so here is the built-in demonstration scene "
-                 "(chasles --help lists the commands).\n\n");
-    MassArgs demo;
-    return RunMass(demo);
+    std::rethrow_exception(failure);
+  } catch (const RankFailure& e) {
+    return {e.code(), e.what()};  // printed by its rank's own handler, below
   } catch (const chasles::InputError& e) {
-    std::fprintf(stderr, "chasles: error: %s\n", e.what());
-    return kExitBadInput;
+    return {kExitBadInput, fmt::format("chasles: error: {}", e.what())};
   } catch (const std::filesystem::filesystem_error& e) {
     // A file-system problem is the user's to fix (a path, a permission): exit 2 with the path.
-    std::fprintf(stderr, "chasles: error: %s\n", e.what());
-    return kExitBadInput;
+    return {kExitBadInput, fmt::format("chasles: error: {}", e.what())};
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr,
-                 "chasles: error: out of memory: the input asks for more memory than this "
-                 "machine gives (see docs/reliability-io.md for the size limits)\n");
-    return kExitBadInput;
+    return {kExitBadInput,
+            "chasles: error: out of memory: the input asks for more memory than this machine "
+            "gives (see docs/reliability-io.md for the size limits)"};
   } catch (const nlohmann::json::exception& e) {
     // Scene text is checked to be UTF-8 at load and reports dump with replacement characters,
     // so this is text from elsewhere that JSON cannot hold.
-    std::fprintf(stderr, "chasles: error: the report cannot be written as JSON: %s\n", e.what());
-    return kExitBadInput;
+    return {kExitBadInput,
+            fmt::format("chasles: error: the report cannot be written as JSON: {}", e.what())};
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "chasles: internal error: %s\n", e.what());
-    return kExitInternal;
+    return {kExitInternal, fmt::format("chasles: internal error: {}", e.what())};
+  }
+}
+
+/// A sweep, which every rank of mpirun runs its share of (other commands run on rank 0).
+bool IsSweep(const Program& p) {
+  return (p.mass->parsed() && !p.mass_args.sweep.empty()) ||
+         (p.simulate->parsed() && !p.simulate_args.sweep.empty()) ||
+         (p.solve->parsed() && !p.solve_args.sweep.empty());
+}
+
+int RunCommand(Program& p) {
+  if (p.mass->parsed()) return RunMass(p.mass_args);
+  if (p.check->parsed()) return RunCheck(p.check_args);
+  if (p.simulate->parsed()) return RunSimulate(p.simulate_args);
+  if (p.solve->parsed()) return RunSolve(p.solve_args);
+  if (p.materials->parsed()) return RunMaterials();
+  if (p.report->parsed()) return RunReport(p.report_args);
+  if (p.plot && p.plot->parsed()) return RunPlot(p.plot_args);
+  std::fprintf(stderr,
+               "chasles: no command given, so here is the built-in demonstration scene "
+               "(chasles --help lists the commands).\n\n");
+  MassArgs demo;
+  return RunMass(demo);
+}
+
+}  // namespace
+
+int RunParsed(Program& p) {
+  Cluster& cluster = Cluster::Get();
+  const bool shared = cluster.distributed() && IsSweep(p);
+  // Under mpirun a command other than a sweep runs once, on rank 0.
+  if (cluster.distributed() && !shared && cluster.rank() != 0) return 0;
+  try {
+    const int code = RunCommand(p);
+    // Every rank of a sweep sends rank 0 its part once (GatherSweep in the command).
+    if (shared && !cluster.exchanged()) cluster.Exchange(SweepPart{});
+    return code;
+  } catch (...) {
+    auto [code, line] = Describe(std::current_exception());
+    if (shared && !cluster.exchanged()) {
+      // The others wait for this rank's part: send the failure instead, and rank 0 prints the
+      // one the serial sweep would have stopped at (ranks that failed alike print nothing).
+      SweepPart failed;
+      failed.code = code;
+      failed.message = line;
+      failed.failed_at = cluster.point();
+      const std::vector<SweepPart> parts = cluster.Exchange(failed);
+      if (cluster.rank() != 0) return code;
+      const SweepPart* first = FirstFailure(parts);
+      code = first->code;
+      line = first->message;
+    }
+    std::fprintf(stderr, "%s\n", line.c_str());
+    return code;
   }
 }
 
 int Main(int argc, char** argv) {
+  Cluster& cluster = Cluster::Get();
+  if (Cluster::LaunchedSize() > 1) {
+    try {
+      cluster.Start();
+    } catch (const chasles::InputError& e) {
+      // Without MPI the ranks cannot agree who speaks: the one mpirun numbered 0 does.
+      if (Cluster::LaunchedRank() == 0) std::fprintf(stderr, "chasles: error: %s\n", e.what());
+      return kExitBadInput;
+    }
+  }
   std::unique_ptr<Program> p = MakeProgram();
+  int code = 0;
   try {
     p->app.parse(argc, argv);
+    code = RunParsed(*p);
   } catch (const CLI::Success& e) {
-    return p->app.exit(e);  // --help, --version
+    code = cluster.rank() == 0 ? p->app.exit(e) : 0;  // --help, --version
   } catch (const CLI::ParseError& e) {
-    p->app.exit(e);
-    return kExitBadInput;
+    if (cluster.rank() == 0) p->app.exit(e);
+    code = kExitBadInput;
   }
-  return RunParsed(*p);
+  code = cluster.AgreeExitCode(code);
+  cluster.Finish();
+  return code;
 }
 
 }  // namespace chasles::cli

@@ -21,6 +21,7 @@
 #include "chasles/scene/study.h"
 #include "chasles/scene/sweep.h"
 #include "chasles/scene/units.h"
+#include "cluster.h"
 #include "commands.h"
 #include "html_report.h"
 #include "progress.h"
@@ -528,12 +529,15 @@ int RunSimulateSweep(const SimulateArgs& args) {
   ApplyRunLimitOptions(args, options.study);
   options.columns = args.columns;
   options.jobs = args.jobs;
+  // Under mpirun: this rank's points; rank 0 gathers the rows and alone writes (cluster.h).
+  const Cluster& cluster = Cluster::Get();
+  options.share = cluster.share();
   const std::string stem =
       args.scene.scene.empty() ? "demo" : std::filesystem::path(args.scene.scene).stem().string();
   if (!args.keep_runs.empty()) CreateOutputFolder(args.keep_runs);
   // Warnings of the runs (failed checks), by point, printed in grid order afterwards.
   std::mutex mutex;
-  std::map<std::int64_t, std::vector<std::string>> warnings;
+  SweepWarnings warnings;
   bool check_failed = false;
   options.on_run = [&](std::int64_t k, const Scene& scene, const StudyResult& r) {
     std::string name = stem;
@@ -562,13 +566,15 @@ int RunSimulateSweep(const SimulateArgs& args) {
   };
   SweepTable table;
   {
-    Progress progress("simulate --sweep", "", args.quiet, args.progress_interval);
+    Progress progress("simulate --sweep", "", args.quiet || cluster.rank() != 0,
+                      args.progress_interval);
     options.progress = [&progress](std::int64_t done, std::int64_t total) {
       progress.Update(static_cast<double>(done), static_cast<double>(total));
     };
     table = SimulateSweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), specs, quantities,
                           options, args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns);
   }
+  if (!GatherSweep(&table, &warnings, &check_failed)) return 0;
   for (const auto& [k, list] : warnings) {
     for (const std::string& w : list) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }

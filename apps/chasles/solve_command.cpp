@@ -29,6 +29,7 @@
 #include "chasles/scene/solve.h"
 #include "chasles/scene/study.h"
 #include "chasles/scene/units.h"
+#include "cluster.h"
 #include "commands.h"
 #include "html_report.h"
 #include "progress.h"
@@ -408,17 +409,34 @@ int RunSolve(const SolveArgs& args) {
     throw InputError(fmt::format("--progress-interval must be a positive time in seconds, got {}",
                                  args.progress_interval));
   }
-  Progress progress("solve --sweep", "", args.quiet, args.progress_interval);
+  // Under mpirun: this rank's values; rank 0 gathers the rows and alone writes (cluster.h).
+  Cluster& cluster = Cluster::Get();
+  Progress progress("solve --sweep", "", args.quiet || cluster.rank() != 0, args.progress_interval);
   SweepOptions options;
-  options.progress = [&progress](int k, int count) { progress.Update(k, count); };
-  // A failed check of one value: a warning on standard error (the table stays a table).
-  options.on_solution = [&sweep](double value, const SolveReport& s) {
+  options.share = cluster.share();
+  options.progress = [&progress, &cluster](int k, int count) {
+    cluster.set_point(k);  // where this rank stopped, if the solve fails
+    progress.Update(k, count);
+  };
+  // A failed check of one value: a warning on standard error (the table stays a table); under
+  // mpirun kept with the value's row and printed by rank 0 in order.
+  SweepWarnings warnings;
+  options.on_solution = [&](int k, double value, const SolveReport& s) {
     for (const std::string& w : s.certificate.FailureMessages()) {
-      std::fprintf(stderr, "warning: %s = %.12g: %s\n", sweep.name.c_str(), value, w.c_str());
+      if (cluster.distributed()) {
+        warnings[k].push_back(fmt::format("{} = {:.12g}: {}", sweep.name, value, w));
+      } else {
+        std::fprintf(stderr, "warning: %s = %.12g: %s\n", sweep.name.c_str(), value, w.c_str());
+      }
     }
   };
-  const SweepTable table =
+  SweepTable table =
       SolveSweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), sweep, options);
+  bool check_failed = false;
+  if (!GatherSweep(&table, &warnings, &check_failed)) return 0;
+  if (cluster.distributed()) {
+    for (const std::string& w : table.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
   CheckFiniteTable(table.columns, table.rows, "the sweep table");
   const std::string text = args.format == "json" ? DumpJson(SweepJson(table), "the sweep table")
                                                  : SweepCsv(table, precision);
