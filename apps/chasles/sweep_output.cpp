@@ -16,7 +16,8 @@ void AddSweepOptions(CLI::App& cmd, std::vector<std::string>& sweep,
   cmd.add_option("--sweep", sweep,
                  "Repeat over a parameter range: NAME=START:STOP:COUNT (START and STOP are "
                  "expressions with units, e.g. 'L=0.5 m:2 m:4'); repeat it for a grid of every "
-                 "combination (the last varying fastest). Prints a table, CSV or --format json")
+                 "combination (the last varying fastest). Prints a table, CSV or --format json; "
+                 "under mpirun -np N the points are split over the processes (docs/sweeps.md)")
       ->allow_extra_args(false);
   cmd.add_option("--quantity", quantity, "With --sweep, a column of the table: " + what)
       ->allow_extra_args(false)
