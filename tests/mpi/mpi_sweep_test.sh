@@ -38,6 +38,12 @@ simulate)
   same 2 sim_csv simulate "$pendulum" "${grid[@]}"
   same 2 sim_full simulate "$pendulum" "${grid[@]}" --precision full --jobs 2
   same 2 sim_json simulate "$pendulum" "${grid[@]}" --format json --jobs 1
+  # --keep-runs: each rank writes its own points' files, the same as the serial run's.
+  mkdir s m
+  (cd s && "$cli" simulate "$pendulum" "${grid[@]}" --keep-runs runs >/dev/null) || fail "serial keep-runs"
+  (cd m && mpi 2 simulate "$pendulum" "${grid[@]}" --keep-runs runs >/dev/null) || fail "mpirun keep-runs"
+  [ "$(ls s/runs | wc -l)" -eq 12 ] || fail "keep-runs: not 12 files"
+  diff -r s/runs m/runs || fail "keep-runs: the files differ"
   ;;
 solve)
   for fmt in csv json; do
