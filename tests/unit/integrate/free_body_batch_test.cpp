@@ -4,6 +4,7 @@
 
 #include "chasles/integrate/free_body_batch.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -105,6 +106,7 @@ TEST(FreeBodyBatch, AxisymmetricTopConvergesWithTheOrderOfEachStepper) {
     for (const auto& [a, b] :
          {std::pair{e1.w_error, e2.w_error}, std::pair{e2.w_error, e3.w_error},
           std::pair{e1.q_error, e2.q_error}, std::pair{e2.q_error, e3.q_error}}) {
+      std::printf("order %d: error %.3g -> %.3g, ratio %.3f\n", order, a, b, a / b);
       EXPECT_GT(a / b, 0.9 * expected) << "order " << order << ": " << a << " -> " << b;
       EXPECT_LT(a / b, 1.1 * expected) << "order " << order << ": " << a << " -> " << b;
     }
@@ -193,7 +195,8 @@ TEST(FreeBodyBatch, TranslationUnderUniformGravityIsExact) {
 // the inverse tensor), the closed-form translation, the principal-frame conversion of a
 // rotated body (a few ulps once), and the engine's compensated updates. Each is a few ulps per
 // step, so after n = 1000 steps the states agree to about n · 4 ε ≈ 1e-12 relative at most
-// (the free motion does not amplify them exponentially); measured: well below that.
+// (the free motion does not amplify them exponentially). Measured with GCC 12: 1.9e-16 for
+// bodies whose principal axes are B's, 2.4e-15 for rotated ones (both carry compensation).
 TEST(FreeBodyBatch, Rk4AgreesWithTheEngineRk4) {
   for (const bool rotated : {false, true}) {
     std::mt19937_64 rng(rotated ? 5 : 3);
@@ -209,13 +212,19 @@ TEST(FreeBodyBatch, Rk4AgreesWithTheEngineRk4) {
     batch.Advance(FreeBodyStepper::kRk4, h, n);
     batch.Store(batched);
     const double tol = n * 4 * kEps;
+    double worst = 0.0;
     for (size_t b = 0; b < s0.bodies.size(); ++b) {
       const BodyState &e = engine.bodies[b], &x = batched.bodies[b];
+      worst =
+          std::max({worst, Angle(x.q_WB, e.q_WB), (x.w_WB_B - e.w_WB_B).norm() / e.w_WB_B.norm(),
+                    (x.p_WBcm - e.p_WBcm).norm() / std::max(1.0, e.p_WBcm.norm())});
       EXPECT_TRUE(test::MatNear(x.p_WBcm, e.p_WBcm, tol, 1.0)) << b;
       EXPECT_TRUE(test::MatNear(x.v_WBcm_W, e.v_WBcm_W, tol, 1.0)) << b;
       EXPECT_LT(Angle(x.q_WB, e.q_WB), tol) << b;
       EXPECT_TRUE(test::MatNear(x.w_WB_B, e.w_WB_B, tol)) << b;
     }
+    std::printf("%s principal axes: largest relative difference from the engine %.3g\n",
+                rotated ? "rotated" : "body-frame", worst);
   }
 }
 
