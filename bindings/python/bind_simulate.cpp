@@ -161,7 +161,9 @@ void BindResult(py::module_& m) {
   py::class_<IntegratorStats>(m, "IntegratorStats", "Work counters of a run.")
       .def_readonly("steps", &IntegratorStats::steps)
       .def_readonly("rejected_steps", &IntegratorStats::rejected_steps)
-      .def_readonly("function_evaluations", &IntegratorStats::function_evaluations);
+      .def_readonly("function_evaluations", &IntegratorStats::function_evaluations)
+      .def_readonly("free_body_batch", &IntegratorStats::free_body_batch,
+                    "True when the free-body batch (structure of arrays) stepped the run");
   py::class_<EventRecord>(m, "EventRecord", "A located event.")
       .def_readonly("name", &EventRecord::name)
       .def_readonly("t", &EventRecord::t)

@@ -24,6 +24,7 @@
 #include "chasles/error.h"
 #include "chasles/integrate/dormand_prince.h"
 #include "chasles/integrate/energy_momentum.h"
+#include "chasles/integrate/free_body_batch.h"
 #include "chasles/integrate/integrator.h"
 #include "chasles/integrate/rk4.h"
 #include "chasles/integrate/simulate.h"

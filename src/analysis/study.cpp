@@ -300,6 +300,7 @@ void StudyRun::RecordSimulation(const SimulationResult& r, const std::vector<Con
   result_.stats.steps += r.stats.steps;
   result_.stats.rejected_steps += r.stats.rejected_steps;
   result_.stats.function_evaluations += r.stats.function_evaluations;
+  result_.stats.free_body_batch = result_.stats.free_body_batch || r.stats.free_body_batch;
   for (const EventRecord& e : r.events) {
     const bool stop = events[static_cast<size_t>(e.event)].action == EventAction::kStop;
     Certify(e.state, CheckPhase::kEvent);
@@ -422,6 +423,11 @@ void StudyRun::Finish() {
   result_.final_contacts = std::move(final_snapshot.contacts);
   result_.final_bodies = std::move(final_snapshot.bodies);
   slip_.Report(result_.notes);
+  if (result_.stats.free_body_batch) {
+    result_.notes.push_back(
+        "free bodies with at most uniform gravity on them: stepped by the free-body batch (the "
+        "same RK4 on a structure of arrays)");
+  }
   result_.certificate = certificate_.Finish();
   result_.t_end = state_.t;
   result_.stopped_by_event = stopped_;

@@ -9,6 +9,7 @@
 
 #include "chasles/error.h"
 #include "chasles/integrate/energy_momentum.h"
+#include "chasles/integrate/free_body_batch.h"
 #include "chasles/integrate/rk4.h"
 #include "chasles/integrate/simulate.h"
 
@@ -102,6 +103,10 @@ std::unique_ptr<Integrator> MakeIntegrator(const Model& model, const SimulationO
   const auto n = static_cast<long long>(std::ceil(span / options.fixed_step - 1e-9));
   const double h = span / static_cast<double>(std::max(1LL, n));
   if (options.integrator == IntegratorKind::kRk4) {
+    // Free bodies under uniform gravity alone: the same RK4 on the structure-of-arrays batch.
+    if (FreeBodyBatchObstacle(model).empty()) {
+      return std::make_unique<FixedGridIntegrator<FreeBodyBatchRk4Integrator>>(model, h);
+    }
     return std::make_unique<FixedGridIntegrator<Rk4Integrator>>(model, h);
   }
   return std::make_unique<FixedGridIntegrator<EnergyMomentumIntegrator>>(model, h);

@@ -332,5 +332,30 @@ TEST(SimulateCli, DivergingRunStopsWithTheForceNamed) {
   EXPECT_FALSE(std::filesystem::exists(dir / "diverge.csv"));
 }
 
+// A scene of free bodies under gravity alone stepped by rk4 takes the free-body batch and the
+// report says so; a force other than gravity sends it down the general path, without the note.
+TEST(SimulateCli, Rk4OnFreeBodiesUnderGravityNamesTheFreeBodyBatch) {
+  const auto dir = OutDir();
+  const std::string bodies =
+      "bodies:\n"
+      "  - name: box\n"
+      "    parts: [{shape: box, size: [0.1 m, 0.2 m, 0.3 m], mass: 1 kg}]\n"
+      "    initial: {velocity: [1 m/s, 0, 5 m/s], angular_velocity: [1, 7, 0.5]}\n"
+      "gravity: standard\n";
+  const std::string sim = "simulation: {until: 1 s, integrator: rk4, step: 1 ms}\n";
+  const std::string note = "stepped by the free-body batch";
+  const auto free = dir / "free.yaml";
+  std::ofstream(free) << bodies << sim;
+  const CliResult a = RunCli("simulate '" + free.string() + "' --out '" + dir.string() + "'");
+  EXPECT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_THAT(a.out, ::testing::HasSubstr(note));
+  const auto pushed = dir / "pushed.yaml";
+  std::ofstream(pushed) << bodies << "forces:\n  - {type: force, body: box, value: [0, 1 N, 0]}\n"
+                        << sim;
+  const CliResult b = RunCli("simulate '" + pushed.string() + "' --out '" + dir.string() + "'");
+  EXPECT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_THAT(b.out, ::testing::Not(::testing::HasSubstr(note)));
+}
+
 }  // namespace
 }  // namespace chasles::test

@@ -13,6 +13,10 @@ struct IntegratorStats {
   std::int64_t rejected_steps = 0;
   /// Evaluations of the equations of motion (force and acceleration computations).
   std::int64_t function_evaluations = 0;
+  /// True when the run was stepped by the free-body batch (FreeBodyBatchRk4Integrator, the
+  /// structure-of-arrays fast path for free bodies under uniform gravity) instead of the
+  /// general equations of motion.
+  bool free_body_batch = false;
 };
 
 }  // namespace chasles

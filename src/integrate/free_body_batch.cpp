@@ -1,0 +1,406 @@
+#include "chasles/integrate/free_body_batch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include <fmt/format.h>
+#include <Eigen/Eigenvalues>
+
+#include "chasles/error.h"
+#include "chasles/model/forces.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
+#include "integrate/internal/compensated.h"
+#include "integrate/internal/ode.h"
+
+namespace chasles {
+namespace {
+
+/// Bodies per tile: a tile is advanced through all the steps of one Advance call before the
+/// next, so its 26 state and compensation arrays (13 kB) stay in the first-level cache.
+constexpr int kTile = 64;
+
+/// The arrays of one stretch of bodies, restrict-qualified so that the loops vectorise: the 13
+/// state coordinates (p, q, v, ω), their compensations c (RK4 only), moments and coefficients.
+struct Arrays {
+  double* __restrict y[13];
+  double* __restrict c[13];
+  const double* __restrict I1, * __restrict I2, * __restrict I3;
+  const double* __restrict a1, * __restrict a2, * __restrict a3;
+};
+enum : int { kPx = 0, kVx = 3, kQw = 6, kWx = 10 };
+
+/// y ← y + d with compensation c (Knuth's TwoSum, as internal/compensated.h; branch-free so it
+/// vectorises): c holds what y could not.
+inline void CompAdd(double& y, double d, double& c) {
+  const double b = d + c;
+  const double sum = y + b;
+  const double bb = sum - y;
+  c = (y - (sum - bb)) + (b - bb);
+  y = sum;
+}
+
+/// a·b = p + e exactly, p = fl(a b) (Dekker's TwoProduct with Veltkamp's splitting, exact without
+/// a fused multiply-add, which the baseline x86-64 target does not have; Higham §4.3).
+inline double ProductError(double a, double b, double p) {
+  constexpr double kSplit = 134217729.0;  // 2^27 + 1
+  const double ta = kSplit * a, tb = kSplit * b;
+  const double ah = ta - (ta - a), al = a - ah;
+  const double bh = tb - (tb - b), bl = b - bh;
+  return ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+}
+
+/// Translation under uniform gravity, exact: p ← p + h v + ½h² g, v ← v + h g (a quadratic in
+/// t; RK4 is exact on it as well, eq. 8.39 with F = m g).
+inline void Translate(const Arrays& s, int i, double h, const double hg[3], const double hhg[3]) {
+  for (int j = 0; j < 3; ++j) {
+    s.y[kPx + j][i] = s.y[kPx + j][i] + h * s.y[kVx + j][i] + hhg[j];
+    s.y[kVx + j][i] += hg[j];
+  }
+}
+
+/// The same with compensated updates.
+inline void TranslateCompensated(const Arrays& s, int i, double h, const double hg[3],
+                                 const double hhg[3]) {
+  for (int j = 0; j < 3; ++j) {
+    CompAdd(s.y[kPx + j][i], h * s.y[kVx + j][i] + hhg[j], s.c[kPx + j][i]);
+    CompAdd(s.y[kVx + j][i], hg[j], s.c[kVx + j][i]);
+  }
+}
+
+/// Right-hand side of the rotation: q̇ = ½ q ⊗ (0, ω) and Euler's equations in the principal
+/// frame without moment, ω̇₁ = a₁ ω₂ω₃ (cyclic), a₁ = (I₂ − I₃)/I₁ (eq. 8.62).
+inline void Rhs(const double q[4], const double w[3], double a1, double a2, double a3, double dq[4],
+                double dw[3]) {
+  dq[0] = 0.5 * (-q[1] * w[0] - q[2] * w[1] - q[3] * w[2]);
+  dq[1] = 0.5 * (q[0] * w[0] + q[2] * w[2] - q[3] * w[1]);
+  dq[2] = 0.5 * (q[0] * w[1] - q[1] * w[2] + q[3] * w[0]);
+  dq[3] = 0.5 * (q[0] * w[2] + q[1] * w[1] - q[2] * w[0]);
+  dw[0] = a1 * w[1] * w[2];
+  dw[1] = a2 * w[2] * w[0];
+  dw[2] = a3 * w[0] * w[1];
+}
+
+/// q ← q/|q| (once per step).
+inline void Normalize(double q[4]) {
+  const double s = 1.0 / std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  q[0] *= s, q[1] *= s, q[2] *= s, q[3] *= s;
+}
+
+/// One RK4 step of the bodies [b, e): y₁ = y₀ + (h/6)(k₁ + 2(k₂ + k₃) + k₄) on (q, ω), the
+/// stages as in Rk4Integrator, added with compensation as there, then q renormalised with its
+/// compensation carried across (internal/compensated.h, NormalizeCompensated):
+/// c ← s (c − q̂ (q̂·c)) + e, s = 1/|q|, q̂ = fl(q s), e the rounding of each q_i s.
+void StepRk4(const Arrays& s, int b, int e, double h, const double hg[3], const double hhg[3]) {
+  const double h2 = 0.5 * h, h6 = h / 6.0;
+#pragma GCC ivdep
+  for (int i = b; i < e; ++i) {
+    TranslateCompensated(s, i, h, hg, hhg);
+    double q0[4], w0[3], cq[4], cw[3];
+    for (int j = 0; j < 4; ++j) q0[j] = s.y[kQw + j][i], cq[j] = s.c[kQw + j][i];
+    for (int j = 0; j < 3; ++j) w0[j] = s.y[kWx + j][i], cw[j] = s.c[kWx + j][i];
+    const double a1 = s.a1[i], a2 = s.a2[i], a3 = s.a3[i];
+    double k1q[4], k1w[3], k2q[4], k2w[3], k3q[4], k3w[3], k4q[4], k4w[3], q[4], w[3];
+    Rhs(q0, w0, a1, a2, a3, k1q, k1w);
+    for (int j = 0; j < 4; ++j) q[j] = q0[j] + h2 * k1q[j];
+    for (int j = 0; j < 3; ++j) w[j] = w0[j] + h2 * k1w[j];
+    Rhs(q, w, a1, a2, a3, k2q, k2w);
+    for (int j = 0; j < 4; ++j) q[j] = q0[j] + h2 * k2q[j];
+    for (int j = 0; j < 3; ++j) w[j] = w0[j] + h2 * k2w[j];
+    Rhs(q, w, a1, a2, a3, k3q, k3w);
+    for (int j = 0; j < 4; ++j) q[j] = q0[j] + h * k3q[j];
+    for (int j = 0; j < 3; ++j) w[j] = w0[j] + h * k3w[j];
+    Rhs(q, w, a1, a2, a3, k4q, k4w);
+    for (int j = 0; j < 4; ++j) {
+      q[j] = q0[j];
+      CompAdd(q[j], h6 * (k1q[j] + 2.0 * (k2q[j] + k3q[j]) + k4q[j]), cq[j]);
+    }
+    for (int j = 0; j < 3; ++j) {
+      w[j] = w0[j];
+      CompAdd(w[j], h6 * (k1w[j] + 2.0 * (k2w[j] + k3w[j]) + k4w[j]), cw[j]);
+    }
+    const double r = 1.0 / std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    double qn[4], err[4];
+    for (int j = 0; j < 4; ++j) qn[j] = q[j] * r, err[j] = ProductError(q[j], r, qn[j]);
+    const double dot = qn[0] * cq[0] + qn[1] * cq[1] + qn[2] * cq[2] + qn[3] * cq[3];
+    for (int j = 0; j < 4; ++j) {
+      s.y[kQw + j][i] = qn[j];
+      s.c[kQw + j][i] = r * (cq[j] - qn[j] * dot) + err[j];
+    }
+    for (int j = 0; j < 3; ++j) s.y[kWx + j][i] = w[j], s.c[kWx + j][i] = cw[j];
+  }
+}
+
+/// The exact flow for a time τ of H_k = L_k²/2I_k alone, with the Cayley angle. L_k, hence
+/// ω_k = L_k/I_k, is constant; the body turns about its axis e_k and, since L_W = R_WP L is
+/// constant, L turns the other way in P: L̇ = L × ω_k e_k, i.e. for (k, i, j) cyclic
+///   L̇_i = ω_k L_j,  L̇_j = −ω_k L_i,   q̇ = ½ q ⊗ (0, ω_k e_k).
+/// Over τ the angle is φ = ω_k τ; we take φ = 2 atan(ω_k τ/2) instead (the exact flow of the
+/// modified H̃_k = (2/τ) ∫ atan(τ L_k/2I_k) dL_k = H_k + O(τ²), so still a Poisson map that
+/// keeps |L| and L_W): with t = tan(φ/2) = ω_k τ/2,
+///   cos φ = (1 − t²)/(1 + t²),  sin φ = 2t/(1 + t²),  L_i ← c L_i + s L_j,  L_j ← c L_j − s L_i,
+///   q ← q ⊗ (1, t e_k)  (= √(1 + t²) · q ⊗ (cos φ/2, sin φ/2 e_k); the norm is reset once per
+///   step).
+/// The Cayley angle is odd in τ, so each sub-flow's inverse is the same flow for −τ and the
+/// symmetric composition below is second order.
+inline void RotateAbout(int k, double tau, double q[4], double L[3], const double invI[3]) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const double t = 0.5 * tau * L[k] * invI[k];
+  const double d = 1.0 / (1.0 + t * t);
+  const double c = (1.0 - t * t) * d, sn = 2.0 * t * d;
+  const double Li = L[i], Lj = L[j];
+  L[i] = c * Li + sn * Lj;
+  L[j] = c * Lj - sn * Li;
+  // q ⊗ (1, t e_k): (w, v) ⊗ (1, t e_k) = (w − t v_k, v + t w e_k + t v × e_k).
+  const double w = q[0], v[3] = {q[1], q[2], q[3]};
+  q[0] = w - t * v[k];
+  q[1 + k] = v[k] + t * w;
+  q[1 + i] = v[i] + t * v[j];  // (v × e_k)_i = v_j
+  q[1 + j] = v[j] - t * v[i];  // (v × e_k)_j = −v_i
+}
+
+/// One splitting step of the bodies [b, e): translation exact; rotation by the flows of axis 1
+/// for h/2, axis 2 for h/2, axis 3 for h, axis 2 for h/2, axis 1 for h/2 (symmetric, second
+/// order), q renormalised once.
+void StepSplitting(const Arrays& s, int b, int e, double h, const double hg[3],
+                   const double hhg[3]) {
+  const double h2 = 0.5 * h;
+#pragma GCC ivdep
+  for (int i = b; i < e; ++i) {
+    Translate(s, i, h, hg, hhg);
+    const double I[3] = {s.I1[i], s.I2[i], s.I3[i]};
+    const double invI[3] = {1.0 / I[0], 1.0 / I[1], 1.0 / I[2]};
+    double q[4], L[3];
+    for (int j = 0; j < 4; ++j) q[j] = s.y[kQw + j][i];
+    for (int j = 0; j < 3; ++j) L[j] = I[j] * s.y[kWx + j][i];
+    RotateAbout(0, h2, q, L, invI);
+    RotateAbout(1, h2, q, L, invI);
+    RotateAbout(2, h, q, L, invI);
+    RotateAbout(1, h2, q, L, invI);
+    RotateAbout(0, h2, q, L, invI);
+    Normalize(q);
+    for (int j = 0; j < 4; ++j) s.y[kQw + j][i] = q[j];
+    for (int j = 0; j < 3; ++j) s.y[kWx + j][i] = L[j] * invI[j];
+  }
+}
+
+}  // namespace
+
+std::string FreeBodyBatchObstacle(const Model& model) {
+  if (model.num_constraints() > 0) return "the model has constraints";
+  if (model.num_contacts() > 0) return "the model has contacts";
+  for (int e = 0; e < model.num_force_elements(); ++e) {
+    if (dynamic_cast<const UniformGravity*>(&model.force_element(e)) == nullptr) {
+      return fmt::format("force element '{}' is not uniform gravity",
+                         model.force_element(e).name());
+    }
+  }
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    if (model.body(b).num_zero_moments() > 0) {
+      return fmt::format("body '{}' has a zero principal moment (a particle or a slender rod)",
+                         model.body(b).name());
+    }
+  }
+  return {};
+}
+
+FreeBodyBatch::FreeBodyBatch(const Model& model) : n_(model.num_bodies()), g_W_(Vec3::Zero()) {
+  const std::string obstacle = FreeBodyBatchObstacle(model);
+  if (!obstacle.empty()) {
+    throw InputError(fmt::format("the free-body batch cannot step this model: {}", obstacle));
+  }
+  for (int e = 0; e < model.num_force_elements(); ++e) {
+    g_W_ += static_cast<const UniformGravity&>(model.force_element(e)).g_W();
+  }
+  const auto n = static_cast<size_t>(n_);
+  for (auto* v : {&mass_, &I1_, &I2_, &I3_, &a1_, &a2_, &a3_}) {
+    v->assign(n, std::numeric_limits<double>::quiet_NaN());
+  }
+  for (int j = 0; j < 13; ++j) {
+    y_[static_cast<size_t>(j)].assign(n, std::numeric_limits<double>::quiet_NaN());
+    c_[static_cast<size_t>(j)].assign(n, 0.0);
+  }
+  q_BP_.assign(n, Quat::Identity());
+  principal_is_B_.assign(n, 1);
+  for (size_t b = 0; b < n; ++b) {
+    const Body& body = model.body(static_cast<int>(b));
+    mass_[b] = body.mass();
+    const Mat3& I = body.I_BBcm_B();
+    Vec3 moments = I.diagonal();
+    if (!(I(0, 1) == 0.0 && I(0, 2) == 0.0 && I(1, 2) == 0.0)) {
+      // Not diagonal in B: the principal frame P, R_BP's columns the eigenvectors (det +1).
+      Eigen::SelfAdjointEigenSolver<Mat3> eig(I);
+      Mat3 R_BP = eig.eigenvectors();
+      if (R_BP.determinant() < 0.0) R_BP.col(2) = -R_BP.col(2);
+      moments = eig.eigenvalues();
+      q_BP_[b] = Quat(R_BP).normalized();
+      principal_is_B_[b] = 0;
+    }
+    I1_[b] = moments[0], I2_[b] = moments[1], I3_[b] = moments[2];
+    a1_[b] = (moments[1] - moments[2]) / moments[0];
+    a2_[b] = (moments[2] - moments[0]) / moments[1];
+    a3_[b] = (moments[0] - moments[1]) / moments[2];
+  }
+}
+
+void FreeBodyBatch::Load(const State& state) {
+  if (static_cast<int>(state.bodies.size()) != n_) {
+    throw UsageError(
+        fmt::format("a state of {} bodies loaded into a batch of {}", state.bodies.size(), n_));
+  }
+  t_ = state.t;
+  // The compensation belongs to the state it was accumulated with: start it again.
+  compensation_valid_ = false;
+  for (size_t b = 0; b < static_cast<size_t>(n_); ++b) {
+    const BodyState& s = state.bodies[b];
+    Quat q = s.q_WB;
+    Vec3 w = s.w_WB_B;
+    if (!principal_is_B_[b]) {
+      // q_WP = q_WB ⊗ q_BP; w_WP_P = R_BPᵀ w_WB_B.
+      q = s.q_WB * q_BP_[b];
+      w = q_BP_[b].conjugate() * s.w_WB_B;
+    }
+    const double v[13] = {s.p_WBcm.x(),   s.p_WBcm.y(),   s.p_WBcm.z(), s.v_WBcm_W.x(),
+                          s.v_WBcm_W.y(), s.v_WBcm_W.z(), q.w(),        q.x(),
+                          q.y(),          q.z(),          w.x(),        w.y(),
+                          w.z()};
+    for (size_t j = 0; j < 13; ++j) y_[j][b] = v[j];
+  }
+}
+
+void FreeBodyBatch::Store(State& state) const {
+  state.t = t_;
+  state.bodies.resize(static_cast<size_t>(n_));
+  for (size_t b = 0; b < static_cast<size_t>(n_); ++b) {
+    BodyState& s = state.bodies[b];
+    const auto y = [&](size_t j) { return y_[j][b]; };
+    s.p_WBcm = Vec3(y(0), y(1), y(2));
+    s.v_WBcm_W = Vec3(y(3), y(4), y(5));
+    s.q_WB = Quat(y(6), y(7), y(8), y(9));
+    s.w_WB_B = Vec3(y(10), y(11), y(12));
+    if (!principal_is_B_[b]) {
+      // q_WB = q_WP ⊗ q_BPᵀ; w_WB_B = R_BP w_WP_P.
+      s.q_WB = s.q_WB * q_BP_[b].conjugate();
+      s.w_WB_B = q_BP_[b] * s.w_WB_B;
+    }
+  }
+}
+
+void FreeBodyBatch::Advance(FreeBodyStepper stepper, double h, long long steps, int threads) {
+  if (!(h > 0.0) || !std::isfinite(h)) {
+    throw InputError(fmt::format("batch step is {:.6g} s; it must be a positive time step", h));
+  }
+  if (steps <= 0 || n_ == 0) return;
+  const double hg[3] = {h * g_W_.x(), h * g_W_.y(), h * g_W_.z()};
+  const double hh = 0.5 * h * h;
+  const double hhg[3] = {hh * g_W_.x(), hh * g_W_.y(), hh * g_W_.z()};
+  if (stepper == FreeBodyStepper::kRk4 && !compensation_valid_) {
+    for (auto& c : c_) std::fill(c.begin(), c.end(), 0.0);
+  }
+  compensation_valid_ = stepper == FreeBodyStepper::kRk4;
+  Arrays s{};
+  for (int j = 0; j < 13; ++j) s.y[j] = y_[j].data(), s.c[j] = c_[j].data();
+  s.I1 = I1_.data(), s.I2 = I2_.data(), s.I3 = I3_.data();
+  s.a1 = a1_.data(), s.a2 = a2_.data(), s.a3 = a3_.data();
+  // Bodies [b, e), tile by tile, each tile through all the steps: every body's arithmetic is
+  // the same whatever the tiles and blocks, so the result does not depend on them.
+  const auto run = [&](int b, int e) {
+    for (int t0 = b; t0 < e; t0 += kTile) {
+      const int t1 = std::min(e, t0 + kTile);
+      for (long long k = 0; k < steps; ++k) {
+        if (stepper == FreeBodyStepper::kRk4) {
+          StepRk4(s, t0, t1, h, hg, hhg);
+        } else {
+          StepSplitting(s, t0, t1, h, hg, hhg);
+        }
+      }
+    }
+  };
+  const int nt = std::clamp(threads, 1, std::max(1, n_ / kTile));
+  if (nt == 1) {
+    run(0, n_);
+  } else {
+    std::vector<std::thread> pool;
+    const int per = (n_ + nt - 1) / nt;
+    for (int k = 1; k < nt; ++k) {
+      pool.emplace_back(run, std::min(n_, k * per), std::min(n_, (k + 1) * per));
+    }
+    run(0, std::min(n_, per));
+    for (std::thread& th : pool) th.join();
+  }
+  // The time as a fixed grid would count it: t₀ + k h, one rounding per step.
+  for (long long k = 0; k < steps; ++k) t_ += h;
+  // A body whose motion is no longer finite (an overflowing spin): stop with it named.
+  for (size_t b = 0; b < static_cast<size_t>(n_); ++b) {
+    double sum = 0.0;
+    for (size_t j = 0; j < 13; ++j) sum += y_[j][b];
+    if (!std::isfinite(sum)) {
+      throw InputError(
+          fmt::format("body {} of the free-body batch became non-finite at t = {:.9g} s", b, t_));
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+FreeBodyBatchRk4Integrator::FreeBodyBatchRk4Integrator(const Model& model)
+    : model_(model), batch_(model) {
+  for (int e = 0; e < model.num_force_elements(); ++e) {
+    element_g_W_.push_back(static_cast<const UniformGravity&>(model.force_element(e)).g_W());
+  }
+  for (int b = 0; b < model.num_bodies(); ++b) mass_ += model.body(b).mass();
+  stats_.free_body_batch = true;
+}
+
+void FreeBodyBatchRk4Integrator::Step(State& state, double h) {
+  if (!(h > 0.0) || !std::isfinite(h)) {
+    throw InputError(fmt::format("RK4 step is {:.6g} s; it must be a positive time step", h));
+  }
+  // The force ledger of each gravity element g_e, exact for p(τ) = p₀ + v₀τ + ½gτ² (g the
+  // total; RK4 integrates these polynomials exactly too), with S = Σ m p₀, P = Σ m v₀, M = Σ m:
+  //   work       ∫ Σ m g_e·v dτ = g_e·(h P + ½h² M g),
+  //   impulse    ∫ Σ m g_e dτ = h M g_e,
+  //   angular    ∫ Σ m p × g_e dτ = (h S + ½h² P + ⅙h³ M g) × g_e  (about Wo).
+  Vec3 S = Vec3::Zero(), P = Vec3::Zero();
+  for (int b = 0; b < model_.num_bodies(); ++b) {
+    const BodyState& s = state.bodies[static_cast<size_t>(b)];
+    S += model_.body(b).mass() * s.p_WBcm;
+    P += model_.body(b).mass() * s.v_WBcm_W;
+  }
+  const Vec3& g = batch_.g_W();
+  const Vec3 dS = h * P + (0.5 * h * h * mass_) * g;
+  const Vec3 S_int = h * S + (0.5 * h * h) * P + (h * h * h / 6.0 * mass_) * g;
+  // The time as Rk4Integrator adds it: compensated, carried while the grid hands back the time
+  // this step left.
+  if (state.t != t_end_) c_t_ = 0.0;
+  double t_new = state.t;
+  internal::CompensatedAdd(t_new, h, c_t_);
+  // The batch keeps its principal-frame state between steps while it is handed back the state
+  // it produced (the grid changes only t), so a rotated body is converted once, not per step.
+  bool same = carried_;
+  for (size_t b = 0; same && b < state.bodies.size(); ++b) {
+    const BodyState &x = state.bodies[b], &y = last_[b];
+    same = x.p_WBcm == y.p_WBcm && x.q_WB.coeffs() == y.q_WB.coeffs() && x.v_WBcm_W == y.v_WBcm_W &&
+           x.w_WB_B == y.w_WB_B;
+  }
+  if (!same) batch_.Load(state);
+  batch_.Advance(FreeBodyStepper::kRk4, h, 1);
+  batch_.Store(state);
+  last_ = state.bodies;
+  carried_ = true;
+  state.t = t_new;
+  t_end_ = t_new;
+  for (size_t e = 0; e < element_g_W_.size(); ++e) {
+    ForceIntegrals& fi = state.force_integrals[e];
+    const Vec3& ge = element_g_W_[e];
+    fi.work += ge.dot(dS);
+    fi.linear_impulse_W += (h * mass_) * ge;
+    fi.angular_impulse_Wo_W += S_int.cross(ge);
+  }
+  internal::CheckFiniteState(model_, state);
+  ++stats_.steps;
+  stats_.function_evaluations += 4;
+}
+
+}  // namespace chasles
