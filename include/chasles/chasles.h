@@ -25,6 +25,7 @@
 #include "chasles/integrate/dormand_prince.h"
 #include "chasles/integrate/energy_momentum.h"
 #include "chasles/integrate/integrator.h"
+#include "chasles/integrate/islands.h"
 #include "chasles/integrate/rk4.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/integrate/stats.h"
