@@ -15,6 +15,16 @@
 #include "integrate/internal/hybrid.h"
 #include "integrate/internal/islands.h"
 
+// Islands of the hybrid run. Why they can run apart: the Newton-Euler equations of each body
+// (chapter 8.3, m v̇ = F, I ẇ + w × I w = M about Bcm) are coupled to another body's only
+// through a force element acting on both, a constraint row J holding both (Jᵀλ) or a contact
+// between them; the world plane and a field acting on each body alone (gravity: m g at Bcm)
+// couple none. Without such a link the state vector splits into blocks whose derivatives read
+// only their own block, and every event function (gap, normal force, slip, friction margin of a
+// point; a string's slack or tension) reads only its own island's bodies. Each block is then
+// the same ODE with the same events on its own, and its steps (error-controlled on its own
+// components only) and restarts need not follow the others'.
+
 namespace chasles {
 namespace {
 
