@@ -10,10 +10,13 @@
 // number of bodies when one global integrator restarts at every event; and n balls dropped on
 // the floor and bouncing (restitution 0.5), event-driven against fixed-step RK4 with the
 // impact resolved at the end of the step that went through the floor, impact times and
-// speeds against the closed form, n = 10, 100, 1,000. Benchmarks never assert; the errors are
-// counters. Results and the commands: docs/benchmarks.md.
+// speeds against the closed form, n = 10, 100, 1,000; and 1,000 spinning balls as islands (each
+// ball its own hybrid system) against 1,000 one-ball runs timed in the same benchmark.
+// Benchmarks never assert; the errors are counters. Results and the commands:
+// docs/benchmarks.md.
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -93,6 +96,9 @@ SimulationOptions EventDrivenOptions(double t_end) {
   o.adaptive.rtol = 1e-12;
   o.adaptive.atol = 1e-14;
   o.store_samples = false;
+  // (a)-(c) measure the one global hybrid system (every event restarts it for all bodies);
+  // (d) the islands.
+  o.islands = false;
   return o;
 }
 
@@ -480,6 +486,72 @@ BENCHMARK(BouncingBallsFixedStepRk4)
     ->Args({1000, 3})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
+
+// --- (d) islands ----------------------------------------------------------------------------
+
+// n spinning balls, each its own w0 = w0 (1 + i/n) (n separate stick events), event-driven to
+// 2 t* of the fastest: Simulate splits them into n islands (range(1) threads). The reference,
+// timed in the same run, is the plain loop of n one-ball Simulates to the same end time; the
+// ratio of the two is a counter (the acceptance: within 1.5).
+void SpinningBallsIslands(benchmark::State& st) {
+  using Clock = std::chrono::steady_clock;
+  const int n = static_cast<int>(st.range(0));
+  const Model m = MakeBalls(n);
+  const State s0 = MakeSpinningBalls(m, n, true);
+  SimulationOptions o = EventDrivenOptions(2 * TStar(SpinOf(n - 1, n, true)));
+  o.islands = true;
+  o.threads = static_cast<int>(st.range(1));
+  const Model one = MakeBalls(1);
+  std::vector<State> singles;
+  for (int i = 0; i < n; ++i) {
+    State s = MakeSpinningBalls(one, 1, false);
+    SetBodyVelocity(one, 0, Vec3::Zero(), Vec3(0, SpinOf(i, n, true), 0), s);
+    singles.push_back(s);
+  }
+  double worst = 0, v_worst = 0, seconds = 0, reference_seconds = 0;
+  std::int64_t stick_events = 0, islands = 0;
+  for (auto _ : st) {
+    try {
+      const Clock::time_point t0 = Clock::now();
+      const SimulationResult r = Simulate(m, s0, o);
+      const Clock::time_point t1 = Clock::now();
+      SimulationOptions o1 = o;
+      o1.threads = 1;
+      for (const State& s : singles) benchmark::DoNotOptimize(Simulate(one, s, o1).stats.steps);
+      st.SetIterationTime(std::chrono::duration<double>(t1 - t0).count());
+      seconds += std::chrono::duration<double>(t1 - t0).count();
+      reference_seconds += std::chrono::duration<double>(Clock::now() - t1).count();
+      stick_events = 0;
+      for (const ContactEvent& e : r.contact_events) {
+        if (e.to != ContactMode::kSticking || e.from != ContactMode::kSliding) continue;
+        ++stick_events;
+        const double t = TStar(SpinOf(e.point, n, true));
+        worst = std::max(worst, std::abs(e.t - t) / t);
+      }
+      for (int i = 0; i < n; ++i) {
+        const double v = RollingSpeed(SpinOf(i, n, true));
+        v_worst = std::max(
+            v_worst,
+            std::abs(r.final_state.bodies[static_cast<size_t>(i)].v_WBcm_W.norm() - v) / v);
+      }
+      islands = r.islands.split ? r.islands.count : 1;
+    } catch (const InputError& e) {
+      st.SkipWithError(e.what());
+      return;
+    }
+  }
+  st.counters["islands"] = static_cast<double>(islands);
+  st.counters["stick_events"] = static_cast<double>(stick_events);
+  st.counters["worst_t_star_rel_error"] = worst;
+  st.counters["worst_v_end_rel_error"] = v_worst;
+  st.counters["cost_over_n_one_ball_runs"] = seconds / reference_seconds;
+}
+BENCHMARK(SpinningBallsIslands)
+    ->Args({1000, 1})
+    ->Args({1000, 2})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 
 }  // namespace
 }  // namespace chasles

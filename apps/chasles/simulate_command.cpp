@@ -430,6 +430,12 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
   out += LedgerText(scene, r, u);
   out += fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n", r.integrator,
                      r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
+  if (r.islands.count > 0) {
+    out += r.islands.split
+               ? fmt::format("Islands: {}, each run as its own hybrid system\n", r.islands.count)
+               : fmt::format("Islands: {}, run as one hybrid system: {}\n", r.islands.count,
+                             r.islands.reason);
+  }
   for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);
   for (const auto& w : scene.warnings) out += fmt::format("warning: {}\n", w);
   for (const auto& w : r.warnings) out += fmt::format("warning: {}\n", w);

@@ -126,7 +126,11 @@ void BindOptions(py::module_& m) {
       .def_readwrite("events", &SimulationOptions::events,
                      "Events to locate (a list of EventSpec; Dormand-Prince only)")
       .def_readwrite("event_time_tolerance", &SimulationOptions::event_time_tolerance,
-                     "Width of the final bracket around an event time [s]");
+                     "Width of the final bracket around an event time [s]")
+      .def_readwrite("islands", &SimulationOptions::islands,
+                     "Run independent groups of bodies of a model with contacts separately")
+      .def_readwrite("threads", &SimulationOptions::threads,
+                     "Threads over the islands (>= 1; the result is the same for any number)");
 }
 
 /// Samples as a table: t, then per body its centre of mass, quaternion, velocity and angular
@@ -183,6 +187,12 @@ void BindResult(py::module_& m) {
       .def_readonly("approach_speed", &ImpactRecord::approach_speed)
       .def_readonly("normal_impulse", &ImpactRecord::normal_impulse)
       .def_readonly("energy_lost", &ImpactRecord::energy_lost);
+  py::class_<IslandReport>(m, "IslandReport", "How a run with contacts was split into islands.")
+      .def_readonly("split", &IslandReport::split, "True: the islands ran separately")
+      .def_readonly("count", &IslandReport::count, "Number of islands (0: not looked for)")
+      .def_readonly("reason", &IslandReport::reason, "Why the run was one system")
+      .def_readonly("bodies", &IslandReport::bodies, "Each island's bodies (when split)")
+      .def_readonly("stats", &IslandReport::stats, "Each island's work (when split)");
   py::class_<SimulationResult>(m, "SimulationResult", "Samples, events and counters of a run.")
       .def_readonly("samples", &SimulationResult::samples, "States at the output times")
       .def_readonly("final_state", &SimulationResult::final_state)
@@ -192,6 +202,7 @@ void BindResult(py::module_& m) {
       .def_readonly("contact_events", &SimulationResult::contact_events)
       .def_readonly("impacts", &SimulationResult::impacts)
       .def_readonly("warnings", &SimulationResult::warnings)
+      .def_readonly("islands", &SimulationResult::islands)
       .def("_table", &SamplesTable, py::arg("model"));
   m.def(
       "_simulate",

@@ -26,6 +26,7 @@
 #include "chasles/integrate/energy_momentum.h"
 #include "chasles/integrate/free_body_batch.h"
 #include "chasles/integrate/integrator.h"
+#include "chasles/integrate/islands.h"
 #include "chasles/integrate/rk4.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/integrate/stats.h"

@@ -301,6 +301,7 @@ void StudyRun::RecordSimulation(const SimulationResult& r, const std::vector<Con
   result_.stats.rejected_steps += r.stats.rejected_steps;
   result_.stats.function_evaluations += r.stats.function_evaluations;
   result_.stats.free_body_batch = result_.stats.free_body_batch || r.stats.free_body_batch;
+  result_.islands = r.islands;
   for (const EventRecord& e : r.events) {
     const bool stop = events[static_cast<size_t>(e.event)].action == EventAction::kStop;
     Certify(e.state, CheckPhase::kEvent);

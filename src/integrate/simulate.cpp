@@ -10,7 +10,7 @@
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/error.h"
 #include "integrate/internal/event_root.h"
-#include "integrate/internal/hybrid.h"
+#include "integrate/internal/islands.h"
 
 namespace chasles {
 namespace {
@@ -47,6 +47,9 @@ void Validate(const Model& model, const State& initial, const SimulationOptions&
       throw InputError(
           fmt::format("event '{}' watches contact modes, but the model has no contacts", e.name));
     }
+  }
+  if (!(o.threads >= 1)) {
+    throw InputError(fmt::format("threads is {}; it must be >= 1", o.threads));
   }
   if (!(o.event_time_tolerance > 0.0)) {
     throw InputError("event time tolerance must be positive (e.g. 1e-12 s)");
@@ -198,7 +201,7 @@ SimulationResult Simulate(const Model& model, const State& initial,
           "dense output; choose the Dormand-Prince integrator for a model with contacts or "
           "strings");
     }
-    return internal::RunHybrid(model, initial, options);
+    return internal::RunHybridIslands(model, initial, options);
   }
   // A constrained model starts on its constraints: the initial state is projected (positions,
   // then velocities), so the first sample is the state actually integrated.

@@ -195,6 +195,10 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
                      {"steps", r.stats.steps},
                      {"rejected_steps", r.stats.rejected_steps},
                      {"function_evaluations", r.stats.function_evaluations}};
+  if (r.islands.count > 0) {
+    j["integrator"]["islands"] = {
+        {"count", r.islands.count}, {"split", r.islands.split}, {"reason", r.islands.reason}};
+  }
   j["notes"] = r.notes;
   std::vector<std::string> warnings = header.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());

@@ -279,6 +279,14 @@ Joint::Joint(std::string name, JointKind kind, BodyIndex parent, const Attachmen
   RequireFrame(this->name(), "child", X_CJ);
 }
 
+std::shared_ptr<const Constraint> Joint::Renumbered(const std::vector<BodyIndex>& new_index) const {
+  const auto renumber = [&](BodyIndex b) {
+    return b == kWorld ? kWorld : new_index[static_cast<size_t>(b)];
+  };
+  return std::make_shared<Joint>(name(), kind_, renumber(parent()), X_PJ_, renumber(child()),
+                                 X_CJ_);
+}
+
 int Joint::num_rows() const {
   switch (kind_) {
     case JointKind::kWeld:

@@ -12,6 +12,11 @@
 namespace chasles {
 namespace {
 
+// Body b's index under `new_index` (kWorld stays kWorld).
+BodyIndex Renumber(const std::vector<BodyIndex>& new_index, BodyIndex b) {
+  return b == kWorld ? kWorld : new_index[static_cast<size_t>(b)];
+}
+
 void RequireFinite(const std::string& name, const char* what, const Vec3& v) {
   if (!v.allFinite()) {
     throw InputError(fmt::format("force element '{}': {} is not a finite vector", name, what));
@@ -36,6 +41,11 @@ void RequireFunction(const std::string& name, const VectorFunction& f) {
 UniformGravity::UniformGravity(std::string name, const Vec3& g_W)
     : ForceElement(std::move(name)), g_W_(g_W) {
   RequireFinite(this->name(), "gravitational acceleration", g_W);
+}
+
+std::shared_ptr<const ForceElement> UniformGravity::Renumbered(
+    const std::vector<BodyIndex>& /*new_index*/) const {
+  return std::make_shared<UniformGravity>(name(), g_W_);
 }
 
 double UniformGravity::AddForces(const Model& model, const State&, const Data&,
@@ -64,6 +74,11 @@ CentralGravity::CentralGravity(std::string name, double mu, const Vec3& centre_W
         this->name(), mu));
   }
   RequireFinite(this->name(), "centre", centre_W);
+}
+
+std::shared_ptr<const ForceElement> CentralGravity::Renumbered(
+    const std::vector<BodyIndex>& /*new_index*/) const {
+  return std::make_shared<CentralGravity>(name(), mu_, centre_W_);
 }
 
 double CentralGravity::AddForces(const Model& model, const State& state, const Data&,
@@ -317,6 +332,13 @@ std::vector<BodyIndex> SpringDamper::bodies() const {
   return {a_, b_};
 }
 
+std::shared_ptr<const ForceElement> SpringDamper::Renumbered(
+    const std::vector<BodyIndex>& new_index) const {
+  return std::make_shared<SpringDamper>(name(), Renumber(new_index, a_), p_AoP_A_,
+                                        Renumber(new_index, b_), p_BoQ_B_, rest_length_, stiffness_,
+                                        damping_);
+}
+
 namespace {
 struct EndPoint {
   Vec3 p_BcmP_W;  // offset from the body's centre of mass, in W
@@ -370,6 +392,11 @@ LinearDrag::LinearDrag(std::string name, BodyIndex body, double linear, double a
     : ForceElement(std::move(name)), body_(body), linear_(linear), angular_(angular) {
   RequireNonNegative(this->name(), "linear drag coefficient", linear, "N·s/m");
   RequireNonNegative(this->name(), "angular drag coefficient", angular, "N·m·s");
+}
+
+std::shared_ptr<const ForceElement> LinearDrag::Renumbered(
+    const std::vector<BodyIndex>& new_index) const {
+  return std::make_shared<LinearDrag>(name(), Renumber(new_index, body_), linear_, angular_);
 }
 
 double LinearDrag::AddForces(const Model&, const State& state, const Data& data,

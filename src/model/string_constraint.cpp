@@ -109,6 +109,21 @@ StringConstraint::StringConstraint(std::string name, const StringEnd& a,
   }
 }
 
+std::shared_ptr<const Constraint> StringConstraint::Renumbered(
+    const std::vector<BodyIndex>& new_index) const {
+  const auto renumber = [&](BodyIndex b) {
+    return b == kWorld ? kWorld : new_index[static_cast<size_t>(b)];
+  };
+  StringEnd a = a_, b = b_;
+  a.body = renumber(a.body);
+  b.body = renumber(b.body);
+  std::vector<StringPulley> pulleys = pulleys_;
+  for (StringPulley& p : pulleys) p.body = renumber(p.body);
+  auto copy = std::make_shared<StringConstraint>(name(), a, std::move(pulleys), b, n_W_, length_);
+  copy->set_restitution(restitution_);
+  return copy;
+}
+
 void StringConstraint::set_restitution(double e) {
   if (!(e >= 0.0 && e <= 1.0)) {
     throw InputError(fmt::format(

@@ -213,6 +213,36 @@ def test_contact_sphere_lands():
         model.add_contact(chasles.ContactSpec("bad", chasles.ContactShape.SPHERE, b, radius=-1.0))
 
 
+
+def test_contact_islands():
+    # Two balls dropped side by side onto the floor from h1 and h2 (centres at h + r): each its
+    # own island, landing at t = sqrt(2 h / g) whatever the other does, on 1 or 2 threads.
+    r, h1, h2 = 0.05, 0.8, 0.45
+    model = chasles.Model()
+    for i in range(2):
+        b = ball(model, name=f"ball{i}", r=r)
+        model.add_contact(chasles.ContactSpec(f"floor{i}", chasles.ContactShape.SPHERE, b,
+                                              radius=r, mu_s=0.5, mu_k=0.4))
+    model.add_force_element(chasles.UniformGravity("gravity", [0, 0, -G0]))
+    s = chasles.make_rest_state(model)
+    s.bodies[0].position = [0, 0, h1 + r]
+    s.bodies[1].position = [1, 0, h2 + r]
+    results = []
+    for threads in (1, 2):
+        o = chasles.SimulationOptions(1.0, 0.1, rtol=1e-12, atol=1e-14)
+        o.threads = threads
+        res = chasles.simulate(model, s, o)
+        assert res.islands.split and res.islands.count == 2, res.islands.reason
+        assert [list(x) for x in res.islands.bodies] == [[0], [1]]
+        touch = {e.point: e.t for e in res.contact_events if e.reason == "touch-down"}
+        assert_rel(touch[0], math.sqrt(2 * h1 / G0))
+        assert_rel(touch[1], math.sqrt(2 * h2 / G0))
+        results.append(np.array([list(b.position) for b in res.final_state.bodies]))
+    assert np.array_equal(results[0], results[1])  # bitwise
+    o.islands = False
+    res = chasles.simulate(model, s, o)
+    assert not res.islands.split and res.islands.reason == "islands turned off"
+
 def test_bad_model_input():
     model = chasles.Model()
     with pytest.raises(chasles.InputError) as e:

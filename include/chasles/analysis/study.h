@@ -390,6 +390,8 @@ struct StudyResult {
   /// Integrator name and work counters summed over the segments.
   std::string integrator;
   IntegratorStats stats;
+  /// How the last hybrid run was split into islands (count 0: no contacts or strings).
+  IslandReport islands;
   /// Things to tell the user (impulses after the end time, ...).
   std::vector<std::string> notes;
   /// Things the user must know: initial values changed to satisfy the constraints

@@ -180,6 +180,30 @@ struct SimulationOptions {
   /// Called after every accepted integration step with the time it reached (optional): the
   /// caller counts the work and stops a run that exceeds its limits by throwing (LimitError).
   std::function<void(double t)> on_step = nullptr;
+  /// Split a model with contacts into islands (bodies linked by constraints, sphere-sphere
+  /// contacts or force elements between bodies), each run as its own hybrid system with its
+  /// own integrator and events (docs/contact.md, "Islands"); false: always one system. Where a
+  /// run needs the whole State at arbitrary times (user events, on_transition) it is one
+  /// system anyway; SimulationResult::islands says which ran and why.
+  bool islands = true;
+  /// Threads over the islands (>= 1); the result is bitwise the same for any number.
+  /// on_step is then called from several threads, one call at a time.
+  int threads = 1;
+};
+
+/// How a hybrid run (a model with contacts or strings) was split into islands.
+struct IslandReport {
+  /// True when the islands ran separately; false: the model ran as one system.
+  bool split = false;
+  /// Number of islands the bodies form (0 when not looked for: a model without contacts).
+  int count = 0;
+  /// Why the run was one system although the bodies form several islands, or why they were
+  /// not looked for (empty when split).
+  std::string reason;
+  /// When split: each island's bodies (Model order) and its integrator's work, in island
+  /// order (by the smallest body index).
+  std::vector<std::vector<BodyIndex>> bodies;
+  std::vector<IntegratorStats> stats;
 };
 
 struct SimulationResult {
@@ -201,6 +225,8 @@ struct SimulationResult {
   std::vector<ConstraintEvent> constraint_events;
   /// What the run had to decide or change that the user should know (jams, ...).
   std::vector<std::string> warnings;
+  /// Which path ran: islands or one system, and why.
+  IslandReport islands;
 };
 
 /// The mode timeline of contact point `point` from a run's contact events, from the first

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -99,6 +100,12 @@ class Constraint {
   /// Newton's restitution coefficient of such a constraint's impact (a string snapping taut):
   /// the gap rate after is -e times the rate before (0: plastic).
   virtual double restitution() const { return 0.0; }
+  /// The same constraint on the bodies renumbered by `new_index` (as
+  /// ForceElement::Renumbered), or nullptr when it cannot be (the default).
+  virtual std::shared_ptr<const Constraint> Renumbered(
+      const std::vector<BodyIndex>& /*new_index*/) const {
+    return nullptr;
+  }
 
  private:
   std::string name_;

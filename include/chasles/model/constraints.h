@@ -54,6 +54,8 @@ class Joint final : public Constraint {
   std::string kind() const override { return JointKindName(kind_); }
   void Evaluate(const Model& model, const State& state, const Data& data,
                 ConstraintEval& eval) const override;
+  std::shared_ptr<const Constraint> Renumbered(
+      const std::vector<BodyIndex>& new_index) const override;
 
  private:
   JointKind kind_;

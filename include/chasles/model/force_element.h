@@ -6,6 +6,7 @@
 /// Joints, constraints and contacts are not force elements: they come with their own solve.
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,16 @@ class ForceElement {
   virtual bool is_dissipative() const { return false; }
   /// Bodies it acts on (kWorld excluded), checked by Model::AddForceElement.
   virtual std::vector<BodyIndex> bodies() const = 0;
+  /// The same element acting on the bodies renumbered by `new_index` (new_index[b] is body b's
+  /// index in another Model holding the same bodies; kWorld stays kWorld), for splitting a
+  /// Model into independent islands; nullptr when it cannot be renumbered (an element that
+  /// evaluates user functions of the whole State, which may read any body). An element whose
+  /// bodies() is empty acts on each body of the Model alone (gravity) and is copied into every
+  /// island.
+  virtual std::shared_ptr<const ForceElement> Renumbered(
+      const std::vector<BodyIndex>& /*new_index*/) const {
+    return nullptr;
+  }
 
  private:
   std::string name_;

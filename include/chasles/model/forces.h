@@ -23,6 +23,8 @@ class UniformGravity final : public ForceElement {
   bool has_potential() const override { return true; }
   double CalcPotentialEnergy(const Model& model, const State& state) const override;
   std::vector<BodyIndex> bodies() const override { return {}; }
+  std::shared_ptr<const ForceElement> Renumbered(
+      const std::vector<BodyIndex>& new_index) const override;
 
  private:
   Vec3 g_W_;
@@ -39,6 +41,8 @@ class CentralGravity final : public ForceElement {
   bool has_potential() const override { return true; }
   double CalcPotentialEnergy(const Model& model, const State& state) const override;
   std::vector<BodyIndex> bodies() const override { return {}; }
+  std::shared_ptr<const ForceElement> Renumbered(
+      const std::vector<BodyIndex>& new_index) const override;
 
  private:
   double mu_;
@@ -180,6 +184,8 @@ class SpringDamper final : public ForceElement {
   double CalcPotentialEnergy(const Model& model, const State& state) const override;
   bool is_dissipative() const override { return true; }
   std::vector<BodyIndex> bodies() const override;
+  std::shared_ptr<const ForceElement> Renumbered(
+      const std::vector<BodyIndex>& new_index) const override;
 
  private:
   BodyIndex a_, b_;
@@ -195,6 +201,8 @@ class LinearDrag final : public ForceElement {
   double AddForces(const Model&, const State&, const Data&, WrenchAccumulator&) const override;
   bool is_dissipative() const override { return true; }
   std::vector<BodyIndex> bodies() const override { return {body_}; }
+  std::shared_ptr<const ForceElement> Renumbered(
+      const std::vector<BodyIndex>& new_index) const override;
 
  private:
   BodyIndex body_;

@@ -47,6 +47,7 @@
 /// tension that comes out negative is an InputError.
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,8 @@ class StringConstraint final : public Constraint {
   std::string kind() const override { return "string"; }
   void Evaluate(const Model& model, const State& state, const Data& data,
                 ConstraintEval& eval) const override;
+  std::shared_ptr<const Constraint> Renumbered(
+      const std::vector<BodyIndex>& new_index) const override;
   /// The path at the kinematics stage in `data` (positions only). Throws InputError when two
   /// consecutive circles overlap (no common tangent).
   StringPath CalcPath(const Model& model, const State& state, const Data& data) const;

@@ -1,0 +1,409 @@
+#include "chasles/integrate/islands.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <numeric>
+#include <stdexcept>
+#include <thread>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "chasles/model/string_constraint.h"
+#include "integrate/internal/hybrid.h"
+#include "integrate/internal/islands.h"
+
+// Islands of the hybrid run. Why they can run apart: the Newton-Euler equations of each body
+// (chapter 8.3, m v̇ = F, I ẇ + w × I w = M about Bcm) are coupled to another body's only
+// through a force element acting on both, a constraint row J holding both (Jᵀλ) or a contact
+// between them; the world plane and a field acting on each body alone (gravity: m g at Bcm)
+// couple none. Without such a link the state vector splits into blocks whose derivatives read
+// only their own block, and every event function (gap, normal force, slip, friction margin of a
+// point; a string's slack or tension) reads only its own island's bodies. Each block is then
+// the same ODE with the same events on its own, and its steps (error-controlled on its own
+// components only) and restarts need not follow the others'.
+
+namespace chasles {
+namespace {
+
+// Disjoint sets of bodies (union by size, path halving).
+class UnionFind {
+ public:
+  explicit UnionFind(int n) : parent_(static_cast<size_t>(n)), size_(static_cast<size_t>(n), 1) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+  int Find(int x) {
+    while (parent_[static_cast<size_t>(x)] != x) {
+      const auto i = static_cast<size_t>(x);
+      parent_[i] = parent_[static_cast<size_t>(parent_[i])];
+      x = parent_[i];
+    }
+    return x;
+  }
+  void Link(BodyIndex a, BodyIndex b) {
+    if (a == kWorld || b == kWorld) return;
+    int ra = Find(a), rb = Find(b);
+    if (ra == rb) return;
+    if (size_[static_cast<size_t>(ra)] < size_[static_cast<size_t>(rb)]) std::swap(ra, rb);
+    parent_[static_cast<size_t>(rb)] = ra;
+    size_[static_cast<size_t>(ra)] += size_[static_cast<size_t>(rb)];
+  }
+
+ private:
+  std::vector<int> parent_, size_;
+};
+
+}  // namespace
+
+IslandPartition FindIslands(const Model& model) {
+  const int n = model.num_bodies();
+  UnionFind sets(n);
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const Constraint& con = model.constraint(c);
+    sets.Link(con.parent(), con.child());
+    // A string also moves the bodies that carry its pulleys.
+    if (const auto* s = dynamic_cast<const StringConstraint*>(&con)) {
+      for (const StringPulley& p : s->pulleys()) sets.Link(p.body, con.child());
+    }
+  }
+  for (int k = 0; k < model.num_contacts(); ++k) {
+    sets.Link(model.contact(k).body(), model.contact(k).other_body());
+  }
+  for (int f = 0; f < model.num_force_elements(); ++f) {
+    const std::vector<BodyIndex> bodies = model.force_element(f).bodies();
+    for (size_t i = 1; i < bodies.size(); ++i) sets.Link(bodies[0], bodies[i]);
+  }
+  IslandPartition p;
+  p.island_of_body.assign(static_cast<size_t>(n), -1);
+  std::vector<int> island_of_root(static_cast<size_t>(n), -1);
+  for (BodyIndex b = 0; b < n; ++b) {
+    int& island = island_of_root[static_cast<size_t>(sets.Find(b))];
+    if (island < 0) {
+      island = static_cast<int>(p.bodies.size());
+      p.bodies.emplace_back();
+    }
+    p.bodies[static_cast<size_t>(island)].push_back(b);
+    p.island_of_body[static_cast<size_t>(b)] = island;
+  }
+  return p;
+}
+
+std::string IslandObstacle(const Model& model) {
+  std::vector<BodyIndex> identity(static_cast<size_t>(model.num_bodies()));
+  std::iota(identity.begin(), identity.end(), 0);
+  for (int f = 0; f < model.num_force_elements(); ++f) {
+    if (!model.force_element(f).Renumbered(identity)) {
+      return fmt::format(
+          "force element '{}' evaluates user functions of the whole state, which may read any "
+          "body",
+          model.force_element(f).name());
+    }
+  }
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    if (!model.constraint(c).Renumbered(identity)) {
+      return fmt::format("constraint '{}' ({}) cannot be given to an island",
+                         model.constraint(c).name(), model.constraint(c).kind());
+    }
+  }
+  return "";
+}
+
+namespace internal {
+namespace {
+
+// What island i holds, by global index: its force elements (an element acting on each body
+// alone, gravity, is in every island), constraints and contacts, each in Model order.
+struct IslandContents {
+  std::vector<int> forces, constraints, contacts;
+};
+
+// One island as a Model of its own, with the map from its local indices to the global ones.
+struct IslandModel {
+  Model model;
+  std::vector<int> forces;  // global element of each local element
+  std::vector<int> points;  // global contact point of each local point
+};
+
+class IslandRun {
+ public:
+  IslandRun(const Model& model, const State& initial, const SimulationOptions& o,
+            IslandPartition partition)
+      : model_(model), initial_(initial), o_(o), p_(std::move(partition)) {
+    // Each body's index inside its island: the renumbering every island's elements use.
+    local_.assign(static_cast<size_t>(model.num_bodies()), kWorld);
+    for (const std::vector<BodyIndex>& bodies : p_.bodies) {
+      for (size_t i = 0; i < bodies.size(); ++i) {
+        local_[static_cast<size_t>(bodies[i])] = static_cast<BodyIndex>(i);
+      }
+    }
+    contents_.resize(p_.bodies.size());
+    for (int f = 0; f < model.num_force_elements(); ++f) {
+      const std::vector<BodyIndex> bodies = model.force_element(f).bodies();
+      if (bodies.empty()) {
+        for (IslandContents& c : contents_) c.forces.push_back(f);
+      } else {
+        contents_[Island(bodies[0])].forces.push_back(f);
+      }
+    }
+    for (int c = 0; c < model.num_constraints(); ++c) {
+      contents_[Island(model.constraint(c).child())].constraints.push_back(c);
+    }
+    for (int k = 0; k < model.num_contacts(); ++k) {
+      contents_[Island(model.contact(k).body())].contacts.push_back(k);
+    }
+  }
+
+  SimulationResult Run() {
+    const size_t n = p_.bodies.size();
+    results_.resize(n);
+    points_.resize(n);
+    forces_.resize(n);
+    std::vector<std::exception_ptr> errors(n);
+    std::atomic<size_t> next{0};
+    std::atomic<bool> failed{false};
+    const auto work = [&] {
+      for (size_t i = next++; i < n && !failed; i = next++) {
+        try {
+          RunIsland(i);
+        } catch (...) {
+          errors[i] = std::current_exception();
+          failed = true;
+        }
+      }
+    };
+    const auto threads = static_cast<size_t>(std::max(1, o_.threads));
+    if (threads == 1 || n == 1) {
+      work();
+    } else {
+      std::vector<std::thread> pool;
+      for (size_t t = 0; t < std::min(threads, n); ++t) pool.emplace_back(work);
+      for (std::thread& t : pool) t.join();
+    }
+    for (const std::exception_ptr& e : errors) {
+      if (e) std::rethrow_exception(e);
+    }
+    return Merge();
+  }
+
+ private:
+  size_t Island(BodyIndex b) const {
+    return static_cast<size_t>(p_.island_of_body[static_cast<size_t>(b)]);
+  }
+
+  IslandModel BuildModel(size_t i) const {
+    IslandModel im;
+    Model& m = im.model;
+    for (BodyIndex b : p_.bodies[i]) {
+      m.AddBody(model_.body(b).name(), model_.body(b).mass_properties());
+    }
+    for (int f : contents_[i].forces) {
+      m.AddForceElement(model_.force_element(f).Renumbered(local_));
+      im.forces.push_back(f);
+    }
+    for (int c : contents_[i].constraints) m.AddConstraint(model_.constraint(c).Renumbered(local_));
+    for (int k : contents_[i].contacts) {
+      ContactSpec spec = model_.contact(k).spec();
+      spec.body = local_[static_cast<size_t>(spec.body)];
+      if (spec.other_body != kWorld) spec.other_body = local_[static_cast<size_t>(spec.other_body)];
+      m.AddContact(spec);
+      for (int q = 0; q < model_.contact(k).num_points(); ++q) {
+        im.points.push_back(model_.contact_point_offset(k) + q);
+      }
+    }
+    return im;
+  }
+
+  // The island's part of the initial state. An element acting on every body alone (gravity)
+  // carries its integrals from the start in island 0 and from zero in the others (Merge sums).
+  State InitialState(size_t i, const IslandModel& im) const {
+    State s;
+    s.t = initial_.t;
+    for (BodyIndex b : p_.bodies[i]) s.bodies.push_back(initial_.bodies[static_cast<size_t>(b)]);
+    if (!initial_.force_integrals.empty()) {
+      for (int f : im.forces) {
+        const bool shared = model_.force_element(f).bodies().empty();
+        s.force_integrals.push_back(
+            shared && i > 0 ? ForceIntegrals{} : initial_.force_integrals[static_cast<size_t>(f)]);
+      }
+    }
+    for (int c : contents_[i].constraints) {
+      const auto g = static_cast<size_t>(c);
+      if (!initial_.constraint_work.empty())
+        s.constraint_work.push_back(initial_.constraint_work[g]);
+      if (!initial_.constraint_modes.empty()) {
+        s.constraint_modes.push_back(initial_.constraint_modes[g]);
+      }
+    }
+    if (!initial_.contacts.empty()) {
+      for (int q : im.points) s.contacts.push_back(initial_.contacts[static_cast<size_t>(q)]);
+    }
+    return s;
+  }
+
+  void RunIsland(size_t i) {
+    const IslandModel im = BuildModel(i);
+    SimulationOptions o = o_;
+    o.on_sample = nullptr;
+    o.store_samples = true;
+    o.islands = false;
+    if (o_.on_step && o_.threads > 1) {
+      o.on_step = [this](double t) {
+        const std::lock_guard<std::mutex> lock(step_mutex_);
+        o_.on_step(t);
+      };
+    }
+    results_[i] = RunHybrid(im.model, InitialState(i, im), o);
+    points_[i] = im.points;
+    forces_[i] = im.forces;
+  }
+
+  // The whole State from the islands' states `part(i)`.
+  template <class Part>
+  State Assemble(const Part& part) const {
+    const size_t n = p_.bodies.size();
+    State s;
+    s.t = part(0).t;
+    s.bodies.resize(static_cast<size_t>(model_.num_bodies()));
+    s.force_integrals.assign(static_cast<size_t>(model_.num_force_elements()), ForceIntegrals{});
+    s.contacts.resize(static_cast<size_t>(model_.num_contact_points()));
+    bool work = false, modes = false;
+    for (size_t i = 0; i < n; ++i) {
+      work = work || !part(i).constraint_work.empty();
+      modes = modes || !part(i).constraint_modes.empty();
+    }
+    if (work) s.constraint_work.assign(static_cast<size_t>(model_.num_constraints()), 0.0);
+    if (modes) s.constraint_modes.resize(static_cast<size_t>(model_.num_constraints()));
+    for (size_t i = 0; i < n; ++i) {
+      const State& x = part(i);
+      if (x.t != s.t) throw std::logic_error("islands: the islands' sample times differ");
+      for (size_t j = 0; j < x.bodies.size(); ++j) {
+        s.bodies[static_cast<size_t>(p_.bodies[i][j])] = x.bodies[j];
+      }
+      for (size_t j = 0; j < x.force_integrals.size(); ++j) {
+        ForceIntegrals& F = s.force_integrals[static_cast<size_t>(forces_[i][j])];
+        const ForceIntegrals& f = x.force_integrals[j];
+        // Integrals of a sum over bodies: the islands' parts add up (island order).
+        F.work += f.work;
+        F.work_nonconservative += f.work_nonconservative;
+        F.linear_impulse_W += f.linear_impulse_W;
+        F.angular_impulse_Wo_W += f.angular_impulse_Wo_W;
+      }
+      const std::vector<int>& cons = contents_[i].constraints;
+      for (size_t j = 0; j < x.constraint_work.size(); ++j) {
+        s.constraint_work[static_cast<size_t>(cons[j])] = x.constraint_work[j];
+      }
+      for (size_t j = 0; j < x.constraint_modes.size(); ++j) {
+        s.constraint_modes[static_cast<size_t>(cons[j])] = x.constraint_modes[j];
+      }
+      for (size_t j = 0; j < x.contacts.size(); ++j) {
+        s.contacts[static_cast<size_t>(points_[i][j])] = x.contacts[j];
+      }
+    }
+    return s;
+  }
+
+  SimulationResult Merge() {
+    const size_t n = p_.bodies.size();
+    SimulationResult r;
+    r.islands.split = true;
+    r.islands.count = static_cast<int>(n);
+    r.islands.bodies = p_.bodies;
+    const size_t num_samples = results_[0].samples.size();
+    for (size_t i = 0; i < n; ++i) {
+      if (results_[i].samples.size() != num_samples) {
+        throw std::logic_error("islands: the islands' sample counts differ");
+      }
+    }
+    for (size_t k = 0; k < num_samples; ++k) {
+      State s = Assemble([&](size_t i) -> const State& { return results_[i].samples[k]; });
+      if (o_.on_sample) o_.on_sample(s);
+      if (o_.store_samples) r.samples.push_back(std::move(s));
+    }
+    r.final_state = Assemble([&](size_t i) -> const State& { return results_[i].final_state; });
+    // Records in global time order; at equal times in island order, then each island's order
+    // (stable sorts). The initial modes come first, by point (constraint), as in one system.
+    r.contact_events.resize(static_cast<size_t>(model_.num_contact_points()));
+    std::vector<ContactEvent> later;
+    std::vector<ConstraintEvent> initial_strings;
+    for (size_t i = 0; i < n; ++i) {
+      SimulationResult& x = results_[i];
+      const std::vector<int>& cons = contents_[i].constraints;
+      for (size_t e = 0; e < x.contact_events.size(); ++e) {
+        ContactEvent c = x.contact_events[e];
+        c.point = points_[i][static_cast<size_t>(c.point)];
+        if (e < points_[i].size()) {
+          r.contact_events[static_cast<size_t>(c.point)] = c;  // kInitial, one per point
+        } else {
+          later.push_back(c);
+        }
+      }
+      for (ImpactRecord rec : x.impacts) {
+        rec.point = points_[i][static_cast<size_t>(rec.point)];
+        r.impacts.push_back(rec);
+      }
+      for (ConstraintEvent c : x.constraint_events) {
+        c.constraint = cons[static_cast<size_t>(c.constraint)];
+        (c.reason == "initial" ? initial_strings : r.constraint_events).push_back(c);
+      }
+      r.warnings.insert(r.warnings.end(), x.warnings.begin(), x.warnings.end());
+      r.stats.steps += x.stats.steps;
+      r.stats.rejected_steps += x.stats.rejected_steps;
+      r.stats.function_evaluations += x.stats.function_evaluations;
+      r.islands.stats.push_back(x.stats);
+    }
+    const auto by_time = [](const auto& a, const auto& b) { return a.t < b.t; };
+    std::stable_sort(later.begin(), later.end(), by_time);
+    r.contact_events.insert(r.contact_events.end(), later.begin(), later.end());
+    std::stable_sort(r.impacts.begin(), r.impacts.end(), by_time);
+    std::stable_sort(r.constraint_events.begin(), r.constraint_events.end(), by_time);
+    std::sort(initial_strings.begin(), initial_strings.end(),
+              [](const ConstraintEvent& a, const ConstraintEvent& b) {
+                return a.constraint < b.constraint;
+              });
+    r.constraint_events.insert(r.constraint_events.begin(), initial_strings.begin(),
+                               initial_strings.end());
+    return r;
+  }
+
+  const Model& model_;
+  const State& initial_;
+  const SimulationOptions& o_;
+  const IslandPartition p_;
+  std::vector<BodyIndex> local_;
+  std::vector<IslandContents> contents_;
+  std::vector<SimulationResult> results_;
+  std::vector<std::vector<int>> points_, forces_;
+  std::mutex step_mutex_;
+};
+
+}  // namespace
+
+SimulationResult RunHybridIslands(const Model& model, const State& initial,
+                                  const SimulationOptions& o) {
+  IslandPartition partition = FindIslands(model);
+  const int count = static_cast<int>(partition.bodies.size());
+  std::string reason;
+  if (!o.islands) {
+    reason = "islands turned off";
+  } else if (count <= 1) {
+    reason = "the bodies form one island";
+  } else if (o.on_transition) {
+    reason = "on_transition takes the whole state at every contact transition";
+  } else if (!o.events.empty()) {
+    reason = "user events are functions of the whole state";
+  } else {
+    reason = IslandObstacle(model);
+  }
+  if (!reason.empty()) {
+    SimulationResult r = RunHybrid(model, initial, o);
+    r.islands.count = count;
+    r.islands.reason = std::move(reason);
+    return r;
+  }
+  return IslandRun(model, initial, o, std::move(partition)).Run();
+}
+
+}  // namespace internal
+}  // namespace chasles
