@@ -390,7 +390,9 @@ SimulationResult RunHybridIslands(const Model& model, const State& initial,
   } else if (count <= 1) {
     reason = "the bodies form one island";
   } else if (o.on_transition) {
-    reason = "on_transition takes the whole state at every contact transition";
+    reason =
+        "the checks at each contact change (on_transition: energy, contact forces) need the "
+        "whole system's state at that instant";
   } else if (!o.events.empty()) {
     reason = "user events are functions of the whole state";
   } else {
