@@ -67,7 +67,8 @@ void BindOptions(py::module_& m) {
   py::enum_<IntegratorKind>(m, "Integrator", "Integrators of simulate().")
       .value("DORMAND_PRINCE", IntegratorKind::kDormandPrince5)
       .value("RK4", IntegratorKind::kRk4)
-      .value("ENERGY_MOMENTUM", IntegratorKind::kEnergyMomentum);
+      .value("ENERGY_MOMENTUM", IntegratorKind::kEnergyMomentum)
+      .value("SPLITTING", IntegratorKind::kSplitting);
   py::enum_<EventDirection>(m, "EventDirection", "Which zero crossings of g count.")
       .value("RISING", EventDirection::kRising)
       .value("FALLING", EventDirection::kFalling)

@@ -424,7 +424,7 @@ void StudyRun::Finish() {
   result_.final_contacts = std::move(final_snapshot.contacts);
   result_.final_bodies = std::move(final_snapshot.bodies);
   slip_.Report(result_.notes);
-  if (result_.stats.free_body_batch) {
+  if (result_.stats.free_body_batch && def_.options.integrator == IntegratorKind::kRk4) {
     result_.notes.push_back(
         "free bodies with at most uniform gravity on them: stepped by the free-body batch (the "
         "same RK4 on a structure of arrays)");

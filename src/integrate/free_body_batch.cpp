@@ -53,15 +53,7 @@ inline double ProductError(double a, double b, double p) {
 }
 
 /// Translation under uniform gravity, exact: p ← p + h v + ½h² g, v ← v + h g (a quadratic in
-/// t; RK4 is exact on it as well, eq. 8.39 with F = m g).
-inline void Translate(const Arrays& s, int i, double h, const double hg[3], const double hhg[3]) {
-  for (int j = 0; j < 3; ++j) {
-    s.y[kPx + j][i] = s.y[kPx + j][i] + h * s.y[kVx + j][i] + hhg[j];
-    s.y[kVx + j][i] += hg[j];
-  }
-}
-
-/// The same with compensated updates.
+/// t; RK4 is exact on it as well, eq. 8.39 with F = m g), with compensated updates.
 inline void TranslateCompensated(const Arrays& s, int i, double h, const double hg[3],
                                  const double hhg[3]) {
   for (int j = 0; j < 3; ++j) {
@@ -161,15 +153,17 @@ inline void RotateAbout(int k, double tau, double q[4], double L[3], const doubl
   q[1 + j] = v[j] - t * v[i];  // (v × e_k)_j = −v_i
 }
 
-/// One splitting step of the bodies [b, e): translation exact; rotation by the flows of axis 1
-/// for h/2, axis 2 for h/2, axis 3 for h, axis 2 for h/2, axis 1 for h/2 (symmetric, second
-/// order), q renormalised once.
+/// One splitting step of the bodies [b, e): translation exact, its increments added with
+/// compensation (a plain p += h v + ½h²g loses up to half an ulp of p per step, 5e-7 m after 10⁴
+/// steps of 1e-3 s at 10⁶ m); rotation by the flows of axis 1 for h/2, axis 2 for h/2, axis 3
+/// for h, axis 2 for h/2, axis 1 for h/2 (symmetric, second order), q renormalised once. The
+/// rotation is not compensated: |q| and |L| are reset or kept by the map itself.
 void StepSplitting(const Arrays& s, int b, int e, double h, const double hg[3],
                    const double hhg[3]) {
   const double h2 = 0.5 * h;
 #pragma GCC ivdep
   for (int i = b; i < e; ++i) {
-    Translate(s, i, h, hg, hhg);
+    TranslateCompensated(s, i, h, hg, hhg);
     const double I[3] = {s.I1[i], s.I2[i], s.I3[i]};
     const double invI[3] = {1.0 / I[0], 1.0 / I[1], 1.0 / I[2]};
     double q[4], L[3];
@@ -296,10 +290,13 @@ void FreeBodyBatch::Advance(FreeBodyStepper stepper, double h, long long steps, 
   const double hg[3] = {h * g_W_.x(), h * g_W_.y(), h * g_W_.z()};
   const double hh = 0.5 * h * h;
   const double hhg[3] = {hh * g_W_.x(), hh * g_W_.y(), hh * g_W_.z()};
-  if (stepper == FreeBodyStepper::kRk4 && !compensation_valid_) {
+  // The compensation belongs to the stepper that made it (the splitting carries only the
+  // translation's): it starts from zero after a Load or a change of stepper.
+  if (!compensation_valid_ || stepper != compensated_stepper_) {
     for (auto& c : c_) std::fill(c.begin(), c.end(), 0.0);
   }
-  compensation_valid_ = stepper == FreeBodyStepper::kRk4;
+  compensation_valid_ = true;
+  compensated_stepper_ = stepper;
   Arrays s{};
   for (int j = 0; j < 13; ++j) s.y[j] = y_[j].data(), s.c[j] = c_[j].data();
   s.I1 = I1_.data(), s.I2 = I2_.data(), s.I3 = I3_.data();
@@ -344,8 +341,8 @@ void FreeBodyBatch::Advance(FreeBodyStepper stepper, double h, long long steps, 
 }
 
 // ---------------------------------------------------------------------------------------
-FreeBodyBatchRk4Integrator::FreeBodyBatchRk4Integrator(const Model& model)
-    : model_(model), batch_(model) {
+FreeBodyBatchIntegrator::FreeBodyBatchIntegrator(const Model& model, FreeBodyStepper stepper)
+    : model_(model), stepper_(stepper), batch_(model) {
   for (int e = 0; e < model.num_force_elements(); ++e) {
     element_g_W_.push_back(static_cast<const UniformGravity&>(model.force_element(e)).g_W());
   }
@@ -353,12 +350,13 @@ FreeBodyBatchRk4Integrator::FreeBodyBatchRk4Integrator(const Model& model)
   stats_.free_body_batch = true;
 }
 
-void FreeBodyBatchRk4Integrator::Step(State& state, double h) {
+void FreeBodyBatchIntegrator::Step(State& state, double h) {
   if (!(h > 0.0) || !std::isfinite(h)) {
-    throw InputError(fmt::format("RK4 step is {:.6g} s; it must be a positive time step", h));
+    throw InputError(fmt::format("the step is {:.6g} s; it must be a positive time step", h));
   }
   // The force ledger of each gravity element g_e, exact for p(τ) = p₀ + v₀τ + ½gτ² (g the
-  // total; RK4 integrates these polynomials exactly too), with S = Σ m p₀, P = Σ m v₀, M = Σ m:
+  // total; RK4 integrates these polynomials exactly too, and the splitting's translation is
+  // this closed form), with S = Σ m p₀, P = Σ m v₀, M = Σ m:
   //   work       ∫ Σ m g_e·v dτ = g_e·(h P + ½h² M g),
   //   impulse    ∫ Σ m g_e dτ = h M g_e,
   //   angular    ∫ Σ m p × g_e dτ = (h S + ½h² P + ⅙h³ M g) × g_e  (about Wo).
@@ -385,7 +383,7 @@ void FreeBodyBatchRk4Integrator::Step(State& state, double h) {
            x.w_WB_B == y.w_WB_B;
   }
   if (!same) batch_.Load(state);
-  batch_.Advance(FreeBodyStepper::kRk4, h, 1);
+  batch_.Advance(stepper_, h, 1);
   batch_.Store(state);
   last_ = state.bodies;
   carried_ = true;
@@ -400,7 +398,7 @@ void FreeBodyBatchRk4Integrator::Step(State& state, double h) {
   }
   internal::CheckFiniteState(model_, state);
   ++stats_.steps;
-  stats_.function_evaluations += 4;
+  stats_.function_evaluations += stepper_ == FreeBodyStepper::kRk4 ? 4 : 1;
 }
 
 }  // namespace chasles

@@ -23,7 +23,9 @@ namespace {
 template <typename Stepper>
 class FixedGridIntegrator final : public Integrator {
  public:
-  FixedGridIntegrator(const Model& model, double h) : stepper_(model), h_(h) {}
+  template <typename... StepperArgs>
+  FixedGridIntegrator(const Model& model, double h, StepperArgs... args)
+      : stepper_(model, args...), h_(h) {}
 
   void Initialize(const State& state) override {
     state_ = state;
@@ -85,6 +87,8 @@ const char* IntegratorName(IntegratorKind kind) {
       return "RK4 (fixed step)";
     case IntegratorKind::kEnergyMomentum:
       return "energy-momentum (fixed step)";
+    case IntegratorKind::kSplitting:
+      return "symplectic splitting (fixed step, free bodies)";
   }
   return "";
 }
@@ -105,9 +109,21 @@ std::unique_ptr<Integrator> MakeIntegrator(const Model& model, const SimulationO
   if (options.integrator == IntegratorKind::kRk4) {
     // Free bodies under uniform gravity alone: the same RK4 on the structure-of-arrays batch.
     if (FreeBodyBatchObstacle(model).empty()) {
-      return std::make_unique<FixedGridIntegrator<FreeBodyBatchRk4Integrator>>(model, h);
+      return std::make_unique<FixedGridIntegrator<FreeBodyBatchIntegrator>>(model, h,
+                                                                            FreeBodyStepper::kRk4);
     }
     return std::make_unique<FixedGridIntegrator<Rk4Integrator>>(model, h);
+  }
+  if (options.integrator == IntegratorKind::kSplitting) {
+    const std::string obstacle = FreeBodyBatchObstacle(model);
+    if (!obstacle.empty()) {
+      throw InputError(fmt::format(
+          "the splitting integrator steps free bodies under uniform gravity only, and {}; "
+          "choose rk4 or the adaptive integrator",
+          obstacle));
+    }
+    return std::make_unique<FixedGridIntegrator<FreeBodyBatchIntegrator>>(
+        model, h, FreeBodyStepper::kSplitting);
   }
   return std::make_unique<FixedGridIntegrator<EnergyMomentumIntegrator>>(model, h);
 }

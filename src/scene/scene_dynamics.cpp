@@ -534,18 +534,21 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
   if (at.Has("until")) sim.until = PositiveValue(at.Child("until"), kTime, "the end time");
   if (at.Has("integrator")) {
     const std::string name =
-        report_.Text(at.Child("integrator"), "adaptive, rk4 or energy_momentum");
+        report_.Text(at.Child("integrator"), "adaptive, rk4, energy_momentum or splitting");
     if (name == "adaptive") {
       sim.integrator = IntegratorKind::kDormandPrince5;
     } else if (name == "rk4") {
       sim.integrator = IntegratorKind::kRk4;
     } else if (name == "energy_momentum") {
       sim.integrator = IntegratorKind::kEnergyMomentum;
+    } else if (name == "splitting") {
+      sim.integrator = IntegratorKind::kSplitting;
     } else {
-      report_.Fail(at.Child("integrator"),
-                   fmt::format("unknown integrator '{}'{}; integrators: adaptive (default), rk4, "
-                               "energy_momentum",
-                               name, DidYouMean(name, {"adaptive", "rk4", "energy_momentum"})));
+      report_.Fail(
+          at.Child("integrator"),
+          fmt::format("unknown integrator '{}'{}; integrators: adaptive (default), rk4, "
+                      "energy_momentum, splitting",
+                      name, DidYouMean(name, {"adaptive", "rk4", "energy_momentum", "splitting"})));
     }
   }
   const bool fixed = sim.integrator != IntegratorKind::kDormandPrince5;
@@ -572,9 +575,10 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
   }
   if (at.Has("step")) {
     if (!fixed) {
-      report_.Fail(at.Child("step"),
-                   "'step' is for the fixed-step integrators (rk4, energy_momentum); the "
-                   "adaptive integrator chooses its own steps from 'tolerance'");
+      report_.Fail(
+          at.Child("step"),
+          "'step' is for the fixed-step integrators (rk4, energy_momentum, splitting); the "
+          "adaptive integrator chooses its own steps from 'tolerance'");
     }
     sim.step = PositiveValue(at.Child("step"), kTime, "the step");
   } else if (fixed) {

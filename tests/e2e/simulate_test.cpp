@@ -357,5 +357,35 @@ TEST(SimulateCli, Rk4OnFreeBodiesUnderGravityNamesTheFreeBodyBatch) {
   EXPECT_THAT(b.out, ::testing::Not(::testing::HasSubstr(note)));
 }
 
+// `integrator: splitting` runs the batch's symplectic splitting and says so; a scene it cannot
+// step is refused with exit 2, naming what does not qualify, and writes nothing.
+TEST(SimulateCli, SplittingIntegratorRunsFreeBodiesAndRefusesOtherScenes) {
+  const auto dir = OutDir();
+  const std::string bodies =
+      "bodies:\n"
+      "  - name: box\n"
+      "    parts: [{shape: box, size: [0.1 m, 0.2 m, 0.3 m], mass: 1 kg}]\n"
+      "    initial: {velocity: [1 m/s, 0, 5 m/s], angular_velocity: [1, 7, 0.5]}\n"
+      "gravity: standard\n";
+  const std::string sim = "simulation: {until: 1 s, integrator: splitting, step: 1 ms}\n";
+  const auto free = dir / "split.yaml";
+  std::ofstream(free) << bodies << sim;
+  const CliResult a = RunCli("simulate '" + free.string() + "' --out '" + dir.string() + "'");
+  EXPECT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_THAT(a.out, ::testing::HasSubstr("Integrator: symplectic splitting (fixed step, free "
+                                          "bodies): 1000 steps"));
+  EXPECT_THAT(a.out, ::testing::Not(::testing::HasSubstr("the same RK4")));
+  const auto pushed = dir / "split-pushed.yaml";
+  std::ofstream(pushed) << bodies << "forces:\n  - {type: force, body: box, value: [0, 1 N, 0]}\n"
+                        << sim;
+  const CliResult b = RunCli("simulate '" + pushed.string() + "' --out '" + dir.string() + "'");
+  EXPECT_EQ(b.exit_code, 2);
+  EXPECT_THAT(b.err, ::testing::HasSubstr(pushed.string() + ":7:5: forces[0]: "));
+  EXPECT_THAT(b.err, ::testing::HasSubstr("the splitting integrator steps free bodies under "
+                                          "uniform gravity only, and force element 'force 1' is "
+                                          "not uniform gravity"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "split-pushed.csv"));
+}
+
 }  // namespace
 }  // namespace chasles::test

@@ -73,30 +73,35 @@ class FreeBodyBatch {
   std::vector<Quat> q_BP_;
   std::vector<char> principal_is_B_;
   /// State, one array per coordinate: p_WBcm [m] (0–2), v_WBcm_W [m/s] (3–5), q_WP (w, x, y,
-  /// z) (6–9), w_WP_P [rad/s] (10–12); and the compensation of each (RK4's compensated
-  /// updates, internal/compensated.h), valid while only RK4 has stepped since the last Load.
+  /// z) (6–9), w_WP_P [rad/s] (10–12); and the compensation of each (compensated updates,
+  /// internal/compensated.h: every coordinate for RK4, the translation's for the splitting),
+  /// valid while one stepper has stepped since the last Load.
   std::array<std::vector<double>, 13> y_, c_;
   bool compensation_valid_ = false;
+  FreeBodyStepper compensated_stepper_ = FreeBodyStepper::kRk4;
 };
 
-/// RK4 on FreeBodyBatch behind the Rk4Integrator-like stepping interface that the fixed-step
-/// grid (MakeIntegrator) drives: Simulate uses it for fixed-step RK4 runs of models that
-/// qualify (FreeBodyBatchObstacle empty). The force integrals of the UniformGravity elements are
-/// added in closed form: work m g·Δp, impulse m g h, angular impulse (∫ Σ m p dt) × g. The
-/// result agrees with Rk4Integrator's to round-off (tests/unit/integrate/free_body_batch_test.cpp);
-/// Rk4Integrator additionally carries the rounding of its state updates from step to step
-/// (compensated sums), this one does not.
-class FreeBodyBatchRk4Integrator {
+/// One of FreeBodyBatch's steppers behind the Rk4Integrator-like stepping interface that the
+/// fixed-step grid (MakeIntegrator) drives: Simulate uses it with kRk4 for fixed-step RK4 runs of
+/// models that qualify (FreeBodyBatchObstacle empty), and with kSplitting for the `splitting`
+/// integrator (IntegratorKind::kSplitting, which only such models may use). The force integrals of
+/// the UniformGravity elements are added in closed form: work m g·Δp, impulse m g h, angular
+/// impulse (∫ Σ m p dt) × g. The result agrees with Rk4Integrator's to round-off
+/// (tests/unit/integrate/free_body_batch_test.cpp); Rk4Integrator additionally carries the rounding
+/// of its state updates from step to step (compensated sums), this one does not.
+class FreeBodyBatchIntegrator {
  public:
   /// `model` must outlive the integrator.
-  explicit FreeBodyBatchRk4Integrator(const Model& model);
+  FreeBodyBatchIntegrator(const Model& model, FreeBodyStepper stepper);
   /// Advances `state` (t, bodies, force integrals) by one step of `h` [s] > 0.
   void Step(State& state, double h);
-  /// Work done so far; function_evaluations counts 4 per step, like RK4.
+  /// Work done so far; function_evaluations counts 4 per step for RK4 (like Rk4Integrator) and
+  /// 1 for the splitting (one pass over the bodies, no force evaluation).
   const IntegratorStats& stats() const { return stats_; }
 
  private:
   const Model& model_;
+  FreeBodyStepper stepper_;
   FreeBodyBatch batch_;
   std::vector<Vec3> element_g_W_;
   /// The bodies as the last step left them: the batch's own state stands for them.

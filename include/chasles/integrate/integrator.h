@@ -11,7 +11,7 @@
 
 namespace chasles {
 
-enum class IntegratorKind { kDormandPrince5, kRk4, kEnergyMomentum };
+enum class IntegratorKind { kDormandPrince5, kRk4, kEnergyMomentum, kSplitting };
 
 /// Name of an integrator kind as reports print it ("adaptive Dormand-Prince 5(4)", "RK4 (fixed
 /// step)", ...).

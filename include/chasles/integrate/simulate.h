@@ -8,7 +8,10 @@
 ///    locates events (on the dense output, to `event_time_tolerance`).
 ///  - kEnergyMomentum: fixed step; exact conservation of energy and angular momentum of free
 ///    rotation; for long torque-free or conservative runs.
-///  - kRk4: fixed step, fourth order; for a fixed output grid at predictable cost.
+///  - kRk4: fixed step, fourth order; for a fixed output grid at predictable cost (free bodies
+///    under uniform gravity alone run on the structure-of-arrays batch, free_body_batch.h).
+///  - kSplitting: fixed step, second-order symplectic splitting on the free-body batch; only for
+///    models FreeBodyBatchObstacle accepts (an InputError names what does not qualify).
 /// Fixed-step integrators shorten `fixed_step` so that it divides the output interval evenly.
 
 #include <functional>

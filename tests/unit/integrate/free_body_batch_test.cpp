@@ -319,6 +319,78 @@ TEST(FreeBodyBatch, SimulateTakesTheBatchAndAgreesWithTheGenericPath) {
   }
 }
 
+// The `splitting` integrator is the batch's splitting stepper on the fixed grid: Simulate's
+// samples are the batch advanced by hand, to round-off (the grid cuts each output stretch
+// t_k+1 − t_k into equal steps, which differ from 1e-3 s in the last bits). Gravity's ledger is
+// the closed form for the splitting's exact translation, p(t) = p₀ + v₀t + ½gt²: its work is
+// Σ m g·(p(t) − p₀) and its impulse M g t, so the translational energy balances exactly (to
+// round-off): ½ m |v|² − ½ m |v₀|² = work.
+TEST(FreeBodyBatch, SplittingIntegratorIsTheBatchOnTheFixedGridWithAnExactGravityLedger) {
+  std::mt19937_64 rng(47);
+  State s0;
+  const Vec3 g(0.3, -0.2, -9.81);
+  const Model m = RandomBodies(20, rng, true, g, &s0);
+  SimulationOptions o;
+  o.integrator = IntegratorKind::kSplitting;
+  o.fixed_step = 1e-3;
+  o.output_interval = 0.05;
+  o.t_end = 0.2;
+  const SimulationResult r = Simulate(m, s0, o);
+  EXPECT_TRUE(r.stats.free_body_batch);
+  EXPECT_EQ(r.stats.steps, 200);
+  ASSERT_EQ(r.samples.size(), 5u);
+  FreeBodyBatch batch(m);
+  batch.Load(s0);
+  State e = s0;
+  double M = 0.0, work = 0.0, ke0 = 0.0, ke = 0.0;
+  for (int b = 0; b < m.num_bodies(); ++b) M += m.body(b).mass();
+  for (size_t k = 1; k < r.samples.size(); ++k) {
+    for (int i = 0; i < 50; ++i) batch.Advance(FreeBodyStepper::kSplitting, 1e-3, 1);
+    batch.Store(e);
+    const State& x = r.samples[k];
+    work = 0.0;
+    ke0 = 0.0;
+    ke = 0.0;
+    for (size_t b = 0; b < e.bodies.size(); ++b) {
+      const double tol = 200 * 8 * kEps;
+      EXPECT_TRUE(test::MatNear(x.bodies[b].p_WBcm, e.bodies[b].p_WBcm, tol, 1.0)) << k << b;
+      EXPECT_TRUE(test::MatNear(x.bodies[b].v_WBcm_W, e.bodies[b].v_WBcm_W, tol, 1.0)) << k << b;
+      EXPECT_LT(Angle(x.bodies[b].q_WB, e.bodies[b].q_WB), tol) << k << " " << b;
+      EXPECT_TRUE(test::MatNear(x.bodies[b].w_WB_B, e.bodies[b].w_WB_B, tol, 1.0)) << k << b;
+      const double mb = m.body(static_cast<int>(b)).mass();
+      work += mb * g.dot(x.bodies[b].p_WBcm - s0.bodies[b].p_WBcm);
+      ke0 += 0.5 * mb * s0.bodies[b].v_WBcm_W.squaredNorm();
+      ke += 0.5 * mb * x.bodies[b].v_WBcm_W.squaredNorm();
+    }
+    const ForceIntegrals& fi = x.force_integrals[0];
+    EXPECT_TRUE(test::Near(fi.work, work, 1e-12, ke0)) << k;
+    EXPECT_TRUE(test::Near(ke - ke0, work, 1e-12, ke0)) << k;
+    EXPECT_TRUE(test::MatNear(fi.linear_impulse_W, M * g * x.t, 1e-12)) << k;
+  }
+}
+
+// Any other model is refused by name before a step is taken.
+TEST(FreeBodyBatch, SplittingIntegratorRefusesAModelTheBatchCannotStep) {
+  Model m;
+  m.AddBody("a", MassProperties(1.0, Vec3::Zero(), RotationalInertia(1, 2, 3)));
+  m.AddForceElement(std::make_shared<CentralGravity>("sun", 1.0, Vec3(5, 0, 0)));
+  State s = MakeRestState(m);
+  s.force_integrals.resize(1);
+  SimulationOptions o;
+  o.integrator = IntegratorKind::kSplitting;
+  o.fixed_step = 1e-3;
+  o.t_end = 0.1;
+  try {
+    Simulate(m, s, o);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "the splitting integrator steps free bodies under uniform gravity only, and "
+                 "force element 'sun' is not uniform gravity; choose rk4 or the adaptive "
+                 "integrator");
+  }
+}
+
 TEST(FreeBodyBatch, RefusesModelsItCannotStepAndNamesWhy) {
   Model m;
   m.AddBody("a", MassProperties(1.0, Vec3::Zero(), RotationalInertia(1, 2, 3)));

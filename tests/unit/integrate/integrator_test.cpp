@@ -136,7 +136,8 @@ TEST_P(EveryKind, CompensatedUpdatesKeepAFarDriftExact) {
 
 INSTANTIATE_TEST_SUITE_P(Integrator, EveryKind,
                          testing::Values(IntegratorKind::kDormandPrince5, IntegratorKind::kRk4,
-                                         IntegratorKind::kEnergyMomentum),
+                                         IntegratorKind::kEnergyMomentum,
+                                         IntegratorKind::kSplitting),
                          [](const testing::TestParamInfo<IntegratorKind>& info) {
                            switch (info.param) {
                              case IntegratorKind::kDormandPrince5:
@@ -145,6 +146,8 @@ INSTANTIATE_TEST_SUITE_P(Integrator, EveryKind,
                                return std::string("rk4");
                              case IntegratorKind::kEnergyMomentum:
                                return std::string("energy_momentum");
+                             case IntegratorKind::kSplitting:
+                               return std::string("splitting");
                            }
                            return std::string();
                          });
@@ -188,6 +191,8 @@ TEST(IntegratorName, NamesEveryKind) {
   EXPECT_STREQ(IntegratorName(IntegratorKind::kDormandPrince5), "adaptive Dormand-Prince 5(4)");
   EXPECT_STREQ(IntegratorName(IntegratorKind::kRk4), "RK4 (fixed step)");
   EXPECT_STREQ(IntegratorName(IntegratorKind::kEnergyMomentum), "energy-momentum (fixed step)");
+  EXPECT_STREQ(IntegratorName(IntegratorKind::kSplitting),
+               "symplectic splitting (fixed step, free bodies)");
 }
 
 }  // namespace
