@@ -116,7 +116,8 @@ struct PlotArgs {
   std::vector<std::string> columns;  // X, then the Y columns
   std::string output;                // .svg or .png
   std::string title;
-  std::string by;  // one line per value of this column (a grid sweep's other parameter)
+  std::string by;    // one line per value of this column (a grid sweep's other parameter)
+  bool log = false;  // both axes logarithmic (base 10)
 };
 /// Built only with PLplot (CHASLES_HAVE_PLOT).
 CLI::App* AddPlotCommand(CLI::App& app, PlotArgs& args);

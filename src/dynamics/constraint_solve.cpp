@@ -14,6 +14,7 @@
 #include "chasles/error.h"
 #include "chasles/math/quaternion.h"
 #include "dynamics/internal/generalized.h"
+#include "dynamics/internal/sparse_solve.h"
 
 namespace chasles {
 namespace {
@@ -78,6 +79,32 @@ int SolveSchur(const Model& model, const std::vector<int>* row_owner, const Matr
   return static_cast<int>(cod.rank());
 }
 
+// The sparse path of SolveConstraintForces (dynamics/internal/sparse_solve.h): the same
+// system (J M⁻¹ Jᵀ) λ = c - J u̇_free with J by body blocks. Returns false, leaving the dense
+// path to solve it, when the system is singular (redundant rows need the least-norm λ).
+bool SolveSparse(const Model& model, Data& data) {
+  internal::SparseWorkspace& ws = internal::GetSparseWorkspace(data.sparse_constraints);
+  ws.rows.Clear();
+  internal::AppendConstraintRows(model, data, ws.rows);
+  const int n = ws.rows.rows();
+  data.schur_rhs.resize(n);
+  for (int i = 0; i < n; ++i)
+    data.schur_rhs[i] = data.acceleration_rhs[i] - ws.rows.RowTimes(i, data.u_dot);
+  if (!internal::SolveSparse(model, data, true, ws, data.schur_rhs, data.lambda)) return false;
+  data.constraint_rank = n;
+  internal::AddMinvWTimes(ws, data.lambda, data.u_dot);  // u̇ = u̇_free + M⁻¹ Jᵀ λ
+  return true;
+}
+
+// Data::a_WBcm_W and Data::wdot_WB_B from Data::u_dot.
+void StoreAccelerations(const Model& model, Data& data) {
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    data.a_WBcm_W[i] = data.u_dot.segment<3>(6 * b);
+    data.wdot_WB_B[i] = data.R_WB[i].transpose() * data.u_dot.segment<3>(6 * b + 3);
+  }
+}
+
 std::vector<int> RowOwners(const Model& model) {
   std::vector<int> owner(static_cast<size_t>(model.num_constraint_rows()));
   for (int c = 0; c < model.num_constraints(); ++c) {
@@ -91,14 +118,19 @@ std::vector<int> RowOwners(const Model& model) {
 
 void CalcConstraintRows(const Model& model, const State& state, Data& data) {
   CheckDataFor(model, data);
-  data.J.setZero();
   for (int c = 0; c < model.num_constraints(); ++c) {
     const Constraint& con = model.constraint(c);
     ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
-    e = ConstraintEval{};
-    con.Evaluate(model, state, data, e);
     const int o = model.constraint_row_offset(c);
     const int n = con.num_rows();
+    // J's only non-zero entries are the blocks written here last time (its parent's, child's
+    // and extra bodies' columns, still named by `e`); zeroing just those keeps J's fill O(rows).
+    if (con.parent() != kWorld) data.J.block(o, 6 * con.parent(), n, 6).setZero();
+    data.J.block(o, 6 * con.child(), n, 6).setZero();
+    for (int k = 0; k < e.num_extra; ++k)
+      data.J.block(o, 6 * e.extra_body[static_cast<size_t>(k)], n, 6).setZero();
+    e = ConstraintEval{};
+    con.Evaluate(model, state, data, e);
     // A constraint that can let go keeps its gap (its row's g) for the events; released, its
     // rows leave the system (zero in J, b, c, g; its multiplier is held at 0 by
     // internal::HoldReleasedRows) but `e` keeps its Jacobian rows for the gap rate.
@@ -136,6 +168,12 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
     u_dot.segment<3>(6 * b) = data.a_WBcm_W[i];
     u_dot.segment<3>(6 * b + 3) = data.R_WB[i] * data.wdot_WB_B[i];
   }
+  if (internal::UseSparse(data.linear_solver, model.num_constraint_rows()) &&
+      SolveSparse(model, data)) {
+    StoreAccelerations(model, data);
+    internal::FillConstraintReactions(model, state, data);
+    return;
+  }
   internal::TimesMassInverse(model, data, data.J, data.JMinv);
   data.schur.noalias() = data.JMinv * data.J.transpose();
   data.Ju.noalias() = data.J * u_dot;  // J u̇_free here; J u below
@@ -149,11 +187,7 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
       SolveSchur(model, nullptr, data.schur, data.schur_ldlt.ldlt, data.schur_rhs, data.lambda,
                  "set of reactions", r_scale, &data);
   u_dot.noalias() += data.JMinv.transpose() * data.lambda;  // M⁻¹ Jᵀ λ (M⁻¹ symmetric)
-  for (int b = 0; b < nb; ++b) {
-    const auto i = static_cast<size_t>(b);
-    data.a_WBcm_W[i] = u_dot.segment<3>(6 * b);
-    data.wdot_WB_B[i] = data.R_WB[i].transpose() * u_dot.segment<3>(6 * b + 3);
-  }
+  StoreAccelerations(model, data);
   // Reactions: the child's share of Jᵀλ moved to the joint point J.
   internal::FillConstraintReactions(model, state, data);
 }

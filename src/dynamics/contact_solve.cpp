@@ -14,6 +14,7 @@
 #include "chasles/error.h"
 #include "chasles/model/constraints.h"
 #include "dynamics/internal/contact_geometry.h"
+#include "dynamics/internal/sparse_solve.h"
 
 namespace chasles {
 namespace internal {
@@ -295,21 +296,37 @@ const ContactPointState& PointStateOf(const State& state, int p) {
                                                         : none;
 }
 
-// The force direction of a pressing point's normal row: J_n, minus mu_k J_s when it slides
-// (friction -mu_k N s), minus mu_r R ŵ_r in the angular part when a round feature rolls with
-// rolling resistance (moment -mu_r N R ŵ_r).
-void NormalForceRow(const Contact& con, const ContactPointGeometry& g, ContactMode mode,
-                    const ContactPointState& ps, RowRef row, Vec3& s, Vec3& roll_dir) {
-  g.SetRow(g.n, row);
-  s.setZero();
-  roll_dir.setZero();
+// Blocks of the row k·v_rel on the point's body and on the other body (as
+// ContactPointGeometry::SetRow writes them: [k; r × k] on the body, minus [k; r_O × k] on the
+// other), `scale` times, added to `on_body` and `on_other`.
+void AddRowBlocks(const ContactPointGeometry& g, const Vec3& k, double scale,
+                  internal::Vec6& on_body, internal::Vec6& on_other) {
+  on_body.head<3>() += scale * k;
+  on_body.tail<3>() += scale * g.r.cross(k);
+  on_other.head<3>() -= scale * k;
+  on_other.tail<3>() -= scale * g.r_other.cross(k);
+}
+
+// The force direction of a pressing point's normal row, by blocks: J_n, minus mu_k J_s when it
+// slides (friction -mu_k N s), minus mu_r R ŵ_r in the angular part when a round feature rolls
+// with rolling resistance (moment -mu_r N R ŵ_r).
+void NormalForceBlocks(const Contact& con, const ContactPointGeometry& g, ContactMode mode,
+                       const ContactPointState& ps, internal::Vec6& on_body,
+                       internal::Vec6& on_other) {
+  on_body.setZero(), on_other.setZero();
+  AddRowBlocks(g, g.n, 1.0, on_body, on_other);
   if (mode == ContactMode::kSliding) {
-    s = g.SlipDirection(ps.slip_direction_W);
-    if (s.squaredNorm() > 0.0 && con.mu_k() > 0.0) g.AddRow(s, -con.mu_k(), row);
+    const Vec3 s = g.SlipDirection(ps.slip_direction_W);
+    if (s.squaredNorm() > 0.0 && con.mu_k() > 0.0)
+      AddRowBlocks(g, s, -con.mu_k(), on_body, on_other);
   }
   if (con.mu_r() > 0.0 && g.round && mode != ContactMode::kSeparated) {
-    roll_dir = g.RollingDirection(ps.rolling_direction_W);
-    if (roll_dir.squaredNorm() > 0.0) g.AddMoment(-con.mu_r() * g.radius * roll_dir, row);
+    const Vec3 roll_dir = g.RollingDirection(ps.rolling_direction_W);
+    if (roll_dir.squaredNorm() > 0.0) {
+      const Vec3 M = -con.mu_r() * g.radius * roll_dir;  // ContactPointGeometry::AddMoment
+      on_body.tail<3>() += M;
+      on_other.tail<3>() -= M;
+    }
   }
 }
 
@@ -368,6 +385,90 @@ void WeighRedundantRows(const Model& model, const State& state, const Data& data
   internal::SolveSquare(ws.A, ws.rhs, false, ws, ws.lambda, &ws.scale);
 }
 
+// The contact rows of the current modes, appended to `rows` with their right-hand sides in
+// c (from row `k` on); fills the kinematic part of Data::contact_points.
+void AppendContactRows(const Model& model, const State& state, Data& data,
+                       internal::BlockRows& rows, VectorXd& c, int k) {
+  using internal::Vec6;
+  for (int p = 0; p < model.num_contact_points(); ++p) {
+    const Contact& con = model.contact(model.contact_of_point(p));
+    const ContactMode mode = ModeOf(state, p);
+    const ContactPointGeometry g = internal::CalcContactPointGeometry(model, state, data, p);
+    ContactPointOutput& out = data.contact_points[static_cast<size_t>(p)];
+    out = ContactPointOutput{};
+    out.mode = mode;
+    out.gap = g.gap;
+    out.p_WC = g.p_WC;
+    out.n_W = g.n;
+    out.normal_velocity = g.v_n;
+    out.slip_velocity_W = g.v_t;
+    if (mode == ContactMode::kSeparated) continue;
+    // Row k: J = [J_body, J_other] of n·v_rel; W its force direction (NormalForceBlocks).
+    Vec6 jb = Vec6::Zero(), jo = Vec6::Zero(), wb, wo;
+    AddRowBlocks(g, g.n, 1.0, jb, jo);
+    NormalForceBlocks(con, g, mode, PointStateOf(state, p), wb, wo);
+    const auto add = [&](const Vec6& j_body, const Vec6& j_other, const Vec6& w_body,
+                         const Vec6& w_other) {
+      rows.Add(g.body, j_body, w_body);
+      if (g.other != kWorld) rows.Add(g.other, j_other, w_other);
+      rows.EndRow();
+    };
+    add(jb, jo, wb, wo);
+    c[k++] = g.AccelerationBias(g.n);
+    if (mode == ContactMode::kSticking) {
+      for (const Vec3* t : {&g.t1, &g.t2}) {
+        jb.setZero(), jo.setZero();
+        AddRowBlocks(g, *t, 1.0, jb, jo);
+        add(jb, jo, jb, jo);
+        c[k++] = g.AccelerationBias(*t);
+      }
+    }
+  }
+}
+
+// Dense path: the rows scattered into J and W (rows × 6 n_bodies), A = J M⁻¹ Wᵀ formed and
+// factored whole (least-norm when singular, friction then shared by WeighRedundantRows).
+void SolveContactDense(const Model& model, const State& state, Data& data, bool symmetric) {
+  const int nb = model.num_bodies();
+  const int nc_rows = model.num_constraint_rows();
+  ContactWorkspace& ws = data.contact_work;
+  const internal::BlockRows& br = internal::GetSparseWorkspace(data.sparse_contacts).rows;
+  const int rows = br.rows();
+  if (ws.J.rows() != rows || ws.J.cols() != 6 * nb) {
+    ws.J.resize(rows, 6 * nb);
+    ws.W.resize(rows, 6 * nb);
+  }
+  ws.J.setZero();
+  ws.W.setZero();
+  for (int i = 0; i < rows; ++i) {
+    for (int k = br.start[static_cast<size_t>(i)]; k < br.start[static_cast<size_t>(i) + 1]; ++k) {
+      const auto j = static_cast<size_t>(k);
+      ws.J.row(i).segment<6>(6 * br.body[j]) = br.J[j].transpose();
+      ws.W.row(i).segment<6>(6 * br.body[j]) = br.W[j].transpose();
+    }
+  }
+  internal::TimesMassInverse(model, data, ws.W, ws.WMinv);
+  ws.A.noalias() = ws.J * ws.WMinv.transpose();
+  ws.rhs.noalias() = ws.c - ws.J * data.u_dot;
+  if (nc_rows > 0) internal::HoldReleasedRows(data.row_released, ws.A, ws.rhs);
+  const bool redundant = internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda);
+  if (redundant) WeighRedundantRows(model, state, data, nc_rows, ws);
+  data.u_dot.noalias() += ws.WMinv.transpose() * ws.lambda;
+}
+
+// Sparse path (dynamics/internal/sparse_solve.h); false when A is singular (then the dense
+// path solves the system).
+bool SolveContactSparse(const Model& model, Data& data, bool symmetric) {
+  ContactWorkspace& ws = data.contact_work;
+  internal::SparseWorkspace& sp = internal::GetSparseWorkspace(data.sparse_contacts);
+  const int rows = sp.rows.rows();
+  ws.rhs.resize(rows);
+  for (int i = 0; i < rows; ++i) ws.rhs[i] = ws.c[i] - sp.rows.RowTimes(i, data.u_dot);
+  if (!internal::SolveSparse(model, data, symmetric, sp, ws.rhs, ws.lambda)) return false;
+  internal::AddMinvWTimes(sp, ws.lambda, data.u_dot);
+  return true;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------
@@ -387,48 +488,16 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
       symmetric = false;
     }
   }
-  if (ws.J.rows() != rows || ws.J.cols() != 6 * nb) {
-    ws.J.resize(rows, 6 * nb);
-    ws.W.resize(rows, 6 * nb);
-    ws.c.resize(rows);
-  }
-  ws.J.setZero();
-  ws.W.setZero();
+  // The active rows by body blocks: constraints, then contact points.
+  internal::BlockRows& br = internal::GetSparseWorkspace(data.sparse_contacts).rows;
+  br.Clear();
+  ws.c.resize(rows);
   if (nc_rows > 0) {
     CalcConstraintRows(model, state, data);
-    ws.J.topRows(nc_rows) = data.J;
-    ws.W.topRows(nc_rows) = data.J;
+    internal::AppendConstraintRows(model, data, br);
     ws.c.head(nc_rows) = data.acceleration_rhs;
   }
-  // Contact rows.
-  int k = nc_rows;
-  for (int p = 0; p < model.num_contact_points(); ++p) {
-    const Contact& con = model.contact(model.contact_of_point(p));
-    const ContactMode mode = ModeOf(state, p);
-    const ContactPointGeometry g = internal::CalcContactPointGeometry(model, state, data, p);
-    ContactPointOutput& out = data.contact_points[static_cast<size_t>(p)];
-    out = ContactPointOutput{};
-    out.mode = mode;
-    out.gap = g.gap;
-    out.p_WC = g.p_WC;
-    out.n_W = g.n;
-    out.normal_velocity = g.v_n;
-    out.slip_velocity_W = g.v_t;
-    if (mode == ContactMode::kSeparated) continue;
-    Vec3 s, roll;
-    g.SetRow(g.n, ws.J.row(k));
-    NormalForceRow(con, g, mode, PointStateOf(state, p), ws.W.row(k), s, roll);
-    ws.c[k] = g.AccelerationBias(g.n);
-    ++k;
-    if (mode == ContactMode::kSticking) {
-      for (const Vec3* t : {&g.t1, &g.t2}) {
-        g.SetRow(*t, ws.J.row(k));
-        g.SetRow(*t, ws.W.row(k));
-        ws.c[k] = g.AccelerationBias(*t);
-        ++k;
-      }
-    }
-  }
+  AppendContactRows(model, state, data, br, ws.c, nc_rows);
   // (J M⁻¹ Wᵀ) λ = c - J u̇_free; u̇ = u̇_free + M⁻¹ Wᵀ λ.
   VectorXd& u_dot = data.u_dot;
   u_dot.resize(6 * nb);
@@ -437,13 +506,9 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
     u_dot.segment<3>(6 * b) = data.a_WBcm_W[i];
     u_dot.segment<3>(6 * b + 3) = data.R_WB[i] * data.wdot_WB_B[i];
   }
-  internal::TimesMassInverse(model, data, ws.W, ws.WMinv);
-  ws.A.noalias() = ws.J * ws.WMinv.transpose();
-  ws.rhs.noalias() = ws.c - ws.J * u_dot;
-  if (nc_rows > 0) internal::HoldReleasedRows(data.row_released, ws.A, ws.rhs);
-  const bool redundant = internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda);
-  if (redundant) WeighRedundantRows(model, state, data, nc_rows, ws);
-  u_dot.noalias() += ws.WMinv.transpose() * ws.lambda;
+  if (!(internal::UseSparse(data.linear_solver, rows) &&
+        SolveContactSparse(model, data, symmetric)))
+    SolveContactDense(model, state, data, symmetric);
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
     data.a_WBcm_W[i] = u_dot.segment<3>(6 * b);
@@ -455,7 +520,7 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
     internal::FillConstraintReactions(model, state, data);
   }
   // Contact forces from the multipliers.
-  k = nc_rows;
+  int k = nc_rows;
   for (int p = 0; p < model.num_contact_points(); ++p) {
     ContactPointOutput& out = data.contact_points[static_cast<size_t>(p)];
     if (out.mode == ContactMode::kSeparated) continue;

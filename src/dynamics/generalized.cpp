@@ -88,7 +88,7 @@ void CheckStringTaut(const Constraint& con, double tension, const Data& data, do
 
 void FillConstraintReactions(const Model& model, const State& state, Data& data) {
   GetVelocity(model, state, data, data.u);
-  data.Ju.noalias() = data.J * data.u;
+  data.Ju.resize(model.num_constraint_rows());
   for (int c = 0; c < model.num_constraints(); ++c) {
     const Constraint& con = model.constraint(c);
     const auto ci = static_cast<size_t>(c);
@@ -96,6 +96,18 @@ void FillConstraintReactions(const Model& model, const State& state, Data& data)
     ConstraintOutput& out = data.constraints[ci];
     const int o = model.constraint_row_offset(c);
     const int n = con.num_rows();
+    // J u by the constraint's own blocks (its rows of Data::J; zero when released).
+    auto Ju = data.Ju.segment(o, n);
+    Ju.setZero();
+    if (data.row_released[static_cast<size_t>(o)] == 0) {
+      if (con.parent() != kWorld)
+        Ju.noalias() += e.J_parent.topRows(n) * data.u.segment<6>(6 * con.parent());
+      Ju.noalias() += e.J_child.topRows(n) * data.u.segment<6>(6 * con.child());
+      for (int k = 0; k < e.num_extra; ++k) {
+        const auto j = static_cast<size_t>(k);
+        Ju.noalias() += e.J_extra[j].topRows(n) * data.u.segment<6>(6 * e.extra_body[j]);
+      }
+    }
     out.lambda.setZero();
     out.lambda.head(n) = data.lambda.segment(o, n);
     const Eigen::Matrix<double, 6, 1> Fc = e.J_child.topRows(n).transpose() * out.lambda.head(n);

@@ -7,6 +7,10 @@
 
 namespace chasles {
 
+// The sparse path is already twice as fast at 40 rows (docs/benchmarks.md, "Sparse constraint
+// and contact solves"); smaller systems keep the dense path.
+const int kSparseMinRows = 40;
+
 Data MakeData(const Model& model) {
   const auto nb = static_cast<size_t>(model.num_bodies());
   Data d;
@@ -30,8 +34,12 @@ Data MakeData(const Model& model) {
   d.row_released.assign(static_cast<size_t>(rows), 0);
   d.constraint_gap.assign(nc, 0.0);
   d.constraint_rank = rows;
-  d.JMinv = Eigen::MatrixXd::Zero(rows, 6 * model.num_bodies());
-  d.schur = Eigen::MatrixXd::Zero(rows, rows);
+  // The dense path's workspace only where LinearSolver::kAuto takes it (the sparse path keeps
+  // its own; a dense solve of a larger system sizes these on first use).
+  if (rows < kSparseMinRows) {
+    d.JMinv = Eigen::MatrixXd::Zero(rows, 6 * model.num_bodies());
+    d.schur = Eigen::MatrixXd::Zero(rows, rows);
+  }
   d.u = Eigen::VectorXd::Zero(6 * model.num_bodies());
   d.u_dot = Eigen::VectorXd::Zero(6 * model.num_bodies());
   d.Ju = Eigen::VectorXd::Zero(rows);

@@ -186,6 +186,22 @@ TEST(Plot, ByDrawsOneLinePerValueAndFailedPointsAreLeftOut) {
   EXPECT_THAT(bad.err, HasSubstr("no column 'M'"));
 }
 
+// --log: both axes base-10 logarithmic; a point with a value <= 0 has no logarithm and is left
+// out with a note (here the dense column's n = 1000, not timed).
+TEST(Plot, LogDrawsLogLogAxesAndLeavesOutPointsThatAreNotPositive) {
+  const auto dir = OutDir("plot");
+  const auto csv = dir / "cost.csv";
+  std::ofstream(csv) << "n,sparse [s],dense [s]\n10,1e-5,1e-3\n100,1e-4,1\n1000,1e-3,0\n";
+  const CliResult r = RunCli("plot " + Quote(csv.string()) + " n sparse dense --log -o " +
+                             Quote((dir / "cost.svg").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("1 point(s) not positive left out of the log-log plot"));
+  const std::string svg = ReadFile(dir / "cost.svg");
+  // sparse: three points; dense: two (n = 1000 not timed); each with its legend sample.
+  EXPECT_EQ(PolylinePoints(svg, "#1F77B4"), (std::vector<size_t>{2, 3}));
+  EXPECT_EQ(PolylinePoints(svg, "#D62728"), (std::vector<size_t>{2, 2}));
+}
+
 TEST(Plot, AMissingColumnOrABadFileIsBadInput) {
   const PlotRun& run = SpringMass();
   const std::string out = Quote((run.dir / "x.svg").string());

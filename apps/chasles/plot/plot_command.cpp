@@ -102,7 +102,8 @@ constexpr int kColours = sizeof(kPalette) / sizeof(kPalette[0]);
 /// Draws the series into `file` with PLplot's driver `device` ("svg" or "pngcairo"), the axes
 /// labelled `xlabel` and `ylabel`.
 void Render(const std::vector<Series>& series, const std::string& xlabel, const std::string& ylabel,
-            const std::string& device, const std::string& file, const std::string& title) {
+            const std::string& device, const std::string& file, const std::string& title,
+            bool log) {
   plsdev(device.c_str());
   plsfnam(file.c_str());
   plspage(0.0, 0.0, 960, 640, 0, 0);
@@ -122,7 +123,8 @@ void Render(const std::vector<Series>& series, const std::string& xlabel, const 
   double x0, x1, y0, y1;
   Range(xs, x0, x1);
   Range(ys, y0, y1);
-  plenv(x0, x1, y0, y1, 0, 0);
+  // Log axes: PLplot draws log10 of the values with its logarithmic axis labels (axis = 30).
+  plenv(x0, x1, y0, y1, 0, log ? 30 : 0);
   pllab(PlText(xlabel).c_str(), PlText(ylabel).c_str(), PlText(title).c_str());
   for (size_t i = 0; i < series.size(); ++i) {
     plcol0(2 + static_cast<int>(i % kColours));
@@ -167,6 +169,9 @@ CLI::App* AddPlotCommand(CLI::App& app, PlotArgs& args) {
   cmd->add_option("-o,--output", args.output, "The plot to write: FILE.svg or FILE.png")
       ->required();
   cmd->add_option("--title", args.title, "A title above the plot (default: none)");
+  cmd->add_flag("--log", args.log,
+                "Both axes logarithmic (base 10); points with x <= 0 or y <= 0 are left out "
+                "(e.g. a cost curve of time against size)");
   cmd->add_option("--by", args.by,
                   "One line per value of this column (e.g. a grid sweep's other parameter), "
                   "labelled with the value in the legend");
@@ -222,6 +227,7 @@ int RunPlot(const PlotArgs& args) {
     }
   }
   std::vector<Series> series;
+  size_t left_out = 0;
   for (size_t y : ys) {
     for (double g : groups) {
       Series s;
@@ -232,11 +238,20 @@ int RunPlot(const PlotArgs& args) {
       }
       for (size_t r : rows) {
         if (!args.by.empty() && t.rows[r][by] != g) continue;
-        s.x.push_back(t.rows[r][x]);
-        s.y.push_back(t.rows[r][y]);
+        // A logarithmic axis has no place for x <= 0 or y <= 0: such points are left out.
+        if (args.log && !(t.rows[r][x] > 0.0 && t.rows[r][y] > 0.0)) {
+          ++left_out;
+          continue;
+        }
+        s.x.push_back(args.log ? std::log10(t.rows[r][x]) : t.rows[r][x]);
+        s.y.push_back(args.log ? std::log10(t.rows[r][y]) : t.rows[r][y]);
       }
       series.push_back(std::move(s));
     }
+  }
+  if (left_out > 0) {
+    std::fprintf(stderr, "note: %s: %zu point(s) not positive left out of the log-log plot\n",
+                 csv.c_str(), left_out);
   }
   // The Y axis: the column's label for one, "[unit]" for several of one unit, else the legend.
   std::string ylabel = Label(t, ys[0]);
@@ -249,7 +264,8 @@ int RunPlot(const PlotArgs& args) {
   // PLplot writes to a named file: a temporary beside the target, then moved into place whole.
   const std::string temp = fmt::format("{}.plot-{}.tmp", args.output, ::getpid());
   try {
-    Render(series, Label(t, x), ylabel, ext == ".svg" ? "svg" : "pngcairo", temp, args.title);
+    Render(series, Label(t, x), ylabel, ext == ".svg" ? "svg" : "pngcairo", temp, args.title,
+           args.log);
     const std::string bytes = ReadTextFile(temp, "the plot just drawn");
     WriteFileAtomically(args.output, bytes);
   } catch (...) {
@@ -258,7 +274,7 @@ int RunPlot(const PlotArgs& args) {
   }
   std::filesystem::remove(temp);
   std::printf("Wrote %s (%zu series, %zu points in all, from %s)\n", args.output.c_str(),
-              series.size(), rows.size() * ys.size(), csv.c_str());
+              series.size(), rows.size() * ys.size() - left_out, csv.c_str());
   return 0;
 }
 

@@ -10,6 +10,7 @@
 /// Data belongs to the same Model as the original.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -67,6 +68,33 @@ struct SchurFactorization {
   SchurFactorization() = default;
   SchurFactorization(const SchurFactorization&) {}
   SchurFactorization& operator=(const SchurFactorization&) { return *this; }
+};
+
+/// Which factorisation the constraint and contact stages use for J M⁻¹ Wᵀ (docs/design.md,
+/// "Sparse constraint and contact solves").
+enum class LinearSolver {
+  kAuto,    ///< sparse from kSparseMinRows active rows on, dense below
+  kDense,   ///< dense J, dense J M⁻¹ Wᵀ, dense LDLᵀ / LU (least-norm COD when singular)
+  kSparse,  ///< J by body blocks, sparse J M⁻¹ Wᵀ, sparse LDLᵀ / LU (dense when singular)
+};
+
+/// Fewest active rows (40) for which LinearSolver::kAuto takes the sparse path. The sparse path
+/// measured faster from 10 rows on, twice as fast at 40 (bench/solve_bench.cpp,
+/// docs/benchmarks.md); below 40 small models keep the dense path's exact numbers.
+extern const int kSparseMinRows;
+
+namespace internal {
+struct SparseWorkspace;
+}
+
+/// Owner of a sparse-solve workspace (dynamics/internal/sparse_solve.h), made on first use.
+/// Copies start empty (see SchurFactorization).
+struct SparseWorkspaceHandle {
+  std::unique_ptr<internal::SparseWorkspace, void (*)(internal::SparseWorkspace*)> ptr{nullptr,
+                                                                                       nullptr};
+  SparseWorkspaceHandle() = default;
+  SparseWorkspaceHandle(const SparseWorkspaceHandle&) {}
+  SparseWorkspaceHandle& operator=(const SparseWorkspaceHandle&) { return *this; }
 };
 
 /// What one contact point does at the evaluated state (filled by the contact stage of
@@ -169,7 +197,8 @@ struct Data {
   /// Per constraint (Model order): multipliers and reactions.
   std::vector<ConstraintOutput> constraints;
   /// Stacked Jacobian J (num_constraint_rows × 6 num_bodies); columns per body
-  /// [v_WBcm_W, w_WB_W].
+  /// [v_WBcm_W, w_WB_W]. CalcConstraintRows rewrites only the blocks of the constraints'
+  /// bodies (the rest stays zero from MakeData), so filling it costs O(rows).
   Eigen::MatrixXd J;
   /// Stacked velocity right-hand side b, acceleration right-hand side c, position error g.
   Eigen::VectorXd velocity_rhs, acceleration_rhs, position_error;
@@ -184,8 +213,10 @@ struct Data {
   /// Rank of J M⁻¹ Jᵀ found by the solve (< rows when constraints are redundant).
   int constraint_rank = 0;
   /// Workspace of the constraint solve, sized once by MakeData so that the derivative
-  /// evaluations do not allocate: J M⁻¹, J M⁻¹ Jᵀ and its factorisation, the generalised
-  /// velocity u and acceleration u̇, J u, and the right-hand side of the multiplier system.
+  /// evaluations do not allocate: J M⁻¹, J M⁻¹ Jᵀ and its factorisation (dense path; MakeData
+  /// sizes these two only for models with fewer than kSparseMinRows constraint rows), the
+  /// generalised velocity u and acceleration u̇, J u, and the right-hand side of the
+  /// multiplier system.
   Eigen::MatrixXd JMinv, schur;
   SchurFactorization schur_ldlt;
   Eigen::VectorXd u, u_dot, Ju, schur_rhs;
@@ -198,6 +229,12 @@ struct Data {
   ContactWorkspace contact_work;
   /// Workspace of ProjectOntoContactModes (contact_projection.h).
   ContactProjectionWorkspace contact_projection;
+
+  // --- Linear solver of the constraint and contact stages ---
+  /// Dense or sparse (LinearSolver); both give the same answer to round-off.
+  LinearSolver linear_solver = LinearSolver::kAuto;
+  /// Workspaces of the sparse constraint stage and contact stage.
+  SparseWorkspaceHandle sparse_constraints, sparse_contacts;
 };
 
 /// A Data sized for `model` (and bound to it).

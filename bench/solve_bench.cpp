@@ -1,0 +1,165 @@
+// The cost of one contact-and-joint evaluation (CalcAccelerations at a state in fixed modes:
+// the constraint or contact stage) as the number of bodies n grows, sparse against dense
+// (Data::linear_solver; docs/design.md, "Sparse constraint and contact solves"):
+//  - chain: n rods hanging from revolute joints (5 n rows), at rest;
+//  - pile, sticking: a row of n equal spheres at rest on the floor, touching each other
+//    (3 (2n - 1) rows; redundant, so solved by the dense least-norm path either way);
+//  - pile, sliding: the same row moving at 1 m/s along x, the floor points sliding, the
+//    sphere-sphere points sticking (LU).
+// The plain reference loop is the same n bodies without joints or contacts (the Newton–Euler
+// stage alone): the ratio stage / free is the stage's cost per unit of free-body work, flat in
+// n for an O(n) stage. Dense stops at n = 300 (n³: about 20 s per evaluation at 1,000).
+// Benchmarks never assert: each reports its error against the closed form as a counter.
+// Results, the commands and the plot (docs/images/cost-curves.png): docs/benchmarks.md.
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/model/data.h"
+#include "reference/solve_scenes.h"
+
+namespace chasles {
+namespace {
+
+using reference::kGravity;
+using reference::Scene;
+
+constexpr double kRodMass = 1.0, kRodLength = 0.25;
+constexpr double kBallMass = 0.17, kBallRadius = 0.028575;
+
+Scene Chain(int n) {
+  return reference::MakeChain(n, std::vector<double>(static_cast<size_t>(n), kRodMass), kRodLength);
+}
+
+Scene Pile(int n, bool sliding) {
+  return reference::MakeRowPile(n, std::vector<double>(static_cast<size_t>(n), kBallRadius),
+                                std::vector<double>(static_cast<size_t>(n), kBallMass), sliding);
+}
+
+// Hanging at rest: joint i carries the weight of the n - i links below it, g (n - i) m ẑ.
+double ChainError(const Scene& s, const Data& data) {
+  const int n = s.model.num_bodies();
+  double e = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double T = kGravity * kRodMass * (n - i);
+    e = std::max(e, (data.constraints[static_cast<size_t>(i)].F_Jc_W - Vec3(0, 0, T)).norm() / T);
+  }
+  return e;
+}
+
+// At rest (sticking): equal spheres in a level row stand on the floor, N = m g each, the
+// sphere-sphere points carry nothing, a = 0 (the least-norm answer of the indeterminate row).
+// Sliding, the spheres' spins couple them through the sticking sphere-sphere points, so the
+// check is Newton's second law for the whole row, the inner forces cancelling:
+// Σ m a_i = Σ_floor (N n + f) + n m g, relative to n m g.
+double PileError(const Scene& s, const Data& data, bool sliding) {
+  const int n = s.model.num_bodies();
+  const double W = kBallMass * kGravity;
+  double e = 0.0;
+  if (sliding) {
+    Vec3 lhs = Vec3::Zero(), rhs = Vec3(0, 0, -n * W);
+    for (const Vec3& a : data.a_WBcm_W) lhs += kBallMass * a;
+    for (int p = 0; p < n; ++p) {
+      const ContactPointOutput& c = data.contact_points[static_cast<size_t>(p)];
+      rhs += c.normal_force * c.n_W + c.friction_force_W;
+    }
+    return (lhs - rhs).norm() / (n * W);
+  }
+  for (int p = 0; p < s.model.num_contact_points(); ++p) {
+    const double N = data.contact_points[static_cast<size_t>(p)].normal_force;
+    e = std::max(e, std::abs(N - (p < n ? W : 0.0)) / W);
+  }
+  for (const Vec3& a : data.a_WBcm_W) e = std::max(e, a.norm() / kGravity);
+  return e;
+}
+
+enum class Kind { kChain, kPileSticking, kPileSliding };
+
+void Stage(benchmark::State& st, Kind kind, LinearSolver solver) {
+  const int n = static_cast<int>(st.range(0));
+  const Scene s = kind == Kind::kChain ? Chain(n) : Pile(n, kind == Kind::kPileSliding);
+  Data data = MakeData(s.model);
+  data.linear_solver = solver;
+  CalcAccelerations(s.model, s.state, data);  // sizes the workspaces, analyses the pattern
+  for (auto _ : st) {
+    CalcAccelerations(s.model, s.state, data);
+    benchmark::DoNotOptimize(data.a_WBcm_W.data());
+  }
+  st.SetComplexityN(n);
+  st.counters["closed_form_error"] =
+      kind == Kind::kChain ? ChainError(s, data) : PileError(s, data, kind == Kind::kPileSliding);
+}
+
+// The plain reference: the same n free bodies (Newton–Euler only).
+void FreeBodies(benchmark::State& st) {
+  const int n = static_cast<int>(st.range(0));
+  Scene s = Pile(n, false);
+  Model free;
+  for (int b = 0; b < n; ++b)
+    free.AddBody(s.model.body(b).name(), s.model.body(b).mass_properties());
+  free.AddForceElement(std::make_shared<UniformGravity>("g", Vec3(0, 0, -kGravity)));
+  State x = MakeRestState(free);
+  x.bodies = s.state.bodies;
+  Data data = MakeData(free);
+  for (auto _ : st) {
+    CalcAccelerations(free, x, data);
+    benchmark::DoNotOptimize(data.a_WBcm_W.data());
+  }
+  st.SetComplexityN(n);
+}
+
+void ChainSparse(benchmark::State& st) {
+  Stage(st, Kind::kChain, LinearSolver::kSparse);
+}
+void ChainDense(benchmark::State& st) {
+  Stage(st, Kind::kChain, LinearSolver::kDense);
+}
+void PileStickingSparse(benchmark::State& st) {
+  Stage(st, Kind::kPileSticking, LinearSolver::kSparse);
+}
+void PileStickingDense(benchmark::State& st) {
+  Stage(st, Kind::kPileSticking, LinearSolver::kDense);
+}
+void PileSlidingSparse(benchmark::State& st) {
+  Stage(st, Kind::kPileSliding, LinearSolver::kSparse);
+}
+void PileSlidingDense(benchmark::State& st) {
+  Stage(st, Kind::kPileSliding, LinearSolver::kDense);
+}
+
+void AllSizes(benchmark::internal::Benchmark* b) {
+  for (int n : {10, 30, 100, 300, 1000}) b->Arg(n);
+  b->Complexity(benchmark::oNLogN)->Unit(benchmark::kMicrosecond);
+}
+void DenseSizes(benchmark::internal::Benchmark* b) {
+  for (int n : {10, 30, 100, 300}) b->Arg(n);
+  b->Complexity(benchmark::oNCubed)->Unit(benchmark::kMicrosecond);
+}
+// Around the dense/sparse crossover (kSparseMinRows).
+void SmallSizes(benchmark::internal::Benchmark* b) {
+  for (int n : {2, 4, 6, 8, 12, 16}) b->Arg(n);
+  b->Unit(benchmark::kMicrosecond);
+}
+
+BENCHMARK(FreeBodies)->Apply(AllSizes);
+BENCHMARK(ChainSparse)->Apply(AllSizes);
+BENCHMARK(ChainDense)->Apply(DenseSizes);
+// A sticking row is statically indeterminate (J M⁻¹ Jᵀ singular, docs/design.md): the sparse
+// path hands it to the dense least-norm solve, so it stops at 300 too.
+BENCHMARK(PileStickingSparse)->Apply(DenseSizes);
+BENCHMARK(PileStickingDense)->Apply(DenseSizes);
+BENCHMARK(PileSlidingSparse)->Apply(AllSizes);
+BENCHMARK(PileSlidingDense)->Apply(DenseSizes);
+BENCHMARK(ChainSparse)->Name("ChainSparseSmall")->Apply(SmallSizes);
+BENCHMARK(ChainDense)->Name("ChainDenseSmall")->Apply(SmallSizes);
+BENCHMARK(PileStickingSparse)->Name("PileStickingSparseSmall")->Apply(SmallSizes);
+BENCHMARK(PileStickingDense)->Name("PileStickingDenseSmall")->Apply(SmallSizes);
+
+}  // namespace
+}  // namespace chasles
+
+BENCHMARK_MAIN();

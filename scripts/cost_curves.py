@@ -1,0 +1,54 @@
+#!/usr/bin/env python3
+"""Turns bench/solve_bench's JSON output into the cost-curve table (CSV, seconds per
+evaluation against n) that `chasles plot --log` draws as docs/images/cost-curves.png:
+
+  build/bench/solve_bench --benchmark_filter='^(Free|Chain|Pile)[A-Za-z]*/' \\
+      --benchmark_out=solve.json --benchmark_out_format=json
+  scripts/cost_curves.py solve.json docs/images/cost-curves.csv  (several JSON files: the
+      later ones' runs replace the earlier ones')
+  build/bin/chasles plot docs/images/cost-curves.csv n free chain_sparse chain_dense \\
+      pile_sticking_sparse pile_sticking_dense pile_sliding_sparse pile_sliding_dense \\
+      --log -o docs/images/cost-curves.png
+
+A size a benchmark did not time (the dense ones stop at n = 300) is written as 0, which the
+log-log plot leaves out."""
+
+import json
+import sys
+
+SERIES = {
+    "FreeBodies": "free",
+    "ChainSparse": "chain_sparse",
+    "ChainDense": "chain_dense",
+    "PileStickingSparse": "pile_sticking_sparse",
+    "PileStickingDense": "pile_sticking_dense",
+    "PileSlidingSparse": "pile_sliding_sparse",
+    "PileSlidingDense": "pile_sliding_dense",
+}
+SCALE = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+
+
+def main(sources, dst):
+    runs = []
+    for src in sources:  # a later file's run of the same benchmark replaces an earlier one
+        with open(src) as f:
+            runs += json.load(f)["benchmarks"]
+    times = {}
+    for r in runs:
+        if r.get("run_type") != "iteration" or "/" not in r["name"]:
+            continue
+        name, n = r["name"].split("/")[:2]
+        if name in SERIES:
+            times[(SERIES[name], int(n))] = r["real_time"] * SCALE[r["time_unit"]]
+    sizes = sorted({n for (_, n) in times})
+    with open(dst, "w") as f:
+        f.write(",".join(["n"] + [f"{c} [s]" for c in SERIES.values()]) + "\n")
+        for n in sizes:
+            row = [str(n)] + [repr(times.get((c, n), 0.0)) for c in SERIES.values()]
+            f.write(",".join(row) + "\n")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 3:
+        sys.exit("usage: cost_curves.py BENCH.json [BENCH.json...] OUT.csv")
+    main(sys.argv[1:-1], sys.argv[-1])

@@ -1,0 +1,210 @@
+// The sparse constraint and contact solves (dynamics/internal/sparse_solve.h) against the
+// dense ones and against closed forms: the same system (J M⁻¹ Wᵀ) λ = c - J u̇_free, so both
+// must give the same multipliers and accelerations to round-off.
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/model/data.h"
+#include "dynamics/internal/sparse_solve.h"
+#include "reference/solve_scenes.h"
+#include "test_support.h"
+
+namespace chasles {
+namespace {
+
+using reference::kGravity;
+using reference::Scene;
+
+// Everything the stage computes, stacked: λ of the constraints, N and friction of the
+// contact points, then u̇ = [a_WBcm_W; ẇ_WB_B] of every body.
+struct Answer {
+  Eigen::VectorXd lambda, u_dot;
+};
+
+// With `sparse_solved` the sparse path must have solved the system itself (not handed a
+// singular one to the dense path).
+Answer Evaluate(const Scene& s, LinearSolver solver, bool sparse_solved = true) {
+  Data data = MakeData(s.model);
+  data.linear_solver = solver;
+  CalcAccelerations(s.model, s.state, data);
+  if (solver == LinearSolver::kSparse) {
+    const SparseWorkspaceHandle& h =
+        s.model.num_contacts() > 0 ? data.sparse_contacts : data.sparse_constraints;
+    EXPECT_TRUE(h.ptr != nullptr && h.ptr->solved == sparse_solved);
+  }
+  Answer a;
+  std::vector<double> l;
+  for (const ConstraintOutput& c : data.constraints) {
+    for (int k = 0; k < kMaxConstraintRows; ++k) l.push_back(c.lambda[k]);
+  }
+  for (const ContactPointOutput& p : data.contact_points) {
+    l.push_back(p.normal_force);
+    for (int k = 0; k < 3; ++k) l.push_back(p.friction_force_W[k]);
+  }
+  a.lambda = Eigen::Map<Eigen::VectorXd>(l.data(), static_cast<Eigen::Index>(l.size()));
+  a.u_dot.resize(6 * s.model.num_bodies());
+  for (int b = 0; b < s.model.num_bodies(); ++b) {
+    a.u_dot.segment<3>(6 * b) = data.a_WBcm_W[static_cast<size_t>(b)];
+    a.u_dot.segment<3>(6 * b + 3) = data.wdot_WB_B[static_cast<size_t>(b)];
+  }
+  return a;
+}
+
+// Sparse and dense agree to 1e-12 of the largest multiplier and of the largest acceleration
+// (at least g, the only load: a pile at rest has zero accelerations, met to round-off of g).
+void ExpectSame(const Scene& s, bool sparse_solved = true) {
+  const Answer dense = Evaluate(s, LinearSolver::kDense);
+  const Answer sparse = Evaluate(s, LinearSolver::kSparse, sparse_solved);
+  const Answer automatic = Evaluate(s, LinearSolver::kAuto);
+  const double f_scale = dense.lambda.cwiseAbs().maxCoeff();
+  EXPECT_GT(f_scale, 0.0);
+  EXPECT_TRUE(test::MatNear(sparse.lambda, dense.lambda, 1e-12, f_scale));
+  EXPECT_TRUE(test::MatNear(sparse.u_dot, dense.u_dot, 1e-12, kGravity));
+  EXPECT_TRUE(test::MatNear(automatic.lambda, dense.lambda, 1e-12, f_scale));
+  EXPECT_TRUE(test::MatNear(automatic.u_dot, dense.u_dot, 1e-12, kGravity));
+}
+
+std::vector<double> RandomIn(int n, double lo, double hi, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(lo, hi);
+  std::vector<double> v(static_cast<size_t>(n));
+  for (double& x : v) x = u(rng);
+  return v;
+}
+
+TEST(SparseSolve, RandomChainsAgreeWithTheDenseSolve) {
+  std::mt19937 rng(2024);
+  for (int n : {3, 12, 40}) {
+    for (int trial = 0; trial < 3; ++trial) {
+      SCOPED_TRACE(testing::Message() << "n = " << n << ", trial " << trial);
+      const Scene s = reference::MakeChain(n, RandomIn(n, 0.2, 5.0, rng), 0.3, &rng);
+      ExpectSame(s);
+    }
+  }
+}
+
+// Sliding floor points: n normal rows and 3 (n - 1) sphere-sphere rows, no redundancy, solved
+// sparsely (LU). Sticking everywhere, a row of n >= 3 spheres is statically indeterminate:
+// in the plane of the centres each sphere has 3 equilibrium equations (F_x, F_z, M_y) and the
+// unknowns are 2 per floor point and 2 per touching pair, 4n - 2 > 3n, so J M⁻¹ Jᵀ is singular
+// (n - 2 self-stresses); the sparse LDLᵀ meets the zero pivots and the dense least-norm solve
+// answers. Two spheres (6 unknowns in the plane, 6 equations) are determinate.
+TEST(SparseSolve, RandomRowPilesAgreeWithTheDenseSolveStickingAndSliding) {
+  std::mt19937 rng(7);
+  for (int n : {2, 10, 30}) {
+    for (bool sliding : {false, true}) {
+      SCOPED_TRACE(testing::Message() << "n = " << n << (sliding ? ", sliding" : ", sticking"));
+      const Scene s = reference::MakeRowPile(n, RandomIn(n, 0.02, 0.1, rng),
+                                             RandomIn(n, 0.1, 2.0, rng), sliding);
+      ExpectSame(s, sliding || n == 2);
+    }
+  }
+}
+
+// A chain hanging at rest: every link is in equilibrium, F_i - F_{i+1} - m_i g ẑ = 0 with F_i
+// the force of joint i on link i (its child) and F_n = 0, so F_i = g Σ_{j>=i} m_j ẑ: each
+// joint carries the weight below it. The links' accelerations are zero.
+TEST(SparseSolve, HangingChainJointsCarryTheWeightBelow) {
+  std::mt19937 rng(99);
+  const int n = 120;
+  const std::vector<double> m = RandomIn(n, 0.5, 2.0, rng);
+  const Scene s = reference::MakeChain(n, m, 0.25);
+  Data data = MakeData(s.model);
+  data.linear_solver = LinearSolver::kSparse;
+  CalcAccelerations(s.model, s.state, data);
+  ASSERT_TRUE(data.sparse_constraints.ptr->solved);
+  double below = 0.0;
+  for (int i = n - 1; i >= 0; --i) {
+    below += m[static_cast<size_t>(i)];
+    const ConstraintOutput& out = data.constraints[static_cast<size_t>(i)];
+    EXPECT_TRUE(test::MatNear(out.F_Jc_W, Vec3(0, 0, kGravity * below), 1e-12)) << "joint " << i;
+    EXPECT_LE(data.a_WBcm_W[static_cast<size_t>(i)].norm(), 1e-12 * kGravity);
+  }
+  EXPECT_EQ(data.constraint_rank, 5 * n);
+}
+
+// Redundant rows: the top link of a hanging chain held by two revolute joints on one axis
+// (10 rows on its 6 freedoms). J M⁻¹ Jᵀ is singular, so the sparse factorisation meets a zero
+// pivot and the dense least-norm solve takes over: the two joints split the load equally
+// (min |λ₁|² + |λ₂|² subject to λ₁ + λ₂ = F gives λ₁ = λ₂ = F/2; they are symmetric about the
+// rod), so each carries half the weight of the whole chain, the joints below the weight below.
+TEST(SparseSolve, RedundantJointsGetTheLeastNormSplit) {
+  std::mt19937 rng(5);
+  const int n = 30;
+  const std::vector<double> m = RandomIn(n, 0.5, 2.0, rng);
+  Scene s = reference::MakeChain(n, m, 0.25);
+  const Joint& top = dynamic_cast<const Joint&>(s.model.constraint(0));
+  s.model.AddConstraint(
+      std::make_shared<Joint>("twin", JointKind::kRevolute, kWorld, top.X_PJ(), 0, top.X_CJ()));
+  s.state = [&] {
+    State st = MakeRestState(s.model);
+    st.bodies = s.state.bodies;
+    return st;
+  }();
+  Data data = MakeData(s.model);
+  data.linear_solver = LinearSolver::kSparse;
+  CalcAccelerations(s.model, s.state, data);
+  EXPECT_FALSE(data.sparse_constraints.ptr->solved);  // the zero pivot was seen
+  double total = 0.0;
+  for (double mi : m) total += mi;
+  const Vec3 half(0, 0, 0.5 * kGravity * total);
+  EXPECT_TRUE(test::MatNear(data.constraints[0].F_Jc_W, half, 1e-12));
+  EXPECT_TRUE(test::MatNear(data.constraints[static_cast<size_t>(n)].F_Jc_W, half, 1e-12));
+  EXPECT_EQ(data.constraint_rank, 5 * n);
+  double below = 0.0;
+  for (int i = n - 1; i >= 1; --i) {
+    below += m[static_cast<size_t>(i)];
+    EXPECT_TRUE(test::MatNear(data.constraints[static_cast<size_t>(i)].F_Jc_W,
+                              Vec3(0, 0, kGravity * below), 1e-12))
+        << "joint " << i;
+  }
+}
+
+// A row of equal spheres resting on the floor and touching: the neighbours' centres are level,
+// so the sphere-sphere normals are horizontal. The rows are redundant (see above); of the
+// forces that hold the row, N_i = m g at every floor point plus any self-stress, the least-norm
+// one has no self-stress: N_i = m g, nothing between the spheres, no friction, a = 0.
+TEST(SparseSolve, RestingRowOfSpheresStandsOnTheFloor) {
+  const int n = 60;
+  const double R = 0.05, m = 0.3;
+  const Scene s =
+      reference::MakeRowPile(n, std::vector<double>(n, R), std::vector<double>(n, m), false);
+  Data data = MakeData(s.model);
+  data.linear_solver = LinearSolver::kSparse;
+  CalcAccelerations(s.model, s.state, data);
+  EXPECT_FALSE(data.sparse_contacts.ptr->solved);  // indeterminate: the least-norm answer
+  const double W = m * kGravity;
+  for (int p = 0; p < s.model.num_contact_points(); ++p) {
+    const ContactPointOutput& out = data.contact_points[static_cast<size_t>(p)];
+    EXPECT_TRUE(test::Near(out.normal_force, p < n ? W : 0.0, 1e-12, W)) << "point " << p;
+    EXPECT_LE(out.friction_force_W.norm(), 1e-12 * W) << "point " << p;
+  }
+  for (const Vec3& a : data.a_WBcm_W) EXPECT_LE(a.norm(), 1e-12 * kGravity);
+}
+
+// The symbolic analysis is kept while the pattern stays: a second evaluation at another state
+// with the same modes reuses it (the pattern's storage is not remade).
+TEST(SparseSolve, SymbolicAnalysisIsReusedWhileTheModesStay) {
+  std::mt19937 rng(3);
+  const int n = 40;
+  Scene s = reference::MakeChain(n, RandomIn(n, 0.5, 2.0, rng), 0.3, &rng);
+  Data data = MakeData(s.model);
+  data.linear_solver = LinearSolver::kSparse;
+  CalcAccelerations(s.model, s.state, data);
+  const internal::SparseWorkspace& ws = *data.sparse_constraints.ptr;
+  const int* slots = ws.pair_slot.data();
+  const double* values = ws.A.valuePtr();
+  s.state.bodies[3].w_WB_B += Vec3(0.1, -0.2, 0.3);
+  CalcAccelerations(s.model, s.state, data);
+  EXPECT_EQ(ws.pair_slot.data(), slots);
+  EXPECT_EQ(ws.A.valuePtr(), values);
+  EXPECT_TRUE(ws.solved);
+}
+
+}  // namespace
+}  // namespace chasles
