@@ -32,15 +32,9 @@ struct Arrays {
 };
 enum : int { kPx = 0, kVx = 3, kQw = 6, kWx = 10 };
 
-/// y ← y + d with compensation c (Knuth's TwoSum, as internal/compensated.h; branch-free so it
-/// vectorises): c holds what y could not.
-inline void CompAdd(double& y, double d, double& c) {
-  const double b = d + c;
-  const double sum = y + b;
-  const double bb = sum - y;
-  c = (y - (sum - bb)) + (b - bb);
-  y = sum;
-}
+/// y ← y + d with compensation c (Knuth's TwoSum, internal/compensated.h): branch-free, so the
+/// loops below vectorise with it.
+using internal::CompensatedAdd;
 
 /// a·b = p + e exactly, p = fl(a b) (Dekker's TwoProduct with Veltkamp's splitting, exact without
 /// a fused multiply-add, which the baseline x86-64 target does not have; Higham §4.3).
@@ -57,8 +51,8 @@ inline double ProductError(double a, double b, double p) {
 inline void TranslateCompensated(const Arrays& s, int i, double h, const double hg[3],
                                  const double hhg[3]) {
   for (int j = 0; j < 3; ++j) {
-    CompAdd(s.y[kPx + j][i], h * s.y[kVx + j][i] + hhg[j], s.c[kPx + j][i]);
-    CompAdd(s.y[kVx + j][i], hg[j], s.c[kVx + j][i]);
+    CompensatedAdd(s.y[kPx + j][i], h * s.y[kVx + j][i] + hhg[j], s.c[kPx + j][i]);
+    CompensatedAdd(s.y[kVx + j][i], hg[j], s.c[kVx + j][i]);
   }
 }
 
@@ -107,11 +101,11 @@ void StepRk4(const Arrays& s, int b, int e, double h, const double hg[3], const 
     Rhs(q, w, a1, a2, a3, k4q, k4w);
     for (int j = 0; j < 4; ++j) {
       q[j] = q0[j];
-      CompAdd(q[j], h6 * (k1q[j] + 2.0 * (k2q[j] + k3q[j]) + k4q[j]), cq[j]);
+      CompensatedAdd(q[j], h6 * (k1q[j] + 2.0 * (k2q[j] + k3q[j]) + k4q[j]), cq[j]);
     }
     for (int j = 0; j < 3; ++j) {
       w[j] = w0[j];
-      CompAdd(w[j], h6 * (k1w[j] + 2.0 * (k2w[j] + k3w[j]) + k4w[j]), cw[j]);
+      CompensatedAdd(w[j], h6 * (k1w[j] + 2.0 * (k2w[j] + k3w[j]) + k4w[j]), cw[j]);
     }
     const double r = 1.0 / std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
     double qn[4], err[4];

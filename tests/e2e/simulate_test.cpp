@@ -332,16 +332,19 @@ TEST(SimulateCli, DivergingRunStopsWithTheForceNamed) {
   EXPECT_FALSE(std::filesystem::exists(dir / "diverge.csv"));
 }
 
+// One free box, thrown and spinning, under standard gravity alone.
+constexpr const char* kSpinningBoxUnderGravity =
+    "bodies:\n"
+    "  - name: box\n"
+    "    parts: [{shape: box, size: [0.1 m, 0.2 m, 0.3 m], mass: 1 kg}]\n"
+    "    initial: {velocity: [1 m/s, 0, 5 m/s], angular_velocity: [1, 7, 0.5]}\n"
+    "gravity: standard\n";
+
 // A scene of free bodies under gravity alone stepped by rk4 takes the free-body batch and the
 // report says so; a force other than gravity sends it down the general path, without the note.
 TEST(SimulateCli, Rk4OnFreeBodiesUnderGravityNamesTheFreeBodyBatch) {
   const auto dir = OutDir();
-  const std::string bodies =
-      "bodies:\n"
-      "  - name: box\n"
-      "    parts: [{shape: box, size: [0.1 m, 0.2 m, 0.3 m], mass: 1 kg}]\n"
-      "    initial: {velocity: [1 m/s, 0, 5 m/s], angular_velocity: [1, 7, 0.5]}\n"
-      "gravity: standard\n";
+  const std::string bodies = kSpinningBoxUnderGravity;
   const std::string sim = "simulation: {until: 1 s, integrator: rk4, step: 1 ms}\n";
   const std::string note = "stepped by the free-body batch";
   const auto free = dir / "free.yaml";
@@ -361,12 +364,7 @@ TEST(SimulateCli, Rk4OnFreeBodiesUnderGravityNamesTheFreeBodyBatch) {
 // step is refused with exit 2, naming what does not qualify, and writes nothing.
 TEST(SimulateCli, SplittingIntegratorRunsFreeBodiesAndRefusesOtherScenes) {
   const auto dir = OutDir();
-  const std::string bodies =
-      "bodies:\n"
-      "  - name: box\n"
-      "    parts: [{shape: box, size: [0.1 m, 0.2 m, 0.3 m], mass: 1 kg}]\n"
-      "    initial: {velocity: [1 m/s, 0, 5 m/s], angular_velocity: [1, 7, 0.5]}\n"
-      "gravity: standard\n";
+  const std::string bodies = kSpinningBoxUnderGravity;
   const std::string sim = "simulation: {until: 1 s, integrator: splitting, step: 1 ms}\n";
   const auto free = dir / "split.yaml";
   std::ofstream(free) << bodies << sim;

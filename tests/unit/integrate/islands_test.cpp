@@ -250,17 +250,22 @@ TEST(Islands, AnEventInOneIslandLeavesAnotherAlone) {
   EXPECT_EQ(early.stats.steps, early.islands.stats[0].steps + early.islands.stats[1].steps);
 }
 
-TEST(Islands, PartitionFollowsJointsContactsAndSprings) {
-  Model m = MakeBalls(6);
-  // 0-1 touch as spheres, 2-3 are hinged, 4-5 tied by a spring; the floor links nothing.
+/// A sphere-sphere contact "pair" between balls a and b.
+void AddSpherePair(Model& m, BodyIndex a, BodyIndex b) {
   ContactSpec c;
   c.name = "pair";
   c.shape = ContactShape::kSphereSphere;
-  c.body = 0;
+  c.body = a;
   c.radius = kR;
-  c.other_body = 1;
+  c.other_body = b;
   c.other_radius = kR;
   m.AddContact(c);
+}
+
+TEST(Islands, PartitionFollowsJointsContactsAndSprings) {
+  Model m = MakeBalls(6);
+  // 0-1 touch as spheres, 2-3 are hinged, 4-5 tied by a spring; the floor links nothing.
+  AddSpherePair(m, 0, 1);
   m.AddConstraint(std::make_shared<Joint>("hinge", JointKind::kRevolute, 2,
                                           AttachmentFrame{Vec3::Zero()}, 3,
                                           AttachmentFrame{Vec3(0, 0, 0.1)}));
@@ -284,14 +289,7 @@ TEST(Islands, ASpherePairRunsAsOneIsland) {
   // Balls 0 and 1 side by side, touching (sphere-sphere contact), both sliding the same way;
   // ball 2 apart: two islands, the pair one of them.
   Model m = MakeBalls(3);
-  ContactSpec c;
-  c.name = "pair";
-  c.shape = ContactShape::kSphereSphere;
-  c.body = 0;
-  c.radius = kR;
-  c.other_body = 1;
-  c.other_radius = kR;
-  m.AddContact(c);
+  AddSpherePair(m, 0, 1);
   State s = SetDown(m, {kW0, kW0, 2 * kW0});
   SetBodyPose(m, 1, Vec3(0, 2 * kR, kR), Quat::Identity(), s);
   const SimulationResult r = Simulate(m, s, Options(TStar(kW0) / 2));
