@@ -34,6 +34,7 @@
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/model.h"
+#include "reference/balls_on_floor.h"
 
 namespace chasles {
 namespace {
@@ -44,34 +45,19 @@ constexpr double kMass = 0.17;
 constexpr double kMuK = 0.35;
 constexpr double kW0 = 100 * 2 * M_PI / 60;  // 100 rpm
 
-// Problem 8.26: sliding friction mu_k m g gives v̇ = mu_k g and ẇ = -5 mu_k g / (2 R); the
-// slip R w - v falls at 7/2 mu_k g and reaches zero at t* = 2 R w0 / (7 mu_k g).
+constexpr reference::Ball kBall{kMass, kR, 0.5, kMuK};
+
+// Problems 8.26/8.27 (tests/reference/balls_on_floor.h): sliding ends at t* = 2 R w0 /
+// (7 mu_k g), then the ball rolls at 2/7 R w0.
 double TStar(double w0) {
-  return 2 * kR * w0 / (7 * kMuK * kG);
+  return reference::StickTime(kBall, kG, w0);
 }
-// Problem 8.27: the angular momentum about the contact point, I w0 = (I + m R²) v / R, is kept
-// (friction acts at that point), so the ball rolls on at v = 2/7 R w0.
 double RollingSpeed(double w0) {
-  return 2.0 / 7.0 * kR * w0;
+  return reference::RollingSpeed(kBall, w0);
 }
 
 Model MakeBalls(int n) {
-  Model m;
-  const double I = 0.4 * kMass * kR * kR;
-  for (int i = 0; i < n; ++i) {
-    const int b = m.AddBody(fmt::format("ball{}", i),
-                            MassProperties(kMass, Vec3::Zero(), RotationalInertia(I, I, I)));
-    ContactSpec c;
-    c.name = fmt::format("floor{}", i);
-    c.shape = ContactShape::kSphere;
-    c.body = b;
-    c.radius = kR;
-    c.mu_s = 0.5;
-    c.mu_k = kMuK;
-    m.AddContact(c);
-  }
-  m.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -kG)));
-  return m;
+  return reference::MakeBallsOnFloor(n, kBall, kG);
 }
 
 // Spin of ball i about y: w0 (1 + i/n) when `spread` (every ball its own t*, so n separate

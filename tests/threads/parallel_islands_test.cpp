@@ -11,9 +11,10 @@
 
 #include "chasles/integrate/free_body_batch.h"
 #include "chasles/integrate/simulate.h"
-#include "chasles/model/contact.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/model.h"
+#include "reference/balls_on_floor.h"
+#include "threads/same_bits.h"
 // clang-format off
 #include <gtest/gtest.h>
 // clang-format on
@@ -21,46 +22,19 @@
 namespace chasles {
 namespace {
 
-bool SameBits(const State& a, const State& b) {
-  if (a.t != b.t || a.bodies.size() != b.bodies.size()) return false;
-  for (size_t i = 0; i < a.bodies.size(); ++i) {
-    const BodyState &x = a.bodies[i], &y = b.bodies[i];
-    if (std::memcmp(x.p_WBcm.data(), y.p_WBcm.data(), sizeof(double) * 3) != 0 ||
-        std::memcmp(x.v_WBcm_W.data(), y.v_WBcm_W.data(), sizeof(double) * 3) != 0 ||
-        std::memcmp(x.w_WB_B.data(), y.w_WB_B.data(), sizeof(double) * 3) != 0 ||
-        std::memcmp(x.q_WB.coeffs().data(), y.q_WB.coeffs().data(), sizeof(double) * 4) != 0) {
-      return false;
-    }
-  }
-  return true;
-}
-
 // Six balls set down spinning on a floor, each at its own spin (its own stick time
 // t* = 2 R w0 / (7 mu_k g), Problem 8.26): six islands, six stick events.
 TEST(ParallelIslands, TwoThreadsGiveTheOneThreadRunBitwise) {
-  constexpr double kR = 0.03, kMass = 0.2, kMuK = 0.3, kG = 9.81;
-  Model m;
-  const double I = 0.4 * kMass * kR * kR;
-  for (int i = 0; i < 6; ++i) {
-    const int b = m.AddBody(fmt::format("ball{}", i),
-                            MassProperties(kMass, Vec3::Zero(), RotationalInertia(I, I, I)));
-    ContactSpec c;
-    c.name = fmt::format("floor{}", i);
-    c.shape = ContactShape::kSphere;
-    c.body = b;
-    c.radius = kR;
-    c.mu_s = 0.5;
-    c.mu_k = kMuK;
-    m.AddContact(c);
-  }
-  m.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -kG)));
+  constexpr double kG = 9.81;
+  constexpr reference::Ball kBall{0.2, 0.03, 0.5, 0.3};
+  const Model m = reference::MakeBallsOnFloor(6, kBall, kG);
   State s = MakeRestState(m);
   for (int i = 0; i < 6; ++i) {
-    SetBodyPose(m, i, Vec3(0, i, kR), Quat::Identity(), s);
+    SetBodyPose(m, i, Vec3(0, i, kBall.radius), Quat::Identity(), s);
     SetBodyVelocity(m, i, Vec3::Zero(), Vec3(0, 10.0 * (1 + 0.2 * i), 0), s);
   }
   SimulationOptions o;
-  o.t_end = 2 * 2 * kR * 20.0 / (7 * kMuK * kG);
+  o.t_end = 2 * reference::StickTime(kBall, kG, 20.0);
   o.output_interval = o.t_end / 8;
   o.adaptive.rtol = 1e-10;
   o.threads = 1;
@@ -71,8 +45,8 @@ TEST(ParallelIslands, TwoThreadsGiveTheOneThreadRunBitwise) {
   EXPECT_EQ(one.islands.count, 6);
   ASSERT_EQ(one.samples.size(), two.samples.size());
   for (size_t k = 0; k < one.samples.size(); ++k)
-    EXPECT_TRUE(SameBits(one.samples[k], two.samples[k]));
-  EXPECT_TRUE(SameBits(one.final_state, two.final_state));
+    EXPECT_TRUE(test::SameBits(one.samples[k], two.samples[k]));
+  EXPECT_TRUE(test::SameBits(one.final_state, two.final_state));
   ASSERT_EQ(one.contact_events.size(), two.contact_events.size());
   for (size_t k = 0; k < one.contact_events.size(); ++k) {
     EXPECT_EQ(std::memcmp(&one.contact_events[k].t, &two.contact_events[k].t, sizeof(double)), 0);
@@ -105,7 +79,7 @@ TEST(ParallelIslands, FreeBodyBatchInTwoBlocksGivesOneBlockBitwise) {
     State a = s, b = s;
     one.Store(a);
     two.Store(b);
-    EXPECT_TRUE(SameBits(a, b));
+    EXPECT_TRUE(test::SameBits(a, b));
   }
 }
 

@@ -10,6 +10,7 @@
 #include "chasles/integrate/simulate.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
+#include "threads/same_bits.h"
 // clang-format off
 #include <gtest/gtest.h>
 // clang-format on
@@ -33,21 +34,6 @@ events:
 simulation: {until: 2 s, tolerance: 1e-10, output_interval: 0.1 s}
 )";
 
-bool BitwiseEqual(const State& a, const State& b) {
-  if (a.t != b.t || a.bodies.size() != b.bodies.size()) return false;
-  for (size_t i = 0; i < a.bodies.size(); ++i) {
-    const BodyState& x = a.bodies[i];
-    const BodyState& y = b.bodies[i];
-    if (std::memcmp(x.p_WBcm.data(), y.p_WBcm.data(), sizeof(double) * 3) != 0 ||
-        std::memcmp(x.v_WBcm_W.data(), y.v_WBcm_W.data(), sizeof(double) * 3) != 0 ||
-        std::memcmp(x.w_WB_B.data(), y.w_WB_B.data(), sizeof(double) * 3) != 0 ||
-        std::memcmp(x.q_WB.coeffs().data(), y.q_WB.coeffs().data(), sizeof(double) * 4) != 0) {
-      return false;
-    }
-  }
-  return true;
-}
-
 TEST(SharedModel, SimulateInFourThreadsMatchesOneThreadBitwise) {
   const Scene scene = LoadSceneText(kScene, "shared");
   const Study study = BuildStudy(scene);
@@ -63,7 +49,7 @@ TEST(SharedModel, SimulateInFourThreadsMatchesOneThreadBitwise) {
   }
   for (std::thread& t : threads) t.join();
   for (const SimulationResult& r : results) {
-    EXPECT_TRUE(BitwiseEqual(r.final_state, reference.final_state));
+    EXPECT_TRUE(test::SameBits(r.final_state, reference.final_state));
     ASSERT_EQ(r.events.size(), reference.events.size());
     for (size_t e = 0; e < r.events.size(); ++e) EXPECT_EQ(r.events[e].t, reference.events[e].t);
     EXPECT_EQ(r.stats.steps, reference.stats.steps);

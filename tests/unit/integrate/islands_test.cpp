@@ -19,6 +19,7 @@
 #include "chasles/model/contact.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/model.h"
+#include "reference/balls_on_floor.h"
 #include "test_support.h"
 
 namespace chasles {
@@ -33,37 +34,19 @@ constexpr double kMass = 0.2;
 constexpr double kMuK = 0.3;
 constexpr double kW0 = 10.0;  // [rad/s]
 
-// Problem 8.26: a ball set down spinning at w0 about y with its centre at rest slides; friction
-// mu_k m g drives v̇ = mu_k g and ẇ = -5 mu_k g / (2 R), so the slip R w - v falls at
-// 7/2 mu_k g and sliding ends at t* = 2 R w0 / (7 mu_k g).
-double TStar(double w0) {
-  return 2.0 * kR * w0 / (7.0 * kMuK * kG);
-}
-// Problem 8.27: the angular momentum about the contact point, I w0 = (I + m R²) v / R with
-// I = 2/5 m R², is kept, so the ball then rolls at v = 2/7 R w0.
-double RollingSpeed(double w0) {
-  return 2.0 / 7.0 * kR * w0;
-}
+constexpr reference::Ball kBall{kMass, kR, 0.5, kMuK};
 
-void AddBall(Model& m, int i) {
-  const double I = 0.4 * kMass * kR * kR;
-  const int b = m.AddBody("ball" + std::to_string(i),
-                          MassProperties(kMass, Vec3::Zero(), RotationalInertia(I, I, I)));
-  ContactSpec c;
-  c.name = "floor" + std::to_string(i);
-  c.shape = ContactShape::kSphere;
-  c.body = b;
-  c.radius = kR;
-  c.mu_s = 0.5;
-  c.mu_k = kMuK;
-  m.AddContact(c);
+// Problems 8.26/8.27 (tests/reference/balls_on_floor.h): sliding ends at t* = 2 R w0 /
+// (7 mu_k g), then the ball rolls at 2/7 R w0.
+double TStar(double w0) {
+  return reference::StickTime(kBall, kG, w0);
+}
+double RollingSpeed(double w0) {
+  return reference::RollingSpeed(kBall, w0);
 }
 
 Model MakeBalls(int n) {
-  Model m;
-  for (int i = 0; i < n; ++i) AddBall(m, i);
-  m.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -kG)));
-  return m;
+  return reference::MakeBallsOnFloor(n, kBall, kG);
 }
 
 // Ball i at y = i m, resting on the floor, spinning at spins[i] about y.

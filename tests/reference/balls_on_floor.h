@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// Balls set down on a floor (the spinning ball of Problems 8.26/8.27, many times over), for the
+/// islands tests and bench/contact_bench.cpp: each ball a uniform sphere, I = 2/5 m R², with a
+/// sphere contact on the world plane z = 0, under uniform gravity. Set down spinning at w0 about
+/// y with its centre at rest, a ball slides: friction mu_k m g gives v̇ = mu_k g and
+/// ẇ = −5 mu_k g / (2 R), so the slip R w − v falls at 7/2 mu_k g and sliding ends at
+/// t* = 2 R w0 / (7 mu_k g); it then rolls at v = 2/7 R w0 (the angular momentum about the
+/// contact point, I w0 = (I + m R²) v / R, is kept).
+
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "chasles/model/contact.h"
+#include "chasles/model/forces.h"
+#include "chasles/model/model.h"
+
+namespace chasles::reference {
+
+struct Ball {
+  double mass, radius, mu_s, mu_k;
+};
+
+/// n balls "ball0", … with contacts "floor0", … and one UniformGravity "gravity" of g down z.
+inline Model MakeBallsOnFloor(int n, const Ball& ball, double g) {
+  Model m;
+  const double I = 0.4 * ball.mass * ball.radius * ball.radius;
+  for (int i = 0; i < n; ++i) {
+    const int b = m.AddBody(fmt::format("ball{}", i),
+                            MassProperties(ball.mass, Vec3::Zero(), RotationalInertia(I, I, I)));
+    ContactSpec c;
+    c.name = fmt::format("floor{}", i);
+    c.shape = ContactShape::kSphere;
+    c.body = b;
+    c.radius = ball.radius;
+    c.mu_s = ball.mu_s;
+    c.mu_k = ball.mu_k;
+    m.AddContact(c);
+  }
+  m.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -g)));
+  return m;
+}
+
+/// t* = 2 R w0 / (7 mu_k g) (Problem 8.26).
+inline double StickTime(const Ball& ball, double g, double w0) {
+  return 2.0 * ball.radius * w0 / (7.0 * ball.mu_k * g);
+}
+
+/// v = 2/7 R w0 (Problem 8.27).
+inline double RollingSpeed(const Ball& ball, double w0) {
+  return 2.0 / 7.0 * ball.radius * w0;
+}
+
+}  // namespace chasles::reference
