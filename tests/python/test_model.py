@@ -266,12 +266,18 @@ def test_central_gravity_and_fixed_step_integrators():
     s = chasles.make_rest_state(model)
     s.bodies[0].position = [7.0e6, 0, 0]
     assert_rel(chasles.solve_instantaneous(model, s).bodies[0].acceleration, [-mu / 7.0e6**2, 0, 0])
-    # RK4 and the energy-momentum integrator on a free fall (exact for a quadratic).
+    # RK4, the energy-momentum integrator and the splitting on a free fall (exact for a
+    # quadratic; the splitting's translation is the closed form itself).
     model2 = chasles.Model()
     ball(model2)
     model2.add_force_element(chasles.UniformGravity("gravity", [0, 0, -G0]))
-    for kind in (chasles.Integrator.RK4, chasles.Integrator.ENERGY_MOMENTUM):
+    for kind in (chasles.Integrator.RK4, chasles.Integrator.ENERGY_MOMENTUM,
+                 chasles.Integrator.SPLITTING):
         r = chasles.simulate(model2, chasles.make_rest_state(model2), t_end=0.5,
                              output_interval=0.1, integrator=kind, fixed_step=0.01)
         table = r.table(model2)
         assert_rel(table["ball_z"], -0.5 * G0 * table["t"] ** 2)
+    # The splitting steps free bodies under uniform gravity only: central gravity is refused.
+    with pytest.raises(chasles.InputError, match="not uniform gravity"):
+        chasles.simulate(model, s, t_end=0.5, integrator=chasles.Integrator.SPLITTING,
+                         fixed_step=0.01)
