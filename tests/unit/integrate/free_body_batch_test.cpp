@@ -93,6 +93,16 @@ TopRun RunTop(FreeBodyStepper stepper, double h, double T) {
   return {(s.bodies[0].w_WB_B - w_ref).norm() / w0.norm(), Angle(s.bodies[0].q_WB, q_ref)};
 }
 
+/// Options of a fixed-step run with h = 1 ms, sampled every `output_interval` to `t_end` [s].
+SimulationOptions FixedStep(IntegratorKind kind, double output_interval, double t_end) {
+  SimulationOptions o;
+  o.integrator = kind;
+  o.fixed_step = 1e-3;
+  o.output_interval = output_interval;
+  o.t_end = t_end;
+  return o;
+}
+
 // Halving h divides the error by 2^p: 16 for RK4, 4 for the second-order splitting. The
 // ratios are taken where the error is far above round-off and h|ω| small (0.05 to 0.0125).
 TEST(FreeBodyBatch, AxisymmetricTopConvergesWithTheOrderOfEachStepper) {
@@ -286,12 +296,7 @@ TEST(FreeBodyBatch, SimulateTakesTheBatchAndAgreesWithTheGenericPath) {
   Model m = RandomBodies(30, rng, true, Vec3(0, 0.5, -9.81), &s0);
   m.AddForceElement(std::make_shared<UniformGravity>("second gravity", Vec3(1.0, 0, 0)));
   s0.force_integrals.resize(2);
-  SimulationOptions o;
-  o.integrator = IntegratorKind::kRk4;
-  o.fixed_step = 1e-3;
-  o.output_interval = 0.1;
-  o.t_end = 0.5;
-  const SimulationResult r = Simulate(m, s0, o);
+  const SimulationResult r = Simulate(m, s0, FixedStep(IntegratorKind::kRk4, 0.1, 0.5));
   EXPECT_TRUE(r.stats.free_body_batch);
   EXPECT_EQ(r.stats.steps, 500);
   ASSERT_EQ(r.samples.size(), 6u);
@@ -330,12 +335,7 @@ TEST(FreeBodyBatch, SplittingIntegratorIsTheBatchOnTheFixedGridWithAnExactGravit
   State s0;
   const Vec3 g(0.3, -0.2, -9.81);
   const Model m = RandomBodies(20, rng, true, g, &s0);
-  SimulationOptions o;
-  o.integrator = IntegratorKind::kSplitting;
-  o.fixed_step = 1e-3;
-  o.output_interval = 0.05;
-  o.t_end = 0.2;
-  const SimulationResult r = Simulate(m, s0, o);
+  const SimulationResult r = Simulate(m, s0, FixedStep(IntegratorKind::kSplitting, 0.05, 0.2));
   EXPECT_TRUE(r.stats.free_body_batch);
   EXPECT_EQ(r.stats.steps, 200);
   ASSERT_EQ(r.samples.size(), 5u);
