@@ -80,8 +80,10 @@ int SolveSchur(const Model& model, const std::vector<int>* row_owner, const Matr
 }
 
 // The sparse path of SolveConstraintForces (dynamics/internal/sparse_solve.h): the same
-// system (J M⁻¹ Jᵀ) λ = c - J u̇_free with J by body blocks. Returns false, leaving the dense
-// path to solve it, when the system is singular (redundant rows need the least-norm λ).
+// system (J M⁻¹ Jᵀ) λ = c - J u̇_free with J by body blocks; redundant rows get the weighted
+// least-norm λ of SolveSchur (weights CalcReactionWeights) from SolveSparseLeastNorm. Returns
+// false, leaving the dense path to solve it (and to report an inconsistency), when that gives
+// up or the rank is unknown (an exactly zero pivot).
 bool SolveSparse(const Model& model, Data& data) {
   internal::SparseWorkspace& ws = internal::GetSparseWorkspace(data.sparse_constraints);
   ws.rows.Clear();
@@ -90,8 +92,13 @@ bool SolveSparse(const Model& model, Data& data) {
   data.schur_rhs.resize(n);
   for (int i = 0; i < n; ++i)
     data.schur_rhs[i] = data.acceleration_rhs[i] - ws.rows.RowTimes(i, data.u_dot);
-  if (!internal::SolveSparse(model, data, true, ws, data.schur_rhs, data.lambda)) return false;
   data.constraint_rank = n;
+  if (!internal::SolveSparse(model, data, true, ws, data.schur_rhs, data.lambda)) {
+    if (!ws.singular_symmetric || ws.nullity < 0) return false;
+    const VectorXd d = CalcReactionWeights(model, data);
+    if (!internal::SolveSparseLeastNorm(ws, data.schur_rhs, &d, data.lambda)) return false;
+    data.constraint_rank = n - ws.nullity;
+  }
   internal::AddMinvWTimes(ws, data.lambda, data.u_dot);  // u̇ = u̇_free + M⁻¹ Jᵀ λ
   return true;
 }

@@ -330,8 +330,9 @@ void NormalForceBlocks(const Contact& con, const ContactPointGeometry& g, Contac
   }
 }
 
-// Redundant rows: weights for the least-norm split (called after a least-norm solve;
-// re-solves in place).
+// Redundant rows: weights D for the least-norm split, from the unweighted least-norm
+// multipliers `lambda` (shared by the dense and the sparse path, which then re-solve for the
+// weighted least-norm x = D y). Returns whether any weight differs from 1.
 // - Sticking rows of several points (a box on four vertices, a cylinder on both end rims)
 //   leave the friction split among the points undetermined; only the resultant is fixed. The
 //   plain least-norm split shares it equally, so the least loaded point would reach its cone
@@ -345,22 +346,21 @@ void NormalForceBlocks(const Contact& con, const ContactPointGeometry& g, Contac
 // - Constraint rows take the constraint stage's weights (CalcReactionWeights: a moment row
 //   weighs as a force at the mechanism's length), so no newton is traded against a
 //   newton-metre here either.
-void WeighRedundantRows(const Model& model, const State& state, const Data& data, int nc_rows,
-                        ContactWorkspace& ws) {
-  const auto rows = ws.A.rows();
-  ws.scale.resize(rows);
-  ws.scale.setOnes();
+bool CalcRedundantRowWeights(const Model& model, const State& state, const Data& data, int nc_rows,
+                             const VectorXd& lambda, VectorXd& scale) {
+  scale.resize(lambda.size());
+  scale.setOnes();
   bool any = false;
   if (nc_rows > 0) {
-    ws.scale.head(nc_rows) = CalcReactionWeights(model, data);
-    any = (ws.scale.head(nc_rows).array() != 1.0).any();
+    scale.head(nc_rows) = CalcReactionWeights(model, data);
+    any = (scale.head(nc_rows).array() != 1.0).any();
   }
   double n_ref = 0.0;
   int k = nc_rows;
   for (int p = 0; p < model.num_contact_points(); ++p) {
     const ContactMode m = ModeOf(state, p);
     if (m == ContactMode::kSeparated) continue;
-    n_ref = std::max(n_ref, ws.lambda[k]);
+    n_ref = std::max(n_ref, lambda[k]);
     k += m == ContactMode::kSticking ? 3 : 1;
   }
   k = nc_rows;
@@ -372,8 +372,8 @@ void WeighRedundantRows(const Model& model, const State& state, const Data& data
       // A floor keeps the column alive (a point carrying nothing still closes the rows).
       // Column scale D = √(capacity): the solve minimises Σ (f_i / D_i)² = Σ f_i² / c_i.
       if (n_ref > 0.0 && mu > 0.0) {
-        const double w = std::sqrt(std::max(mu * std::max(ws.lambda[k], 0.0) / n_ref, 1e-12));
-        ws.scale[k + 1] = ws.scale[k + 2] = w;
+        const double w = std::sqrt(std::max(mu * std::max(lambda[k], 0.0) / n_ref, 1e-12));
+        scale[k + 1] = scale[k + 2] = w;
         any = true;
       }
       k += 3;
@@ -381,8 +381,7 @@ void WeighRedundantRows(const Model& model, const State& state, const Data& data
       k += 1;
     }
   }
-  if (!any) return;
-  internal::SolveSquare(ws.A, ws.rhs, false, ws, ws.lambda, &ws.scale);
+  return any;
 }
 
 // The contact rows of the current modes, appended to `rows` with their right-hand sides in
@@ -427,7 +426,7 @@ void AppendContactRows(const Model& model, const State& state, Data& data,
 }
 
 // Dense path: the rows scattered into J and W (rows × 6 n_bodies), A = J M⁻¹ Wᵀ formed and
-// factored whole (least-norm when singular, friction then shared by WeighRedundantRows).
+// factored whole (least-norm when singular, friction then shared by CalcRedundantRowWeights).
 void SolveContactDense(const Model& model, const State& state, Data& data, bool symmetric) {
   const int nb = model.num_bodies();
   const int nc_rows = model.num_constraint_rows();
@@ -452,19 +451,29 @@ void SolveContactDense(const Model& model, const State& state, Data& data, bool 
   ws.rhs.noalias() = ws.c - ws.J * data.u_dot;
   if (nc_rows > 0) internal::HoldReleasedRows(data.row_released, ws.A, ws.rhs);
   const bool redundant = internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda);
-  if (redundant) WeighRedundantRows(model, state, data, nc_rows, ws);
+  if (redundant && CalcRedundantRowWeights(model, state, data, nc_rows, ws.lambda, ws.scale))
+    internal::SolveSquare(ws.A, ws.rhs, false, ws, ws.lambda, &ws.scale);
   data.u_dot.noalias() += ws.WMinv.transpose() * ws.lambda;
 }
 
-// Sparse path (dynamics/internal/sparse_solve.h); false when A is singular (then the dense
-// path solves the system).
-bool SolveContactSparse(const Model& model, Data& data, bool symmetric) {
+// Sparse path (dynamics/internal/sparse_solve.h). A singular symmetric system (every point
+// sticking, redundant: a pile) gets the dense path's answer sparsely: the least-norm
+// multipliers, then the weighted least-norm ones with CalcRedundantRowWeights. False when the
+// system is singular and not symmetric (sliding), or the least-norm iteration gives up: then
+// the dense path solves it.
+bool SolveContactSparse(const Model& model, const State& state, Data& data, bool symmetric) {
   ContactWorkspace& ws = data.contact_work;
   internal::SparseWorkspace& sp = internal::GetSparseWorkspace(data.sparse_contacts);
   const int rows = sp.rows.rows();
   ws.rhs.resize(rows);
   for (int i = 0; i < rows; ++i) ws.rhs[i] = ws.c[i] - sp.rows.RowTimes(i, data.u_dot);
-  if (!internal::SolveSparse(model, data, symmetric, sp, ws.rhs, ws.lambda)) return false;
+  if (!internal::SolveSparse(model, data, symmetric, sp, ws.rhs, ws.lambda)) {
+    if (!symmetric || !internal::SolveSparseLeastNorm(sp, ws.rhs, nullptr, ws.lambda)) return false;
+    if (CalcRedundantRowWeights(model, state, data, model.num_constraint_rows(), ws.lambda,
+                                ws.scale) &&
+        !internal::SolveSparseLeastNorm(sp, ws.rhs, &ws.scale, ws.lambda))
+      return false;
+  }
   internal::AddMinvWTimes(sp, ws.lambda, data.u_dot);
   return true;
 }
@@ -507,7 +516,7 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
     u_dot.segment<3>(6 * b + 3) = data.R_WB[i] * data.wdot_WB_B[i];
   }
   if (!(internal::UseSparse(data.linear_solver, rows) &&
-        SolveContactSparse(model, data, symmetric)))
+        SolveContactSparse(model, state, data, symmetric)))
     SolveContactDense(model, state, data, symmetric);
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
@@ -829,7 +838,7 @@ bool ModeSelector::DropPullingPoint(const std::vector<ContactPointOutput>& out) 
 // (slip_starts); 2, over the cone by more than round-off; 1, at the limit (within it).
 // The points to switch: every point over the cone is handled one at a time, largest
 // excess first; otherwise the crossed and at-limit points start to slip together: points
-// that share a load in proportion to their capacity (WeighRedundantRows) reach their
+// that share a load in proportion to their capacity (CalcRedundantRowWeights) reach their
 // cones together, and a rigid body held at several points breaks loose at all of them at
 // once (one by one would load the rest past their cones in skewed directions). Returns
 // whether a point started to slip.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 namespace chasles {
@@ -127,6 +128,7 @@ void Analyse(SparseWorkspace& ws, int nb, bool symmetric) {
     if (R.start[static_cast<size_t>(i)] == R.start[static_cast<size_t>(i) + 1])
       ws.hold_slot.push_back(slot(i, i));
   }
+  ws.K.resize(0, 0);  // SolveSparseLeastNorm's copy follows the new pattern
   if (symmetric) {
     ws.ldlt.analyzePattern(ws.A);
   } else {
@@ -152,6 +154,22 @@ double MinPivot(const LU& lu, Eigen::Index n) {
     }
   }
   return m;
+}
+
+// K = Ã + diag(shift) (the pattern and diagonal slots from Ã, each column's last stored
+// entry, made again after a new analysis), factored by ws.ldlt_k.
+void FactorShifted(SparseWorkspace& ws, const Eigen::VectorXd& shift) {
+  const int n = static_cast<int>(ws.A.rows());
+  if (ws.K.nonZeros() != ws.A.nonZeros() || ws.K.rows() != n) {
+    ws.K = ws.A;
+    ws.diag_slot.resize(static_cast<size_t>(n));
+    for (int c = 0; c < n; ++c)
+      ws.diag_slot[static_cast<size_t>(c)] = ws.K.outerIndexPtr()[c + 1] - 1;
+    ws.ldlt_k.analyzePattern(ws.K);
+  }
+  std::copy(ws.A.valuePtr(), ws.A.valuePtr() + ws.A.nonZeros(), ws.K.valuePtr());
+  for (int c = 0; c < n; ++c) ws.K.valuePtr()[ws.diag_slot[static_cast<size_t>(c)]] += shift[c];
+  ws.ldlt_k.FactorizeInPlace(ws.K);
 }
 
 // Jacobi scaling S = diag(1 / √(J_i M⁻¹ J_iᵀ)) (1 for a held row), applied to A's values in
@@ -191,6 +209,9 @@ bool SolveSparse(const Model& model, const Data& data, bool symmetric, SparseWor
   const BlockRows& R = ws.rows;
   const int n = R.rows();
   ws.solved = false;
+  ws.singular_symmetric = false;
+  ws.least_norm = false;
+  ws.least_norm_iterations = 0;
   if (n == 0) {
     x.resize(0);
     return ws.solved = true;
@@ -228,8 +249,25 @@ bool SolveSparse(const Model& model, const Data& data, bool symmetric, SparseWor
   if (symmetric) {
     // P S A S Pᵀ: LDLᵀ in place (no ordering of its own).
     ws.ldlt.FactorizeInPlace(ws.A);
-    if (ws.ldlt.info() != Eigen::Success || !(ws.ldlt.vectorD().minCoeff() > 1e-10 * a_max))
+    if (ws.ldlt.info() != Eigen::Success || !(ws.ldlt.vectorD().minCoeff() > 1e-10 * a_max)) {
+      // Positive semi-definite: without pivoting, a dependent row meets a zero pivot (its
+      // column below is then zero too) and the factorisation goes on, so the small pivots count
+      // the null space; Eigen stops at an exactly zero pivot (count unknown).
+      // Eigen stops at an exactly zero pivot (exact copies of rows): then the pivots of
+      // S A S + τ I, τ = 1e-13 of the largest entry, count them (adding τ I to a positive
+      // semi-definite matrix only raises its pivots, those above 1e-10 stay above, and a zero
+      // pivot becomes O(τ)).
+      ws.singular_symmetric = true;
+      ws.nullity = -1;
+      if (ws.ldlt.info() == Eigen::Success) {
+        ws.nullity = static_cast<int>((ws.ldlt.vectorD().array() <= 1e-10 * a_max).count());
+      } else {
+        FactorShifted(ws, Eigen::VectorXd::Constant(n, 1e-13 * a_max));
+        if (ws.ldlt_k.info() == Eigen::Success)
+          ws.nullity = static_cast<int>((ws.ldlt_k.vectorD().array() <= 1e-10 * a_max).count());
+      }
       return false;
+    }
     ws.x_perm = ws.ldlt.solve(ws.r_perm);
   } else {
     ws.lu.factorize(ws.A);
@@ -238,6 +276,160 @@ bool SolveSparse(const Model& model, const Data& data, bool symmetric, SparseWor
   }
   x.resize(n);
   for (int i = 0; i < n; ++i) x[i] = ws.scale[i] * ws.x_perm[at(i)];
+  return ws.solved = true;
+}
+
+namespace {
+
+// out = Ã v, Ã symmetric stored as its upper triangle (ws.A); with `absolute`, |Ã| |v|.
+void SymmetricTimes(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& v,
+                    Eigen::VectorXd& out, bool absolute) {
+  const int n = static_cast<int>(A.cols());
+  const double* val = A.valuePtr();
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  out.setZero(n);
+  for (int c = 0; c < n; ++c) {
+    for (int p = outer[c]; p < outer[c + 1]; ++p) {
+      const int i = inner[p];
+      const double a = absolute ? std::abs(val[p]) : val[p];
+      const double vc = absolute ? std::abs(v[c]) : v[c];
+      out[i] += a * vc;
+      if (i != c) out[c] += a * (absolute ? std::abs(v[i]) : v[i]);
+    }
+  }
+}
+
+}  // namespace
+
+// The weighted least-norm solution (docs/design.md, "Sparse constraint and contact solves").
+// With D the weights, the solutions of A x = r are x = D y with (A D) y = r, equivalently
+// (D A D) y = D r (D invertible), and min Σ (x_i / d_i)² is min |y|²: y = T⁺ b with
+// T = D A D (symmetric positive semi-definite, singular) and b = D r, consistent.
+// Iterated Tikhonov regularisation (the proximal point method on ½ yᵀ T y - bᵀ y):
+//   y_0 = 0,   y_{k+1} = y_k + (T + ε I)⁻¹ (b - T y_k).
+// In T's eigenbasis (T v = σ v) the error e_k = y_k - T⁺ b obeys e_{k+1} = ε / (σ + ε) e_k:
+// the null-space part (σ = 0) stays at its start, zero, and every range part shrinks by
+// ε / (σ + ε) per iteration, so y_k → T⁺ b, the least-norm solution, with one factorisation
+// of the symmetric positive definite T + ε I reused throughout (Engl, Hanke & Neubauer,
+// "Regularization of Inverse Problems", 1996, sec. 5.1). T + ε I is factored in the Jacobi
+// scaling A is stored in (Ã = S A S, diagonal 1): with E = D S⁻¹, T = E Ã E and
+//   T + ε I = E (Ã + ε E⁻²) E,   K = Ã + ε E⁻²,
+// so (T + ε I)⁻¹ v = E⁻¹ K⁻¹ E⁻¹ v; K has Ã's pattern and its AMD analysis. ε = 1e-8 of T's
+// largest diagonal entry (each iteration gains a factor 1e-8 / σ_rel on the range), 1e-11 when
+// the residual stalls above round-off (a spectrum spread below 1e-8); the null-space part that
+// round-off leaves, of order u/ε, is removed afterwards (phase 2 below). One solve of a sticking
+// row of spheres: 3 iterations and 3 projected ones.
+bool SolveSparseLeastNorm(SparseWorkspace& ws, const Eigen::VectorXd& r, const Eigen::VectorXd* d,
+                          Eigen::VectorXd& x) {
+  // ε levels (relative to T's largest diagonal entry) and the cleaning passes each needs.
+  constexpr double kEpsilon[] = {1e-8, 1e-11};
+  constexpr int kPasses[] = {1, 2};
+  constexpr int kMaxIterations = 60;
+  const int n = ws.rows.rows();
+  ws.solved = ws.least_norm = false;  // until this solve converges
+  if (!ws.singular_symmetric || ws.A.rows() != n) return false;
+  const auto at = [&](int i) { return ws.perm[static_cast<size_t>(i)]; };
+  ws.E.resize(n), ws.b.resize(n);
+  double e2_max = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double di = d != nullptr ? (*d)[i] : 1.0;
+    if (!(di > 0.0)) return false;
+    ws.E[at(i)] = di / ws.scale[i];
+    ws.b[at(i)] = di * r[i];
+    e2_max = std::max(e2_max, ws.E[at(i)] * ws.E[at(i)]);
+  }
+  double eps = 0.0;
+  // T v and (T + ε I)⁻¹ v (into `out`; `v` and `out` distinct).
+  const auto times_T = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+    ws.v = ws.E.cwiseProduct(v);
+    SymmetricTimes(ws.A, ws.v, out, false);
+    out.array() *= ws.E.array();
+  };
+  const auto solve_shifted = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+    ws.v = v.cwiseQuotient(ws.E);
+    out = ws.ldlt_k.solve(ws.v);
+    out.array() /= ws.E.array();
+  };
+  // res = b - T y; returns |res|, and in `size` the round-off scale |b| + E |Ã| |E y|.
+  double size = 0.0;
+  const auto residual = [&]() {
+    times_T(ws.y, ws.res);
+    ws.res = ws.b - ws.res;
+    SymmetricTimes(ws.A, ws.E.cwiseProduct(ws.y), ws.dy, true);
+    size = (ws.b.cwiseAbs() + ws.E.cwiseProduct(ws.dy)).maxCoeff();
+    return ws.res.cwiseAbs().maxCoeff();
+  };
+  // Phase 1, iterated Tikhonov until the residual is at round-off of its terms or stops
+  // falling. Stopping above round-off means range parts with σ far below ε (T's diagonal
+  // spreads over orders of magnitude: the moment rows of slender rods weigh 1/I): ε drops to
+  // the next level, refactored, and the iteration goes on from y (whose null part stays).
+  // T_jj = E_j² Ã_jj, Ã_jj = 1 (a row with blocks, or a held row): ε = level × max E².
+  ws.y.setZero(n);
+  int level = 0;
+  double res_max = 0.0;
+  for (;; ++level) {
+    eps = kEpsilon[level] * e2_max;
+    FactorShifted(ws, (eps / ws.E.array().square()).matrix());  // K = Ã + ε E⁻²
+    if (ws.ldlt_k.info() != Eigen::Success) return false;
+    double previous = std::numeric_limits<double>::infinity();
+    for (int k = 0;; ++k) {
+      res_max = residual();
+      if (res_max <= 1e-15 * size || res_max > 0.5 * previous) break;
+      if (k == kMaxIterations) return false;
+      previous = res_max;
+      solve_shifted(ws.res, ws.dy);
+      ws.y += ws.dy;
+      ++ws.least_norm_iterations;
+    }
+    if (res_max <= 1e-12 * size || level + 1 == static_cast<int>(std::size(kEpsilon))) break;
+  }
+  if (res_max > 1e-11 * size) return false;  // inconsistent (or too slow): the dense path
+  // Phase 2, the null space cleaned. Round-off puts a null-space part into y: b is consistent
+  // only to the round-off of forming r, and each solve errs by u |K| |output| in every
+  // direction; (T + ε I)⁻¹ magnifies both by 1/ε on the null space, which T y cannot see.
+  // y - ε (T + ε I)⁻¹ y = T (T + ε I)⁻¹ y removes it (σ = 0: factor 0) and scales the range
+  // parts by σ / (σ + ε); the lost range parts come back by the projected iteration
+  //   y += (T + ε I)⁻¹ T (T + ε I)⁻¹ (b - T y)
+  // (range parts: error × ε (2σ + ε) / (σ + ε)²; the null parts of the residual and of the
+  // first solve are removed by T, and the corrections are small, so is what they add).
+  // (u/ε)^(passes + 1) at most is left of the null-space part.
+  bool converged = true;
+  for (int pass = 0; pass < kPasses[level] && converged; ++pass) {
+    solve_shifted(ws.y, ws.dy);
+    ws.y -= eps * ws.dy;
+    converged = false;
+    double previous_step = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < kMaxIterations; ++k) {
+      residual();
+      solve_shifted(ws.res, ws.dy);
+      times_T(ws.dy, ws.res);
+      solve_shifted(ws.res, ws.dy);
+      ws.y += ws.dy;
+      ++ws.least_norm_iterations;
+      // Done at round-off of y, or where the steps stop falling (their round-off floor).
+      const double step = ws.dy.cwiseAbs().maxCoeff(), y_max = ws.y.cwiseAbs().maxCoeff();
+      if (step <= 1e-15 * y_max) {
+        converged = true;
+        break;
+      }
+      if (step > 0.5 * previous_step) {
+        // At the floor a step is round-off of the solves (noise, undone); above 1e-12 of y the
+        // steps fall too slowly: T's spectrum spreads below ε.
+        if (step > previous_step) ws.y -= ws.dy;
+        converged = std::min(step, previous_step) <= 1e-11 * y_max;
+        break;
+      }
+      previous_step = step;
+    }
+  }
+  // Accepted when consistent: the residual at round-off of its terms (an inconsistent r keeps
+  // its part outside T's range).
+  converged = converged && residual() <= 1e-11 * size;
+  if (!converged) return false;
+  x.resize(n);
+  for (int i = 0; i < n; ++i) x[i] = (d != nullptr ? (*d)[i] : 1.0) * ws.y[at(i)];
+  ws.least_norm = true;
   return ws.solved = true;
 }
 

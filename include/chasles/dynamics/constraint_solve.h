@@ -11,7 +11,8 @@
 /// (M⁻¹ is block diagonal and known, u̇_free is the unconstrained Newton–Euler answer).
 /// λ's moments are about each Bcm and expressed in W. The system is solved by LDLᵀ; when it
 /// is singular (redundant constraints, e.g. two coaxial hinges) the least-norm multipliers
-/// come from a complete orthogonal decomposition and Data::constraint_rank says so; when no
+/// come from a complete orthogonal decomposition (or, on the sparse path, from the same
+/// least-norm problem solved sparsely: docs/design.md) and Data::constraint_rank says so; when no
 /// multipliers satisfy it (inconsistent constraints) an InputError names the constraints.
 ///
 /// Drift: integrating u̇ lets g(q) and J u - b wander by the truncation error. After every

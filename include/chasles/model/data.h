@@ -75,7 +75,8 @@ struct SchurFactorization {
 enum class LinearSolver {
   kAuto,    ///< sparse from kSparseMinRows active rows on, dense below
   kDense,   ///< dense J, dense J M⁻¹ Wᵀ, dense LDLᵀ / LU (least-norm COD when singular)
-  kSparse,  ///< J by body blocks, sparse J M⁻¹ Wᵀ, sparse LDLᵀ / LU (dense when singular)
+  kSparse,  ///< J by body blocks, sparse J M⁻¹ Wᵀ, sparse LDLᵀ / LU; when singular, the
+            ///< same least-norm answer sparsely if W = J, else the dense path's
 };
 
 /// Fewest active rows (40) for which LinearSolver::kAuto takes the sparse path. The sparse path

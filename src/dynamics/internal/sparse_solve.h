@@ -10,7 +10,9 @@
 /// by a sparse LU with COLAMD ordering otherwise (sliding rows, rolling resistance); the
 /// symbolic analysis is kept while the rows' body pattern stays (between mode changes), so an
 /// evaluation refills the O(n) values and refactors numerically. A pivot at or below 1e-10 of
-/// A's largest entry (redundant rows) is reported to the caller, which then takes the dense
+/// A's largest entry (redundant rows) is reported to the caller. A symmetric singular system
+/// then gets the (weighted) least-norm solution sparsely (SolveSparseLeastNorm, iterated
+/// Tikhonov with one sparse LDLᵀ); a sliding one, or one that solve gives up on, takes the dense
 /// least-norm path.
 
 #include <vector>
@@ -81,6 +83,21 @@ struct SparseWorkspace {
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
   /// Whether the last solve succeeded (false: singular, solved by the dense path).
   bool solved = false;
+  /// Set by SolveSparse when the symmetric factorisation met a pivot at or below 1e-10 of the
+  /// largest entry (A holds S A S, ready for SolveSparseLeastNorm); `nullity` is the number of
+  /// such pivots (-1 when the factorisation stopped at an exact zero).
+  bool singular_symmetric = false;
+  int nullity = -1;
+  /// SolveSparseLeastNorm: K = S A S + ε E⁻² (same pattern as A) and the slots of its
+  /// diagonal, its own LDLᵀ, E = D S⁻¹ in A's order, the vectors of the iteration; whether
+  /// the last least-norm solve converged and in how many iterations (summed over the unweighted
+  /// and the weighted solve of one evaluation).
+  Eigen::SparseMatrix<double> K;
+  std::vector<int> diag_slot;
+  InPlaceLDLT ldlt_k;
+  Eigen::VectorXd E, b, y, res, dy, v;
+  bool least_norm = false;
+  int least_norm_iterations = 0;
 };
 
 /// The workspace behind `handle` (made on first use).
@@ -94,6 +111,14 @@ bool UseSparse(LinearSolver choice, int rows);
 /// S A S, S the Jacobi scaling diag(1 / √(J_i M⁻¹ J_iᵀ)).
 bool SolveSparse(const Model& model, const Data& data, bool symmetric, SparseWorkspace& ws,
                  const Eigen::VectorXd& r, Eigen::VectorXd& x);
+
+/// After SolveSparse(symmetric = true) returned false with ws.singular_symmetric: the weighted
+/// least-norm solution of the consistent singular system A x = r, min Σ (x_i / d_i)², x = D y
+/// with y the least-norm solution of (D A D) y = D r (`d` null: D = I). Returns false, leaving
+/// x unspecified, when the iteration does not reach the round-off of r within its cap (an
+/// inconsistent r, or a spectrum too spread for ε): the dense path then answers.
+bool SolveSparseLeastNorm(SparseWorkspace& ws, const Eigen::VectorXd& r, const Eigen::VectorXd* d,
+                          Eigen::VectorXd& x);
 
 /// u += M⁻¹ Wᵀ λ from the blocks (after SolveSparse, which filled ws.MinvW).
 void AddMinvWTimes(const SparseWorkspace& ws, const Eigen::VectorXd& lambda, Eigen::VectorXd& u);
