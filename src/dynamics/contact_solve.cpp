@@ -589,10 +589,15 @@ struct PlanSolution {
   bool solved = false;
 };
 
+// The plan's normal forces act along W_n, as in the contact stage (NormalForceBlocks): the
+// normal, less mu_k s where a point slides, and, where `rolling` is given (its contact states
+// hold the reference rolling directions), the rolling-resistance moment -mu_r N R ŵ_r of a
+// round feature. Without that moment here, a pair of balls rolling on a floor with rolling
+// resistance would be planned as parting while the contact stage presses them together.
 PlanSolution SolvePlan(const Model& model, const Data& data,
                        const std::vector<ContactPointGeometry>& geo,
                        const std::vector<PointPlan>& plan, const VectorXd& base,
-                       const VectorXd& c_constraints, bool complementary) {
+                       const VectorXd& c_constraints, bool complementary, const State* rolling) {
   const int nb = model.num_bodies();
   const int ncr = model.num_constraint_rows();
   int n_stick = 0;
@@ -613,6 +618,11 @@ PlanSolution SolvePlan(const Model& model, const Data& data,
     cn[i] = pp.target_n;
     if (pp.mode == ContactMode::kSliding && con.mu_k() > 0.0)
       g.AddRow(pp.s, -con.mu_k(), Wn.row(i));
+    if (rolling != nullptr && con.mu_r() > 0.0 && g.round) {
+      const Vec3 roll_dir =
+          g.RollingDirection(PointStateOf(*rolling, pp.point).rolling_direction_W);
+      if (roll_dir.squaredNorm() > 0.0) g.AddMoment(-con.mu_r() * g.radius * roll_dir, Wn.row(i));
+    }
     if (pp.mode == ContactMode::kSticking) {
       g.SetRow(g.t1, JE.row(e));
       cE[e++] = pp.target_t[0];
@@ -737,6 +747,18 @@ ModeSelector::ModeSelector(const Model& model, const State& state, const Contact
   // integrator will use, friction shared as there), so what is checked is what is integrated.
   trial_ = state;
   tdata_ = MakeData(model);
+  // The rolling reference of each round point with rolling resistance, as WriteModes will
+  // write it (the rolling direction, or none below stick_speed): the plan and its evaluation
+  // then use the moment the integrator will.
+  for (int p = 0; p < np_; ++p) {
+    const ContactPointGeometry& g = geo_[static_cast<size_t>(p)];
+    Vec3& ref = trial_.contacts[static_cast<size_t>(p)].rolling_direction_W;
+    ref.setZero();
+    if (model.contact(model.contact_of_point(p)).mu_r() > 0.0 && g.round) {
+      const Vec3 wr = g.RollingVelocity();
+      if (wr.norm() > tol.stick_speed / std::max(g.radius, 1e-300)) ref = wr.normalized();
+    }
+  }
 }
 
 void ModeSelector::PlanCandidates() {
@@ -761,7 +783,7 @@ void ModeSelector::PlanCandidates() {
 
 void ModeSelector::SelectModes() {
   for (int pass = 0; pass < 24 * np_ + 8 && !plan_.empty(); ++pass) {
-    PlanSolution sol = SolvePlan(model_, data_, geo_, plan_, u_free_, c_con_, true);
+    PlanSolution sol = SolvePlan(model_, data_, geo_, plan_, u_free_, c_con_, true, &trial_);
     if (!sol.solved) {
       if (!TakeSlidingAsSticking()) break;
       continue;
@@ -926,13 +948,7 @@ void ModeSelector::WriteModes(State& state) const {
     ContactPointState& ps = state.contacts[static_cast<size_t>(pp.point)];
     ps.mode = pp.mode;
     if (pp.mode == ContactMode::kSliding) ps.slip_direction_W = pp.s;
-    const ContactPointGeometry& g = geo_[static_cast<size_t>(pp.point)];
-    const Contact& con = model_.contact(model_.contact_of_point(pp.point));
-    if (con.mu_r() > 0.0 && g.round) {
-      const Vec3 wr = g.RollingVelocity();
-      if (wr.norm() > tol_.stick_speed / std::max(g.radius, 1e-300))
-        ps.rolling_direction_W = wr.normalized();
-    }
+    ps.rolling_direction_W = trial_.contacts[static_cast<size_t>(pp.point)].rolling_direction_W;
   }
 }
 
@@ -950,7 +966,7 @@ void ModeSelector::ProjectVelocities(State& state, ModeSelectionNotes* notes) co
     if (pp.mode == ContactMode::kSliding) pp.s.setZero();
   }
   const VectorXd b_con = model_.num_constraints() > 0 ? VectorXd(data_.velocity_rhs) : VectorXd();
-  const PlanSolution sol = SolvePlan(model_, data_, geo_, vplan, u_, b_con, false);
+  const PlanSolution sol = SolvePlan(model_, data_, geo_, vplan, u_, b_con, false, nullptr);
   internal::SetVelocity(model_, data_, sol.u_new, state);
   const double dT = internal::KineticEnergy(model_, state) - T0;
   if (jammed_.empty()) {

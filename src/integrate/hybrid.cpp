@@ -383,20 +383,32 @@ class HybridRun {
       // below the plane made a flight shorter than the step: the gap rose and fell
       // inside it, which the end values do not show. The top of that flight is the zero
       // of the normal velocity ġ; the touch-down is then bracketed by [top, tb]. A
-      // flight whose top is not above the plane (a rebound below round-off) lands at
-      // its top, and a point that never moved away lands at once.
+      // flight whose top is not above the plane (a rebound below round-off, a point
+      // released at round-off) lands where it sinks below the touching band.
       if (!IsGap(fns[i].fn) || g0[i] > 0.0 || !(g1[i] < 0.0)) return kNone;
       auto gdot = [&](double t) {
         g(t);
         return GapRate(model_, scratch_, data_, fns[i]);
       };
       const double v0 = gdot(ta), v1 = gdot(tb);
+      if (v0 > 0.0 && v1 > 0.0) return kNone;  // rising all through the step
       double t_top = ta;
       if (v0 > 0.0 && v1 < 0.0) {
         t_top = internal::LocateEventTime(gdot, ta, v0, tb, v1, o_.event_time_tolerance);
       }
       const double g_top = g(t_top);
-      if (!(g_top > 0.0)) return t_top;
+      if (!(g_top > 0.0)) {
+        // Never above the plane: it is still within the touching band (gap >= -tol.gap,
+        // as in SelectContactModes), and lands where it sinks out of it. A point released
+        // at round-off (zero normal force and zero relative acceleration, both to
+        // round-off) would otherwise land at once and be released again, at one instant.
+        const double sink = -tol_.gap;
+        if (!(g_top > sink)) return t_top;
+        if (!(g1[i] < sink)) return kNone;
+        auto below = [&](double t) { return g(t) - sink; };
+        return internal::LocateEventTime(below, t_top, g_top - sink, tb, g1[i] - sink,
+                                         o_.event_time_tolerance);
+      }
       a = t_top, ga = g_top;
     }
     return internal::LocateEventTime(g, a, ga, tb, g1[i], o_.event_time_tolerance);
