@@ -214,6 +214,10 @@ std::string ContactEventsText(const StudyResult& r, const TextUnits& u) {
   if (r.contact_events.empty()) return "";
   return "\nContact modes (time, contact point: from -> to, why)\n" +
          Abridged(r.contact_events, 20, 5, "change", [&](const StudyContactEvent& e) {
+           if (e.from == e.to && e.reason != "initial") {  // a bounce: touch-down, apart at once
+             return fmt::format("  t = {}  {}: stays {} ({})\n", u.Time(e.t), e.point, e.to,
+                                e.reason);
+           }
            if (e.from == e.to) {
              return fmt::format("  t = {}  {}: {} ({})\n", u.Time(e.t), e.point, e.to, e.reason);
            }

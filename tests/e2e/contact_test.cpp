@@ -301,5 +301,13 @@ TEST(Contact, TextReportShowsTheTimelineAndTheLedger) {
   EXPECT_THAT(r.out, ::testing::HasSubstr("friction (sliding)"));
 }
 
+// A bounce keeps the point's mode (touch-down, apart again at once): the line says so.
+TEST(Contact, TextReportSaysABouncedPointStaysSeparated) {
+  const CliResult r = RunCli("simulate '" + SourcePath("examples/contact-spheres-head-on.yaml") +
+                             "' --out '" + OutDir().string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, ::testing::HasSubstr("knock: stays separated (touch-down)"));
+}
+
 }  // namespace
 }  // namespace chasles::test
