@@ -29,6 +29,7 @@
 #include "chasles/integrate/islands.h"
 #include "chasles/integrate/rk4.h"
 #include "chasles/integrate/simulate.h"
+#include "chasles/integrate/sphere_events.h"
 #include "chasles/integrate/stats.h"
 #include "chasles/io/atomic_file.h"
 #include "chasles/io/certificate_json.h"

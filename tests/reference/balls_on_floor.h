@@ -20,6 +20,8 @@ namespace chasles::reference {
 
 struct Ball {
   double mass, radius, mu_s, mu_k;
+  double mu_r = 0.0;         ///< rolling resistance
+  double restitution = 0.0;  ///< with the floor
 };
 
 /// n balls "ball0", … with contacts "floor0", … and one UniformGravity "gravity" of g down z.
@@ -36,6 +38,8 @@ inline Model MakeBallsOnFloor(int n, const Ball& ball, double g) {
     c.radius = ball.radius;
     c.mu_s = ball.mu_s;
     c.mu_k = ball.mu_k;
+    c.mu_r = ball.mu_r;
+    c.restitution = ball.restitution;
     m.AddContact(c);
   }
   m.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -g)));
