@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "chasles/error.h"
 #include "chasles/integrate/simulate.h"
@@ -34,6 +35,35 @@ void Place(const Model& m, State& s, int b, double x, double y, const Vec3& v, c
 
 double RelErr(double a, double b) {
   return std::abs(a - b) / std::max(std::abs(b), 1e-300);
+}
+
+// A cue ball rolling at `speed` along x into a triangle of `rows` rows of balls 0.1 mm apart,
+// each off its place by up to `jitter` in x and y (seeded; none when 0).
+void Rack(const Model& m, State& s, int rows, double speed, double jitter) {
+  const double pitch = 2 * kBall.radius + 1e-4;
+  std::mt19937_64 rng(2026);
+  std::uniform_real_distribution<double> U(-jitter, jitter);
+  const auto off = [&] { return jitter > 0.0 ? U(rng) : 0.0; };
+  int k = 1;
+  for (int row = 0; row < rows; ++row) {
+    for (int j = 0; j <= row; ++j) {
+      const double x = 1.0 + row * pitch * std::sqrt(3.0) / 2 + off();
+      Place(m, s, k++, x, (j - row / 2.0) * pitch + off(), Vec3::Zero(), Vec3::Zero());
+    }
+  }
+  Place(m, s, 0, 0, 0.001, Vec3(speed, 0, 0), Vec3(0, speed / kBall.radius, 0));
+}
+
+// No ball below the floor and no two balls overlapping by more than `slack` at any sample.
+void ExpectNoOverlap(const std::vector<State>& samples, int n, double slack) {
+  for (const State& st : samples) {
+    for (int a = 0; a < n; ++a) {
+      EXPECT_GE(st.bodies[a].p_WBcm.z(), kBall.radius - slack);
+      for (int b = a + 1; b < n; ++b) {
+        EXPECT_GE((st.bodies[a].p_WBcm - st.bodies[b].p_WBcm).norm(), 2 * kBall.radius - slack);
+      }
+    }
+  }
 }
 
 // Problem 8.26/8.27: set down spinning at w0 about y, centre at rest. Sliding ends at
@@ -220,15 +250,7 @@ TEST(SphereEvents, BreakOfFortySixBallsBalancesEnergyAndNeverOverlaps) {
   const int rows = 9, n = rows * (rows + 1) / 2 + 1;
   const Model m = reference::MakeBallsOnFloor(n, kBall, kG);
   State s = MakeRestState(m);
-  const double pitch = 2 * kBall.radius + 1e-4;
-  int k = 1;
-  for (int row = 0; row < rows; ++row) {
-    for (int j = 0; j <= row; ++j) {
-      Place(m, s, k++, 1.0 + row * pitch * std::sqrt(3.0) / 2, (j - row / 2.0) * pitch,
-            Vec3::Zero(), Vec3::Zero());
-    }
-  }
-  Place(m, s, 0, 0, 0.001, Vec3(8, 0, 0), Vec3(0, 8 / kBall.radius, 0));
+  Rack(m, s, rows, 8.0, 0.0);
   SphereEventOptions o = Until(4.0);
   o.output_interval = 0.05;
   o.collide_all_pairs = true;
@@ -237,14 +259,7 @@ TEST(SphereEvents, BreakOfFortySixBallsBalancesEnergyAndNeverOverlaps) {
   EXPECT_GT(r.collisions.size(), 40U);
   EXPECT_LT(std::abs(r.energy.residual), 1e-12 * r.energy.initial);
   EXPECT_LT(r.energy.friction + r.energy.impacts, 0.0);
-  for (const State& st : r.samples) {
-    for (int a = 0; a < n; ++a) {
-      EXPECT_GE(st.bodies[a].p_WBcm.z(), kBall.radius - 1e-9);
-      for (int b = a + 1; b < n; ++b) {
-        EXPECT_GE((st.bodies[a].p_WBcm - st.bodies[b].p_WBcm).norm(), 2 * kBall.radius - 1e-9);
-      }
-    }
-  }
+  ExpectNoOverlap(r.samples, n, 1e-9);
   const SphereEventResult again = SimulateSphereEvents(m, s, o);
   ASSERT_EQ(again.collisions.size(), r.collisions.size());
   for (int i = 0; i < n; ++i) {
@@ -264,17 +279,7 @@ TEST(SphereEvents, TightRackWithRollingResistanceRunsThroughItsPressingGroups) {
   const int rows = 8, n = rows * (rows + 1) / 2 + 1;
   const Model m = reference::MakeBallsOnFloor(n, ball, kG);
   State s = MakeRestState(m);
-  const double pitch = 2 * ball.radius + 1e-4;
-  std::mt19937_64 rng(2026);
-  std::uniform_real_distribution<double> jitter(-25e-6, 25e-6);
-  int k = 1;
-  for (int row = 0; row < rows; ++row) {
-    for (int j = 0; j <= row; ++j) {
-      const double x = 1.0 + row * pitch * std::sqrt(3.0) / 2 + jitter(rng);
-      Place(m, s, k++, x, (j - row / 2.0) * pitch + jitter(rng), Vec3::Zero(), Vec3::Zero());
-    }
-  }
-  Place(m, s, 0, 0, 0.001, Vec3(10, 0, 0), Vec3(0, 10 / ball.radius, 0));
+  Rack(m, s, rows, 10.0, 25e-6);
   SphereEventOptions o = Until(3.0);
   o.output_interval = 0.01;
   o.collide_all_pairs = true;
@@ -284,13 +289,7 @@ TEST(SphereEvents, TightRackWithRollingResistanceRunsThroughItsPressingGroups) {
   EXPECT_GT(r.stats.group_windows, 10);
   EXPECT_LT(std::abs(r.energy.residual), 1e-12 * r.energy.initial);
   ASSERT_EQ(r.samples.back().t, 3.0);
-  for (const State& st : r.samples) {
-    for (int a = 0; a < n; ++a) {
-      for (int b = a + 1; b < n; ++b) {
-        EXPECT_GE((st.bodies[a].p_WBcm - st.bodies[b].p_WBcm).norm(), 2 * ball.radius - 2e-9);
-      }
-    }
-  }
+  ExpectNoOverlap(r.samples, n, 2e-9);
 }
 
 TEST(SphereEvents, RefusesWhatItCannotRun) {
