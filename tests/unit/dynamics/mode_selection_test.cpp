@@ -16,6 +16,8 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -43,10 +45,19 @@ int AddBall(Model& m, const char* name, double mu_r) {
   return b;
 }
 
-TEST(ModeSelection, RollingResistanceThatPressesTwoBallsTogetherIsInThePlan) {
+// The pair of the file comment, forward speed v, the leader's drift d and rolling resistance
+// mu_r: modes chosen by SelectContactModes, contact outputs, and the closed-form pair force
+// P = m/2 (mu_r g v/√(v² + d²) - 7/5 d²/(2R)) (pressing when positive, parting otherwise).
+struct PairCase {
+  State s;
+  std::vector<ContactPointOutput> out;
+  double P;
+};
+
+PairCase RunPair(double v, double d, double mu_r) {
   Model m;
   const int a = AddBall(m, "chaser", 0.0);
-  const int b = AddBall(m, "leader", kMuR);
+  const int b = AddBall(m, "leader", mu_r);
   ContactSpec pair;
   pair.name = "pair";
   pair.shape = ContactShape::kSphereSphere;
@@ -57,25 +68,51 @@ TEST(ModeSelection, RollingResistanceThatPressesTwoBallsTogetherIsInThePlan) {
   m.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -kG)));
   State s = MakeRestState(m);
   // Rolling without slip: v = ω × R ẑ, so ω = (-v_y, v_x, 0) / R.
-  const Vec3 v_a(1.0, 0.0, 0.0), v_b(1.0, 0.01, 0.0);
+  const Vec3 v_a(v, 0.0, 0.0), v_b(v, d, 0.0);
   SetBodyPose(m, a, Vec3(0, 0, kR), Quat::Identity(), s);
   SetBodyPose(m, b, Vec3(2 * kR, 0, kR), Quat::Identity(), s);
   SetBodyVelocity(m, a, v_a, Vec3(-v_a.y(), v_a.x(), 0) / kR, s);
   SetBodyVelocity(m, b, v_b, Vec3(-v_b.y(), v_b.x(), 0) / kR, s);
-
   SelectContactModes(m, s);
-  const int p = m.num_contact_points() - 1;  // the pair's one point
-  ASSERT_EQ(m.contact_point_name(p), "pair");
-  EXPECT_NE(s.contacts[static_cast<size_t>(p)].mode, ContactMode::kSeparated);
-  const std::vector<ContactPointOutput> out = CalcContactOutputs(m, s);
-  const double c = 0.01 * 0.01 / (2 * kR);
-  const double P = kM / 2 * (kMuR * kG / std::sqrt(1.0 + 0.01 * 0.01) - 1.4 * c);
-  EXPECT_NEAR(out[static_cast<size_t>(p)].normal_force, P, 1e-9 * P);
+  EXPECT_EQ(m.contact_point_name(2), "pair");
+  const double c = d * d / (2 * kR);
+  const double P = kM / 2 * (mu_r * kG * v / std::hypot(v, d) - 1.4 * c);
+  return {s, CalcContactOutputs(m, s), P};
+}
+
+TEST(ModeSelection, RollingResistanceThatPressesTwoBallsTogetherIsInThePlan) {
+  const PairCase r = RunPair(1.0, 0.01, kMuR);
+  EXPECT_NE(r.s.contacts[2].mode, ContactMode::kSeparated);
+  EXPECT_NEAR(r.out[2].normal_force, r.P, 1e-9 * r.P);
   // Both floors carry the weight and keep rolling (sticking).
   for (int f = 0; f < 2; ++f) {
-    EXPECT_EQ(s.contacts[static_cast<size_t>(f)].mode, ContactMode::kSticking);
-    EXPECT_NEAR(out[static_cast<size_t>(f)].normal_force, kM * kG, 1e-12 * kM * kG);
+    EXPECT_EQ(r.s.contacts[static_cast<size_t>(f)].mode, ContactMode::kSticking);
+    EXPECT_NEAR(r.out[static_cast<size_t>(f)].normal_force, kM * kG, 1e-12 * kM * kG);
   }
+}
+
+// Seeded speeds, drifts and coefficients on both sides of P = 0: where P > 0 the point is in
+// contact with that force, where P < 0 it parts (no force, and the drift opens the gap).
+TEST(ModeSelection, SeededPairsPressOrPartAsTheClosedFormSays) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> V(0.2, 3.0), D(0.0, 0.1), MU(0.002, 0.03);
+  int pressing = 0, parting = 0;
+  for (int k = 0; k < 60; ++k) {
+    const double v = V(rng), d = D(rng), mu_r = MU(rng);
+    const PairCase r = RunPair(v, d, mu_r);
+    if (std::abs(r.P) < 1e-5) continue;  // within round-off of the switch: either is right
+    if (r.P > 0.0) {
+      ++pressing;
+      EXPECT_NE(r.s.contacts[2].mode, ContactMode::kSeparated) << v << " " << d << " " << mu_r;
+      EXPECT_NEAR(r.out[2].normal_force, r.P, 1e-9 * r.P) << v << " " << d << " " << mu_r;
+    } else {
+      ++parting;
+      EXPECT_EQ(r.s.contacts[2].mode, ContactMode::kSeparated) << v << " " << d << " " << mu_r;
+      EXPECT_EQ(r.out[2].normal_force, 0.0);
+    }
+  }
+  EXPECT_GT(pressing, 10);
+  EXPECT_GT(parting, 10);
 }
 
 }  // namespace

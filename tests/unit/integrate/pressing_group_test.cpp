@@ -8,7 +8,6 @@
 // instant until max_mode_switches stopped the run.
 
 #include <array>
-#include <memory>
 #include <utility>
 #include <vector>
 
@@ -17,8 +16,8 @@
 
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/integrate/simulate.h"
-#include "chasles/model/forces.h"
 #include "chasles/model/model.h"
+#include "reference/balls_on_floor.h"
 
 namespace chasles {
 namespace {
@@ -92,21 +91,8 @@ constexpr std::array<std::pair<int, int>, 10> kPairs = {
     {{0, 1}, {2, 3}, {4, 5}, {14, 4}, {6, 7}, {7, 12}, {8, 9}, {10, 11}, {12, 13}, {15, 12}}};
 
 TEST(PressingGroup, PointReleasedAtRoundOffDoesNotLandAgainAtOnce) {
-  Model m;
-  const double I = 0.4 * kM * kR * kR;
-  for (size_t i = 0; i < kBalls.size(); ++i) {
-    const int b = m.AddBody(fmt::format("ball{}", i),
-                            MassProperties(kM, Vec3::Zero(), RotationalInertia(I, I, I)));
-    ContactSpec c;
-    c.name = fmt::format("floor{}", i);
-    c.shape = ContactShape::kSphere;
-    c.body = b;
-    c.radius = kR;
-    c.mu_s = 0.25;
-    c.mu_k = 0.2;
-    c.mu_r = 0.01;
-    m.AddContact(c);
-  }
+  Model m = reference::MakeBallsOnFloor(static_cast<int>(kBalls.size()),
+                                        reference::Ball{kM, kR, 0.25, 0.2, 0.01}, kG);
   for (const auto& [a, b] : kPairs) {
     ContactSpec c;
     c.name = fmt::format("ball{} | ball{}", a, b);
@@ -118,7 +104,6 @@ TEST(PressingGroup, PointReleasedAtRoundOffDoesNotLandAgainAtOnce) {
     c.restitution_law = RestitutionLaw::kEnergetic;
     m.AddContact(c);
   }
-  m.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -kG)));
   State s = MakeRestState(m);
   s.t = kT0;
   for (size_t i = 0; i < kBalls.size(); ++i) {
