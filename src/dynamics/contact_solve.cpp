@@ -309,7 +309,10 @@ void AddRowBlocks(const ContactPointGeometry& g, const Vec3& k, double scale,
 
 // The force direction of a pressing point's normal row, by blocks: J_n, minus mu_k J_s when it
 // slides (friction -mu_k N s), minus mu_r R ŵ_r in the angular part when a round feature rolls
-// with rolling resistance (moment -mu_r N R ŵ_r).
+// (sticks) with rolling resistance (moment -mu_r N R ŵ_r). A sliding point has no rolling
+// resistance: its friction is mu_k N alone, as in the closed-form sliding of
+// integrate/sphere_events.cpp (and a rolling direction fixed for a whole sliding stretch
+// would push the wrong way once the rolling velocity passes through zero, with no event).
 void NormalForceBlocks(const Contact& con, const ContactPointGeometry& g, ContactMode mode,
                        const ContactPointState& ps, internal::Vec6& on_body,
                        internal::Vec6& on_other) {
@@ -320,7 +323,7 @@ void NormalForceBlocks(const Contact& con, const ContactPointGeometry& g, Contac
     if (s.squaredNorm() > 0.0 && con.mu_k() > 0.0)
       AddRowBlocks(g, s, -con.mu_k(), on_body, on_other);
   }
-  if (con.mu_r() > 0.0 && g.round && mode != ContactMode::kSeparated) {
+  if (con.mu_r() > 0.0 && g.round && mode == ContactMode::kSticking) {
     const Vec3 roll_dir = g.RollingDirection(ps.rolling_direction_W);
     if (roll_dir.squaredNorm() > 0.0) {
       const Vec3 M = -con.mu_r() * g.radius * roll_dir;  // ContactPointGeometry::AddMoment
@@ -493,7 +496,7 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
     const ContactMode m = ModeOf(state, p);
     if (m == ContactMode::kSticking) rows += 3;
     if (m == ContactMode::kSliding) rows += 1, symmetric = false;
-    if (m != ContactMode::kSeparated && model.contact(model.contact_of_point(p)).mu_r() > 0.0) {
+    if (m == ContactMode::kSticking && model.contact(model.contact_of_point(p)).mu_r() > 0.0) {
       symmetric = false;
     }
   }
@@ -549,7 +552,7 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
       out.friction_force_W = -con.mu_k() * N * s;
       out.friction_power = out.friction_force_W.dot(g.v_t);
     }
-    if (con.mu_r() > 0.0 && g.round) {
+    if (out.mode == ContactMode::kSticking && con.mu_r() > 0.0 && g.round) {
       const Vec3 roll = g.RollingDirection(ps.rolling_direction_W);
       out.rolling_moment_W = -con.mu_r() * N * g.radius * roll;
       out.rolling_power = out.rolling_moment_W.dot(g.w_rel);
@@ -592,8 +595,8 @@ struct PlanSolution {
 // The plan's normal forces act along W_n, as in the contact stage (NormalForceBlocks): the
 // normal, less mu_k s where a point slides, and, where `rolling` is given (its contact states
 // hold the reference rolling directions), the rolling-resistance moment -mu_r N R ŵ_r of a
-// round feature. Without that moment here, a pair of balls rolling on a floor with rolling
-// resistance would be planned as parting while the contact stage presses them together.
+// round feature that rolls. Without that moment here, a pair of balls rolling on a floor with
+// rolling resistance would be planned as parting while the contact stage presses them together.
 PlanSolution SolvePlan(const Model& model, const Data& data,
                        const std::vector<ContactPointGeometry>& geo,
                        const std::vector<PointPlan>& plan, const VectorXd& base,
@@ -618,7 +621,7 @@ PlanSolution SolvePlan(const Model& model, const Data& data,
     cn[i] = pp.target_n;
     if (pp.mode == ContactMode::kSliding && con.mu_k() > 0.0)
       g.AddRow(pp.s, -con.mu_k(), Wn.row(i));
-    if (rolling != nullptr && con.mu_r() > 0.0 && g.round) {
+    if (rolling != nullptr && pp.mode == ContactMode::kSticking && con.mu_r() > 0.0 && g.round) {
       const Vec3 roll_dir =
           g.RollingDirection(PointStateOf(*rolling, pp.point).rolling_direction_W);
       if (roll_dir.squaredNorm() > 0.0) g.AddMoment(-con.mu_r() * g.radius * roll_dir, Wn.row(i));

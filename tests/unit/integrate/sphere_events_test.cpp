@@ -452,3 +452,92 @@ TEST(SphereEvents, RefusesAbsurdOptions) {
 
 }  // namespace
 }  // namespace chasles
+
+namespace chasles {
+namespace {
+
+// A solid ball (I = 2/5 m R²) rolling at v0 catches a hollow one (I = 2/3 m R², same m and R)
+// at rest; the hit is plastic. Derivation (k = 1 + I/(m R²): 7/5 solid, 5/3 hollow; a rolling
+// ball pushed by P through its centre has a = (P/m - mu_r g)/k):
+//  - approach: rolling, a_r = mu_r g / (7/5); the hit at v_h = sqrt(v0² - 2 a_r d).
+//  - hit: both at v_h/2 (equal masses, e = 0, frictionless, no floor impulse).
+//  - both sliding, pressed by P = mu_k m g: a = 0; the solid's slip -v_h/2 rises at
+//    5/2 mu_k g (ω̇ = -mu_k g R m/I) and is gone at t_A = v_h/(5 mu_k g); the hollow's, v_h/2,
+//    falls at 3/2 mu_k g, to v_h/5 at t_A.
+//  - the solid rolls, pushing the sliding hollow (no rolling resistance while sliding): equal
+//    accelerations, (-P/m - mu_r g) / (7/5) = P/m - mu_k g, give P/m = (7 mu_k - 5 mu_r) g / 12 and
+//    a = -5 (mu_k + mu_r) g / 12; the hollow's slip falls at 3/2 mu_k g - a and is gone after τ2.
+//  - both roll: the solid slows at 5/7 mu_r g, the hollow at 3/5 mu_r g, so they part and the
+//    hollow one leaves the group on its closed-form chain; each stops after v2 / (its rate).
+TEST(SphereEvents, PressedPairPartsAndTheLeaverRollsOnInClosedForm) {
+  constexpr double m = 0.17, R = 0.028575, mu_s = 0.25, mu_k = 0.2, mu_r = 0.01, g = kG;
+  constexpr double v0 = 1.0, x_b = 0.2;
+  Model model;
+  for (const double f : {0.4, 2.0 / 3.0}) {
+    const double I = f * m * R * R;
+    const int b = model.AddBody(f < 0.5 ? "solid" : "hollow",
+                                MassProperties(m, Vec3::Zero(), RotationalInertia(I, I, I)));
+    ContactSpec c;
+    c.name = f < 0.5 ? "floor_solid" : "floor_hollow";
+    c.shape = ContactShape::kSphere;
+    c.body = b;
+    c.radius = R;
+    c.mu_s = mu_s;
+    c.mu_k = mu_k;
+    c.mu_r = mu_r;
+    model.AddContact(c);
+  }
+  ContactSpec pair;
+  pair.name = "pair";
+  pair.shape = ContactShape::kSphereSphere;
+  pair.body = 0;
+  pair.other_body = 1;
+  pair.radius = pair.other_radius = R;
+  model.AddContact(pair);
+  model.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -g)));
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Vec3(0, 0, R), Quat::Identity(), s);
+  SetBodyVelocity(model, 0, Vec3(v0, 0, 0), Vec3(0, v0 / R, 0), s);
+  SetBodyPose(model, 1, Vec3(x_b, 0, R), Quat::Identity(), s);
+  const SphereEventResult r = SimulateSphereEvents(model, s, Until(10.0));
+
+  const double a_r = mu_r * g / 1.4, d = x_b - 2 * R;
+  const double v_h = std::sqrt(v0 * v0 - 2 * a_r * d);
+  const double t_h = (v0 - v_h) / a_r;
+  const double t_a = v_h / (5 * mu_k * g);
+  const double a2 = -5 * (mu_k + mu_r) * g / 12;
+  const double tau2 = 0.2 * v_h / (1.5 * mu_k * g - a2);
+  const double v2 = 0.5 * v_h + a2 * tau2;
+  const double t2 = t_h + t_a + tau2;
+  const double x2 = x_b + 0.5 * v_h * (t_a + tau2) + 0.5 * a2 * tau2 * tau2;  // the hollow's
+  const double rate_solid = mu_r * g * 5 / 7, rate_hollow = mu_r * g * 3 / 5;
+  ASSERT_LT(t2 + v2 / rate_hollow, 10.0);
+
+  EXPECT_GE(r.stats.groups, 1);
+  // Slip stops: the solid's (after the hit) at t_h + t_a, the hollow's at t2; rolling stops at
+  // t2 + v2 / rate for each.
+  std::vector<double> slip[2], stop[2];
+  for (const ContactEvent& e : r.contact_events) {
+    if (e.point > 1 || e.t <= t_h) continue;
+    if (e.reason == ContactEventReason::kSlipStopped) slip[e.point].push_back(e.t);
+    if (e.reason == ContactEventReason::kRollingStopped) stop[e.point].push_back(e.t);
+  }
+  ASSERT_EQ(slip[0].size(), 1u);
+  ASSERT_EQ(slip[1].size(), 1u);
+  EXPECT_LT(RelErr(slip[0][0], t_h + t_a), 1e-10);  // located by the hybrid engine
+  EXPECT_LT(RelErr(slip[1][0], t2), 1e-10);
+  ASSERT_EQ(stop[0].size(), 1u);
+  ASSERT_EQ(stop[1].size(), 1u);
+  EXPECT_LT(RelErr(stop[0][0], t2 + v2 / rate_solid), 1e-10);
+  EXPECT_LT(RelErr(stop[1][0], t2 + v2 / rate_hollow), 1e-10);
+  // Where they come to rest.
+  const State& f = r.final_state;
+  EXPECT_LT(RelErr(f.bodies[1].p_WBcm.x(), x2 + v2 * v2 / (2 * rate_hollow)), 1e-10);
+  EXPECT_LT(RelErr(f.bodies[0].p_WBcm.x(), x2 - 2 * R + v2 * v2 / (2 * rate_solid)), 1e-10);
+  EXPECT_EQ(f.bodies[0].v_WBcm_W.norm(), 0.0);
+  EXPECT_EQ(f.bodies[1].v_WBcm_W.norm(), 0.0);
+  EXPECT_LT(std::abs(r.energy.residual), 1e-9 * r.energy.initial);
+}
+
+}  // namespace
+}  // namespace chasles
