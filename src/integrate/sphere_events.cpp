@@ -409,6 +409,7 @@ class Runner {
   void Advance(int g, double t);
   void Plan(int g, double t);
   Box GroupBox(const Group& g, double dt) const;
+  bool MayReach(const Group& g, int o, double t) const;
   void FormGroup(const std::vector<int>& balls, double t);
   void EndWindow(int g, double t);
   void CheckGroups(double t);
@@ -1012,9 +1013,11 @@ void Runner::CheckNoOverlap(const State& initial) const {
 // u_i = sqrt(2 E / m_i), E the group's kinetic energy plus its potential above the plane.
 // An outside ball o with speed bound s_o over the window (|v| along its chain, convex on each
 // segment) cannot touch member m before (gap_om)/(u_m + s_o); the window ends there. A ball
-// closer than kJoinTime at those speeds joins instead, and two groups that meet merge. At the
-// window's end, members further than kJoinTime from every other member leave on closed-form
-// chains.
+// closer than kJoinTime at those speeds joins instead, and two groups that meet merge; an
+// outside ball whose chain changes re-plans the window only if it may reach a member before
+// its end. At the window's end, members touching no other member leave on closed-form chains
+// (the energy bound is far too loose to keep them: in a large group it would hold balls
+// millimetres apart on the hybrid engine for the whole run).
 constexpr double kJoinTime = 1e-4;  // [s]
 constexpr int kMaxGroup = 200;
 
@@ -1281,22 +1284,20 @@ void Runner::FormGroup(const std::vector<int>& balls, double t) {
   Plan(g, t);
 }
 
-// At a window's end: the members linked (closer than kJoinTime at their speed bounds) to no
-// other member leave on chains; the rest go on as one group.
+// At a window's end: the members touching no other member (gap above tol.gap) leave on
+// chains; the rest go on as one group. A member that leaves close to another is an outside
+// ball to the next window's plan, which joins it again if it is within kJoinTime of reach.
 void Runner::EndWindow(int g, double t) {
   Advance(g, t);
   Group& gr = groups_[static_cast<size_t>(g)];
-  const double e = GroupEnergyBound(gr);
   const size_t k = gr.members.size();
   std::vector<char> linked(k, 0);
   for (size_t a = 0; a < k; ++a) {
     for (size_t b = a + 1; b < k; ++b) {
-      const double ua = std::sqrt(2.0 * e / balls_[static_cast<size_t>(gr.members[a])].m);
-      const double ub = std::sqrt(2.0 * e / balls_[static_cast<size_t>(gr.members[b])].m);
       const double gap = (gr.states[a].p_WBcm - gr.states[b].p_WBcm).norm() -
                          balls_[static_cast<size_t>(gr.members[a])].R -
                          balls_[static_cast<size_t>(gr.members[b])].R;
-      if (gap <= (ua + ub) * kJoinTime) linked[a] = linked[b] = 1;
+      if (gap <= w_.tol.gap) linked[a] = linked[b] = 1;
     }
   }
   std::vector<int> stay;
@@ -1328,6 +1329,22 @@ void Runner::EndWindow(int g, double t) {
   Plan(g, t);
 }
 
+// Whether outside ball o, on its chain from t, may touch a member of g before g.t_b: member m
+// stays within speed[m] (τ - t_a) of its place at t_a, and o within s_o (τ - t) of its place
+// at t, s_o its speed bound over [t, t_b].
+bool Runner::MayReach(const Group& g, int o, double t) const {
+  const auto ou = static_cast<size_t>(o);
+  const double s_o = ChainSpeedBound(chain_[ou], t, g.t_b);
+  const Vec3 r_o = SegAt(o, t).Pos(t);
+  for (size_t m = 0; m < g.members.size(); ++m) {
+    if (!options_.collide_all_pairs && listed_pairs_.count(PairKey(o, g.members[m])) == 0) continue;
+    const double gap = (r_o - g.states[m].p_WBcm).norm() - balls_[ou].R -
+                       balls_[static_cast<size_t>(g.members[m])].R;
+    if (gap <= g.speed[m] * (g.t_b - g.t_a) + s_o * (g.t_b - t) + w_.tol.gap) return true;
+  }
+  return false;
+}
+
 // Outside balls whose new boxes reach a group: the group is brought to now and re-planned
 // (joining them, or ending its window before they can reach it).
 void Runner::CheckGroups(double t) {
@@ -1337,6 +1354,7 @@ void Runner::CheckGroups(double t) {
     if (group_of_[static_cast<size_t>(i)] >= 0) continue;
     for (size_t g = 0; g < groups_.size(); ++g) {
       if (!groups_[g].alive || !groups_[g].box.Overlaps(box_[static_cast<size_t>(i)])) continue;
+      if (!MayReach(groups_[g], i, t)) continue;
       Advance(static_cast<int>(g), t);
       Plan(static_cast<int>(g), t);
       if (group_of_[static_cast<size_t>(i)] >= 0) break;
