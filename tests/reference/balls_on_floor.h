@@ -1,14 +1,16 @@
 #pragma once
 /// @file
 /// Balls set down on a floor (the spinning ball of Problems 8.26/8.27, many times over), for the
-/// islands tests and bench/contact_bench.cpp: each ball a uniform sphere, I = 2/5 m R², with a
-/// sphere contact on the world plane z = 0, under uniform gravity. Set down spinning at w0 about
+/// islands tests, the event-driven sphere tests and the benchmarks: each ball a uniform sphere,
+/// I = 2/5 m R² (or kappa m R², a hollow one at 2/3), with a sphere contact on the world plane
+/// z = 0, under uniform gravity. Set down spinning at w0 about
 /// y with its centre at rest, a ball slides: friction mu_k m g gives v̇ = mu_k g and
 /// ẇ = −5 mu_k g / (2 R), so the slip R w − v falls at 7/2 mu_k g and sliding ends at
 /// t* = 2 R w0 / (7 mu_k g); it then rolls at v = 2/7 R w0 (the angular momentum about the
 /// contact point, I w0 = (I + m R²) v / R, is kept).
 
 #include <memory>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -22,13 +24,15 @@ struct Ball {
   double mass, radius, mu_s, mu_k;
   double mu_r = 0.0;         ///< rolling resistance
   double restitution = 0.0;  ///< with the floor
+  double kappa = 0.4;        ///< I = kappa m R² (2/5 solid, 2/3 hollow)
 };
 
-/// n balls "ball0", … with contacts "floor0", … and one UniformGravity "gravity" of g down z.
-inline Model MakeBallsOnFloor(int n, const Ball& ball, double g) {
+/// Balls "ball0", … with contacts "floor0", … and one UniformGravity "gravity" of g down z.
+inline Model MakeBallsOnFloor(const std::vector<Ball>& balls, double g) {
   Model m;
-  const double I = 0.4 * ball.mass * ball.radius * ball.radius;
-  for (int i = 0; i < n; ++i) {
+  for (size_t i = 0; i < balls.size(); ++i) {
+    const Ball& ball = balls[i];
+    const double I = ball.kappa * ball.mass * ball.radius * ball.radius;
     const int b = m.AddBody(fmt::format("ball{}", i),
                             MassProperties(ball.mass, Vec3::Zero(), RotationalInertia(I, I, I)));
     ContactSpec c;
@@ -44,6 +48,11 @@ inline Model MakeBallsOnFloor(int n, const Ball& ball, double g) {
   }
   m.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -g)));
   return m;
+}
+
+/// n balls like `ball`.
+inline Model MakeBallsOnFloor(int n, const Ball& ball, double g) {
+  return MakeBallsOnFloor(std::vector<Ball>(static_cast<size_t>(n), ball), g);
 }
 
 /// t* = 2 R w0 / (7 mu_k g) (Problem 8.26).

@@ -472,21 +472,8 @@ namespace {
 TEST(SphereEvents, PressedPairPartsAndTheLeaverRollsOnInClosedForm) {
   constexpr double m = 0.17, R = 0.028575, mu_s = 0.25, mu_k = 0.2, mu_r = 0.01, g = kG;
   constexpr double v0 = 1.0, x_b = 0.2;
-  Model model;
-  for (const double f : {0.4, 2.0 / 3.0}) {
-    const double I = f * m * R * R;
-    const int b = model.AddBody(f < 0.5 ? "solid" : "hollow",
-                                MassProperties(m, Vec3::Zero(), RotationalInertia(I, I, I)));
-    ContactSpec c;
-    c.name = f < 0.5 ? "floor_solid" : "floor_hollow";
-    c.shape = ContactShape::kSphere;
-    c.body = b;
-    c.radius = R;
-    c.mu_s = mu_s;
-    c.mu_k = mu_k;
-    c.mu_r = mu_r;
-    model.AddContact(c);
-  }
+  Model model = reference::MakeBallsOnFloor(
+      {{m, R, mu_s, mu_k, mu_r, 0.0, 0.4}, {m, R, mu_s, mu_k, mu_r, 0.0, 2.0 / 3.0}}, g);
   ContactSpec pair;
   pair.name = "pair";
   pair.shape = ContactShape::kSphereSphere;
@@ -494,7 +481,6 @@ TEST(SphereEvents, PressedPairPartsAndTheLeaverRollsOnInClosedForm) {
   pair.other_body = 1;
   pair.radius = pair.other_radius = R;
   model.AddContact(pair);
-  model.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -g)));
   State s = MakeRestState(model);
   SetBodyPose(model, 0, Vec3(0, 0, R), Quat::Identity(), s);
   SetBodyVelocity(model, 0, Vec3(v0, 0, 0), Vec3(0, v0 / R, 0), s);
