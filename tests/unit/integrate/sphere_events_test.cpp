@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 #include <random>
@@ -469,9 +471,9 @@ namespace {
 //    a = -5 (mu_k + mu_r) g / 12; the hollow's slip falls at 3/2 mu_k g - a and is gone after τ2.
 //  - both roll: the solid slows at 5/7 mu_r g, the hollow at 3/5 mu_r g, so they part and the
 //    hollow one leaves the group on its closed-form chain; each stops after v2 / (its rate).
-TEST(SphereEvents, PressedPairPartsAndTheLeaverRollsOnInClosedForm) {
-  constexpr double m = 0.17, R = 0.028575, mu_s = 0.25, mu_k = 0.2, mu_r = 0.01, g = kG;
-  constexpr double v0 = 1.0, x_b = 0.2;
+void ExpectSolidPushesHollow(double v0, double x_b, double mu_k, double mu_r) {
+  SCOPED_TRACE(fmt::format("v0 = {}, x_b = {}, mu_k = {}, mu_r = {}", v0, x_b, mu_k, mu_r));
+  const double m = 0.17, R = 0.028575, mu_s = 1.25 * mu_k, g = kG;
   Model model = reference::MakeBallsOnFloor(
       {{m, R, mu_s, mu_k, mu_r, 0.0, 0.4}, {m, R, mu_s, mu_k, mu_r, 0.0, 2.0 / 3.0}}, g);
   ContactSpec pair;
@@ -485,8 +487,6 @@ TEST(SphereEvents, PressedPairPartsAndTheLeaverRollsOnInClosedForm) {
   SetBodyPose(model, 0, Vec3(0, 0, R), Quat::Identity(), s);
   SetBodyVelocity(model, 0, Vec3(v0, 0, 0), Vec3(0, v0 / R, 0), s);
   SetBodyPose(model, 1, Vec3(x_b, 0, R), Quat::Identity(), s);
-  const SphereEventResult r = SimulateSphereEvents(model, s, Until(10.0));
-
   const double a_r = mu_r * g / 1.4, d = x_b - 2 * R;
   const double v_h = std::sqrt(v0 * v0 - 2 * a_r * d);
   const double t_h = (v0 - v_h) / a_r;
@@ -497,7 +497,7 @@ TEST(SphereEvents, PressedPairPartsAndTheLeaverRollsOnInClosedForm) {
   const double t2 = t_h + t_a + tau2;
   const double x2 = x_b + 0.5 * v_h * (t_a + tau2) + 0.5 * a2 * tau2 * tau2;  // the hollow's
   const double rate_solid = mu_r * g * 5 / 7, rate_hollow = mu_r * g * 3 / 5;
-  ASSERT_LT(t2 + v2 / rate_hollow, 10.0);
+  const SphereEventResult r = SimulateSphereEvents(model, s, Until(t2 + v2 / rate_hollow + 1.0));
 
   EXPECT_GE(r.stats.groups, 1);
   // Slip stops: the solid's (after the hit) at t_h + t_a, the hollow's at t2; rolling stops at
@@ -523,6 +523,23 @@ TEST(SphereEvents, PressedPairPartsAndTheLeaverRollsOnInClosedForm) {
   EXPECT_EQ(f.bodies[0].v_WBcm_W.norm(), 0.0);
   EXPECT_EQ(f.bodies[1].v_WBcm_W.norm(), 0.0);
   EXPECT_LT(std::abs(r.energy.residual), 1e-9 * r.energy.initial);
+}
+
+TEST(SphereEvents, PressedPairPartsAndTheLeaverRollsOnInClosedForm) {
+  ExpectSolidPushesHollow(1.0, 0.2, 0.2, 0.01);
+}
+
+// The same closed forms over seeded speeds, distances and coefficients (mu_r < 7/5 mu_k keeps
+// the solid pushing; mu_s = 1.25 mu_k holds the rolling solid, whose friction needs
+// (mu_k - 5 mu_r)/6 of its weight).
+TEST(SphereEvents, SeededPressedPairsPartWhereTheClosedFormSays) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  for (int k = 0; k < 20; ++k) {
+    const double v0 = 0.5 + 2.5 * U(rng), x_b = 0.1 + 0.4 * U(rng);
+    const double mu_k = 0.1 + 0.3 * U(rng), mu_r = 0.002 + 0.028 * U(rng);
+    ExpectSolidPushesHollow(v0, x_b, mu_k, mu_r);
+  }
 }
 
 }  // namespace
