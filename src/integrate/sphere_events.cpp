@@ -357,6 +357,12 @@ void Extend(double x0, double v, double a, double ta, double tb, double& lo, dou
   }
 }
 
+std::uint64_t PairKey(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
 class Runner {
  public:
   Runner(const Model& model, const SphereEventOptions& options)
@@ -410,6 +416,14 @@ class Runner {
   void Plan(int g, double t);
   Box GroupBox(const Group& g, double dt) const;
   bool MayReach(const Group& g, int o, double t) const;
+  // Whether balls a and b may collide (every pair, or the listed ones).
+  bool MayCollide(int a, int b) const {
+    return options_.collide_all_pairs || listed_pairs_.count(PairKey(a, b)) != 0;
+  }
+  // Gap between balls a and b with centres r_a and r_b.
+  double Gap(int a, const Vec3& r_a, int b, const Vec3& r_b) const {
+    return (r_a - r_b).norm() - balls_[static_cast<size_t>(a)].R - balls_[static_cast<size_t>(b)].R;
+  }
   void FormGroup(const std::vector<int>& balls, double t);
   void EndWindow(int g, double t);
   void CheckGroups(double t);
@@ -445,12 +459,6 @@ class Runner {
   std::vector<int> group_of_;  // -1: on its chain
   std::vector<int> renewed_;   // balls whose boxes changed since the last group check
 };
-
-std::uint64_t PairKey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
-}
 
 }  // namespace
 
@@ -668,7 +676,7 @@ void Runner::RenewBox(int i, double t) {
 // The first time in [t, min(horizons)] at which balls i and j touch, approaching: over each
 // stretch where both follow one segment, |r_i - r_j|² - (R_i + R_j)² is a quartic in time.
 void Runner::TestPair(int i, int j, double t) {
-  if (!options_.collide_all_pairs && listed_pairs_.count(PairKey(i, j)) == 0) return;
+  if (!MayCollide(i, j)) return;
   ++res_.stats.pair_tests;
   const auto iu = static_cast<size_t>(i), ju = static_cast<size_t>(j);
   const Chain &ci = chain_[iu], &cj = chain_[ju];
@@ -801,9 +809,8 @@ void Runner::FindCluster(double t, std::vector<int>& cluster,
         if (it == grid_.end()) continue;
         for (const int c : it->second) {
           if (c == a) continue;
-          if (!options_.collide_all_pairs && listed_pairs_.count(PairKey(a, c)) == 0) continue;
-          const double gap = (pos(c) - ra).norm() - balls_[static_cast<size_t>(a)].R -
-                             balls_[static_cast<size_t>(c)].R;
+          if (!MayCollide(a, c)) continue;
+          const double gap = Gap(a, ra, c, pos(c));
           if (gap > w_.tol.gap) continue;
           if (local.count(c) == 0) {
             local[c] = static_cast<int>(cluster.size());
@@ -991,8 +998,8 @@ void Runner::CheckNoOverlap(const State& initial) const {
         if (it == cells.end()) continue;
         for (const int j : it->second) {
           if (static_cast<size_t>(j) <= i) continue;
-          const double gap = (initial.bodies[static_cast<size_t>(j)].p_WBcm - r).norm() -
-                             balls_[i].R - balls_[static_cast<size_t>(j)].R;
+          const double gap =
+              Gap(static_cast<int>(i), r, j, initial.bodies[static_cast<size_t>(j)].p_WBcm);
           if (gap < -w_.tol.gap) {
             throw InputError(fmt::format("bodies '{}' and '{}' start overlapping by {} m",
                                          model_.body(static_cast<int>(i)).name(),
@@ -1094,9 +1101,8 @@ void Runner::Advance(int g, double t) {
   for (size_t a = 0; a < k; ++a) {
     for (size_t b = a + 1; b < k; ++b) {
       const int ia = gr.members[a], ib = gr.members[b];
-      if (!options_.collide_all_pairs && listed_pairs_.count(PairKey(ia, ib)) == 0) continue;
-      const double gap = (gr.states[a].p_WBcm - gr.states[b].p_WBcm).norm() -
-                         balls_[static_cast<size_t>(ia)].R - balls_[static_cast<size_t>(ib)].R;
+      if (!MayCollide(ia, ib)) continue;
+      const double gap = Gap(ia, gr.states[a].p_WBcm, ib, gr.states[b].p_WBcm);
       if (gap <= (gr.speed[a] + gr.speed[b]) * (t - gr.t_a) + w_.tol.gap) {
         pairs.emplace_back(std::min(ia, ib), std::max(ia, ib));
       }
@@ -1216,10 +1222,8 @@ void Runner::Plan(int g, double t) {
       const double s_o = ChainSpeedBound(chain_[ou], t, t_b);
       const Vec3 r_o = SegAt(o, t).Pos(t);
       for (size_t m = 0; m < k; ++m) {
-        if (!options_.collide_all_pairs && listed_pairs_.count(PairKey(o, gr.members[m])) == 0)
-          continue;
-        const double gap = (r_o - gr.states[m].p_WBcm).norm() - balls_[ou].R -
-                           balls_[static_cast<size_t>(gr.members[m])].R;
+        if (!MayCollide(o, gr.members[m])) continue;
+        const double gap = Gap(o, r_o, gr.members[m], gr.states[m].p_WBcm);
         const double c = gr.speed[m] + s_o;
         if (gap <= c * kJoinTime) {
           Join(g, o, t);
@@ -1294,9 +1298,8 @@ void Runner::EndWindow(int g, double t) {
   std::vector<char> linked(k, 0);
   for (size_t a = 0; a < k; ++a) {
     for (size_t b = a + 1; b < k; ++b) {
-      const double gap = (gr.states[a].p_WBcm - gr.states[b].p_WBcm).norm() -
-                         balls_[static_cast<size_t>(gr.members[a])].R -
-                         balls_[static_cast<size_t>(gr.members[b])].R;
+      const double gap =
+          Gap(gr.members[a], gr.states[a].p_WBcm, gr.members[b], gr.states[b].p_WBcm);
       if (gap <= w_.tol.gap) linked[a] = linked[b] = 1;
     }
   }
@@ -1337,9 +1340,8 @@ bool Runner::MayReach(const Group& g, int o, double t) const {
   const double s_o = ChainSpeedBound(chain_[ou], t, g.t_b);
   const Vec3 r_o = SegAt(o, t).Pos(t);
   for (size_t m = 0; m < g.members.size(); ++m) {
-    if (!options_.collide_all_pairs && listed_pairs_.count(PairKey(o, g.members[m])) == 0) continue;
-    const double gap = (r_o - g.states[m].p_WBcm).norm() - balls_[ou].R -
-                       balls_[static_cast<size_t>(g.members[m])].R;
+    if (!MayCollide(o, g.members[m])) continue;
+    const double gap = Gap(o, r_o, g.members[m], g.states[m].p_WBcm);
     if (gap <= g.speed[m] * (g.t_b - g.t_a) + s_o * (g.t_b - t) + w_.tol.gap) return true;
   }
   return false;
