@@ -399,22 +399,33 @@ class Runner {
   void CheckNoOverlap(const State& initial) const;
   std::vector<Segment> InitialSegments(const State& initial);
   // Pressing groups.
+  struct Window {  // a run of a group by the hybrid engine
+    Model sub;
+    SimulationResult r;
+  };
   struct Group {
     std::vector<int> members;
     std::vector<BodyState> states;   // at t_a
     std::vector<ContactMode> modes;  // of the members' plane points at t_a (the hybrid's)
-    std::vector<double> speed;       // speed bounds of the window
-    double t_a = 0.0, t_b = 0.0;
-    Box box;
+    std::vector<Vec3> origin;        // the members' centres at t_o, when the window was planned
+    double speed = 0.0;              // the window's speed bound σ
+    double t_o = 0.0, t_a = 0.0, t_b = 0.0;
+    Box box;                      // the window's claim: where its members may be until t_b
+    std::unique_ptr<Window> run;  // the window's speculative run, from t_o to t_b
     std::uint32_t ver = 0;
+    std::uint64_t tick = 0;  // when the window was planned (tick_)
     bool alive = true;
   };
-  double GroupEnergyBound(const Group& g) const;
   void RemoveFromGrid(int i);
   void Join(int g, int i, double t);
+  Window RunWindow(int g, double t, const std::vector<int>* near);
+  void Commit(int g, const Window& w);
   void Advance(int g, double t);
+  void Merge(int g, int h);
   void Plan(int g, double t);
-  Box GroupBox(const Group& g, double dt) const;
+  Box HereBox(const Group& g) const;
+  Box GroupBox(const Group& g, double t) const;
+  std::vector<int> BallsIn(const Box& box) const;
   bool MayReach(const Group& g, int o, double t) const;
   // Whether balls a and b may collide (every pair, or the listed ones).
   bool MayCollide(int a, int b) const {
@@ -456,8 +467,10 @@ class Runner {
   std::vector<double> booked_until_;
   SphereEventResult res_;
   std::vector<Group> groups_;
-  std::vector<int> group_of_;  // -1: on its chain
-  std::vector<int> renewed_;   // balls whose boxes changed since the last group check
+  std::vector<int> group_of_;              // -1: on its chain
+  std::vector<int> renewed_;               // balls whose boxes changed since the last group check
+  std::vector<std::uint64_t> renew_tick_;  // when each ball's box was renewed (tick_)
+  std::uint64_t tick_ = 0;                 // orders box renewals and group plans
 };
 
 }  // namespace
@@ -671,6 +684,7 @@ void Runner::RenewBox(int i, double t) {
     Schedule({h, Kind::kHorizon, i, -1, ver_[iu], 0, 0});
   }
   renewed_.push_back(i);
+  renew_tick_[iu] = ++tick_;
 }
 
 // The first time in [t, min(horizons)] at which balls i and j touch, approaching: over each
@@ -1015,40 +1029,30 @@ void Runner::CheckNoOverlap(const State& initial) const {
 // Balls that come to press on each other (a chase whose re-collisions shrink to zero approach
 // speed, or a rack squeezed) have no closed form: they form a group run by the hybrid engine
 // (Simulate on a Model of the group: Dormand-Prince, contact modes, events, impacts) in
-// windows [t_a, t_b] in which no outside ball can reach them. Energy bounds the members'
-// speeds: no outside work acts in a window, so each member's speed is at most
-// u_i = sqrt(2 E / m_i), E the group's kinetic energy plus its potential above the plane.
-// An outside ball o with speed bound s_o over the window (|v| along its chain, convex on each
-// segment) cannot touch member m before (gap_om)/(u_m + s_o); the window ends there. A ball
-// closer than kJoinTime at those speeds joins instead, and two groups that meet merge; an
-// outside ball whose chain changes re-plans the window only if it may reach a member before
-// its end. At the window's end, members touching no other member leave on closed-form chains
-// (the energy bound is far too loose to keep them: in a large group it would hold balls
-// millimetres apart on the hybrid engine for the whole run).
-constexpr double kJoinTime = 1e-4;  // [s]
+// windows [t_o, t_b] in which no outside ball can reach them. A window is planned on a speed
+// bound σ (the members' fastest |v| + R |ω|, with a margin) and run at once, speculatively,
+// with one stop event: a member leaving its ball of radius σ (τ - t_o) + ε about its place at
+// t_o, or coming within kStopGap of an outside ball whose boxes reach the group (on that
+// ball's chain). So the window is checked against the members' own motion, not a bound on
+// it: a group moving along a rack, balls a tenth of a millimetre from it that it does not
+// approach, runs in long windows. The run is kept and taken at the window's end; an outside
+// ball whose new chain may reach a member cuts the window (the group is run afresh to then).
+// A ball within kJoinGap of a member joins; groups whose claims (their members' reach over
+// the window) meet are cut and each takes half the room between them, or merge when their
+// members are within reach. At a window's end the group splits into its touching components,
+// and members touching no other member leave on closed-form chains.
 constexpr int kMaxGroup = 200;
+constexpr double kSpeedMargin = 1.25;  // σ = margin × fastest member + floor
+constexpr double kSpeedFloor = 1e-3;   // [m/s]
+constexpr double kReach = 1e-8;        // ε: the bound's slack for a run repeated to a cut [m]
+constexpr double kMinWindow = 1e-5;    // [s] groups closer than this at σ merge instead
+constexpr double kJoinGap = 1e-6;      // [m] a ball this close to a member joins its group
+constexpr double kStopGap =
+    0.5 * kJoinGap;  // [m] a window stops where an outside ball is this close
 
-double Runner::GroupEnergyBound(const Group& g) const {
-  double e = 0.0;
-  for (size_t k = 0; k < g.members.size(); ++k) {
-    const Ball& b = balls_[static_cast<size_t>(g.members[k])];
-    const BodyState& bs = g.states[k];
-    const double h = std::max(w_.n.dot(bs.p_WBcm - w_.p0) - b.R, 0.0);
-    e += 0.5 * b.m * bs.v_WBcm_W.squaredNorm() + 0.5 * b.I * bs.w_WB_B.squaredNorm() +
-         b.m * w_.g * h;
-  }
-  return 1.01 * e;  // margin for the integration error
-}
-
-double ChainSpeedBound(const Chain& c, double t, double tb) {
-  double s = 0.0;
-  for (int k = 0; k < c.count; ++k) {
-    const Segment& seg = c.seg[static_cast<size_t>(k)];
-    const double ta = std::max(t, seg.t0), te = std::min(tb, seg.end());
-    if (te < ta) continue;
-    s = std::max({s, seg.Vel(ta).norm(), seg.Vel(te).norm()});
-  }
-  return s;
+// How far apart two boxes are (positive when they do not overlap).
+double Separation(const Box& a, const Box& b) {
+  return std::max({b.lo1 - a.hi1, a.lo1 - b.hi1, b.lo2 - a.hi2, a.lo2 - b.hi2});
 }
 
 void Runner::RemoveFromGrid(int i) {
@@ -1064,6 +1068,16 @@ void Runner::RemoveFromGrid(int i) {
     }
   }
   cells = {0, -1, 0, -1};
+}
+
+// A group of more than kMaxGroup balls is refused (the hybrid engine's mode selection is dense).
+void CheckSize(const std::vector<int>& members, double t) {
+  if (static_cast<int>(members.size()) > kMaxGroup) {
+    throw InputError(fmt::format(
+        "{} balls press on each other at t = {} s: more than the event-driven path hands to "
+        "the hybrid engine as one group ({})",
+        members.size(), t, kMaxGroup));
+  }
 }
 
 // Ball i (on its chain) joins group g at t.
@@ -1083,33 +1097,28 @@ void Runner::Join(int g, int i, double t) {
   gr.members.push_back(i);
   gr.states.push_back(bs);
   gr.modes.push_back(ModeOfPhase(seg.phase));
-  if (static_cast<int>(gr.members.size()) > kMaxGroup) {
-    throw InputError(fmt::format(
-        "{} balls press on each other at t = {} s: more than the event-driven path hands to "
-        "the hybrid engine as one group ({})",
-        gr.members.size(), t, kMaxGroup));
-  }
+  CheckSize(gr.members, t);
 }
 
-// Runs group g by the hybrid engine from its t_a to t.
-void Runner::Advance(int g, double t) {
-  Group& gr = groups_[static_cast<size_t>(g)];
-  if (!(t > gr.t_a)) return;
+// Group g's hybrid run from t_a to t, on the pairs that may touch before t (each member stays
+// within σ (τ - t_o) + ε of its origin). With `near`, the run is the window's speculative one
+// and stops where a member leaves its bound or comes within kStopGap of a ball in `near`.
+Runner::Window Runner::RunWindow(int g, double t, const std::vector<int>* near) {
+  const Group& gr = groups_[static_cast<size_t>(g)];
   const size_t k = gr.members.size();
-  // Pairs that can touch before t.
+  const double reach = gr.speed * (t - gr.t_o) + kReach;
   std::vector<std::pair<int, int>> pairs;
   for (size_t a = 0; a < k; ++a) {
     for (size_t b = a + 1; b < k; ++b) {
       const int ia = gr.members[a], ib = gr.members[b];
       if (!MayCollide(ia, ib)) continue;
-      const double gap = Gap(ia, gr.states[a].p_WBcm, ib, gr.states[b].p_WBcm);
-      if (gap <= (gr.speed[a] + gr.speed[b]) * (t - gr.t_a) + w_.tol.gap) {
+      if (Gap(ia, gr.origin[a], ib, gr.origin[b]) <= 2.0 * reach + w_.tol.gap) {
         pairs.emplace_back(std::min(ia, ib), std::max(ia, ib));
       }
     }
   }
-  const Model sub = SubModel(gr.members, pairs);
-  State st = MakeRestState(sub);
+  Window w{SubModel(gr.members, pairs), {}};
+  State st = MakeRestState(w.sub);
   st.t = gr.t_a;
   for (size_t m = 0; m < k; ++m) st.bodies[m] = gr.states[m];
   SimulationOptions so;
@@ -1118,8 +1127,36 @@ void Runner::Advance(int g, double t) {
   so.adaptive = options_.hybrid;
   so.islands = false;
   so.contact.tolerances = w_.tol;
-  const SimulationResult r = Simulate(sub, st, so);
+  if (near != nullptr) {
+    EventSpec ev;
+    ev.name = "window";
+    ev.direction = EventDirection::kFalling;
+    ev.action = EventAction::kStop;
+    ev.g = [this, &gr, near, k](const Model&, const State& s) {
+      double v = kInf;
+      for (size_t m = 0; m < k; ++m) {
+        const Vec3& r = s.bodies[m].p_WBcm;
+        v = std::min(v, gr.speed * (s.t - gr.t_o) + kReach - (r - gr.origin[m]).norm());
+        for (const int o : *near) {
+          if (!MayCollide(o, gr.members[m])) continue;
+          v = std::min(v, Gap(o, SegAt(o, s.t).Pos(s.t), gr.members[m], r) - kStopGap);
+        }
+      }
+      return v;
+    };
+    so.events.push_back(std::move(ev));
+  }
+  w.r = Simulate(w.sub, st, so);
   ++res_.stats.group_windows;
+  return w;
+}
+
+// Books a run of group g (its events, impacts and works) and takes its final states.
+void Runner::Commit(int g, const Window& w) {
+  Group& gr = groups_[static_cast<size_t>(g)];
+  const Model& sub = w.sub;
+  const SimulationResult& r = w.r;
+  const size_t k = gr.members.size();
   const int np = static_cast<int>(k);
   for (const ContactEvent& ev : r.contact_events) {
     if (ev.reason == ContactEventReason::kInitial || ev.point >= np) continue;
@@ -1142,7 +1179,7 @@ void Runner::Advance(int g, double t) {
       col.approach_speed = rec.approach_speed;
       col.normal_impulse = rec.normal_impulse;
       col.impulse_on_a_W = rec.impulse_W;
-      col.cluster_size = static_cast<int>(k);
+      col.cluster_size = np;
       res_.collisions.push_back(col);
     }
   }
@@ -1181,101 +1218,171 @@ void Runner::Advance(int g, double t) {
     gr.states[m] = r.final_state.bodies[m];
     gr.modes[m] = r.final_state.contacts[m].mode;
   }
-  gr.t_a = t;
+  gr.t_a = r.final_state.t;
 }
 
-// Plans group g's next window from t (its t_a): joins the balls and groups too close to keep
-// apart, then ends the window before any other ball can reach it.
-void Runner::Plan(int g, double t) {
-  for (;;) {
-    Group& gr = groups_[static_cast<size_t>(g)];
-    const double e = GroupEnergyBound(gr);
-    const size_t k = gr.members.size();
-    gr.speed.resize(k);
-    double u_max = 0.0;
-    for (size_t m = 0; m < k; ++m) {
-      gr.speed[m] = std::sqrt(2.0 * e / balls_[static_cast<size_t>(gr.members[m])].m);
-      u_max = std::max(u_max, gr.speed[m]);
-    }
-    double t_b = std::min(t + 0.5 * cell_ / std::max(u_max, 1e-300), options_.t_end);
-    const Box box = GroupBox(gr, t_b - t);
-    bool joined = false;
-    // Outside balls.
-    std::vector<int> near;
-    for (int x = static_cast<int>(std::floor(box.lo1 / cell_));
-         x <= static_cast<int>(std::floor(box.hi1 / cell_)); ++x) {
-      for (int y = static_cast<int>(std::floor(box.lo2 / cell_));
-           y <= static_cast<int>(std::floor(box.hi2 / cell_)); ++y) {
-        const auto it = grid_.find(CellKey(x, y));
-        if (it == grid_.end()) continue;
-        for (const int o : it->second) {
-          if (box_[static_cast<size_t>(o)].Overlaps(box) &&
-              std::find(near.begin(), near.end(), o) == near.end()) {
-            near.push_back(o);
-          }
-        }
-      }
-    }
-    std::sort(near.begin(), near.end());
-    for (const int o : near) {
-      const auto ou = static_cast<size_t>(o);
-      const double s_o = ChainSpeedBound(chain_[ou], t, t_b);
-      const Vec3 r_o = SegAt(o, t).Pos(t);
-      for (size_t m = 0; m < k; ++m) {
-        if (!MayCollide(o, gr.members[m])) continue;
-        const double gap = Gap(o, r_o, gr.members[m], gr.states[m].p_WBcm);
-        const double c = gr.speed[m] + s_o;
-        if (gap <= c * kJoinTime) {
-          Join(g, o, t);
-          joined = true;
-          break;
-        }
-        t_b = std::min(t_b, t + gap / c);
-      }
-      if (joined) break;
-    }
-    if (joined) continue;
-    // Other groups.
-    for (size_t h = 0; h < groups_.size(); ++h) {
-      if (static_cast<int>(h) == g || !groups_[h].alive || !groups_[h].box.Overlaps(box)) continue;
-      Advance(static_cast<int>(h), t);
-      Group& other = groups_[h];
-      Group& mine = groups_[static_cast<size_t>(g)];
-      for (size_t m = 0; m < other.members.size(); ++m) {
-        group_of_[static_cast<size_t>(other.members[m])] = g;
-        mine.members.push_back(other.members[m]);
-        mine.states.push_back(other.states[m]);
-        mine.modes.push_back(other.modes[m]);
-      }
-      other.members.clear();
-      other.states.clear();
-      other.modes.clear();
-      other.alive = false;
-      joined = true;
-      break;
-    }
-    if (joined) continue;
-    Group& gg = groups_[static_cast<size_t>(g)];
-    gg.t_b = std::max(t_b, t + 1e-15 * std::max(1.0, std::abs(t)));
-    gg.box = GroupBox(gg, gg.t_b - t);
-    ++gg.ver;
-    Schedule({gg.t_b, Kind::kGroup, g, -1, gg.ver, 0, 0});
+// Brings group g to t: the window's speculative run when it ends there, a fresh run otherwise
+// (a cut: it follows the speculative one's path to round-off, within the bound's slack ε).
+void Runner::Advance(int g, double t) {
+  Group& gr = groups_[static_cast<size_t>(g)];
+  if (!(t > gr.t_a)) return;
+  std::unique_ptr<Window> run = std::move(gr.run);
+  if (run && run->r.final_state.t == t) {
+    Commit(g, *run);
     return;
   }
+  Commit(g, RunWindow(g, t, nullptr));
 }
 
-// The members' positions ± (u_m dt + R_m) in the plane.
-Box Runner::GroupBox(const Group& g, double dt) const {
+// The members' places at t_a ± (R + gap) in the plane.
+Box Runner::HereBox(const Group& g) const {
   Box box{kInf, -kInf, kInf, -kInf};
   for (size_t m = 0; m < g.members.size(); ++m) {
     const Vec3& r = g.states[m].p_WBcm;
-    const double pad = g.speed[m] * dt + balls_[static_cast<size_t>(g.members[m])].R + w_.tol.gap;
+    const double pad = balls_[static_cast<size_t>(g.members[m])].R + w_.tol.gap;
     box.lo1 = std::min(box.lo1, w_.e1.dot(r) - pad);
     box.hi1 = std::max(box.hi1, w_.e1.dot(r) + pad);
     box.lo2 = std::min(box.lo2, w_.e2.dot(r) - pad);
     box.hi2 = std::max(box.hi2, w_.e2.dot(r) + pad);
   }
   return box;
+}
+
+// The window's claim until t: the origins ± (σ (t - t_o) + ε + R + gap) in the plane.
+Box Runner::GroupBox(const Group& g, double t) const {
+  Box box{kInf, -kInf, kInf, -kInf};
+  for (size_t m = 0; m < g.members.size(); ++m) {
+    const Vec3& r = g.origin[m];
+    const double pad =
+        g.speed * (t - g.t_o) + kReach + balls_[static_cast<size_t>(g.members[m])].R + w_.tol.gap;
+    box.lo1 = std::min(box.lo1, w_.e1.dot(r) - pad);
+    box.hi1 = std::max(box.hi1, w_.e1.dot(r) + pad);
+    box.lo2 = std::min(box.lo2, w_.e2.dot(r) - pad);
+    box.hi2 = std::max(box.hi2, w_.e2.dot(r) + pad);
+  }
+  return box;
+}
+
+// The outside balls whose boxes overlap `box`, in index order.
+std::vector<int> Runner::BallsIn(const Box& box) const {
+  std::vector<int> near;
+  for (int x = static_cast<int>(std::floor(box.lo1 / cell_));
+       x <= static_cast<int>(std::floor(box.hi1 / cell_)); ++x) {
+    for (int y = static_cast<int>(std::floor(box.lo2 / cell_));
+         y <= static_cast<int>(std::floor(box.hi2 / cell_)); ++y) {
+      const auto it = grid_.find(CellKey(x, y));
+      if (it == grid_.end()) continue;
+      for (const int o : it->second) {
+        if (box_[static_cast<size_t>(o)].Overlaps(box) &&
+            std::find(near.begin(), near.end(), o) == near.end()) {
+          near.push_back(o);
+        }
+      }
+    }
+  }
+  std::sort(near.begin(), near.end());
+  return near;
+}
+
+// Moves group h's members into group g (both at t_a = t).
+void Runner::Merge(int g, int h) {
+  Group& other = groups_[static_cast<size_t>(h)];
+  Group& mine = groups_[static_cast<size_t>(g)];
+  for (size_t m = 0; m < other.members.size(); ++m) {
+    group_of_[static_cast<size_t>(other.members[m])] = g;
+    mine.members.push_back(other.members[m]);
+    mine.states.push_back(other.states[m]);
+    mine.modes.push_back(other.modes[m]);
+  }
+  other = Group{};
+  other.alive = false;
+  CheckSize(mine.members, mine.t_a);
+}
+
+// Plans group g's next window from t (its t_a) and runs it: joins the balls within kJoinGap,
+// merges or makes room with the groups whose claims meet its own, then runs the window
+// speculatively to its planned end (or its stop event). Groups it cut are planned after it.
+void Runner::Plan(int g, double t) {
+  std::vector<int> replan;
+  for (;;) {
+    Group& gr = groups_[static_cast<size_t>(g)];
+    gr.run.reset();
+    const size_t k = gr.members.size();
+    double fastest = 0.0;
+    for (size_t m = 0; m < k; ++m) {
+      const BodyState& bs = gr.states[m];
+      fastest =
+          std::max(fastest, bs.v_WBcm_W.norm() +
+                                balls_[static_cast<size_t>(gr.members[m])].R * bs.w_WB_B.norm());
+    }
+    gr.speed = kSpeedMargin * fastest + kSpeedFloor;
+    gr.t_o = t;
+    gr.origin.resize(k);
+    for (size_t m = 0; m < k; ++m) gr.origin[m] = gr.states[m].p_WBcm;
+    // A claim of at most one radius about each member.
+    double t_b = std::min(options_.t_end, t + R_max_ / gr.speed);
+    const std::vector<int> near = BallsIn(GroupBox(gr, t_b));
+    bool changed = false;
+    for (const int o : near) {
+      const Vec3 r_o = SegAt(o, t).Pos(t);
+      for (size_t m = 0; m < k && !changed; ++m) {
+        if (MayCollide(o, gr.members[m]) && Gap(o, r_o, gr.members[m], gr.origin[m]) <= kJoinGap) {
+          Join(g, o, t);
+          changed = true;
+        }
+      }
+      if (changed) break;
+    }
+    if (changed) continue;
+    const Box here = HereBox(gr);
+    for (size_t h = 0; h < groups_.size() && !changed; ++h) {
+      Group& other = groups_[h];
+      if (static_cast<int>(h) == g || !other.alive || !other.box.Overlaps(GroupBox(gr, t_b)))
+        continue;
+      if (other.box.Overlaps(here)) {
+        // Its claim reaches this group's members: cut it here.
+        Advance(static_cast<int>(h), t);
+        ++other.ver;
+        other.t_b = t;
+        other.box = HereBox(other);
+        other.speed = 0.0;
+        other.t_o = t;
+        other.origin.resize(other.members.size());
+        for (size_t m = 0; m < other.members.size(); ++m) other.origin[m] = other.states[m].p_WBcm;
+        if (std::find(replan.begin(), replan.end(), h) == replan.end())
+          replan.push_back(static_cast<int>(h));
+      }
+      const double room = 0.5 * Separation(here, other.box) / gr.speed;
+      if (room < kMinWindow) {
+        Advance(static_cast<int>(h), t);
+        Merge(g, static_cast<int>(h));
+        changed = true;
+      } else {
+        t_b = std::min(t_b, t + room);
+      }
+    }
+    if (changed) continue;
+    if (!(t_b > t)) {  // the end of the run
+      gr.t_b = t_b;
+      gr.box = HereBox(gr);
+      gr.tick = ++tick_;
+      break;
+    }
+    const std::vector<int> watch = BallsIn(GroupBox(gr, t_b));  // the grid holds no members
+    auto run = std::make_unique<Window>(RunWindow(g, t_b, &watch));
+    Group& gg = groups_[static_cast<size_t>(g)];
+    if (run->r.stopped_by_event) t_b = run->r.final_state.t;
+    gg.t_b = t_b;
+    gg.box = GroupBox(gg, t_b);
+    gg.run = std::move(run);
+    gg.tick = ++tick_;
+    ++gg.ver;
+    Schedule({gg.t_b, Kind::kGroup, g, -1, gg.ver, 0, 0});
+    break;
+  }
+  for (const int h : replan) {
+    if (groups_[static_cast<size_t>(h)].alive) Plan(h, t);
+  }
 }
 
 // Starts a group of `balls` (on their chains) at t.
@@ -1288,74 +1395,118 @@ void Runner::FormGroup(const std::vector<int>& balls, double t) {
   Plan(g, t);
 }
 
-// At a window's end: the members touching no other member (gap above tol.gap) leave on
-// chains; the rest go on as one group. A member that leaves close to another is an outside
-// ball to the next window's plan, which joins it again if it is within kJoinTime of reach.
+// At a window's end the group splits into its touching components (gap within kJoinGap):
+// members touching no other leave on chains, the first component goes on as g, the others as
+// new groups.
 void Runner::EndWindow(int g, double t) {
   Advance(g, t);
-  Group& gr = groups_[static_cast<size_t>(g)];
+  Group gr = std::move(groups_[static_cast<size_t>(g)]);
   const size_t k = gr.members.size();
-  std::vector<char> linked(k, 0);
-  for (size_t a = 0; a < k; ++a) {
-    for (size_t b = a + 1; b < k; ++b) {
-      const double gap =
-          Gap(gr.members[a], gr.states[a].p_WBcm, gr.members[b], gr.states[b].p_WBcm);
-      if (gap <= w_.tol.gap) linked[a] = linked[b] = 1;
+  std::vector<int> comp(k, -1);
+  int nc = 0;
+  for (size_t s = 0; s < k; ++s) {
+    if (comp[s] >= 0) continue;
+    std::vector<size_t> todo{s};
+    comp[s] = nc;
+    while (!todo.empty()) {
+      const size_t a = todo.back();
+      todo.pop_back();
+      for (size_t b = 0; b < k; ++b) {
+        if (comp[b] >= 0 || !MayCollide(gr.members[a], gr.members[b])) continue;
+        if (Gap(gr.members[a], gr.states[a].p_WBcm, gr.members[b], gr.states[b].p_WBcm) <=
+            kJoinGap) {
+          comp[b] = nc;
+          todo.push_back(b);
+        }
+      }
     }
+    ++nc;
   }
-  std::vector<int> stay;
-  std::vector<BodyState> stay_states;
-  std::vector<ContactMode> stay_modes;
-  std::vector<std::pair<int, BodyState>> leave;
+  std::vector<Group> parts(static_cast<size_t>(nc));
   for (size_t m = 0; m < k; ++m) {
-    if (linked[m]) {
-      stay.push_back(gr.members[m]);
-      stay_states.push_back(gr.states[m]);
-      stay_modes.push_back(gr.modes[m]);
-    } else {
-      leave.emplace_back(gr.members[m], gr.states[m]);
+    Group& p = parts[static_cast<size_t>(comp[m])];
+    p.members.push_back(gr.members[m]);
+    p.states.push_back(gr.states[m]);
+    p.modes.push_back(gr.modes[m]);
+  }
+  std::vector<int> planned;
+  int slot = g;
+  for (Group& p : parts) {
+    if (p.members.size() == 1) {
+      const int b = p.members[0];
+      const BodyState& bs = p.states[0];
+      const auto bu = static_cast<size_t>(b);
+      group_of_[bu] = -1;
+      booked_until_[bu] = t;
+      BeginChain(b, Restart(b, t, bs.p_WBcm, bs.v_WBcm_W, bs.q_WB * bs.w_WB_B, bs.q_WB));
+      continue;
     }
+    p.t_a = p.t_b = t;
+    p.ver = gr.ver;
+    if (slot < 0) {
+      slot = static_cast<int>(groups_.size());
+      groups_.emplace_back();
+      ++res_.stats.groups;
+    }
+    for (const int b : p.members) group_of_[static_cast<size_t>(b)] = slot;
+    p.box = HereBox(p);
+    groups_[static_cast<size_t>(slot)] = std::move(p);
+    planned.push_back(slot);
+    slot = -1;
   }
-  gr.members = stay;
-  gr.states = stay_states;
-  gr.modes = stay_modes;
-  for (const auto& [b, bs] : leave) {
-    const auto bu = static_cast<size_t>(b);
-    group_of_[bu] = -1;
-    booked_until_[bu] = t;
-    BeginChain(b, Restart(b, t, bs.p_WBcm, bs.v_WBcm_W, bs.q_WB * bs.w_WB_B, bs.q_WB));
+  if (planned.empty() || planned[0] != g) {
+    groups_[static_cast<size_t>(g)] = Group{};
+    groups_[static_cast<size_t>(g)].alive = false;
   }
-  if (gr.members.empty()) {
-    gr.alive = false;
-    return;
+  for (const int h : planned) {
+    if (groups_[static_cast<size_t>(h)].alive && groups_[static_cast<size_t>(h)].t_b <= t)
+      Plan(h, t);
   }
-  Plan(g, t);
 }
 
-// Whether outside ball o, on its chain from t, may touch a member of g before g.t_b: member m
-// stays within speed[m] (τ - t_a) of its place at t_a, and o within s_o (τ - t) of its place
-// at t, s_o its speed bound over [t, t_b].
-bool Runner::MayReach(const Group& g, int o, double t) const {
-  const auto ou = static_cast<size_t>(o);
-  const double s_o = ChainSpeedBound(chain_[ou], t, g.t_b);
-  const Vec3 r_o = SegAt(o, t).Pos(t);
-  for (size_t m = 0; m < g.members.size(); ++m) {
-    if (!MayCollide(o, g.members[m])) continue;
-    const double gap = Gap(o, r_o, g.members[m], g.states[m].p_WBcm);
-    if (gap <= g.speed[m] * (g.t_b - g.t_a) + s_o * (g.t_b - t) + w_.tol.gap) return true;
+// Whether ball o's chain comes within rho of the point p during [t, tb]: on each segment
+// |r(τ) - p|² - rho² is a quartic in time, as in TestPair.
+bool ChainNear(const Chain& c, double t, double tb, const Vec3& p, double rho) {
+  tb = std::min(tb, c.known_until);
+  for (int k = 0; k < c.count; ++k) {
+    const Segment& seg = c.seg[static_cast<size_t>(k)];
+    const double s0 = std::max(t, seg.t0), s1 = std::min(tb, seg.end());
+    if (s1 < s0) continue;
+    const Vec3 d0 = seg.Pos(s0) - p, d1 = seg.Vel(s0), d2 = 0.5 * seg.a;
+    const Poly f{(d0.norm() - rho) * (d0.norm() + rho), 2.0 * d0.dot(d1),
+                 d1.squaredNorm() + 2.0 * d0.dot(d2), 2.0 * d1.dot(d2), d2.squaredNorm()};
+    if (f[0] <= 0.0 || std::isfinite(FirstEntry(f, 0.0, s1 - s0))) return true;
   }
   return false;
 }
 
-// Outside balls whose new boxes reach a group: the group is brought to now and re-planned
-// (joining them, or ending its window before they can reach it).
+// Whether outside ball o, on its chain from t, may touch a member of g before g.t_b: member m
+// stays within σ (t_b - t_o) + ε of its origin, so o must come within that and both radii
+// (and kJoinGap) of the origin.
+bool Runner::MayReach(const Group& g, int o, double t) const {
+  const Chain& c = chain_[static_cast<size_t>(o)];
+  const double reach = g.speed * (g.t_b - g.t_o) + kReach + kJoinGap;
+  for (size_t m = 0; m < g.members.size(); ++m) {
+    if (!MayCollide(o, g.members[m])) continue;
+    const double rho =
+        reach + balls_[static_cast<size_t>(o)].R + balls_[static_cast<size_t>(g.members[m])].R;
+    if (ChainNear(c, t, g.t_b, g.origin[m], rho)) return true;
+  }
+  return false;
+}
+
+// Outside balls whose new boxes reach a group: the group is brought to now (a cut) and
+// re-planned (joining them, or ending its window before they can reach it).
 void Runner::CheckGroups(double t) {
   while (!renewed_.empty()) {
     const int i = renewed_.back();
     renewed_.pop_back();
     if (group_of_[static_cast<size_t>(i)] >= 0) continue;
     for (size_t g = 0; g < groups_.size(); ++g) {
-      if (!groups_[g].alive || !groups_[g].box.Overlaps(box_[static_cast<size_t>(i)])) continue;
+      // A group planned after the ball's box was renewed has seen it.
+      if (!groups_[g].alive || groups_[g].tick > renew_tick_[static_cast<size_t>(i)] ||
+          !groups_[g].box.Overlaps(box_[static_cast<size_t>(i)]))
+        continue;
       if (!MayReach(groups_[g], i, t)) continue;
       Advance(static_cast<int>(g), t);
       Plan(static_cast<int>(g), t);
@@ -1511,6 +1662,7 @@ SphereEventResult Runner::Run(const State& initial) {
   stamp_.assign(n, 0);
   booked_until_.assign(n, initial.t);
   group_of_.assign(n, -1);
+  renew_tick_.assign(n, 0);
   ledger_ = initial;
   ledger_.contacts.assign(static_cast<size_t>(model_.num_contact_points()), ContactPointState{});
   const double t0 = initial.t;

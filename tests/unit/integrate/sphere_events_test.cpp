@@ -471,11 +471,18 @@ namespace {
 //    a = -5 (mu_k + mu_r) g / 12; the hollow's slip falls at 3/2 mu_k g - a and is gone after τ2.
 //  - both roll: the solid slows at 5/7 mu_r g, the hollow at 3/5 mu_r g, so they part and the
 //    hollow one leaves the group on its closed-form chain; each stops after v2 / (its rate).
-void ExpectSolidPushesHollow(double v0, double x_b, double mu_k, double mu_r) {
-  SCOPED_TRACE(fmt::format("v0 = {}, x_b = {}, mu_k = {}, mu_r = {}", v0, x_b, mu_k, mu_r));
+// With `row` > 0, that many balls rest in a line beside the path, 0.1 mm from it, every pair
+// free to collide: the pair passes them without a touch, so nothing above changes. `windows`:
+// the number of the group's hybrid runs.
+void ExpectSolidPushesHollow(double v0, double x_b, double mu_k, double mu_r, int row = 0,
+                             long* windows = nullptr) {
+  SCOPED_TRACE(
+      fmt::format("v0 = {}, x_b = {}, mu_k = {}, mu_r = {}, row = {}", v0, x_b, mu_k, mu_r, row));
   const double m = 0.17, R = 0.028575, mu_s = 1.25 * mu_k, g = kG;
-  Model model = reference::MakeBallsOnFloor(
-      {{m, R, mu_s, mu_k, mu_r, 0.0, 0.4}, {m, R, mu_s, mu_k, mu_r, 0.0, 2.0 / 3.0}}, g);
+  std::vector<reference::Ball> balls{{m, R, mu_s, mu_k, mu_r, 0.0, 0.4},
+                                     {m, R, mu_s, mu_k, mu_r, 0.0, 2.0 / 3.0}};
+  balls.resize(static_cast<size_t>(2 + row), balls[0]);
+  Model model = reference::MakeBallsOnFloor(balls, g);
   ContactSpec pair;
   pair.name = "pair";
   pair.shape = ContactShape::kSphereSphere;
@@ -487,6 +494,9 @@ void ExpectSolidPushesHollow(double v0, double x_b, double mu_k, double mu_r) {
   SetBodyPose(model, 0, Vec3(0, 0, R), Quat::Identity(), s);
   SetBodyVelocity(model, 0, Vec3(v0, 0, 0), Vec3(0, v0 / R, 0), s);
   SetBodyPose(model, 1, Vec3(x_b, 0, R), Quat::Identity(), s);
+  for (int k = 0; k < row; ++k) {
+    SetBodyPose(model, 2 + k, Vec3(x_b + k * (2 * R + 1e-3), 2 * R + 1e-4, R), Quat::Identity(), s);
+  }
   const double a_r = mu_r * g / 1.4, d = x_b - 2 * R;
   const double v_h = std::sqrt(v0 * v0 - 2 * a_r * d);
   const double t_h = (v0 - v_h) / a_r;
@@ -497,9 +507,17 @@ void ExpectSolidPushesHollow(double v0, double x_b, double mu_k, double mu_r) {
   const double t2 = t_h + t_a + tau2;
   const double x2 = x_b + 0.5 * v_h * (t_a + tau2) + 0.5 * a2 * tau2 * tau2;  // the hollow's
   const double rate_solid = mu_r * g * 5 / 7, rate_hollow = mu_r * g * 3 / 5;
-  const SphereEventResult r = SimulateSphereEvents(model, s, Until(t2 + v2 / rate_hollow + 1.0));
+  SphereEventOptions o = Until(t2 + v2 / rate_hollow + 1.0);
+  o.collide_all_pairs = row > 0;  // plastic and frictionless, as the listed pair
+  const SphereEventResult r = SimulateSphereEvents(model, s, o);
+  if (windows != nullptr) *windows = r.stats.group_windows;
 
   EXPECT_GE(r.stats.groups, 1);
+  for (int k = 0; k < row; ++k) {
+    EXPECT_EQ(r.final_state.bodies[static_cast<size_t>(2 + k)].p_WBcm,
+              s.bodies[static_cast<size_t>(2 + k)].p_WBcm);
+  }
+  for (const SphereCollision& c : r.collisions) EXPECT_LT(std::max(c.body_a, c.body_b), 2);
   // Slip stops: the solid's (after the hit) at t_h + t_a, the hollow's at t2; rolling stops at
   // t2 + v2 / rate for each.
   std::vector<double> slip[2], stop[2];
@@ -527,6 +545,18 @@ void ExpectSolidPushesHollow(double v0, double x_b, double mu_k, double mu_r) {
 
 TEST(SphereEvents, PressedPairPartsAndTheLeaverRollsOnInClosedForm) {
   ExpectSolidPushesHollow(1.0, 0.2, 0.2, 0.01);
+}
+
+// The group's windows end where its members may actually reach another ball (stop events on
+// the outside balls' chains), not where a bound on their speed could: the row 0.1 mm beside
+// the path cuts none of them. (A bound of v_h/2 or more would end a window every 0.2 ms or
+// sooner over the 0.15 s the pair presses.)
+TEST(SphereEvents, PressedPairPassesARowOfBallsBesideItsPathUntouched) {
+  long alone = 0, beside_row = 0;
+  ExpectSolidPushesHollow(1.0, 0.2, 0.2, 0.01, 0, &alone);
+  ExpectSolidPushesHollow(1.0, 0.2, 0.2, 0.01, 12, &beside_row);
+  EXPECT_EQ(beside_row, alone);
+  EXPECT_LE(alone, 12);
 }
 
 // The same closed forms over seeded speeds, distances and coefficients (mu_r < 7/5 mu_k keeps
