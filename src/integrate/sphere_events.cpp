@@ -424,6 +424,13 @@ class Runner {
   void Merge(int g, int h);
   void Plan(int g, double t);
   Box HereBox(const Group& g) const;
+  // Grows `box` to cover the disc of radius pad about r in the plane.
+  void Grow(Box& box, const Vec3& r, double pad) const {
+    box.lo1 = std::min(box.lo1, w_.e1.dot(r) - pad);
+    box.hi1 = std::max(box.hi1, w_.e1.dot(r) + pad);
+    box.lo2 = std::min(box.lo2, w_.e2.dot(r) - pad);
+    box.hi2 = std::max(box.hi2, w_.e2.dot(r) + pad);
+  }
   Box GroupBox(const Group& g, double t) const;
   std::vector<int> BallsIn(const Box& box) const;
   bool MayReach(const Group& g, int o, double t) const;
@@ -1238,12 +1245,7 @@ void Runner::Advance(int g, double t) {
 Box Runner::HereBox(const Group& g) const {
   Box box{kInf, -kInf, kInf, -kInf};
   for (size_t m = 0; m < g.members.size(); ++m) {
-    const Vec3& r = g.states[m].p_WBcm;
-    const double pad = balls_[static_cast<size_t>(g.members[m])].R + w_.tol.gap;
-    box.lo1 = std::min(box.lo1, w_.e1.dot(r) - pad);
-    box.hi1 = std::max(box.hi1, w_.e1.dot(r) + pad);
-    box.lo2 = std::min(box.lo2, w_.e2.dot(r) - pad);
-    box.hi2 = std::max(box.hi2, w_.e2.dot(r) + pad);
+    Grow(box, g.states[m].p_WBcm, balls_[static_cast<size_t>(g.members[m])].R + w_.tol.gap);
   }
   return box;
 }
@@ -1252,13 +1254,8 @@ Box Runner::HereBox(const Group& g) const {
 Box Runner::GroupBox(const Group& g, double t) const {
   Box box{kInf, -kInf, kInf, -kInf};
   for (size_t m = 0; m < g.members.size(); ++m) {
-    const Vec3& r = g.origin[m];
-    const double pad =
-        g.speed * (t - g.t_o) + kReach + balls_[static_cast<size_t>(g.members[m])].R + w_.tol.gap;
-    box.lo1 = std::min(box.lo1, w_.e1.dot(r) - pad);
-    box.hi1 = std::max(box.hi1, w_.e1.dot(r) + pad);
-    box.lo2 = std::min(box.lo2, w_.e2.dot(r) - pad);
-    box.hi2 = std::max(box.hi2, w_.e2.dot(r) + pad);
+    Grow(box, g.origin[m],
+         g.speed * (t - g.t_o) + kReach + balls_[static_cast<size_t>(g.members[m])].R + w_.tol.gap);
   }
   return box;
 }
