@@ -9,6 +9,7 @@
 #include "chasles/error.h"
 #include "chasles/math/quaternion.h"
 #include "dynamics/internal/contact_geometry.h"
+#include "dynamics/internal/sparse_solve.h"
 
 namespace chasles {
 namespace {
@@ -21,9 +22,33 @@ ContactMode ModeOf(const State& state, int p) {
              : ContactMode::kSeparated;
 }
 
-// δ = -M⁻¹Gᵀ(G M⁻¹Gᵀ)⁺ r for the rows in ws.J with residual ws.c; the correction goes to `d`.
-void MassWeightedCorrection(const Model& model, const Data& data, ContactWorkspace& ws,
-                            Eigen::VectorXd& d) {
+// Appends the row k·v_rel of a contact point (W = J) to `rows`.
+void AppendPointRow(const ContactPointGeometry& g, const Vec3& k, internal::BlockRows& rows) {
+  internal::Vec6 on_body = internal::Vec6::Zero(), on_other = internal::Vec6::Zero();
+  g.AddBlocks(k, 1.0, on_body, on_other);
+  rows.Add(g.body, on_body, on_body);
+  if (g.other != kWorld) rows.Add(g.other, on_other, on_other);
+  rows.EndRow();
+}
+
+// δ = -M⁻¹Gᵀ(G M⁻¹Gᵀ)⁺ r for the rows G in sp.rows with residual ws.c; the correction goes to
+// `d`. Any λ with (G M⁻¹Gᵀ) λ = r gives the same δ (two differ by a vector of null(Gᵀ)), so
+// the sparse path (dynamics/internal/sparse_solve.h: LDLᵀ, or its least-norm iteration for
+// redundant rows) and the dense one agree to round-off; the dense one also takes what the
+// sparse one leaves (an inconsistent r: gaps that cannot all close keep the least-squares
+// remainder).
+void MassWeightedCorrection(const Model& model, const Data& data, internal::SparseWorkspace& sp,
+                            ContactWorkspace& ws, Eigen::VectorXd& d) {
+  const int nb = model.num_bodies();
+  if (internal::UseSparse(data.linear_solver, sp.rows.rows()) &&
+      (internal::SolveSparse(model, data, true, sp, ws.c, ws.lambda) ||
+       (sp.singular_symmetric && internal::SolveSparseLeastNorm(sp, ws.c, nullptr, ws.lambda)))) {
+    ws.lambda = -ws.lambda;
+    d.setZero(6 * nb);
+    internal::AddMinvWTimes(sp, ws.lambda, d);
+    return;
+  }
+  internal::ScatterBlocks(sp.rows, nb, ws.J);
   internal::TimesMassInverse(model, data, ws.J, ws.WMinv);
   ws.A.noalias() = ws.WMinv * ws.J.transpose();
   internal::SolveSquare(ws.A, ws.c, true, ws, ws.lambda);
@@ -94,13 +119,15 @@ void ProjectOntoContactModes(const Model& model, State& state, Data& data,
       }
     }
     ContactWorkspace& ws = pw.position;
+    internal::SparseWorkspace& sp = internal::GetSparseWorkspace(pw.sparse_position);
     const auto nh = static_cast<Eigen::Index>(pw.holonomic_rows.size());
-    const Eigen::Index rows = nh + n_contact;
-    if (ws.J.rows() != rows || ws.J.cols() != 6 * nb) ws.J.resize(rows, 6 * nb), ws.c.resize(rows);
-    ws.J.setZero();
+    ws.c.resize(nh + n_contact);
+    sp.rows.Clear();
     for (Eigen::Index k = 0; k < nh; ++k) {
-      ws.J.row(k) = data.J.row(pw.holonomic_rows[static_cast<size_t>(k)]);
-      ws.c[k] = data.position_error[pw.holonomic_rows[static_cast<size_t>(k)]];
+      const int row = pw.holonomic_rows[static_cast<size_t>(k)];
+      const int c = pw.holonomic_owner[static_cast<size_t>(k)];
+      internal::AppendConstraintRow(model, data, c, row - model.constraint_row_offset(c), sp.rows);
+      ws.c[k] = data.position_error[row];
     }
     Eigen::Index k = nh;
     for (int p = 0; p < np; ++p) {
@@ -108,7 +135,7 @@ void ProjectOntoContactModes(const Model& model, State& state, Data& data,
       // ġ = n·v_C (the envelope of the lowest point, contact_solve.cpp), so the normal row is
       // the gap's gradient in the generalised coordinates [δp; δθ].
       const ContactPointGeometry g = internal::CalcContactPointGeometry(model, state, data, p);
-      g.SetRow(g.n, ws.J.row(k));
+      AppendPointRow(g, g.n, sp.rows);
       ws.c[k++] = g.gap;
     }
     Eigen::Index worst = 0;
@@ -127,7 +154,7 @@ void ProjectOntoContactModes(const Model& model, State& state, Data& data,
       }
       break;
     }
-    MassWeightedCorrection(model, data, ws, pw.dx);
+    MassWeightedCorrection(model, data, sp, ws, pw.dx);
     for (int b = 0; b < nb; ++b) {
       BodyState& bs = state.bodies[static_cast<size_t>(b)];
       bs.p_WBcm += pw.dx.segment<3>(6 * b);
@@ -139,13 +166,13 @@ void ProjectOntoContactModes(const Model& model, State& state, Data& data,
   CalcKinematics(model, state, data);
   if (has_constraints) CalcConstraintRows(model, state, data);
   ContactWorkspace& ws = pw.velocity;
+  internal::SparseWorkspace& sp = internal::GetSparseWorkspace(pw.sparse_velocity);
   const int nc_rows = model.num_constraint_rows();
-  const Eigen::Index rows = nc_rows + n_velocity_contact;
-  if (ws.J.rows() != rows || ws.J.cols() != 6 * nb) ws.J.resize(rows, 6 * nb), ws.c.resize(rows);
-  ws.J.setZero();
+  ws.c.resize(nc_rows + n_velocity_contact);
+  sp.rows.Clear();
   internal::GetVelocity(model, state, data, data.u);
   if (has_constraints) {
-    ws.J.topRows(nc_rows) = data.J;
+    internal::AppendConstraintRows(model, data, sp.rows);
     ws.c.head(nc_rows).noalias() = data.J * data.u;
     ws.c.head(nc_rows) -= data.velocity_rhs;
   }
@@ -154,17 +181,17 @@ void ProjectOntoContactModes(const Model& model, State& state, Data& data,
     const ContactMode mode = ModeOf(state, p);
     if (mode == ContactMode::kSeparated) continue;
     const ContactPointGeometry g = internal::CalcContactPointGeometry(model, state, data, p);
-    g.SetRow(g.n, ws.J.row(k));
+    AppendPointRow(g, g.n, sp.rows);
     ws.c[k++] = g.v_n;
     if (mode == ContactMode::kSticking) {
       for (const Vec3* t : {&g.t1, &g.t2}) {
-        g.SetRow(*t, ws.J.row(k));
+        AppendPointRow(g, *t, sp.rows);
         ws.c[k++] = t->dot(g.v_rel);
       }
     }
   }
-  if (ws.c.cwiseAbs().maxCoeff() == 0.0) return;
-  MassWeightedCorrection(model, data, ws, pw.dx);
+  if (ws.c.size() == 0 || ws.c.cwiseAbs().maxCoeff() == 0.0) return;
+  MassWeightedCorrection(model, data, sp, ws, pw.dx);
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
     BodyState& bs = state.bodies[i];

@@ -147,6 +147,15 @@ void ContactPointGeometry::AddRow(const Vec3& k, double scale, RowRef row) const
   }
 }
 
+void ContactPointGeometry::AddBlocks(const Vec3& k, double scale,
+                                     Eigen::Matrix<double, 6, 1>& on_body,
+                                     Eigen::Matrix<double, 6, 1>& on_other) const {
+  on_body.head<3>() += scale * k;
+  on_body.tail<3>() += scale * r.cross(k);
+  on_other.head<3>() -= scale * k;
+  on_other.tail<3>() -= scale * r_other.cross(k);
+}
+
 double ContactPointGeometry::RowTimes(const Vec3& k, const Eigen::VectorXd& u_dot) const {
   double a = k.dot(u_dot.segment<3>(6 * body)) + r.cross(k).dot(u_dot.segment<3>(6 * body + 3));
   if (other != kWorld) {
@@ -296,17 +305,6 @@ const ContactPointState& PointStateOf(const State& state, int p) {
                                                         : none;
 }
 
-// Blocks of the row k·v_rel on the point's body and on the other body (as
-// ContactPointGeometry::SetRow writes them: [k; r × k] on the body, minus [k; r_O × k] on the
-// other), `scale` times, added to `on_body` and `on_other`.
-void AddRowBlocks(const ContactPointGeometry& g, const Vec3& k, double scale,
-                  internal::Vec6& on_body, internal::Vec6& on_other) {
-  on_body.head<3>() += scale * k;
-  on_body.tail<3>() += scale * g.r.cross(k);
-  on_other.head<3>() -= scale * k;
-  on_other.tail<3>() -= scale * g.r_other.cross(k);
-}
-
 // The force direction of a pressing point's normal row, by blocks: J_n, minus mu_k J_s when it
 // slides (friction -mu_k N s), minus mu_r R ŵ_r in the angular part when a round feature rolls
 // (sticks) with rolling resistance (moment -mu_r N R ŵ_r). A sliding point has no rolling
@@ -317,11 +315,10 @@ void NormalForceBlocks(const Contact& con, const ContactPointGeometry& g, Contac
                        const ContactPointState& ps, internal::Vec6& on_body,
                        internal::Vec6& on_other) {
   on_body.setZero(), on_other.setZero();
-  AddRowBlocks(g, g.n, 1.0, on_body, on_other);
+  g.AddBlocks(g.n, 1.0, on_body, on_other);
   if (mode == ContactMode::kSliding) {
     const Vec3 s = g.SlipDirection(ps.slip_direction_W);
-    if (s.squaredNorm() > 0.0 && con.mu_k() > 0.0)
-      AddRowBlocks(g, s, -con.mu_k(), on_body, on_other);
+    if (s.squaredNorm() > 0.0 && con.mu_k() > 0.0) g.AddBlocks(s, -con.mu_k(), on_body, on_other);
   }
   if (con.mu_r() > 0.0 && g.round && mode == ContactMode::kSticking) {
     const Vec3 roll_dir = g.RollingDirection(ps.rolling_direction_W);
@@ -407,7 +404,7 @@ void AppendContactRows(const Model& model, const State& state, Data& data,
     if (mode == ContactMode::kSeparated) continue;
     // Row k: J = [J_body, J_other] of n·v_rel; W its force direction (NormalForceBlocks).
     Vec6 jb = Vec6::Zero(), jo = Vec6::Zero(), wb, wo;
-    AddRowBlocks(g, g.n, 1.0, jb, jo);
+    g.AddBlocks(g.n, 1.0, jb, jo);
     NormalForceBlocks(con, g, mode, PointStateOf(state, p), wb, wo);
     const auto add = [&](const Vec6& j_body, const Vec6& j_other, const Vec6& w_body,
                          const Vec6& w_other) {
@@ -420,7 +417,7 @@ void AppendContactRows(const Model& model, const State& state, Data& data,
     if (mode == ContactMode::kSticking) {
       for (const Vec3* t : {&g.t1, &g.t2}) {
         jb.setZero(), jo.setZero();
-        AddRowBlocks(g, *t, 1.0, jb, jo);
+        g.AddBlocks(*t, 1.0, jb, jo);
         add(jb, jo, jb, jo);
         c[k++] = g.AccelerationBias(*t);
       }
@@ -435,20 +432,7 @@ void SolveContactDense(const Model& model, const State& state, Data& data, bool 
   const int nc_rows = model.num_constraint_rows();
   ContactWorkspace& ws = data.contact_work;
   const internal::BlockRows& br = internal::GetSparseWorkspace(data.sparse_contacts).rows;
-  const int rows = br.rows();
-  if (ws.J.rows() != rows || ws.J.cols() != 6 * nb) {
-    ws.J.resize(rows, 6 * nb);
-    ws.W.resize(rows, 6 * nb);
-  }
-  ws.J.setZero();
-  ws.W.setZero();
-  for (int i = 0; i < rows; ++i) {
-    for (int k = br.start[static_cast<size_t>(i)]; k < br.start[static_cast<size_t>(i) + 1]; ++k) {
-      const auto j = static_cast<size_t>(k);
-      ws.J.row(i).segment<6>(6 * br.body[j]) = br.J[j].transpose();
-      ws.W.row(i).segment<6>(6 * br.body[j]) = br.W[j].transpose();
-    }
-  }
+  internal::ScatterBlocks(br, nb, ws.J, &ws.W);
   internal::TimesMassInverse(model, data, ws.W, ws.WMinv);
   ws.A.noalias() = ws.J * ws.WMinv.transpose();
   ws.rhs.noalias() = ws.c - ws.J * data.u_dot;

@@ -443,28 +443,43 @@ void AddMinvWTimes(const SparseWorkspace& ws, const Eigen::VectorXd& lambda, Eig
   }
 }
 
+void ScatterBlocks(const BlockRows& rows, int num_bodies, Eigen::MatrixXd& J, Eigen::MatrixXd* W) {
+  const int n = rows.rows();
+  J.setZero(n, 6 * num_bodies);
+  if (W != nullptr) W->setZero(n, 6 * num_bodies);
+  for (int i = 0; i < n; ++i) {
+    for (int k = rows.start[static_cast<size_t>(i)]; k < rows.start[static_cast<size_t>(i) + 1];
+         ++k) {
+      const auto j = static_cast<size_t>(k);
+      J.row(i).segment<6>(6 * rows.body[j]) = rows.J[j].transpose();
+      if (W != nullptr) W->row(i).segment<6>(6 * rows.body[j]) = rows.W[j].transpose();
+    }
+  }
+}
+
+void AppendConstraintRow(const Model& model, const Data& data, int c, int k, BlockRows& rows) {
+  const Constraint& con = model.constraint(c);
+  const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+  if (data.row_released[static_cast<size_t>(model.constraint_row_offset(c))] == 0) {
+    if (con.parent() != kWorld) {
+      const Vec6 j = e.J_parent.row(k).transpose();
+      rows.Add(con.parent(), j, j);
+    }
+    const Vec6 j = e.J_child.row(k).transpose();
+    rows.Add(con.child(), j, j);
+    for (int x = 0; x < e.num_extra; ++x) {
+      const auto xi = static_cast<size_t>(x);
+      const Vec6 jx = e.J_extra[xi].row(k).transpose();
+      rows.Add(e.extra_body[xi], jx, jx);
+    }
+  }
+  rows.EndRow();
+}
+
 void AppendConstraintRows(const Model& model, const Data& data, BlockRows& rows) {
   for (int c = 0; c < model.num_constraints(); ++c) {
-    const Constraint& con = model.constraint(c);
-    const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
-    const int o = model.constraint_row_offset(c);
-    const bool released = data.row_released[static_cast<size_t>(o)] != 0;
-    for (int k = 0; k < con.num_rows(); ++k) {
-      if (!released) {
-        if (con.parent() != kWorld) {
-          const Vec6 j = e.J_parent.row(k).transpose();
-          rows.Add(con.parent(), j, j);
-        }
-        const Vec6 j = e.J_child.row(k).transpose();
-        rows.Add(con.child(), j, j);
-        for (int x = 0; x < e.num_extra; ++x) {
-          const auto xi = static_cast<size_t>(x);
-          const Vec6 jx = e.J_extra[xi].row(k).transpose();
-          rows.Add(e.extra_body[xi], jx, jx);
-        }
-      }
-      rows.EndRow();
-    }
+    for (int k = 0; k < model.constraint(c).num_rows(); ++k)
+      AppendConstraintRow(model, data, c, k, rows);
   }
 }
 

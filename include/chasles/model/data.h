@@ -165,6 +165,9 @@ struct ContactProjectionWorkspace {
   std::vector<int> holonomic_rows, holonomic_owner;
   /// Correction of the positions [m, rad] or velocities [m/s, rad/s], 6 per body.
   Eigen::VectorXd dx;
+  /// The rows by body blocks and the sparse factorisations of the two stages (systems of
+  /// kSparseMinRows rows and more).
+  SparseWorkspaceHandle sparse_position, sparse_velocity;
 };
 
 struct Data {

@@ -47,6 +47,10 @@ struct ContactPointGeometry {
   double AccelerationBias(const Vec3& k) const;
   /// Adds the Jacobian row of k·v_rel to `row` (6 columns per body).
   void SetRow(const Vec3& k, RowRef row) const;
+  /// Adds `scale` times the blocks of the row k·v_rel (as SetRow writes them: [k; r × k] on
+  /// the body, minus [k; r_O × k] on the other) to `on_body` and `on_other`.
+  void AddBlocks(const Vec3& k, double scale, Eigen::Matrix<double, 6, 1>& on_body,
+                 Eigen::Matrix<double, 6, 1>& on_other) const;
   /// Adds `scale` times the Jacobian row of k·v_rel to `row` (no temporary row).
   void AddRow(const Vec3& k, double scale, RowRef row) const;
   /// J_k u̇ for the row k·v_rel and generalised accelerations u̇ (6 per body; no temporary row).

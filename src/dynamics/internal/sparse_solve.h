@@ -123,6 +123,14 @@ bool SolveSparseLeastNorm(SparseWorkspace& ws, const Eigen::VectorXd& r, const E
 /// u += M⁻¹ Wᵀ λ from the blocks (after SolveSparse, which filled ws.MinvW).
 void AddMinvWTimes(const SparseWorkspace& ws, const Eigen::VectorXd& lambda, Eigen::VectorXd& u);
 
+/// The rows as dense matrices (rows × 6 n_bodies): J into `J`, and W into `W` when not null.
+void ScatterBlocks(const BlockRows& rows, int num_bodies, Eigen::MatrixXd& J,
+                   Eigen::MatrixXd* W = nullptr);
+
+/// Appends row k of constraint c (Data::constraint_rows, after CalcConstraintRows) to `rows`,
+/// W = J; a released constraint's row has no blocks.
+void AppendConstraintRow(const Model& model, const Data& data, int c, int k, BlockRows& rows);
+
 /// Appends the rows of every constraint (Data::constraint_rows, after CalcConstraintRows) to
 /// `rows`, W = J; released constraints get rows without blocks.
 void AppendConstraintRows(const Model& model, const Data& data, BlockRows& rows);
