@@ -113,9 +113,9 @@ void Scattered(benchmark::State& st) {
 
 BENCHMARK(Scattered)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 // Part of the tight rack presses together in groups stepped by the hybrid engine
-// (docs/contact.md, "Tight racks"): 1.0 s for 100 balls; at 300 the rack squeezes into groups
-// of 50 balls and more, whose dense mode selection takes seconds per window, so only 100 is
-// registered.
+// (docs/contact.md, "Tight racks"): 0.67 s for 100 balls; at 200 the rack squeezes into groups
+// of 70 balls and more whose regimes change hundreds of times per millisecond (a 2 ms window
+// takes 42 s), so only 100 is registered.
 BENCHMARK(BreakShot)->Arg(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -399,8 +399,8 @@ class Runner {
   void CheckNoOverlap(const State& initial) const;
   std::vector<Segment> InitialSegments(const State& initial);
   // Pressing groups.
-  struct Window {  // a run of a group by the hybrid engine
-    Model sub;
+  struct Window {                      // a run of a group by the hybrid engine
+    std::shared_ptr<const Model> sub;  // shared by the runs from its checkpoints
     SimulationResult r;
   };
   struct Group {
@@ -409,6 +409,7 @@ class Runner {
     std::vector<ContactMode> modes;  // of the members' plane points at t_a (the hybrid's)
     std::vector<Vec3> origin;        // the members' centres at t_o, when the window was planned
     double speed = 0.0;              // the window's speed bound σ
+    double span = kInf;              // the longest window to plan (kMinSpan)
     double t_o = 0.0, t_a = 0.0, t_b = 0.0;
     Box box;                      // the window's claim: where its members may be until t_b
     std::unique_ptr<Window> run;  // the window's speculative run, from t_o to t_b
@@ -418,8 +419,9 @@ class Runner {
   };
   void RemoveFromGrid(int i);
   void Join(int g, int i, double t);
+  SimulationOptions WindowOptions(double t) const;
   Window RunWindow(int g, double t, const std::vector<int>* near);
-  void Commit(int g, const Window& w);
+  void Commit(int g, const Window& w, const SimulationResult* head = nullptr);
   void Advance(int g, double t);
   void Merge(int g, int h);
   void Plan(int g, double t);
@@ -1043,7 +1045,9 @@ void Runner::CheckNoOverlap(const State& initial) const {
 // ball's chain). So the window is checked against the members' own motion, not a bound on
 // it: a group moving along a rack, balls a tenth of a millimetre from it that it does not
 // approach, runs in long windows. The run is kept and taken at the window's end; an outside
-// ball whose new chain may reach a member cuts the window (the group is run afresh to then).
+// ball whose new chain may reach a member cuts the window (the run is kept to its last
+// checkpoint before then and the group run afresh from there). A window is planned at most
+// twice as long as the group's last one ran, so little is speculated past where cuts come.
 // A ball within kJoinGap of a member joins; groups whose claims (their members' reach over
 // the window) meet are cut and each takes half the room between them, or merge when their
 // members are within reach. At a window's end the group splits into its touching components,
@@ -1055,7 +1059,11 @@ constexpr double kReach = 1e-8;        // ε: the bound's slack for a run repeat
 constexpr double kMinWindow = 1e-5;    // [s] groups closer than this at σ merge instead
 constexpr double kJoinGap = 1e-6;      // [m] a ball this close to a member joins its group
 constexpr double kStopGap =
-    0.5 * kJoinGap;  // [m] a window stops where an outside ball is this close
+    0.5 * kJoinGap;               // [m] a window stops where an outside ball is this close
+constexpr int kCheckpoints = 32;  // samples of a speculative run, from which a cut one resumes
+// A window is planned at most twice as long as the last one of its group ran before it was cut
+// (or ended), and no shorter than this [s]: speculation past where cuts come is wasted.
+constexpr double kMinSpan = 1e-5;
 
 // How far apart two boxes are (positive when they do not overlap).
 double Separation(const Box& a, const Box& b) {
@@ -1124,17 +1132,14 @@ Runner::Window Runner::RunWindow(int g, double t, const std::vector<int>* near) 
       }
     }
   }
-  Window w{SubModel(gr.members, pairs), {}};
-  State st = MakeRestState(w.sub);
+  Window w{std::make_shared<const Model>(SubModel(gr.members, pairs)), {}};
+  State st = MakeRestState(*w.sub);
   st.t = gr.t_a;
   for (size_t m = 0; m < k; ++m) st.bodies[m] = gr.states[m];
-  SimulationOptions so;
-  so.t_end = t;
-  so.output_interval = 0.0;
-  so.adaptive = options_.hybrid;
-  so.islands = false;
-  so.contact.tolerances = w_.tol;
+  SimulationOptions so = WindowOptions(t);
   if (near != nullptr) {
+    // Checkpoints (the run's samples), from which a cut window is run afresh.
+    so.output_interval = (t - gr.t_a) / kCheckpoints;
     EventSpec ev;
     ev.name = "window";
     ev.direction = EventDirection::kFalling;
@@ -1153,25 +1158,52 @@ Runner::Window Runner::RunWindow(int g, double t, const std::vector<int>* near) 
     };
     so.events.push_back(std::move(ev));
   }
-  w.r = Simulate(w.sub, st, so);
+  w.r = Simulate(*w.sub, st, so);
   ++res_.stats.group_windows;
   return w;
 }
 
-// Books a run of group g (its events, impacts and works) and takes its final states.
-void Runner::Commit(int g, const Window& w) {
+// The hybrid engine's options for a group's run to t (no output, no events).
+SimulationOptions Runner::WindowOptions(double t) const {
+  SimulationOptions so;
+  so.t_end = t;
+  so.output_interval = 0.0;
+  so.adaptive = options_.hybrid;
+  so.islands = false;
+  so.contact.tolerances = w_.tol;
+  return so;
+}
+
+// Books a run of group g (its events, impacts and works) and takes its final states. With
+// `head`, w.r was run from a checkpoint of the run `head` (same Model): head's events before
+// the checkpoint come first; the works are w.r's, which the checkpoint carried from t_a.
+void Runner::Commit(int g, const Window& w, const SimulationResult* head) {
   Group& gr = groups_[static_cast<size_t>(g)];
-  const Model& sub = w.sub;
+  const Model& sub = *w.sub;
   const SimulationResult& r = w.r;
   const size_t k = gr.members.size();
   const int np = static_cast<int>(k);
-  for (const ContactEvent& ev : r.contact_events) {
-    if (ev.reason == ContactEventReason::kInitial || ev.point >= np) continue;
-    ContactEvent e = ev;
-    e.point = balls_[static_cast<size_t>(gr.members[static_cast<size_t>(ev.point)])].point;
-    res_.contact_events.push_back(e);
+  const double t_from = r.samples.front().t;
+  const auto before = [&](double t) { return head == nullptr || t < t_from; };
+  for (const SimulationResult* part : {head, &r}) {
+    if (part == nullptr) continue;
+    for (const ContactEvent& ev : part->contact_events) {
+      if (ev.reason == ContactEventReason::kInitial || ev.point >= np) continue;
+      if (part == head && !before(ev.t)) continue;
+      ContactEvent e = ev;
+      e.point = balls_[static_cast<size_t>(gr.members[static_cast<size_t>(ev.point)])].point;
+      res_.contact_events.push_back(e);
+    }
   }
-  for (const ImpactRecord& rec : r.impacts) {
+  std::vector<const ImpactRecord*> impacts;
+  if (head != nullptr) {
+    for (const ImpactRecord& rec : head->impacts) {
+      if (before(rec.t)) impacts.push_back(&rec);
+    }
+  }
+  for (const ImpactRecord& rec : r.impacts) impacts.push_back(&rec);
+  for (const ImpactRecord* p : impacts) {
+    const ImpactRecord& rec = *p;
     if (rec.approach_speed <= w_.tol.resting_speed) continue;
     if (rec.point < np) {
       ImpactRecord e = rec;
@@ -1228,15 +1260,35 @@ void Runner::Commit(int g, const Window& w) {
   gr.t_a = r.final_state.t;
 }
 
-// Brings group g to t: the window's speculative run when it ends there, a fresh run otherwise
-// (a cut: it follows the speculative one's path to round-off, within the bound's slack ε).
+// Brings group g to t: the window's speculative run when it ends there; otherwise (a cut) that
+// run up to its last checkpoint before t on which no event falls, and a fresh run from there
+// to t (which follows the speculative one's path to round-off, within the bound's slack ε);
+// without such a checkpoint, a fresh run from t_a.
 void Runner::Advance(int g, double t) {
   Group& gr = groups_[static_cast<size_t>(g)];
   if (!(t > gr.t_a)) return;
   std::unique_ptr<Window> run = std::move(gr.run);
+  if (run) gr.span = std::max(2.0 * (t - gr.t_o), kMinSpan);
   if (run && run->r.final_state.t == t) {
     Commit(g, *run);
     return;
+  }
+  if (run && run->r.final_state.t > t) {
+    const SimulationResult& r = run->r;
+    const auto on_event = [&](double ts) {
+      return std::any_of(r.contact_events.begin(), r.contact_events.end(),
+                         [&](const ContactEvent& e) { return e.t == ts; }) ||
+             std::any_of(r.impacts.begin(), r.impacts.end(),
+                         [&](const ImpactRecord& e) { return e.t == ts; });
+    };
+    for (auto it = r.samples.rbegin(); it != r.samples.rend(); ++it) {
+      if (!(it->t < t) || on_event(it->t)) continue;
+      if (!(it->t > gr.t_a)) break;
+      Window rest{run->sub, Simulate(*run->sub, *it, WindowOptions(t))};
+      ++res_.stats.group_windows;
+      Commit(g, rest, &r);
+      return;
+    }
   }
   Commit(g, RunWindow(g, t, nullptr));
 }
@@ -1291,6 +1343,7 @@ void Runner::Merge(int g, int h) {
     mine.states.push_back(other.states[m]);
     mine.modes.push_back(other.modes[m]);
   }
+  mine.span = std::min(mine.span, other.span);
   other = Group{};
   other.alive = false;
   CheckSize(mine.members, mine.t_a);
@@ -1317,7 +1370,7 @@ void Runner::Plan(int g, double t) {
     gr.origin.resize(k);
     for (size_t m = 0; m < k; ++m) gr.origin[m] = gr.states[m].p_WBcm;
     // A claim of at most one radius about each member.
-    double t_b = std::min(options_.t_end, t + R_max_ / gr.speed);
+    double t_b = std::min({options_.t_end, t + R_max_ / gr.speed, t + gr.span});
     const std::vector<int> near = BallsIn(GroupBox(gr, t_b));
     bool changed = false;
     for (const int o : near) {
@@ -1439,6 +1492,7 @@ void Runner::EndWindow(int g, double t) {
       continue;
     }
     p.t_a = p.t_b = t;
+    p.span = gr.span;
     p.ver = gr.ver;
     if (slot < 0) {
       slot = static_cast<int>(groups_.size());

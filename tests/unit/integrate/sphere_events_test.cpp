@@ -473,11 +473,13 @@ namespace {
 //    hollow one leaves the group on its closed-form chain; each stops after v2 / (its rate).
 // With `row` > 0, that many balls rest in a line beside the path, 0.1 mm from it, every pair
 // free to collide: the pair passes them without a touch, so nothing above changes. `windows`:
-// the number of the group's hybrid runs.
+// the number of the group's hybrid runs. With `output` > 0 the run is sampled that often: each
+// sample brings the group to its time, cutting the window there (run on from its last
+// checkpoint), and the samples in the pressed phase lie on its closed form.
 void ExpectSolidPushesHollow(double v0, double x_b, double mu_k, double mu_r, int row = 0,
-                             long* windows = nullptr) {
-  SCOPED_TRACE(
-      fmt::format("v0 = {}, x_b = {}, mu_k = {}, mu_r = {}, row = {}", v0, x_b, mu_k, mu_r, row));
+                             long* windows = nullptr, double output = 0.0) {
+  SCOPED_TRACE(fmt::format("v0 = {}, x_b = {}, mu_k = {}, mu_r = {}, row = {}, output = {}", v0,
+                           x_b, mu_k, mu_r, row, output));
   const double m = 0.17, R = 0.028575, mu_s = 1.25 * mu_k, g = kG;
   std::vector<reference::Ball> balls{{m, R, mu_s, mu_k, mu_r, 0.0, 0.4},
                                      {m, R, mu_s, mu_k, mu_r, 0.0, 2.0 / 3.0}};
@@ -509,8 +511,22 @@ void ExpectSolidPushesHollow(double v0, double x_b, double mu_k, double mu_r, in
   const double rate_solid = mu_r * g * 5 / 7, rate_hollow = mu_r * g * 3 / 5;
   SphereEventOptions o = Until(t2 + v2 / rate_hollow + 1.0);
   o.collide_all_pairs = row > 0;  // plastic and frictionless, as the listed pair
+  o.output_interval = output;
   const SphereEventResult r = SimulateSphereEvents(model, s, o);
   if (windows != nullptr) *windows = r.stats.group_windows;
+  // Pressed and both sliding (a = 0): each at v_h/2, the hollow one at x_b + v_h/2 (t - t_h).
+  int pressed_samples = 0;
+  for (const State& sample : r.samples) {
+    if (!(sample.t > t_h && sample.t < t_h + t_a)) continue;
+    ++pressed_samples;
+    const double x = x_b + 0.5 * v_h * (sample.t - t_h);
+    EXPECT_LT(RelErr(sample.bodies[1].p_WBcm.x(), x), 1e-10) << "t = " << sample.t;
+    EXPECT_LT(RelErr(sample.bodies[0].p_WBcm.x(), x - 2 * R), 1e-10) << "t = " << sample.t;
+    EXPECT_LT(RelErr(sample.bodies[1].v_WBcm_W.x(), 0.5 * v_h), 1e-10) << "t = " << sample.t;
+  }
+  if (output > 0.0) {
+    EXPECT_GE(pressed_samples, static_cast<int>(t_a / output) - 1);
+  }
 
   EXPECT_GE(r.stats.groups, 1);
   for (int k = 0; k < row; ++k) {
@@ -557,6 +573,17 @@ TEST(SphereEvents, PressedPairPassesARowOfBallsBesideItsPathUntouched) {
   ExpectSolidPushesHollow(1.0, 0.2, 0.2, 0.01, 12, &beside_row);
   EXPECT_EQ(beside_row, alone);
   EXPECT_LE(alone, 12);
+}
+
+// Sampled every 5 ms, the group is brought to each sample's time and its window cut there;
+// the cut run goes on from its last checkpoint (the window's own samples) to the cut, and the
+// run keeps every closed form above (slip and rolling stops, resting places) to 1e-10 with
+// more windows than unsampled.
+TEST(SphereEvents, PressedPairSampledOftenKeepsItsClosedForms) {
+  long unsampled = 0, sampled = 0;
+  ExpectSolidPushesHollow(1.0, 0.2, 0.2, 0.01, 0, &unsampled);
+  ExpectSolidPushesHollow(1.0, 0.2, 0.2, 0.01, 0, &sampled, 0.005);
+  EXPECT_GT(sampled, unsampled);
 }
 
 // The same closed forms over seeded speeds, distances and coefficients (mu_r < 7/5 mu_k keeps
