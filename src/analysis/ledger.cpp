@@ -81,6 +81,11 @@ LedgerSample CalcLedgerSample(const Model& model, const State& s, const State& s
     L.contact_rolling_work += cl.rolling_work;
     L.contact_impact_work += cl.impact_work;
   }
+  // Contacts the model does not list (event-driven balls colliding under a pair law).
+  const ContactWork &u = s.unlisted_contact_work, &u0 = s0.unlisted_contact_work;
+  L.contact_friction_work += u.friction_work - u0.friction_work;
+  L.contact_rolling_work += u.rolling_work - u0.rolling_work;
+  L.contact_impact_work += u.impact_work - u0.impact_work;
   const double contact_work =
       L.contact_friction_work + L.contact_rolling_work + L.contact_impact_work;
   L.work_nonconservative += contact_work;

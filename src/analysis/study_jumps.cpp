@@ -150,6 +150,9 @@ StudyLedger FinalLedger(const StudyDefinition& definition, const Model& model, c
     out.rolling_work += p.rolling_work;
     out.impact_work += p.impact_work;
   }
+  out.friction_work += state.unlisted_contact_work.friction_work;
+  out.rolling_work += state.unlisted_contact_work.rolling_work;
+  out.impact_work += state.unlisted_contact_work.impact_work;
   for (const ConstraintModeState& m : state.constraint_modes) out.impact_work += m.impact_work;
   out.jumps = carry.jumps;
   out.residual = carry.residual + L.energy_residual;

@@ -301,6 +301,7 @@ class IslandRun {
         s.contacts[static_cast<size_t>(points_[i][j])] = x.contacts[j];
       }
     }
+    s.unlisted_contact_work = initial_.unlisted_contact_work;  // no island changes it
     return s;
   }
 

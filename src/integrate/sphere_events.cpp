@@ -394,8 +394,10 @@ class Runner {
                  const std::vector<std::pair<int, int>>& pairs) const;
   void FindCluster(double t, std::vector<int>& cluster,
                    std::vector<std::pair<int, int>>& pairs) const;
-  void RecordImpact(double t, const Model& sub, const ImpactResult& r,
+  void RecordImpact(double t, const Model& sub, const ImpactResult& r, const State& after,
                     const std::vector<int>& cluster, int np_plane);
+  void BookWorks(const Model& sub, const std::vector<int>& balls, int p,
+                 const ContactPointState& c);
   void CheckNoOverlap(const State& initial) const;
   std::vector<Segment> InitialSegments(const State& initial);
   // Pressing groups.
@@ -807,6 +809,13 @@ State Runner::StateAt(double t) const {
     ContactPointState& cp = s.contacts[static_cast<size_t>(balls_[i].point)];
     cp.mode = ModeOfPhase(seg.phase);
     cp.slip_direction_W = seg.phase == Phase::kSliding ? seg.s_hat : Vec3::Zero();
+    // The rolling reference, as the hybrid engine writes it (rolling resistance's moment in the
+    // contact outputs): the direction of the rolling angular velocity n × v / R.
+    const Vec3 v_plane = bs.v_WBcm_W - w_.n.dot(bs.v_WBcm_W) * w_.n;
+    cp.rolling_direction_W =
+        seg.phase == Phase::kRolling && balls_[i].mu_r > 0.0 && v_plane.norm() > w_.tol.stick_speed
+            ? Vec3(w_.n.cross(v_plane).normalized())
+            : Vec3::Zero();
   }
   return s;
 }
@@ -847,12 +856,45 @@ void Runner::FindCluster(double t, std::vector<int>& cluster,
   }
 }
 
-// Books an impact: the energy change, plane impacts (approaching points only) and ball-ball
+// Adds the works of point p of `sub` (a Model of `balls`, their plane points first, then one
+// sphere-sphere point per touching pair: SubModel) to the ledger: a plane point's and a listed
+// pair's to their own points, an unlisted pair's to State::unlisted_contact_work.
+void Runner::BookWorks(const Model& sub, const std::vector<int>& balls, int p,
+                       const ContactPointState& c) {
+  ContactWork* d = &ledger_.unlisted_contact_work;
+  ContactPointState* point = nullptr;
+  if (p < static_cast<int>(balls.size())) {
+    point = &ledger_.contacts[static_cast<size_t>(
+        balls_[static_cast<size_t>(balls[static_cast<size_t>(p)])].point)];
+  } else {
+    const ContactSpec& s = sub.contact(p).spec();
+    const auto it = listed_pairs_.find(
+        PairKey(balls[static_cast<size_t>(s.body)], balls[static_cast<size_t>(s.other_body)]));
+    if (it != listed_pairs_.end()) {
+      point = &ledger_.contacts[static_cast<size_t>(model_.contact_point_offset(it->second))];
+    }
+  }
+  if (point != nullptr) {
+    point->friction_work += c.friction_work;
+    point->rolling_work += c.rolling_work;
+    point->impact_work += c.impact_work;
+    return;
+  }
+  d->friction_work += c.friction_work;
+  d->rolling_work += c.rolling_work;
+  d->impact_work += c.impact_work;
+}
+
+// Books an impact: the energy change (shared among the points by normal impulse, as
+// ResolveImpacts leaves it in `after`), plane impacts (approaching points only) and ball-ball
 // collisions.
-void Runner::RecordImpact(double t, const Model& sub, const ImpactResult& r,
+void Runner::RecordImpact(double t, const Model& sub, const ImpactResult& r, const State& after,
                           const std::vector<int>& cluster, int np_plane) {
   ++res_.stats.impacts;
   res_.energy.impacts += r.kinetic_energy_after - r.kinetic_energy_before;
+  for (int p = 0; p < sub.num_contact_points(); ++p) {
+    BookWorks(sub, cluster, p, after.contacts[static_cast<size_t>(p)]);
+  }
   for (const ContactImpulse& ci : r.impulses) {
     if (ci.point < np_plane) {
       if (ci.approach_speed <= w_.tol.resting_speed) continue;
@@ -866,8 +908,6 @@ void Runner::RecordImpact(double t, const Model& sub, const ImpactResult& r,
       rec.law = ci.law;
       rec.frictionless_fallback = r.frictionless_fallback;
       res_.plane_impacts.push_back(rec);
-      ContactPointState& cp = ledger_.contacts[static_cast<size_t>(rec.point)];
-      cp.impact_work += r.kinetic_energy_after - r.kinetic_energy_before;
     } else {
       const ContactSpec& s = sub.contact(ci.point).spec();
       SphereCollision col;
@@ -877,6 +917,7 @@ void Runner::RecordImpact(double t, const Model& sub, const ImpactResult& r,
       col.approach_speed = ci.approach_speed;
       col.normal_impulse = ci.normal_impulse;
       col.impulse_on_a_W = ci.impulse_W;
+      col.energy_lost = r.kinetic_energy_before - r.kinetic_energy_after;
       col.cluster_size = static_cast<int>(cluster.size());
       res_.collisions.push_back(col);
     }
@@ -976,7 +1017,7 @@ void Runner::Impact(double t, int i, int j) {
     r = ResolveImpacts(sub, st, tol);
     if (r.impulses.empty()) return;  // no approach at all: they part
   }
-  RecordImpact(t, sub, r, cluster, np_plane);
+  RecordImpact(t, sub, r, st, cluster, np_plane);
   // New chains.
   for (size_t k = 0; k < cluster.size(); ++k) {
     const int b = cluster[k];
@@ -1218,6 +1259,7 @@ void Runner::Commit(int g, const Window& w, const SimulationResult* head) {
       col.approach_speed = rec.approach_speed;
       col.normal_impulse = rec.normal_impulse;
       col.impulse_on_a_W = rec.impulse_W;
+      col.energy_lost = rec.energy_lost;
       col.cluster_size = np;
       res_.collisions.push_back(col);
     }
@@ -1228,21 +1270,7 @@ void Runner::Commit(int g, const Window& w, const SimulationResult* head) {
     res_.energy.friction += c.friction_work;
     res_.energy.rolling += c.rolling_work;
     res_.energy.impacts += c.impact_work;
-    int target = -1;
-    if (p < np) {
-      target = balls_[static_cast<size_t>(gr.members[static_cast<size_t>(p)])].point;
-    } else {
-      const ContactSpec& s = sub.contact(p).spec();
-      const auto it = listed_pairs_.find(PairKey(gr.members[static_cast<size_t>(s.body)],
-                                                 gr.members[static_cast<size_t>(s.other_body)]));
-      if (it != listed_pairs_.end()) target = model_.contact_point_offset(it->second);
-    }
-    if (target >= 0) {
-      ContactPointState& d = ledger_.contacts[static_cast<size_t>(target)];
-      d.friction_work += c.friction_work;
-      d.rolling_work += c.rolling_work;
-      d.impact_work += c.impact_work;
-    }
+    BookWorks(sub, gr.members, p, c);
   }
   for (size_t e = 0; e < gravity_elements_.size(); ++e) {
     const ForceIntegrals& f = r.final_state.force_integrals[e];

@@ -65,6 +65,8 @@ struct SphereCollision {
   /// Impulse on a (b takes its opposite), in W [N·s].
   double normal_impulse = 0.0;
   Vec3 impulse_on_a_W = Vec3::Zero();
+  /// Kinetic energy lost in the whole impact (every ball in it) [J] (>= 0).
+  double energy_lost = 0.0;
   /// Balls in the impact (2 for a pair; more when others touched at that instant).
   int cluster_size = 0;
 };

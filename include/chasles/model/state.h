@@ -59,6 +59,15 @@ struct ContactPointState {
   double impact_work = 0.0;
 };
 
+/// Work done at contacts the model does not list [J] (each <= 0): the event-driven path's
+/// collisions between balls under SphereEventOptions::pair_law (collide_all_pairs), which have
+/// no contact point of their own. Simulate never sets it.
+struct ContactWork {
+  double friction_work = 0.0;
+  double rolling_work = 0.0;
+  double impact_work = 0.0;
+};
+
 /// Mode of a constraint that can let go (Constraint::can_release): a string is taut
 /// (kEngaged: its rows hold, its multiplier is the tension >= 0) or slack (kReleased: no rows,
 /// no force). Other switching constraints (a brake that locks or slips) can use the same list.
@@ -92,6 +101,8 @@ struct State {
   /// the energy its impacts took. May be left empty: every constraint is then engaged, and
   /// Simulate chooses the modes of those that can let go (SelectConstraintModes).
   std::vector<ConstraintModeState> constraint_modes;
+  /// Works at contacts the model does not list, since the start (see ContactWork).
+  ContactWork unlisted_contact_work;
 };
 
 /// Whether constraint `c` is released (slack) in `state` (an empty list: none is).

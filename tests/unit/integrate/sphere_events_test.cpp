@@ -11,6 +11,8 @@
 #include <random>
 #include <vector>
 
+#include "chasles/analysis/ledger.h"
+#include "chasles/dynamics/contact_solve.h"
 #include "chasles/error.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/mass/shape.h"
@@ -98,7 +100,9 @@ TEST(SphereEvents, SpinningBallStickTimeAndSpeedExact) {
 
 // Rolling resistance: a ball rolling at v0 decelerates at a = mu_r g / (1 + I/(m R²)) =
 // 5/7 mu_r g and stops at t = v0 / a after v0² / (2 a); the work of the resistance is the
-// kinetic energy ½ (m + I/R²) v0².
+// kinetic energy ½ (m + I/R²) v0². The samples carry the rolling reference, so the contact
+// outputs at a sample are the hybrid engine's: N = m g, the moment mu_r m g R against the
+// rolling (about -n × v̂), the friction m a that decelerates the centre, its power -mu_r m g v.
 TEST(SphereEvents, RollingResistanceStopsAtClosedFormTimeAndDistance) {
   reference::Ball ball = kBall;
   ball.mu_r = 0.01;
@@ -106,8 +110,22 @@ TEST(SphereEvents, RollingResistanceStopsAtClosedFormTimeAndDistance) {
   State s = MakeRestState(m2);
   const double v0 = 1.3;
   Place(m2, s, 0, 0, 0, Vec3(v0, 0, 0), Vec3(0, v0 / ball.radius, 0));
-  const SphereEventResult r = SimulateSphereEvents(m2, s, Until(30.0));
+  SphereEventOptions o = Until(30.0);
+  o.output_interval = 1.0;
+  const SphereEventResult r = SimulateSphereEvents(m2, s, o);
   const double a = 5.0 / 7.0 * 0.01 * kG;
+  const double W = ball.mass * kG;
+  for (const State& sample : r.samples) {
+    if (!(sample.t > 0.0 && sample.t < v0 / a)) continue;
+    const double v = v0 - a * sample.t;
+    const ContactPointOutput out = CalcContactOutputs(m2, sample)[0];
+    EXPECT_LT(RelErr(out.normal_force, W), 1e-14);
+    EXPECT_TRUE(out.rolling_moment_W.isApprox(Vec3(0, -0.01 * W * ball.radius, 0), 1e-14))
+        << out.rolling_moment_W.transpose();
+    EXPECT_TRUE(out.friction_force_W.isApprox(Vec3(-ball.mass * a, 0, 0), 1e-12))
+        << out.friction_force_W.transpose();
+    EXPECT_LT(RelErr(out.rolling_power, -0.01 * W * v), 1e-12);
+  }
   ASSERT_EQ(r.contact_events.size(), 2U);
   EXPECT_EQ(r.contact_events[1].reason, ContactEventReason::kRollingStopped);
   EXPECT_LT(RelErr(r.contact_events[1].t, v0 / a), 1e-14);
@@ -245,6 +263,21 @@ TEST(SphereEvents, AgreesWithTheHybridEngineOnACollidingGroup) {
   EXPECT_LT(std::abs(r.energy.residual), 1e-13 * r.energy.initial);
 }
 
+// The ledger the states carry (CalcLedgerSample: each plane point's and listed pair's works,
+// the unlisted pairs' works and gravity's integrals) balances at every sample, and at the end
+// its works are the run's own closed-form sums.
+void ExpectLedgerBalances(const Model& m, const State& initial, const SphereEventResult& r) {
+  for (const State& st : r.samples) {
+    const LedgerSample L = CalcLedgerSample(m, st, initial);
+    EXPECT_LT(std::abs(L.energy_residual), 1e-12 * L.energy_scale) << "t = " << st.t;
+  }
+  const LedgerSample L = CalcLedgerSample(m, r.final_state, initial);
+  const double scale = r.energy.initial;
+  EXPECT_NEAR(L.contact_impact_work, r.energy.impacts, 1e-12 * scale);
+  EXPECT_NEAR(L.contact_friction_work, r.energy.friction, 1e-12 * scale);
+  EXPECT_NEAR(L.contact_rolling_work, r.energy.rolling, 1e-12 * scale);
+}
+
 // A seeded break: a cue ball into a triangle of 45 balls with 0.1 mm gaps, every pair free to
 // collide, friction between the balls (so some hop): the run's energy balance closes to
 // round-off, no two balls ever overlap at the samples, and the result is the same run to run.
@@ -262,6 +295,14 @@ TEST(SphereEvents, BreakOfFortySixBallsBalancesEnergyAndNeverOverlaps) {
   EXPECT_LT(std::abs(r.energy.residual), 1e-12 * r.energy.initial);
   EXPECT_LT(r.energy.friction + r.energy.impacts, 0.0);
   ExpectNoOverlap(r.samples, n, 1e-9);
+  ExpectLedgerBalances(m, s, r);
+  double lost = 0.0;  // each impact's loss, once per impact
+  for (size_t k = 0; k < r.collisions.size(); ++k) {
+    const SphereCollision& c = r.collisions[k];
+    if (k == 0 || c.t != r.collisions[k - 1].t) lost += c.energy_lost;
+  }
+  EXPECT_GT(lost, 0.0);
+  EXPECT_LE(lost, -r.energy.impacts * (1 + 1e-12));
   const SphereEventResult again = SimulateSphereEvents(m, s, o);
   ASSERT_EQ(again.collisions.size(), r.collisions.size());
   for (int i = 0; i < n; ++i) {
@@ -292,6 +333,7 @@ TEST(SphereEvents, TightRackWithRollingResistanceRunsThroughItsPressingGroups) {
   EXPECT_LT(std::abs(r.energy.residual), 1e-12 * r.energy.initial);
   ASSERT_EQ(r.samples.back().t, 3.0);
   ExpectNoOverlap(r.samples, n, 2e-9);
+  ExpectLedgerBalances(m, s, r);
 }
 
 TEST(SphereEvents, RefusesWhatItCannotRun) {
