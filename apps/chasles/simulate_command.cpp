@@ -168,6 +168,11 @@ struct TextUnits {
   }
 };
 
+/// "1 collision", "2 collisions".
+std::string Count(long n, const char* noun) {
+  return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
+}
+
 /// Items first to last, or, past head + tail + 1 of them, the first `head`, a line saying how
 /// many more the JSON summary has (`what`: "event", "change", "impact"), and the last `tail`:
 /// a long run can record thousands.
@@ -432,8 +437,29 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
   out += EndReactionsText(scene, r, u.show, k);
   out += EndContactsText(scene, r, u.show, k);
   out += LedgerText(scene, r, u);
-  out += fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n", r.integrator,
-                     r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
+  if (r.event_driven) {
+    // Closed form between events: counts instead of steps, and the run's own energy balance.
+    const StudyEventDriven& e = *r.event_driven;
+    out += fmt::format(
+        "\nIntegrator: events (the balls in closed form between events): {} between balls, {} "
+        "in all, {} slips or rollings that stopped\n",
+        Count(e.collisions, "collision"), Count(e.stats.impacts, "impact"), e.stats.phase_events);
+    out += fmt::format(
+        "  closed-form energy balance: {} at the start, {} at the end, friction {}, rolling {}, "
+        "impacts {}; residual {}\n",
+        u.Energy(e.energy.initial), u.Energy(e.energy.final), u.Energy(e.energy.friction),
+        u.Energy(e.energy.rolling), u.Energy(e.energy.impacts), u.Energy(e.energy.residual));
+    if (e.stats.groups > 0) {
+      out += fmt::format(
+          "  balls pressing on each other: {} groups, run by the adaptive integrator in {} runs "
+          "({} steps, {} rejected, {} evaluations)\n",
+          e.stats.groups, e.stats.group_windows, r.stats.steps, r.stats.rejected_steps,
+          r.stats.function_evaluations);
+    }
+  } else {
+    out += fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n", r.integrator,
+                       r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
+  }
   if (r.islands.count > 0) {
     out += r.islands.split
                ? fmt::format("Islands: {}, each run as its own hybrid system\n", r.islands.count)

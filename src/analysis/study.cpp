@@ -18,6 +18,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/integrate/sphere_events.h"
 #include "chasles/model/data.h"
 #include "internal/study_steps.h"
 
@@ -82,6 +83,8 @@ class StudyRun {
   void Certify(const State& s, CheckPhase phase);
   void OnStep(double t);
   void RunTo(double t_b);
+  void RunEvents(double t_b);
+  void RecordSphereEvents(const SphereEventResult& r);
   void RecordSimulation(const SimulationResult& r, const std::vector<ContactMode>& carried,
                         const std::vector<EventSpec>& events);
   void ApplyJump(const Jump& j);
@@ -135,10 +138,15 @@ void StudyRun::Start() {
   if (!(def_.options.output_interval > 0)) {
     throw InputError("a study needs a positive output interval (options.output_interval)");
   }
-  result_.integrator = IntegratorName(def_.options.integrator);
+  result_.integrator = def_.sphere_events ? "events" : IntegratorName(def_.options.integrator);
   result_.warnings = def_.warnings;
   for (const StudyColumn& c : def_.columns) result_.columns.push_back(c.name);
   seg_ = study_internal::FirstSegment(def_);
+  if (def_.sphere_events && ((def_.events && !def_.events(seg_.map).empty()) ||
+                             !def_.impulses.empty() || !def_.impacts.empty())) {
+    throw InputError(
+        "an event-driven run of balls (sphere_events) takes no events, impulses or impacts");
+  }
   state_ = def_.initial;
   CheckFinite(*seg_.model, state_);
   const Model& model = *seg_.model;
@@ -151,7 +159,9 @@ void StudyRun::Start() {
     state_.contacts.assign(static_cast<size_t>(model.num_contact_points()), ContactPointState{});
   }
   const State as_given = state_;
-  if (model.num_contacts() > 0) {
+  // The event-driven path settles its balls itself (a ball moving into the table lands at
+  // once) and lists every point's initial mode (RecordSphereEvents).
+  if (model.num_contacts() > 0 && !def_.sphere_events) {
     SettleContacts("initial");
     // Every point's initial mode is part of the timeline, changed or not.
     for (int p = 0; p < model.num_contact_points(); ++p) {
@@ -224,10 +234,14 @@ void StudyRun::OnStep(double t) {
   if (def_.progress) def_.progress(t);
   const StudyLimits& limits = def_.limits;
   if (++steps_taken_ > limits.max_steps) {
-    throw LimitError(LimitError::Limit::kSteps,
-                     fmt::format("the run reached the limit of {} integration steps at t = {:.9g} "
-                                 "s (of {:.9g} s)",
-                                 limits.max_steps, t, def_.options.t_end));
+    throw LimitError(
+        LimitError::Limit::kSteps,
+        fmt::format("the run reached the limit of {} {} at t = {:.9g} s (of {:.9g} s)",
+                    limits.max_steps,
+                    def_.sphere_events ? "steps (events, and the pressing groups' integration "
+                                         "steps)"
+                                       : "integration steps",
+                    t, def_.options.t_end));
   }
   if (limits.timeout > 0) {
     const std::chrono::duration<double> used = std::chrono::steady_clock::now() - started_;
@@ -242,6 +256,10 @@ void StudyRun::OnStep(double t) {
 
 // Integrates from state.t to t_b, sampling on the global grid k * dt_out.
 void StudyRun::RunTo(double t_b) {
+  if (def_.sphere_events) {
+    RunEvents(t_b);
+    return;
+  }
   const double dt_out = def_.options.output_interval;
   while (state_.t < t_b && !stopped_) {
     const double k = std::ceil(state_.t / dt_out - 1e-9);
@@ -291,6 +309,83 @@ void StudyRun::RunTo(double t_b) {
     state_ = r.final_state;
     if (r.stopped_by_event) stopped_ = true;
   }
+}
+
+// The balls event-driven from state.t to t_b (the only segment: no jumps), sampled on the
+// global grid k * dt_out (SimulateSphereEvents samples t0 + k dt_out, and t0 = 0 here or a grid
+// time); every event handled and every step of a pressing group counts against the limits.
+void StudyRun::RunEvents(double t_b) {
+  SphereEventOptions o = *def_.sphere_events;
+  o.t_end = t_b;
+  o.output_interval = def_.options.output_interval;
+  o.on_progress = [this](double t) { OnStep(t); };
+  const SphereEventResult r = SimulateSphereEvents(*seg_.model, state_, o);
+  RecordSphereEvents(r);
+  state_ = r.final_state;
+}
+
+void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
+  const Model& m = *seg_.model;
+  for (size_t k = 1; k < r.samples.size(); ++k) {  // the first is the start, already a row
+    const State& s = r.samples[k];
+    if (static_cast<std::int64_t>(result_.rows.size()) >= def_.limits.max_rows) {
+      throw LimitError(LimitError::Limit::kRows,
+                       fmt::format("the run reached the limit of {} output rows at t = {:.9g} s",
+                                   def_.limits.max_rows, s.t));
+    }
+    CheckFinite(m, s);
+    AddRow(m, s);
+    Certify(s, CheckPhase::kSample);
+    slip_.Sample(m, s);
+  }
+  CheckFinite(m, r.final_state);
+  // The timeline: every point's initial mode (a pair point's is separated: the balls meet in
+  // impacts, and a pressing group's pair forces are the hybrid engine's), then the changes.
+  std::vector<bool> listed(static_cast<size_t>(m.num_contact_points()), false);
+  for (const ContactEvent& e : r.contact_events) {
+    const std::string& contact = m.contact(m.contact_of_point(e.point)).name();
+    if (e.reason == ContactEventReason::kInitial) listed[static_cast<size_t>(e.point)] = true;
+    result_.contact_events.push_back({e.t, Label(e.point), contact, ContactModeName(e.from),
+                                      ContactModeName(e.to), ContactEventReasonName(e.reason)});
+  }
+  for (int p = 0; p < m.num_contact_points(); ++p) {
+    if (listed[static_cast<size_t>(p)]) continue;
+    const std::string mode = ContactModeName(ContactMode::kSeparated);
+    result_.contact_events.push_back(
+        {state_.t, Label(p), m.contact(m.contact_of_point(p)).name(), mode, mode, "initial"});
+  }
+  std::stable_sort(
+      result_.contact_events.begin(), result_.contact_events.end(),
+      [](const StudyContactEvent& a, const StudyContactEvent& b) { return a.t < b.t; });
+  // Impacts with the table and between balls, in time order; a collision of a listed pair is
+  // at its contact point, of any other pair at "A | B".
+  std::vector<StudyImpact> impacts;
+  for (const ImpactRecord& imp : r.plane_impacts) {
+    impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
+                       imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam,
+                       RestitutionLawName(imp.law), imp.frictionless_fallback});
+  }
+  for (const SphereCollision& c : r.collisions) {
+    std::string point = fmt::format("{} | {}", m.body(c.body_a).name(), m.body(c.body_b).name());
+    for (int k = 0; k < m.num_contacts(); ++k) {
+      const ContactSpec& s = m.contact(k).spec();
+      if (s.shape == ContactShape::kSphereSphere &&
+          ((s.body == c.body_a && s.other_body == c.body_b) ||
+           (s.body == c.body_b && s.other_body == c.body_a))) {
+        point = Label(m.contact_point_offset(k));
+      }
+    }
+    impacts.push_back({c.t, point, c.approach_speed, c.normal_impulse, c.energy_lost, false,
+                       std::numeric_limits<double>::quiet_NaN(), false, RestitutionLawName(c.law),
+                       false});
+  }
+  std::stable_sort(impacts.begin(), impacts.end(),
+                   [](const StudyImpact& a, const StudyImpact& b) { return a.t < b.t; });
+  result_.impacts.insert(result_.impacts.end(), impacts.begin(), impacts.end());
+  result_.warnings.insert(result_.warnings.end(), r.warnings.begin(), r.warnings.end());
+  result_.stats = r.stats.hybrid;
+  result_.event_driven =
+      StudyEventDriven{r.stats, static_cast<long>(r.collisions.size()), r.energy};
 }
 
 void StudyRun::RecordSimulation(const SimulationResult& r, const std::vector<ContactMode>& carried,

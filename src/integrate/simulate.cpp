@@ -167,6 +167,8 @@ const char* ContactEventReasonName(ContactEventReason reason) {
       return "rolling stopped";
     case ContactEventReason::kAccumulation:
       return "bounces accumulated";
+    case ContactEventReason::kCollision:
+      return "collision";
     case ContactEventReason::kOther:
       return "re-selection";
   }

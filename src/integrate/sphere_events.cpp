@@ -422,6 +422,7 @@ class Runner {
   void RemoveFromGrid(int i);
   void Join(int g, int i, double t);
   SimulationOptions WindowOptions(double t) const;
+  SimulationResult RunGroup(const Model& sub, const State& from, const SimulationOptions& so);
   Window RunWindow(int g, double t, const std::vector<int>* near);
   void Commit(int g, const Window& w, const SimulationResult* head = nullptr);
   void Advance(int g, double t);
@@ -918,6 +919,7 @@ void Runner::RecordImpact(double t, const Model& sub, const ImpactResult& r, con
       col.normal_impulse = ci.normal_impulse;
       col.impulse_on_a_W = ci.impulse_W;
       col.energy_lost = r.kinetic_energy_before - r.kinetic_energy_after;
+      col.law = ci.law;
       col.cluster_size = static_cast<int>(cluster.size());
       res_.collisions.push_back(col);
     }
@@ -1035,6 +1037,7 @@ void Runner::Impact(double t, int i, int j) {
       ev.to = after;
       ev.reason = j < 0 && b == i                    ? ContactEventReason::kTouchDown
                   : after == ContactMode::kSeparated ? ContactEventReason::kLiftOff
+                  : j >= 0                           ? ContactEventReason::kCollision
                                                      : ContactEventReason::kOther;
       if (ev.from != ev.to) res_.contact_events.push_back(ev);
     }
@@ -1199,9 +1202,19 @@ Runner::Window Runner::RunWindow(int g, double t, const std::vector<int>* near) 
     };
     so.events.push_back(std::move(ev));
   }
-  w.r = Simulate(*w.sub, st, so);
-  ++res_.stats.group_windows;
+  w.r = RunGroup(*w.sub, st, so);
   return w;
+}
+
+// A run of a group's Model by the hybrid engine, counted in the statistics.
+SimulationResult Runner::RunGroup(const Model& sub, const State& from,
+                                  const SimulationOptions& so) {
+  SimulationResult r = Simulate(sub, from, so);
+  ++res_.stats.group_windows;
+  res_.stats.hybrid.steps += r.stats.steps;
+  res_.stats.hybrid.rejected_steps += r.stats.rejected_steps;
+  res_.stats.hybrid.function_evaluations += r.stats.function_evaluations;
+  return r;
 }
 
 // The hybrid engine's options for a group's run to t (no output, no events).
@@ -1212,6 +1225,7 @@ SimulationOptions Runner::WindowOptions(double t) const {
   so.adaptive = options_.hybrid;
   so.islands = false;
   so.contact.tolerances = w_.tol;
+  so.on_step = options_.on_progress;
   return so;
 }
 
@@ -1260,6 +1274,7 @@ void Runner::Commit(int g, const Window& w, const SimulationResult* head) {
       col.normal_impulse = rec.normal_impulse;
       col.impulse_on_a_W = rec.impulse_W;
       col.energy_lost = rec.energy_lost;
+      col.law = rec.law;
       col.cluster_size = np;
       res_.collisions.push_back(col);
     }
@@ -1312,8 +1327,7 @@ void Runner::Advance(int g, double t) {
     for (auto it = r.samples.rbegin(); it != r.samples.rend(); ++it) {
       if (!(it->t < t) || on_event(it->t)) continue;
       if (!(it->t > gr.t_a)) break;
-      Window rest{run->sub, Simulate(*run->sub, *it, WindowOptions(t))};
-      ++res_.stats.group_windows;
+      Window rest{run->sub, RunGroup(*run->sub, *it, WindowOptions(t))};
       Commit(g, rest, &r);
       return;
     }
@@ -1771,6 +1785,7 @@ SphereEventResult Runner::Run(const State& initial) {
     queue_.pop();
     Handle(e);
     CheckGroups(e.t);
+    if (options_.on_progress) options_.on_progress(e.t);
   }
   for (size_t g = 0; g < groups_.size(); ++g) {
     if (groups_[g].alive) Advance(static_cast<int>(g), options_.t_end);

@@ -195,6 +195,23 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
                      {"steps", r.stats.steps},
                      {"rejected_steps", r.stats.rejected_steps},
                      {"function_evaluations", r.stats.function_evaluations}};
+  if (r.event_driven) {
+    const StudyEventDriven& e = *r.event_driven;
+    j["integrator"]["event_driven"] = {{"collisions", e.collisions},
+                                       {"impacts", e.stats.impacts},
+                                       {"phase_events", e.stats.phase_events},
+                                       {"box_renewals", e.stats.box_renewals},
+                                       {"pair_tests", e.stats.pair_tests},
+                                       {"pressing_groups", e.stats.groups},
+                                       {"group_runs", e.stats.group_windows},
+                                       {"energy",
+                                        {{"initial", e.energy.initial},
+                                         {"final", e.energy.final},
+                                         {"friction", e.energy.friction},
+                                         {"rolling", e.energy.rolling},
+                                         {"impacts", e.energy.impacts},
+                                         {"residual", e.energy.residual}}}};
+  }
   if (r.islands.count > 0) {
     j["integrator"]["islands"] = {
         {"count", r.islands.count}, {"split", r.islands.split}, {"reason", r.islands.reason}};

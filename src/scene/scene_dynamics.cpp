@@ -500,10 +500,11 @@ SceneEvent SceneReader::ReadEvent(const At& at, size_t index, const Scene& scene
 }
 
 void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
-  report_.CheckMap(at,
-                   {"until", "integrator", "tolerance", "absolute_tolerance", "step",
-                    "output_interval", "max_steps", "max_rows", "timeout", "min_step"},
-                   "the simulation settings");
+  report_.CheckMap(
+      at,
+      {"until", "integrator", "tolerance", "absolute_tolerance", "step", "output_interval",
+       "max_steps", "max_rows", "timeout", "min_step", "ball_collisions"},
+      "the simulation settings");
   sim.present = true;
   if (at.node.IsMap()) {
     for (const auto& kv : at.node) {
@@ -534,9 +535,13 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
   if (at.Has("until")) sim.until = PositiveValue(at.Child("until"), kTime, "the end time");
   if (at.Has("integrator")) {
     const std::string name =
-        report_.Text(at.Child("integrator"), "adaptive, rk4, energy_momentum or splitting");
+        report_.Text(at.Child("integrator"), "adaptive, rk4, energy_momentum, splitting or events");
     if (name == "adaptive") {
       sim.integrator = IntegratorKind::kDormandPrince5;
+    } else if (name == "events") {
+      // Balls on a table between events in closed form; pressing groups on the adaptive one.
+      sim.integrator = IntegratorKind::kDormandPrince5;
+      sim.event_driven = true;
     } else if (name == "rk4") {
       sim.integrator = IntegratorKind::kRk4;
     } else if (name == "energy_momentum") {
@@ -544,11 +549,12 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
     } else if (name == "splitting") {
       sim.integrator = IntegratorKind::kSplitting;
     } else {
-      report_.Fail(
-          at.Child("integrator"),
-          fmt::format("unknown integrator '{}'{}; integrators: adaptive (default), rk4, "
-                      "energy_momentum, splitting",
-                      name, DidYouMean(name, {"adaptive", "rk4", "energy_momentum", "splitting"})));
+      report_.Fail(at.Child("integrator"),
+                   fmt::format("unknown integrator '{}'{}; integrators: adaptive (default), rk4, "
+                               "energy_momentum, splitting, events",
+                               name,
+                               DidYouMean(name, {"adaptive", "rk4", "energy_momentum", "splitting",
+                                                 "events"})));
     }
   }
   const bool fixed = sim.integrator != IntegratorKind::kDormandPrince5;
@@ -574,6 +580,11 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
                              "the absolute tolerance (in SI units of each state component)");
   }
   if (at.Has("step")) {
+    if (sim.event_driven) {
+      report_.Fail(at.Child("step"),
+                   "'step' is for the fixed-step integrators; 'events' takes no steps (the balls "
+                   "move in closed form between events)");
+    }
     if (!fixed) {
       report_.Fail(
           at.Child("step"),
@@ -588,6 +599,34 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
   if (at.Has("output_interval")) {
     sim.output_interval = PositiveValue(at.Child("output_interval"), kTime, "the output interval");
   }
+}
+
+// `ball_collisions`: the coefficients of every pair of balls the scene does not list, read as
+// a contact's (numbers, or a material pair). Only the event-driven path lets every pair collide.
+void SceneReader::ReadBallCollisions(const At& at, Scene& scene) {
+  SceneSimulation& sim = scene.dynamics.simulation;
+  if (!sim.event_driven) {
+    report_.Fail(at,
+                 "'ball_collisions' lets every pair of balls collide, which only 'integrator: "
+                 "events' does; for another integrator list each pair as a contact with 'with'");
+  }
+  report_.CheckMap(at, {"materials", "mu_s", "mu_k", "restitution", "restitution_law"},
+                   "the collisions between balls");
+  SceneContact c;
+  if (at.Has("materials")) {
+    ReadContactMaterials(at.Child("materials"), scene.dynamics.contacts.material_pairs, c);
+  }
+  ReadContactCoefficients(at, c.mu_s, c.mu_k, c.mu_r, c.restitution, c.restitution_law,
+                          at.Has("materials"));
+  if (c.mu_r != 0.0) {
+    report_.Fail(at.Child("materials"),
+                 fmt::format("the material pair {} has rolling resistance mu_r = {:.6g}, which "
+                             "balls rolling on each other do not have here; use a pair without "
+                             "mu_r",
+                             c.materials, c.mu_r));
+  }
+  sim.collide_all_pairs = true;
+  sim.ball_collisions = {c.restitution, c.mu_s, c.mu_k, c.restitution_law};
 }
 
 void SceneReader::ReadOutput(const At& at, Scene& scene) {
@@ -626,6 +665,9 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
   if (root.Has("simulation")) {
     d.simulation.where = KeySpotAt(root, "simulation");
     ReadSimulation(root.Child("simulation"), d.simulation);
+    if (root.Child("simulation").Has("ball_collisions")) {
+      ReadBallCollisions(root.Child("simulation").Child("ball_collisions"), scene);
+    }
   }
 
   if (root.Has("events")) {
@@ -652,6 +694,26 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
     report_.CheckSequence(list, "a list of impacts");
     for (size_t i = 0; i < list.node.size(); ++i)
       d.impacts.push_back(ReadImpact(list.Item(i), scene));
+  }
+
+  if (d.simulation.event_driven) {
+    // What the event-driven path has no place for (docs/scene-format.md, `simulation`).
+    const auto refuse = [&](const char* key, const char* why) {
+      if (root.Has(key)) report_.Fail(root.Child(key), why);
+    };
+    refuse("events",
+           "'integrator: events' locates only the balls' own events (collisions, slips that stop, "
+           "rolling that stops); a scene event needs 'integrator: adaptive'");
+    refuse("impulses",
+           "'integrator: events' applies no impulses during the run; give the ball its velocity "
+           "in 'initial', or use 'integrator: adaptive'");
+    refuse("impacts",
+           "'integrator: events' applies no embedding impacts; use 'integrator: adaptive'");
+    if (scene.planar) {
+      report_.Fail(root.Child("simulation").Child("integrator"),
+                   "'integrator: events' runs balls on a table in three dimensions; remove "
+                   "'planar: true'");
+    }
   }
 
   if (root.Has("output")) {

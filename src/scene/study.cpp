@@ -603,8 +603,9 @@ RunLimits ResolveLimits(const Scene& scene, const StudyOptions& o, double span) 
   const SceneSimulation& sim = scene.dynamics.simulation;
   switch (e.limit()) {
     case LimitError::Limit::kSteps:
-      ThrowLimit(scene, sim.Spot("max_steps"), "max_steps", "--max-steps", e.what(),
-                 "loosen 'tolerance', shorten the run, or ");
+      ThrowLimit(
+          scene, sim.Spot("max_steps"), "max_steps", "--max-steps", e.what(),
+          sim.event_driven ? "shorten the run, or " : "loosen 'tolerance', shorten the run, or ");
     case LimitError::Limit::kRows:
       ThrowLimit(scene, sim.Spot("max_rows"), "max_rows", "--max-rows", e.what(),
                  "choose a longer 'output_interval' or ");
@@ -979,6 +980,20 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
   def.progress = options.progress;
   def.record_row_snapshots = options.record_row_snapshots;
   const Model first = BuildModel(scene, def.bodies, IdentityMap(scene));
+  const SceneSimulation& sim = d.simulation;
+  if (sim.event_driven) {
+    // Balls on a table only (the message names the body, contact or force that is not).
+    const std::string obstacle = SphereEventObstacle(first);
+    if (!obstacle.empty()) {
+      throw InputError(
+          fmt::format("'integrator: events' runs balls on a table only: {}", obstacle));
+    }
+    SphereEventOptions events;
+    events.collide_all_pairs = sim.collide_all_pairs;
+    events.pair_law = sim.ball_collisions;
+    events.hybrid = def.options.adaptive;  // the pressing groups' runs
+    def.sphere_events = events;
+  }
   // On the constraints, or an error, or projected with each change a warning.
   def.initial =
       scene_internal::SettleInitialState(scene, first, InitialState(scene, first), def.warnings);

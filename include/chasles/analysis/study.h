@@ -21,6 +21,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,7 @@
 #include "chasles/analysis/certificate.h"
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/integrate/simulate.h"
+#include "chasles/integrate/sphere_events.h"
 #include "chasles/mass/mass_properties.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
@@ -150,6 +152,10 @@ struct StudyDefinition {
   SimulationOptions options;
   /// Events of each segment (optional).
   EventBuilder events;
+  /// Balls on a table run event-driven (SimulateSphereEvents with these options; t_end and
+  /// output_interval are taken from `options`) instead of by `options.integrator`. The Model
+  /// must be balls only (SphereEventObstacle); no events, impulses or impacts.
+  std::optional<SphereEventOptions> sphere_events;
   /// Output columns (t first, by convention).
   std::vector<StudyColumn> columns;
   std::vector<StudyImpulseSpec> impulses;
@@ -363,6 +369,14 @@ struct StudyEvent {
   std::vector<double> row;
 };
 
+/// What an event-driven run did (StudyDefinition::sphere_events): its counts, its ball-ball
+/// collisions and its own energy balance, each term from its closed form.
+struct StudyEventDriven {
+  SphereEventStats stats;
+  long collisions = 0;
+  SphereEnergyCheck energy;
+};
+
 struct StudyResult {
   /// CSV column names and one row per output sample (plus the states just after jumps).
   std::vector<std::string> columns;
@@ -392,6 +406,9 @@ struct StudyResult {
   IntegratorStats stats;
   /// How the last hybrid run was split into islands (count 0: no contacts or strings).
   IslandReport islands;
+  /// Set for an event-driven run (StudyDefinition::sphere_events); `stats` then counts its
+  /// pressing groups' hybrid runs.
+  std::optional<StudyEventDriven> event_driven;
   /// Things to tell the user (impulses after the end time, ...).
   std::vector<std::string> notes;
   /// Things the user must know: initial values changed to satisfy the constraints

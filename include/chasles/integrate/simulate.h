@@ -44,6 +44,7 @@ enum class ContactEventReason {
   kFrictionLimit,   ///< sticking needed more friction than mu_s N
   kRollingStopped,  ///< rolling angular velocity reached zero (rolling resistance)
   kAccumulation,    ///< bounces shrinking geometrically summed to rest (Zeno limit)
+  kCollision,       ///< a collision between balls changed the velocities (SimulateSphereEvents)
   kOther,           ///< re-selection after another point's event changed the forces
 };
 

@@ -21,6 +21,7 @@
 /// impacts are the hybrid engine's. Balls that come to press on each other (no closed form)
 /// run as a group on the hybrid engine, in windows no other ball can reach, until they part.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,10 @@ struct SphereEventOptions {
   /// Integrator tolerances for balls pressing on each other, which run as a group on the
   /// hybrid engine (Dormand-Prince) until they part.
   AdaptiveOptions hybrid = {1e-10, 1e-13};
+  /// Called with the time after every event handled and every step of a pressing group's
+  /// hybrid run (optional): the caller shows progress, counts the work and stops a run that
+  /// exceeds its limits by throwing (LimitError).
+  std::function<void(double t)> on_progress = nullptr;
 };
 
 /// One ball-ball impact.
@@ -67,6 +72,8 @@ struct SphereCollision {
   Vec3 impulse_on_a_W = Vec3::Zero();
   /// Kinetic energy lost in the whole impact (every ball in it) [J] (>= 0).
   double energy_lost = 0.0;
+  /// The restitution law of the pair.
+  RestitutionLaw law = RestitutionLaw::kEnergetic;
   /// Balls in the impact (2 for a pair; more when others touched at that instant).
   int cluster_size = 0;
 };
@@ -82,6 +89,8 @@ struct SphereEventStats {
   /// Pressing groups formed, and the windows the hybrid engine ran them for.
   long groups = 0;
   long group_windows = 0;
+  /// The hybrid engine's work over all the groups' runs.
+  IntegratorStats hybrid;
 };
 
 /// The run's own check: energy at the end against the initial energy plus the work of

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "chasles/integrate/simulate.h"
+#include "chasles/integrate/sphere_events.h"
 #include "chasles/math/types.h"
 #include "chasles/model/force_element.h"
 #include "chasles/scene/expression.h"
@@ -216,6 +217,13 @@ struct SceneSimulation {
   /// End time [s]; NaN when not given (the command line must give it).
   double until = std::numeric_limits<double>::quiet_NaN();
   IntegratorKind integrator = IntegratorKind::kDormandPrince5;
+  /// `integrator: events`: balls on a table run event-driven (SimulateSphereEvents); the
+  /// tolerances below are then those of its pressing groups' hybrid runs.
+  bool event_driven = false;
+  /// `ball_collisions`: every pair of balls the scene does not list as a sphere-sphere contact
+  /// collides, with these coefficients (event-driven only).
+  bool collide_all_pairs = false;
+  SphereCollisionLaw ball_collisions;
   /// Relative and absolute tolerance of the adaptive integrator.
   double rtol = 1e-10;
   double atol = 1e-12;

@@ -131,6 +131,7 @@ class SceneReader {
   /// An event's `action` (stop or record) into `event`.
   void ReadEventAction(const At& at, SceneEvent& event);
   void ReadSimulation(const At& at, SceneSimulation& simulation);
+  void ReadBallCollisions(const At& at, Scene& scene);
   void ReadOutput(const At& at, Scene& scene);
   /// A body named at `at` (scene index), with a did-you-mean among the scene's bodies.
   int BodyIndexAt(const At& at, const Scene& scene);
