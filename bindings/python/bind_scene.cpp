@@ -389,6 +389,29 @@ void BindStudy(py::module_& m) {
                               RO(StudyResult, notes, "")
                                   RO(StudyResult, warnings, "")
                                       RO(StudyResult, certificate, "")
+                                          .def_property_readonly(
+                                              "event_driven",
+                                              [](const StudyResult& r) -> py::object {
+                                                if (!r.event_driven) return py::none();
+                                                const StudyEventDriven& e = *r.event_driven;
+                                                py::dict energy;
+                                                energy["initial"] = e.energy.initial;
+                                                energy["final"] = e.energy.final;
+                                                energy["friction"] = e.energy.friction;
+                                                energy["rolling"] = e.energy.rolling;
+                                                energy["impacts"] = e.energy.impacts;
+                                                energy["residual"] = e.energy.residual;
+                                                py::dict d;
+                                                d["collisions"] = e.collisions;
+                                                d["impacts"] = e.stats.impacts;
+                                                d["phase_events"] = e.stats.phase_events;
+                                                d["pressing_groups"] = e.stats.groups;
+                                                d["group_runs"] = e.stats.group_windows;
+                                                d["energy"] = energy;
+                                                return d;
+                                              },
+                                              "integrator: events: the counts and the run's "
+                                              "closed-form energy balance [J] (None otherwise)")
                                           .def_property_readonly("data",
                                                                  [](const StudyResult& r) {
                                                                    return TableArray(

@@ -288,3 +288,23 @@ def test_mass_sweep_failed_point_and_closed_form():
     (_, m1), (_, m2) = t.data[1][:2], t.data[2][:2]
     assert t.errors[1:] == ["", ""]
     assert_rel(m2 / m1, (0.04 / 0.015) ** 2, 1e-12)
+
+
+def test_pool_balls_event_driven():
+    # examples/pool-head-on-events.yaml (closed forms in its comments): rolling at v the cue
+    # ball meets the object ball at t1 = (d - 2R)/v; then v_A = v (1 - e)/2, v_B = v (1 + e)/2,
+    # and each slides until rolling with (m + I/R^2) v_roll = m v + I w / R (I = 2/5 m R^2):
+    # A at (5 v_A + 2 v)/7, B at 5/7 v_B.
+    run = chasles.run(chasles.load_scene(example("pool-head-on-events.yaml")))
+    v, d, R, e = 2.0, 0.5, 0.028575, 0.93
+    assert run.integrator == "events"
+    assert run.event_driven["collisions"] == 1
+    assert abs(run.event_driven["energy"]["residual"]) < 1e-15
+    assert [i.point for i in run.impacts] == ["cue | object"]
+    assert_rel(run.impacts[0].t, (d - 2 * R) / v)
+    cue, obj = run.final_bodies
+    assert_rel(cue.velocity, [(5 * v * (1 - e) / 2 + 2 * v) / 7, 0, 0])
+    assert_rel(obj.velocity, [5 / 7 * v * (1 + e) / 2, 0, 0])
+    assert run.certificate.passed
+    assert chasles.run(chasles.load_scene(example("problem-8.26-spinning-ball.yaml"))) \
+        .event_driven is None

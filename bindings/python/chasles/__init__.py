@@ -93,7 +93,9 @@ class Run(Table):
     Attributes besides the table: ``events``, ``jumps``, ``contact_events`` (the contact
     timeline), ``impacts``, ``final_contacts``, ``final_bodies``, ``final_reactions``,
     ``ledger``, ``certificate``, ``notes``, ``warnings``, ``t_end``, ``stopped_by_event``,
-    ``integrator``, ``stats``; ``result`` is the StudyResult itself. ``to_csv()`` and
+    ``integrator``, ``stats``, ``event_driven`` (``integrator: events``: collisions, impacts,
+    regime changes, pressing groups and the closed-form energy balance; None otherwise);
+    ``result`` is the StudyResult itself. ``to_csv()`` and
     ``to_json()`` give the two files ``chasles simulate`` writes.
     """
 
@@ -103,7 +105,8 @@ class Run(Table):
         self._scene = scene
         for name in ("events", "jumps", "contact_events", "impacts", "final_contacts",
                      "final_bodies", "final_reactions", "ledger", "certificate", "notes",
-                     "warnings", "t_end", "stopped_by_event", "integrator", "stats"):
+                     "warnings", "t_end", "stopped_by_event", "integrator", "stats",
+                     "event_driven"):
             setattr(self, name, getattr(result, name))
 
     def to_csv(self, full_precision=False):
