@@ -118,12 +118,35 @@ inline nlohmann::json MassJson(const std::string& example, const std::string& ex
   return nlohmann::json::parse(r.out);
 }
 
+/// The scratch folders a test program made, removed when it ends.
+class ScratchFolders {
+ public:
+  ScratchFolders() = default;
+  ScratchFolders(const ScratchFolders&) = delete;
+  ScratchFolders& operator=(const ScratchFolders&) = delete;
+  ~ScratchFolders() {
+    for (const std::filesystem::path& dir : dirs_) {
+      std::error_code ec;  // a folder a test removed itself is no error
+      std::filesystem::remove_all(dir, ec);
+    }
+  }
+  void Add(const std::filesystem::path& dir) {
+    if (std::find(dirs_.begin(), dirs_.end(), dir) == dirs_.end()) dirs_.push_back(dir);
+  }
+
+ private:
+  std::vector<std::filesystem::path> dirs_;
+};
+
 /// A scratch folder for one test program's output files: the system's temporary folder,
-/// named by `tag` and the process id so parallel test programs do not share it.
+/// named by `tag` and the process id so parallel test programs do not share it; removed with
+/// its contents when the program ends.
 inline std::filesystem::path OutDir(const std::string& tag) {
+  static ScratchFolders made;
   const auto dir = std::filesystem::temp_directory_path() /
                    ("chasles_" + tag + "_e2e_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
+  made.Add(dir);
   return dir;
 }
 
