@@ -2,6 +2,7 @@
 /// @file
 /// Helpers shared by the tests: named, scaled tolerances and matrix comparisons.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -15,6 +16,26 @@ namespace chasles::test {
 inline constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// Tolerance for results that are exact up to a handful of floating-point operations.
 inline constexpr double kExact = 64 * kEps;
+
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kSanitized = true;
+#else
+inline constexpr bool kSanitized = false;
+#endif
+#else
+inline constexpr bool kSanitized = false;
+#endif
+
+/// How many times a long test repeats its work (steps of one long run, random cases of a
+/// property): `n` in an ordinary build, n / 10 under the sanitizers. The sanitizers look for
+/// memory errors and undefined behaviour on the test's paths, which the first tenth walks as
+/// the rest do; the numbers over all `n` are checked by the ordinary build, which CI runs too.
+inline constexpr long Repeats(long n) {
+  return kSanitized ? std::max(n / 10, 1L) : n;
+}
 
 /// |a - b| <= rel * max(|b|, scale): a relative test whose floor is `scale` (the problem's
 /// magnitude), so that expected zeros compare against the problem, not against zero.

@@ -84,11 +84,12 @@ TEST(ConstraintDrift, DoublePendulumStaysOnTheConstraintsFor1e5Steps) {
   model.AddConstraint(std::make_shared<Joint>("elbow", JointKind::kRevolute, 0,
                                               AttachmentFrame{Vec3(L1 / 2, 0, 0)}, 1,
                                               AttachmentFrame{Vec3(-L2 / 2, 0, 0)}));
-  const RunReport r = RunRk4(model, s, 1e-4, 100000);
+  const long steps = test::Repeats(100000);
+  const RunReport r = RunRk4(model, s, 1e-4, steps);
   std::printf(
-      "double pendulum, RK4 h = 1e-4 s, 1e5 steps: max |g| %.3g m, max |J u| %.3g m/s, "
+      "double pendulum, RK4 h = 1e-4 s, %ld steps: max |g| %.3g m, max |J u| %.3g m/s, "
       "max |constraint power| %.3g W, energy drift %.3g (relative)\n",
-      r.max_position, r.max_velocity, r.max_power, r.energy_drift);
+      steps, r.max_position, r.max_velocity, r.max_power, r.energy_drift);
   EXPECT_LT(r.max_position, kViolation);
   EXPECT_LT(r.max_velocity, kViolation);
   EXPECT_LT(r.max_power, 1e-9 * m1 * kG * std::sqrt(kG * L1));
@@ -114,11 +115,12 @@ TEST(ConstraintDrift, RollingDiskStaysOnTheConstraintsFor1e5Steps) {
   SetBodyPose(model, 0, Vec3(0, 0, R * u.norm()), Quat(R_WB), s);
   const Vec3 w = 12.0 * e + 1.5 * n;
   SetBodyVelocity(model, 0, -w.cross(-R * mdir), w, s);  // contact point at rest
-  const RunReport r = RunRk4(model, s, 1e-4, 100000);
+  const long steps = test::Repeats(100000);
+  const RunReport r = RunRk4(model, s, 1e-4, steps);
   std::printf(
-      "rolling disk, RK4 h = 1e-4 s, 1e5 steps: max |g| %.3g m, max |J u| %.3g m/s, "
+      "rolling disk, RK4 h = 1e-4 s, %ld steps: max |g| %.3g m, max |J u| %.3g m/s, "
       "max |constraint power| %.3g W, energy drift %.3g (relative)\n",
-      r.max_position, r.max_velocity, r.max_power, r.energy_drift);
+      steps, r.max_position, r.max_velocity, r.max_power, r.energy_drift);
   EXPECT_LT(r.max_position, kViolation);
   EXPECT_LT(r.max_velocity, kViolation);
   EXPECT_LT(r.max_power, 1e-9 * m * kG * R * 12.0);

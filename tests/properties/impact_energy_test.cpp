@@ -14,6 +14,7 @@
 
 #include "chasles/dynamics/impact.h"
 #include "chasles/model/model.h"
+#include "test_support.h"
 
 namespace chasles {
 namespace {
@@ -55,7 +56,7 @@ TEST(ImpactProperties, EnergeticImpactsOfBoxesNeverGainEnergy) {
   std::uniform_real_distribution<double> U(-1.0, 1.0), P(0.0, 1.0);
   Counts counts;
   int fallbacks = 0;
-  const int kTrials = 9800;
+  const int kTrials = static_cast<int>(test::Repeats(9800));
   for (int trial = 0; trial < kTrials; ++trial) {
     const double m = 0.2 + 2.0 * P(rng);
     const Vec3 h(0.05 + 0.3 * P(rng), 0.05 + 0.3 * P(rng), 0.05 + 0.3 * P(rng));
@@ -129,7 +130,7 @@ TEST(ImpactProperties, EnergeticImpactsOfSphereRowsNeverGainEnergy) {
   std::uniform_real_distribution<double> U(-1.0, 1.0), P(0.0, 1.0);
   Counts counts;
   int fallbacks = 0;
-  const int kTrials = 1000;
+  const int kTrials = static_cast<int>(test::Repeats(1000));
   for (int trial = 0; trial < kTrials; ++trial) {
     Model model;
     double R[3];

@@ -27,6 +27,7 @@ namespace chasles {
 namespace {
 
 using test::Near;
+using test::Repeats;
 
 constexpr double kG = 9.81;
 constexpr double kViolation = 1e-9;  // the requirement for long runs [m, m/s]
@@ -121,10 +122,10 @@ TEST(ContactDrift, LoadedBallRollsOnTheFloorFor1e5Steps) {
   const Vec3 w(3.0, -2.0, 5.0);
   const Vec3 r_PBcm = s.bodies[0].p_WBcm - (p_WC - R * Vec3::UnitZ());
   SetBodyVelocity(model, 0, w.cross(r_PBcm), w, s);
-  const DriftReport r = RunDp(model, s, 1e-4, 100000);
+  const DriftReport r = RunDp(model, s, 1e-4, Repeats(100000));
   Print("loaded ball rolling, DP5 h <= 1e-4 s", r);
   // The same run projected only at mode switches, for comparison (docs/contact.md).
-  const DriftReport u = RunDp(model, s, 1e-4, 100000, false);
+  const DriftReport u = RunDp(model, s, 1e-4, Repeats(100000), false);
   Print("  the same without the projection", u);
   EXPECT_GT(std::max(u.max_normal_velocity, u.max_slip),
             std::max(r.max_normal_velocity, r.max_slip));
@@ -165,9 +166,10 @@ TEST(ContactDrift, BoxSlidesOnFourVerticesFor1e5Steps) {
   SetBodyPose(model, 0, c * n, Quat(R_WB), s);
   SetBodyVelocity(model, 0, v0 * down, Vec3::Zero(), s);
   const double T = 10.0;
-  const DriftReport r = RunDp(model, s, T / 1e5, 100000);
+  const long steps = Repeats(100000);
+  const DriftReport r = RunDp(model, s, T / 1e5, steps);
   Print("box sliding on 4 vertices, DP5 h <= 1e-4 s", r);
-  Print("  the same without the projection", RunDp(model, s, T / 1e5, 100000, false));
+  Print("  the same without the projection", RunDp(model, s, T / 1e5, steps, false));
   for (int k = 0; k < 4; ++k) {
     EXPECT_EQ(r.final_state.contacts[static_cast<size_t>(k)].mode, ContactMode::kSliding) << k;
   }
@@ -175,8 +177,8 @@ TEST(ContactDrift, BoxSlidesOnFourVerticesFor1e5Steps) {
   EXPECT_LT(r.max_normal_velocity, kViolation);
   const double t = r.final_state.t;
   const double v = v0 + kG * (std::sin(theta) - mu_k * std::cos(theta)) * t;
-  // 1e5 steps each adding round-off of a few ulps to a speed that grows linearly.
-  constexpr double kAccumulatedRoundOff = 1e5 * 1e-16;
+  // Every step adds round-off of a few ulps to a speed that grows linearly.
+  const double kAccumulatedRoundOff = static_cast<double>(steps) * 1e-16;
   EXPECT_TRUE(Near(r.final_state.bodies[0].v_WBcm_W.dot(down), v, kAccumulatedRoundOff));
   EXPECT_LT(r.final_state.bodies[0].w_WB_B.norm(), 1e-12);
   EXPECT_LT(r.energy_drift, 1e-9);
@@ -205,7 +207,7 @@ TEST(ContactDrift, BoxRestsOnFourVerticesFor1e5Steps) {
   State s = MakeRestState(model);
   SetBodyPose(model, 0, c * n, Quat(RotationFromAxisAngle(Vec3::UnitY(), theta)), s);
   SetBodyVelocity(model, 0, Vec3::Zero(), Vec3::Zero(), s);
-  const DriftReport r = RunDp(model, s, 1e-4, 100000);
+  const DriftReport r = RunDp(model, s, 1e-4, Repeats(100000));
   Print("box resting on 4 vertices on an incline, DP5 h <= 1e-4 s", r);
   for (int k = 0; k < 4; ++k) {
     EXPECT_EQ(r.final_state.contacts[static_cast<size_t>(k)].mode, ContactMode::kSticking) << k;
@@ -253,7 +255,8 @@ TEST(ContactDrift, DiskRollsInACircleOnItsRim) {
   SetBodyVelocity(model, 0, Vec3(0, -rho * Omega, 0), w, s);
   const double period = 2 * std::numbers::pi / Omega;
   SimulationOptions o;
-  o.t_end = 20 * period;
+  const long turns = Repeats(20);
+  o.t_end = static_cast<double>(turns) * period;
   o.output_interval = period / 50;
   o.adaptive.max_step = 1e-3;
   DriftReport rep;
@@ -283,10 +286,10 @@ TEST(ContactDrift, DiskRollsInACircleOnItsRim) {
   }
   const SimulationResult r = Simulate(model, s, o);
   std::printf(
-      "disk rolling in a circle, 20 turns (%lld steps): max |gap| %.3g m, max |v_n| %.3g m/s, "
+      "disk rolling in a circle, %ld turns (%lld steps): max |gap| %.3g m, max |v_n| %.3g m/s, "
       "max slip %.3g m/s, energy drift %.3g, circle radius error %.3g m, height error %.3g m\n",
-      static_cast<long long>(r.stats.steps), rep.max_gap, rep.max_normal_velocity, rep.max_slip,
-      rep.energy_drift, max_radius_error, max_height_error);
+      turns, static_cast<long long>(r.stats.steps), rep.max_gap, rep.max_normal_velocity,
+      rep.max_slip, rep.energy_drift, max_radius_error, max_height_error);
   EXPECT_EQ(r.contact_events.size(), 1u);  // the initial mode only
   EXPECT_EQ(r.final_state.contacts[0].mode, ContactMode::kSticking);
   EXPECT_LT(rep.max_gap, kViolation);
