@@ -17,24 +17,28 @@ inline constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// Tolerance for results that are exact up to a handful of floating-point operations.
 inline constexpr double kExact = 64 * kEps;
 
+/// 1 in a build with AddressSanitizer (GCC says so with __SANITIZE_ADDRESS__, clang with
+/// __has_feature), else 0; a macro for tests that must leave code out under it.
 #if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kSanitized = true;
+#define CHASLES_TEST_ASAN 1
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
-inline constexpr bool kSanitized = true;
-#else
-inline constexpr bool kSanitized = false;
+#define CHASLES_TEST_ASAN 1
 #endif
-#else
-inline constexpr bool kSanitized = false;
 #endif
+#ifndef CHASLES_TEST_ASAN
+#define CHASLES_TEST_ASAN 0
+#endif
+
+/// True in a build with AddressSanitizer (the sanitizer build, CHASLES_SANITIZE, or fuzzing).
+inline constexpr bool kAddressSanitizer = CHASLES_TEST_ASAN == 1;
 
 /// How many times a long test repeats its work (steps of one long run, random cases of a
 /// property): `n` in an ordinary build, n / 10 under the sanitizers. The sanitizers look for
 /// memory errors and undefined behaviour on the test's paths, which the first tenth walks as
 /// the rest do; the numbers over all `n` are checked by the ordinary build, which CI runs too.
 inline constexpr long Repeats(long n) {
-  return kSanitized ? std::max(n / 10, 1L) : n;
+  return kAddressSanitizer ? std::max(n / 10, 1L) : n;
 }
 
 /// |a - b| <= rel * max(|b|, scale): a relative test whose floor is `scale` (the problem's

@@ -12,23 +12,12 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.h"
+#include "test_support.h"
 
 namespace chasles::test {
 namespace {
 
 using ::testing::HasSubstr;
-
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
 
 struct BoundedResult {
   CliResult cli;

@@ -178,8 +178,8 @@ TEST(ContactDrift, BoxSlidesOnFourVerticesFor1e5Steps) {
   const double t = r.final_state.t;
   const double v = v0 + kG * (std::sin(theta) - mu_k * std::cos(theta)) * t;
   // Every step adds round-off of a few ulps to a speed that grows linearly.
-  const double kAccumulatedRoundOff = static_cast<double>(steps) * 1e-16;
-  EXPECT_TRUE(Near(r.final_state.bodies[0].v_WBcm_W.dot(down), v, kAccumulatedRoundOff));
+  const double accumulated_round_off = static_cast<double>(steps) * 1e-16;
+  EXPECT_TRUE(Near(r.final_state.bodies[0].v_WBcm_W.dot(down), v, accumulated_round_off));
   EXPECT_LT(r.final_state.bodies[0].w_WB_B.norm(), 1e-12);
   EXPECT_LT(r.energy_drift, 1e-9);
 }

@@ -19,12 +19,9 @@
 #include "chasles/model/model.h"
 #include "dynamics/internal/contact_geometry.h"
 #include "reference/solve_scenes.h"
+#include "test_support.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define CHASLES_COUNT_MALLOC 0
-#else
-#define CHASLES_COUNT_MALLOC 1
-#endif
+#define CHASLES_COUNT_MALLOC (!CHASLES_TEST_ASAN)
 
 #if CHASLES_COUNT_MALLOC
 namespace {
