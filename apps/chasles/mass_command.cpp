@@ -114,6 +114,16 @@ struct Frame {
   Mat3 R_BF = Mat3::Identity();
 };
 
+// Why a body's volume is zero when no part has any (rods, rings, thin disks, points): said so
+// that a 0 beside parts with mass does not read as a mistake.
+std::string VolumeRemark(const SceneBody& body, double volume) {
+  if (volume != 0.0) return "";
+  for (const ScenePart& p : body.parts) {
+    if (p.volume != 0.0) return "";
+  }
+  return "  (every part is idealised as a curve, a surface or a point)";
+}
+
 std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& args,
                        const std::vector<MassReportPoint>& extra, const Frame& frame) {
   std::string out;
@@ -180,12 +190,12 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
                        VecText(P.Lengths(mp.p_BoBcm_B()), P.Length(Lscale)), P.L);
     // Volume (a cut's subtracted) and the surface area where it is exact (one part).
     const BodyMeasures measures = CalcBodyMeasures(body);
-    out +=
-        fmt::format("  Volume              {}\n",
-                    std::isnan(measures.volume)
-                        ? measures.volume_note
-                        : fmt::format("{} {}", Num(P.units.FromSI(measures.volume, kVolumeDim), 0),
-                                      P.units.FormatUnit(kVolumeDim)));
+    out += fmt::format(
+        "  Volume              {}\n",
+        std::isnan(measures.volume)
+            ? measures.volume_note
+            : fmt::format("{} {}{}", Num(P.units.FromSI(measures.volume, kVolumeDim), 0),
+                          P.units.FormatUnit(kVolumeDim), VolumeRemark(body, measures.volume)));
     out += fmt::format(
         "  Surface area        {}\n",
         std::isnan(measures.surface_area)
