@@ -17,6 +17,7 @@ std::string Shape::Describe() const {
     first = false;
     out += fmt::format("{} {:.6g} m", d.name, d.value);
   }
+  if (closed()) out += ", closed";
   out += ")";
   return out;
 }

@@ -12,13 +12,18 @@
 /// - rod: length L along z.                       - ring (hoop): radius R in the xy plane.
 /// - disk: radius R in the xy plane.              - plate: a along x by b along y, in xy.
 /// - cylinder: radius R, length h along z.        - cylindrical_shell: wall of radius R,
-///                                                  length h along z, no end caps.
+///                                                  length h along z; closed: with the two
+///                                                  end disks.
 /// - tube: inner radius Ri, outer Ro, length h along z.
 /// - sphere: radius R.  spherical_shell (thin): radius R.  thick_spherical_shell: Ri, Ro.
 /// - hemisphere: radius R; origin at the centre of the flat face, dome towards +z
-///   (centroid at z = 3R/8).
+///   (centroid at z = 3R/8). hemispherical_shell: the dome alone, same frame; closed: with
+///   the flat disk.
 /// - cone (solid, right circular): base radius R, height h; origin at the centre of the
-///   base, apex at z = h (centroid at z = h/4).
+///   base, apex at z = h (centroid at z = h/4). conical_shell: its lateral surface, same
+///   frame; closed: with the base disk. Hollow cone (a cone with a wall thickness t): see
+///   MakeHollowCone.
+/// - toroidal_shell: the surface of the torus below.
 /// - box: a x b x c along x, y, z.                - ellipsoid: semi-axes a, b, c along x, y, z.
 /// - torus: axis z, major radius R (to the centre of the tube), minor (tube) radius r.
 /// - triangular_prism: the triangle with vertices v0, v1, v2 (given in the xy plane of S)
@@ -52,7 +57,7 @@ class Shape {
   /// What the shape's mass is spread over.
   enum class Measure {
     kLength,  ///< slender rod, thin ring: mass per unit length
-    kArea,    ///< thin disk, plate, cylindrical and spherical shells: mass per unit area
+    kArea,    ///< thin disk, plate, shells: mass per unit area
     kVolume,  ///< solids
   };
 
@@ -79,6 +84,11 @@ class Shape {
   /// Mass properties in S for a uniform distribution of `mass` [kg] (> 0, finite; throws
   /// InputError otherwise).
   MassProperties CalcMassProperties(double mass) const;
+
+  /// True for a shell or hollow solid whose flat faces are included (a scene's `closed: true`:
+  /// the end disks of a cylindrical shell, the base of a conical or hemispherical shell or of
+  /// a hollow cone). Describe() says so.
+  virtual bool closed() const { return false; }
 
   /// True for solids (measure() == kVolume): only they can carry a density field.
   bool is_solid() const { return measure() == Measure::kVolume; }
@@ -112,9 +122,9 @@ std::unique_ptr<Shape> MakeThinDisk(double radius);
 std::unique_ptr<Shape> MakeThinPlate(double size_x, double size_y);
 /// Solid cylinder of radius `radius` and length `length` along z [m] ("cylinder").
 std::unique_ptr<Shape> MakeSolidCylinder(double radius, double length);
-/// Thin cylindrical shell (open tube wall) of radius `radius`, length `length` [m]
-/// ("cylindrical_shell").
-std::unique_ptr<Shape> MakeThinCylindricalShell(double radius, double length);
+/// Thin cylindrical shell (tube wall) of radius `radius`, length `length` [m]; `closed` adds
+/// the two end disks of the same areal density ("cylindrical_shell").
+std::unique_ptr<Shape> MakeThinCylindricalShell(double radius, double length, bool closed = false);
 /// Thick tube: `inner_radius` < `outer_radius`, length `length` along z [m] ("tube").
 std::unique_ptr<Shape> MakeTube(double inner_radius, double outer_radius, double length);
 /// Solid sphere of radius `radius` [m] ("sphere").
@@ -126,9 +136,27 @@ std::unique_ptr<Shape> MakeThickSphericalShell(double inner_radius, double outer
 /// Solid hemisphere of radius `radius` [m], flat face at z = 0, dome towards +z
 /// ("hemisphere").
 std::unique_ptr<Shape> MakeSolidHemisphere(double radius);
+/// Thin hemispherical shell (a bowl) of radius `radius` [m]: the dome of the hemisphere
+/// above, rim in the plane z = 0; `closed` adds the flat disk of the same areal density
+/// ("hemispherical_shell").
+std::unique_ptr<Shape> MakeThinHemisphericalShell(double radius, bool closed = false);
 /// Solid right circular cone, base radius `radius` at z = 0, apex at z = `height` [m]
 /// ("cone").
 std::unique_ptr<Shape> MakeSolidCone(double radius, double height);
+/// Thin conical shell: the lateral surface of the cone above (base radius `radius` at z = 0,
+/// apex at z = `height` [m]); `closed` adds the base disk of the same areal density
+/// ("conical_shell").
+std::unique_ptr<Shape> MakeThinConicalShell(double radius, double height, bool closed = false);
+/// Hollow cone ("cone" with a thickness): the solid cone above (base radius `radius`, height
+/// `height` [m]) minus the cone whose lateral surface is its own moved inwards by `thickness`
+/// [m], measured normal to that surface. The inner cone is the outer one scaled about a point
+/// of the axis: open (`closed` false), it shares the base plane and the base is open, which
+/// needs thickness < R h / s (s = √(R² + h²), the distance from the base centre to the
+/// lateral surface); closed, its base is raised by `thickness` too, a base wall of the same
+/// thickness, which needs thickness < R h / (R + s) (the radius of the inscribed sphere).
+/// Either way the wall is exact, not a thin-wall approximation.
+std::unique_ptr<Shape> MakeHollowCone(double radius, double height, double thickness,
+                                      bool closed = false);
 /// Rectangular box `size_x` x `size_y` x `size_z` [m] ("box").
 std::unique_ptr<Shape> MakeBox(double size_x, double size_y, double size_z);
 /// Solid ellipsoid with semi-axes `semi_axis_x`, `semi_axis_y`, `semi_axis_z` [m]
@@ -137,6 +165,9 @@ std::unique_ptr<Shape> MakeEllipsoid(double semi_axis_x, double semi_axis_y, dou
 /// Solid torus about z: `major_radius` to the tube's centre, `minor_radius` of the tube [m];
 /// minor < major ("torus").
 std::unique_ptr<Shape> MakeTorus(double major_radius, double minor_radius);
+/// Thin toroidal shell: the surface of the torus above, `major_radius` to the tube's centre,
+/// `minor_radius` of the tube [m]; minor < major ("toroidal_shell").
+std::unique_ptr<Shape> MakeThinToroidalShell(double major_radius, double minor_radius);
 /// Triangular prism: the triangle (v0, v1, v2) in the xy plane of S [m], extruded along z
 /// over `length` [m] and centred in z; the triangle must not be degenerate
 /// ("triangular_prism").

@@ -1,5 +1,6 @@
-// Thin shapes of Appendix A: curves (rod, ring) and surfaces (disk, plate, cylindrical and
-// spherical shells). Mass is spread over a length or an area; none can be mapped to a volume.
+// Thin shapes of Appendix A: curves (rod, ring) and flat surfaces (disk, plate); the curved
+// shells are in round_shells.cpp. Mass is spread over a length or an area; none can be mapped
+// to a volume.
 
 #include <numbers>
 
@@ -89,49 +90,6 @@ class ThinPlate final : public Shape {
   double a_, b_;
 };
 
-class ThinCylindricalShell final : public Shape {
- public:
-  ThinCylindricalShell(double R, double h) : R_(R), h_(h) {
-    RequirePositiveLength(kind(), "radius", R);
-    RequirePositiveLength(kind(), "length", h);
-  }
-  std::string_view kind() const override { return "cylindrical_shell"; }
-  Measure measure() const override { return Measure::kArea; }
-  std::vector<ShapeDimension> dimensions() const override {
-    return {{"radius", R_}, {"length", h_}};
-  }
-  double CalcMeasure() const override { return 2 * pi * R_ * h_; }
-  double CalcSurfaceArea() const override { return CalcMeasure(); }  // a surface
-  Vec3 CalcCentroid() const override { return Vec3::Zero(); }
-  // Izz = m R² (all mass at radius R); Ixx = ∫(y² + z²) dm = m R²/2 + m h²/12.
-  RotationalInertia CalcUnitInertia() const override {
-    const double Ixx = R_ * R_ / 2 + h_ * h_ / 12;
-    return RotationalInertia(Ixx, Ixx, R_ * R_);
-  }
-
- private:
-  double R_, h_;
-};
-
-class ThinSphericalShell final : public Shape {
- public:
-  explicit ThinSphericalShell(double R) : R_(R) { RequirePositiveLength(kind(), "radius", R); }
-  std::string_view kind() const override { return "spherical_shell"; }
-  Measure measure() const override { return Measure::kArea; }
-  std::vector<ShapeDimension> dimensions() const override { return {{"radius", R_}}; }
-  double CalcMeasure() const override { return 4 * pi * R_ * R_; }
-  double CalcSurfaceArea() const override { return CalcMeasure(); }  // a surface
-  Vec3 CalcCentroid() const override { return Vec3::Zero(); }
-  // By symmetry Ixx = Iyy = Izz = (2/3) ∫ |p|² dm = (2/3) m R².
-  RotationalInertia CalcUnitInertia() const override {
-    const double I = 2 * R_ * R_ / 3;
-    return RotationalInertia(I, I, I);
-  }
-
- private:
-  double R_;
-};
-
 }  // namespace
 
 std::unique_ptr<Shape> MakeSlenderRod(double length) {
@@ -145,12 +103,6 @@ std::unique_ptr<Shape> MakeThinDisk(double radius) {
 }
 std::unique_ptr<Shape> MakeThinPlate(double size_x, double size_y) {
   return std::make_unique<ThinPlate>(size_x, size_y);
-}
-std::unique_ptr<Shape> MakeThinCylindricalShell(double radius, double length) {
-  return std::make_unique<ThinCylindricalShell>(radius, length);
-}
-std::unique_ptr<Shape> MakeThinSphericalShell(double radius) {
-  return std::make_unique<ThinSphericalShell>(radius);
 }
 
 }  // namespace chasles

@@ -18,6 +18,8 @@ inline std::vector<std::unique_ptr<Shape>> AllSolids() {
   v.push_back(MakeThickSphericalShell(0.2, 0.3));
   v.push_back(MakeSolidHemisphere(0.3));
   v.push_back(MakeSolidCone(0.3, 0.8));
+  v.push_back(MakeHollowCone(0.3, 0.8, 0.05));
+  v.push_back(MakeHollowCone(0.3, 0.8, 0.05, /*closed=*/true));
   v.push_back(MakeBox(0.5, 0.3, 1.1));
   v.push_back(MakeEllipsoid(0.5, 0.3, 1.1));
   v.push_back(MakeTorus(0.3, 0.1));

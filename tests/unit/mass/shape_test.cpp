@@ -1,5 +1,6 @@
 #include "chasles/mass/shape.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -349,6 +350,16 @@ TEST(Shape, UnitCubeMapStaysInsideTheSolid) {
     EXPECT_LE(std::hypot(p.x(), p.y()), 0.3 * (1 - p.z() / 0.8) + kExact);
     torus->MapUnitCube(u, &p, &J);
     EXPECT_LE(std::hypot(std::hypot(p.x(), p.y()) - 0.3, p.z()), 0.1 * (1 + kExact));
+    // The hollow cone's wall: inside the cone (R 0.3, h 0.8, slant s), and no further than t
+    // from its side (R h - h ρ - R z)/s, or, closed, from its base z.
+    const double s = std::hypot(0.3, 0.8), t = 0.05;
+    for (bool closed : {false, true}) {
+      MakeHollowCone(0.3, 0.8, t, closed)->MapUnitCube(u, &p, &J);
+      const double to_side = (0.3 * 0.8 - 0.8 * std::hypot(p.x(), p.y()) - 0.3 * p.z()) / s;
+      EXPECT_GE(to_side, -kExact);
+      EXPECT_GE(p.z(), -kExact);
+      EXPECT_LE(closed ? std::min(to_side, p.z()) : to_side, t * (1 + kExact));
+    }
   }
 }
 
