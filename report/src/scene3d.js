@@ -56,6 +56,7 @@ function partGeometry(p, thin) {
     case 'thick_spherical_shell':
       return new THREE.SphereGeometry(dim(p, 'outer_radius'), 32, 16);
     case 'hemisphere':
+    case 'hemispherical_shell':
       return zUp(new THREE.SphereGeometry(dim(p, 'radius'), 32, 8, 0, 2 * Math.PI, 0, Math.PI / 2));
     case 'ellipsoid': {
       const g = new THREE.SphereGeometry(1, 32, 16);
@@ -73,15 +74,18 @@ function partGeometry(p, thin) {
     case 'ring':
       return new THREE.TorusGeometry(dim(p, 'radius'), thin / 2, 8, 64);
     case 'torus':
+    case 'toroidal_shell':
       return new THREE.TorusGeometry(dim(p, 'major_radius'), dim(p, 'minor_radius'), 16, 64);
     case 'rod': {
       const r = Math.max(thin / 2, 0.015 * dim(p, 'length'));
       return zUp(new THREE.CylinderGeometry(r, r, dim(p, 'length'), 12));
     }
-    case 'cone': {
-      // Origin at the centre of the base, apex at +z.
+    case 'cone':
+    case 'conical_shell': {
+      // Origin at the centre of the base, apex at +z; a conical shell is open unless closed.
       const h = dim(p, 'height');
-      const g = new THREE.ConeGeometry(dim(p, 'radius'), h, 32);
+      const open = p.shape === 'conical_shell' && !p.dimensions.closed;
+      const g = new THREE.ConeGeometry(dim(p, 'radius'), h, 32, 1, open);
       g.translate(0, h / 2, 0);
       return zUp(g);
     }

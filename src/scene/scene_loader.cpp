@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -546,6 +547,7 @@ MassProperties SceneReader::ReadTableShapePart(const At& at, const At& shape_at,
       }
       continue;
     }
+    if (d.optional && !at.Has(d.key)) continue;
     dims.values[d.key] = ReadDimension(report_.Require(at, d.key, what), d);
   }
   if (segment) {
@@ -617,6 +619,14 @@ std::vector<double> SceneReader::ReadDimension(const At& at,
       }
       return out;
     }
+    case DimensionKind::kFlag: {
+      bool on = false;
+      if (!at.node.IsScalar() || !YAML::convert<bool>::decode(at.node, on)) {
+        report_.Fail(at, fmt::format("'{}' is a switch: expected true or false ({}), got {}", d.key,
+                                     d.meaning, KindOf(at.node)));
+      }
+      return {on ? 1.0 : 0.0};
+    }
   }
   return {};
 }
@@ -654,7 +664,11 @@ MassProperties SceneReader::ReadShapeMass(const At& at, const At& body_at, const
   const Shape::Measure measure = geometry.measure();
   const bool slender = measure == Shape::Measure::kLength;
   const bool sheet = measure == Shape::Measure::kArea;
-  if (at.Has("thickness") && !sheet) {
+  // A hollow solid (a cone with a wall) took its 'thickness' as a dimension.
+  const auto dims = geometry.dimensions();
+  const bool wall = std::any_of(dims.begin(), dims.end(),
+                                [](const ShapeDimension& d) { return d.name == "thickness"; });
+  if (at.Has("thickness") && !sheet && !wall) {
     report_.Fail(at.Child("thickness"),
                  fmt::format("'thickness' is for thin sheets (disks, plates, shells), not a {}",
                              geometry.kind()));

@@ -2,12 +2,15 @@
 
 #include <Eigen/Core>
 
+#include "chasles/error.h"
+
 namespace chasles::scene_internal {
 
 namespace {
 using K = DimensionKind;
 
-std::vector<ShapeEntry> MakeTable() {
+// Thin shapes with a straight or flat form: rod, ring, disk, plate.
+std::vector<ShapeEntry> CurvesAndSheets() {
   return {
       {"rod",
        {{"length", K::kLength, "length of the rod"}},
@@ -33,6 +36,12 @@ std::vector<ShapeEntry> MakeTable() {
        false,
        "centred, in the xy plane",
        [](const Dimensions& d) { return MakeThinPlate(d.at("size", 0), d.at("size", 1)); }},
+  };
+}
+
+// Cylinders, spheres and hemispheres: solid, thin shell and thick.
+std::vector<ShapeEntry> CylindersAndSpheres() {
+  return {
       {"cylinder",
        {{"radius", K::kLength, "radius"}, {"length", K::kLength, "length along the axis"}},
        "length",
@@ -40,12 +49,14 @@ std::vector<ShapeEntry> MakeTable() {
        "centred, axis z",
        [](const Dimensions& d) { return MakeSolidCylinder(d.at("radius"), d.at("length")); }},
       {"cylindrical_shell",
-       {{"radius", K::kLength, "radius"}, {"length", K::kLength, "length along the axis"}},
+       {{"radius", K::kLength, "radius"},
+        {"length", K::kLength, "length along the axis"},
+        {"closed", K::kFlag, "true adds the two end disks", true}},
        "length",
        false,
-       "centred, axis z; open wall, no end caps",
+       "centred, axis z",
        [](const Dimensions& d) {
-         return MakeThinCylindricalShell(d.at("radius"), d.at("length"));
+         return MakeThinCylindricalShell(d.at("radius"), d.at("length"), d.flag("closed"));
        }},
       {"tube",
        {{"inner_radius", K::kLength, "inner radius"},
@@ -83,12 +94,56 @@ std::vector<ShapeEntry> MakeTable() {
        false,
        "origin at the centre of the flat face, dome towards +z",
        [](const Dimensions& d) { return MakeSolidHemisphere(d.at("radius")); }},
+      {"hemispherical_shell",
+       {{"radius", K::kLength, "radius"}, {"closed", K::kFlag, "true adds the flat disk", true}},
+       nullptr,
+       false,
+       "origin at the centre of the rim, dome towards +z",
+       [](const Dimensions& d) {
+         return MakeThinHemisphericalShell(d.at("radius"), d.flag("closed"));
+       }},
+  };
+}
+
+// The cone (solid, or hollow with a wall thickness) and its thin shell.
+std::vector<ShapeEntry> Cones() {
+  return {
       {"cone",
-       {{"radius", K::kLength, "radius of the base"}, {"height", K::kLength, "height"}},
+       {{"radius", K::kLength, "radius of the base"},
+        {"height", K::kLength, "height"},
+        {"thickness", K::kLength, "wall thickness of a hollow cone, normal to its side", true},
+        {"closed", K::kFlag, "with thickness: a base wall of the same thickness", true}},
        "height",
        true,
        "origin at the centre of the base, apex at +z",
-       [](const Dimensions& d) { return MakeSolidCone(d.at("radius"), d.at("height")); }},
+       [](const Dimensions& d) -> std::unique_ptr<Shape> {
+         if (d.has("thickness")) {
+           return MakeHollowCone(d.at("radius"), d.at("height"), d.at("thickness"),
+                                 d.flag("closed"));
+         }
+         if (d.has("closed")) {
+           throw InputError(
+               "'closed' is for a hollow cone: give its wall 'thickness' too (a solid cone has "
+               "its base already), or remove 'closed'");
+         }
+         return MakeSolidCone(d.at("radius"), d.at("height"));
+       }},
+      {"conical_shell",
+       {{"radius", K::kLength, "radius of the base"},
+        {"height", K::kLength, "height"},
+        {"closed", K::kFlag, "true adds the base disk", true}},
+       "height",
+       true,
+       "origin at the centre of the base, apex at +z",
+       [](const Dimensions& d) {
+         return MakeThinConicalShell(d.at("radius"), d.at("height"), d.flag("closed"));
+       }},
+  };
+}
+
+// The box, the ellipsoid, the torus and its shell, the triangular prism.
+std::vector<ShapeEntry> OtherSolids() {
+  return {
       {"box",
        {{"size", K::kLengths3, "[side along x, along y, along z]"}},
        nullptr,
@@ -112,6 +167,15 @@ std::vector<ShapeEntry> MakeTable() {
        false,
        "centred, axis z",
        [](const Dimensions& d) { return MakeTorus(d.at("major_radius"), d.at("minor_radius")); }},
+      {"toroidal_shell",
+       {{"major_radius", K::kLength, "radius of the tube's centre line"},
+        {"minor_radius", K::kLength, "radius of the tube"}},
+       nullptr,
+       false,
+       "centred, axis z",
+       [](const Dimensions& d) {
+         return MakeThinToroidalShell(d.at("major_radius"), d.at("minor_radius"));
+       }},
       {"triangular_prism",
        {{"vertices", K::kTriangle2, "[[x, y], [x, y], [x, y]]: the triangle in the xy plane"},
         {"length", K::kLength, "extrusion length along z"}},
@@ -124,6 +188,14 @@ std::vector<ShapeEntry> MakeTable() {
                                     Eigen::Vector2d(v[4], v[5]), d.at("length"));
        }},
   };
+}
+
+std::vector<ShapeEntry> MakeTable() {
+  std::vector<ShapeEntry> table;
+  for (auto&& group : {CurvesAndSheets(), CylindersAndSpheres(), Cones(), OtherSolids()}) {
+    table.insert(table.end(), group.begin(), group.end());
+  }
+  return table;
 }
 }  // namespace
 

@@ -15,20 +15,27 @@
 
 namespace chasles::scene_internal {
 
-/// How a dimension is written: one length, a list of lengths, or a list of 2-D points.
-enum class DimensionKind { kLength, kLengths2, kLengths3, kTriangle2 };
+/// How a dimension is written: one length, a list of lengths, a list of 2-D points, or a
+/// switch (true or false, e.g. `closed`).
+enum class DimensionKind { kLength, kLengths2, kLengths3, kTriangle2, kFlag };
 
 struct DimensionKey {
   const char* key;
   DimensionKind kind = DimensionKind::kLength;
   /// One line for the format reference, e.g. "radius of the cylinder".
   const char* meaning = "";
+  /// True when the key may be left out (a switch then reads false).
+  bool optional = false;
 };
 
-/// Dimension values read from a part, in metres.
+/// Dimension values read from a part, in metres; a switch is 1 (true) or 0 (false).
 struct Dimensions {
   std::map<std::string, std::vector<double>, std::less<>> values;
   double at(std::string_view key, size_t i = 0) const { return values.find(key)->second.at(i); }
+  /// Whether the part gave `key` (an optional key may be absent).
+  bool has(std::string_view key) const { return values.contains(key); }
+  /// A switch: true when given as true.
+  bool flag(std::string_view key) const { return has(key) && at(key) != 0.0; }
 };
 
 struct ShapeEntry {
