@@ -211,6 +211,16 @@ std::string ReactionsText(const SolveReport& s, const ReportScales& k, const Sho
       out += fmt::format("  {} ({}) at {}\n", r.name, r.kind, u.Vec(r.p_WJ, kLength));
       out += fmt::format("    force  {}\n", u.Vec(r.F_Jc_W, kForceDim, k.force));
       out += fmt::format("    moment {}\n", u.Vec(r.M_Jc_W, kMomentDim, k.moment));
+      // What a bearing fixed in the child feels, and what its housing (the parent) feels;
+      // a joint to the world has the world as its parent frame (the lines above).
+      out +=
+          fmt::format("    in the child's frame: force {}, moment {}\n",
+                      u.Vec(r.F_Jc_B, kForceDim, k.force), u.Vec(r.M_Jc_B, kMomentDim, k.moment));
+      if (r.parent != kWorld) {
+        out +=
+            fmt::format("    in the parent's frame: force {}, moment {}\n",
+                        u.Vec(r.F_Jc_P, kForceDim, k.force), u.Vec(r.M_Jc_P, kMomentDim, k.moment));
+      }
     }
     if (!r.mode.empty()) {
       out += fmt::format(

@@ -33,6 +33,10 @@ void BindInstantaneous(py::module_& m) {
       .def_readonly("moment", &ReactionReport::M_Jc_W, "About the point, in W [N*m]")
       .def_readonly("force_body", &ReactionReport::F_Jc_B, "In the child's frame [N]")
       .def_readonly("moment_body", &ReactionReport::M_Jc_B, "In the child's frame [N*m]")
+      .def_readonly("force_parent", &ReactionReport::F_Jc_P,
+                    "In the parent's frame (W for a joint to the world) [N]")
+      .def_readonly("moment_parent", &ReactionReport::M_Jc_P,
+                    "In the parent's frame (W for a joint to the world) [N*m]")
       .def_readonly("multipliers", &ReactionReport::lambda, "Of its rows [N or N*m]")
       .def_readonly("power", &ReactionReport::power, "[W]")
       .def_readonly("is_rolling", &ReactionReport::is_rolling)

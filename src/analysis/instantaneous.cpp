@@ -87,6 +87,15 @@ ReactionReport MakeReactionReport(const Model& model, const Data& data, int c) {
   r.M_Jc_W = o.M_Jc_W;
   r.F_Jc_B = o.F_Jc_B;
   r.M_Jc_B = o.M_Jc_B;
+  // The parent's frame: P = W for the world (R_WP = E).
+  if (con.parent() == kWorld) {
+    r.F_Jc_P = o.F_Jc_W;
+    r.M_Jc_P = o.M_Jc_W;
+  } else {
+    const Mat3& R_WP = data.R_WB[static_cast<size_t>(con.parent())];
+    r.F_Jc_P = R_WP.transpose() * o.F_Jc_W;
+    r.M_Jc_P = R_WP.transpose() * o.M_Jc_W;
+  }
   r.power = o.power;
   for (int k = 0; k < con.num_rows(); ++k) r.lambda.push_back(o.lambda[k]);
   if (con.can_release()) {

@@ -300,12 +300,19 @@ double RowMaker::LedgerValue(const StudyColumn& c, const Model& model, const Sta
     return w;
   }
   if (c.group == "reactions") {
-    // Force (F) or moment about J (M) the parent exerts on the child, in W ("Fx") or in the
-    // child's frame B ("Fx_B").
-    const ConstraintOutput& r =
-        data.constraints[static_cast<size_t>(model.FindConstraint(c.force))];
-    const bool in_B = q.size() > 2;
-    const Vec3& v = q[0] == 'F' ? (in_B ? r.F_Jc_B : r.F_Jc_W) : (in_B ? r.M_Jc_B : r.M_Jc_W);
+    // Force (F) or moment about J (M) the parent exerts on the child, in W ("Fx"), in the
+    // child's frame B ("Fx_B") or in the parent's frame P ("Fx_P": R_WPᵀ times W; W for a
+    // joint to the world).
+    const int ci = model.FindConstraint(c.force);
+    const ConstraintOutput& r = data.constraints[static_cast<size_t>(ci)];
+    const char frame = q.size() > 3 ? q[3] : 'W';
+    const Vec3& v_W = q[0] == 'F' ? r.F_Jc_W : r.M_Jc_W;
+    const BodyIndex parent = model.constraint(ci).parent();
+    Vec3 v = v_W;
+    if (frame == 'B') v = q[0] == 'F' ? r.F_Jc_B : r.M_Jc_B;
+    if (frame == 'P' && parent != kWorld) {
+      v = data.R_WB[static_cast<size_t>(parent)].transpose() * v_W;
+    }
     return v[q[1] - 'x'];
   }
   if (q == "t") return s.t;

@@ -47,6 +47,8 @@ nlohmann::json SnapshotJson(const StudySnapshot& snap, bool planar) {
                          {"moment", VecJson(x.M_Jc_W)},
                          {"force_body", VecJson(x.F_Jc_B)},
                          {"moment_body", VecJson(x.M_Jc_B)},
+                         {"force_parent", VecJson(x.F_Jc_P)},
+                         {"moment_parent", VecJson(x.M_Jc_P)},
                          {"power", x.power}});
     if (planar) {
       reactions.back()["planar"] = {

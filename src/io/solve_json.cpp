@@ -39,6 +39,8 @@ nlohmann::json SolveJson(const SolveReport& s) {
                         {"moment", VecJson(r.M_Jc_W)},
                         {"force_body", VecJson(r.F_Jc_B)},
                         {"moment_body", VecJson(r.M_Jc_B)},
+                        {"force_parent", VecJson(r.F_Jc_P)},
+                        {"moment_parent", VecJson(r.M_Jc_P)},
                         {"multipliers", r.lambda},
                         {"power", r.power}};
     if (s.planar) {

@@ -53,8 +53,10 @@ std::map<std::string, std::string> ColumnUnitTable(const Scene& scene) {
   for (const char* s : {"Hx", "Hy", "Hz", "HOx", "HOy", "HOz"}) units[s] = "kg*m^2/s";
   for (const std::string& n : scene.dynamics.constraints.names()) {
     units["W_" + n] = "J";
-    for (const char* s : {"Fx", "Fy", "Fz", "Fx_B", "Fy_B", "Fz_B"}) units[n + "_" + s] = "N";
-    for (const char* s : {"Mx", "My", "Mz", "Mx_B", "My_B", "Mz_B"}) units[n + "_" + s] = "N*m";
+    for (const char* frame : {"", "_B", "_P"}) {
+      for (const char* s : {"Fx", "Fy", "Fz"}) units[n + "_" + s + frame] = "N";
+      for (const char* s : {"Mx", "My", "Mz"}) units[n + "_" + s + frame] = "N*m";
+    }
   }
   for (const std::string& p : scene.dynamics.contacts.point_labels()) {
     units[p + "_mode"] = "";

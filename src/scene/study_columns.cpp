@@ -140,9 +140,10 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
   for (const char* s : {"Hx", "Hy", "Hz"}) momentum(s, "angular_momentum");
   for (const char* s : {"HOx", "HOy", "HOz"}) momentum(s, "angular_momentum_origin");
   // Reaction on the child at the joint point, in W, then in the child's frame B
-  // (Data::constraints). A planar scene's reactions are Fx, Fy and Mz; the out-of-plane
-  // components (held by the bodies' plane constraints, not physical for a planar body) stay
-  // selectable one by one or as the group reactions_3d.
+  // (Data::constraints), then in the parent's frame P (W for a joint to the world). A planar
+  // scene's reactions are Fx, Fy and Mz; the out-of-plane components (held by the bodies' plane
+  // constraints, not physical for a planar body) stay selectable one by one or as the group
+  // reactions_3d.
   for (const auto& n : scene.dynamics.constraints.names()) {
     for (const char* s : {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}) {
       const std::string q = s;
@@ -150,11 +151,13 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
       cols.push_back(
           {n + "_" + s, scene.planar && !in_plane ? "reactions_3d" : "reactions", -1, s, n});
     }
-    for (const char* s : {"Fx_B", "Fy_B", "Fz_B", "Mx_B", "My_B", "Mz_B"}) {
-      const std::string q = s;
-      const bool in_plane = q == "Fx_B" || q == "Fy_B" || q == "Mz_B";
-      cols.push_back(
-          {n + "_" + s, scene.planar && !in_plane ? "reactions_3d" : "reactions", -1, s, n});
+    for (const char* frame : {"_B", "_P"}) {
+      for (const char* c : {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}) {
+        const std::string q = std::string(c) + frame;
+        const bool in_plane = q[0] == 'F' ? q[1] != 'z' : q[1] == 'z';  // Fx, Fy, Mz
+        cols.push_back(
+            {n + "_" + q, scene.planar && !in_plane ? "reactions_3d" : "reactions", -1, q, n});
+      }
     }
   }
   // Per contact point: mode (0 separated, 1 sliding, 2 sticking), normal force N, friction

@@ -315,6 +315,61 @@ TEST(ReactionsInBodyFrame, AreTheWorldReactionTurnedIntoTheChildFrame) {
   EXPECT_NEAR(csv.at("pin_Fz_B").front(), mg / 4, kRun * mg);
 }
 
+// ---- Reactions in the parent's frame -----------------------------------------------------
+// Problem 8.31's bearing holds the disk in the housing, its parent, which turns with the shaft
+// at Ω about x. The bearing supplies the disk's whole dH/dt about O (the spin driver supplies
+// none about the disk's axis e, which is perpendicular to y'; O does not move, so no force):
+// in the housing's frame the moment is constant, (0, M, 0) with
+// M = -[(I3 - I1) Ω² sin β cos β + I3 Ω ω_s sin β] (the example's comments), while in W it
+// turns with the shaft. At every row the P-frame columns are the W-frame reaction turned into
+// the housing's frame, R_WPᵀ F_W, and the child-frame ones turned from the disk's frame into
+// the housing's, R_PC F_B = R_WPᵀ R_WC F_B; for the plate, a joint to the world, P is W.
+TEST(ReactionsInParentFrame, BearingMomentIsConstantInTheHousingFrame) {
+  const double m = 1.5, R = 0.12, beta = kPi / 3, W = 2 * kPi, ws = 10 * kPi;
+  const double I3 = m * R * R / 2, I1 = m * R * R / 4;
+  const double M =
+      -((I3 - I1) * W * W * std::sin(beta) * std::cos(beta) + I3 * W * ws * std::sin(beta));
+  const auto csv = SimulateCsv("examples/problem-8.31-disk-on-rotating-shaft.yaml",
+                               "--columns quaternion,reactions");
+  const auto vec = [&](const std::string& prefix, const std::string& suffix, size_t i) {
+    return Vec3(csv.at(prefix + "x" + suffix)[i], csv.at(prefix + "y" + suffix)[i],
+                csv.at(prefix + "z" + suffix)[i]);
+  };
+  const auto rotation = [&](const std::string& body, size_t i) {
+    const Eigen::Quaterniond q(csv.at(body + "_qw")[i], csv.at(body + "_qx")[i],
+                               csv.at(body + "_qy")[i], csv.at(body + "_qz")[i]);
+    return Mat3(q.normalized().toRotationMatrix());
+  };
+  ASSERT_GE(csv.at("t").size(), 10u);
+  for (size_t i = 0; i < csv.at("t").size(); ++i) {
+    const double t = csv.at("t")[i];
+    const Mat3 R_WP = rotation("housing", i), R_WC = rotation("disk", i);
+    for (const char* what : {"F", "M"}) {
+      const std::string p = std::string("bearing_") + what;
+      const Vec3 P = vec(p, "_P", i), B = vec(p, "_B", i), in_W = vec(p, "", i);
+      // The CSV prints 17 significant digits; the quaternions are unit to round-off.
+      EXPECT_LT((P - R_WP.transpose() * in_W).norm(), 1e-12 * std::abs(M)) << what << " t = " << t;
+      EXPECT_LT((P - R_WP.transpose() * R_WC * B).norm(), 1e-12 * std::abs(M))
+          << what << " t = " << t;
+      const std::string plate = std::string("plate_") + what;
+      EXPECT_EQ(vec(plate, "_P", i), vec(plate, "", i)) << what << " t = " << t;
+    }
+    EXPECT_LT((vec("bearing_M", "_P", i) - Vec3(0, M, 0)).norm(), kRun * std::abs(M))
+        << "t = " << t;
+    EXPECT_LT(vec("bearing_F", "_P", i).norm(), kRun * std::abs(M) / R) << "t = " << t;
+  }
+  // `solve` gives it too, in the JSON (at t = 0 the housing's frame is W's).
+  const CliResult r =
+      RunCli("solve " + Quote(SourcePath("examples/problem-8.31-disk-on-rotating-shaft.yaml")) +
+             " --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const auto& x : j.at("reactions")) {
+    if (x.at("name") != "bearing") continue;
+    EXPECT_LT((ToVec(x.at("moment_parent")) - Vec3(0, M, 0)).norm(), kSolve * std::abs(M));
+  }
+}
+
 // ---- Energy and momenta in the `solve` report ----------------------------------------------
 // The pinned rod at release is at rest: T = 0, p = 0. The cart and rod at θ = 20°: the text
 // report lists T, p, H and H_O per body and for all bodies.

@@ -40,6 +40,10 @@ struct ReactionReport {
   Vec3 M_Jc_W = Vec3::Zero();
   Vec3 F_Jc_B = Vec3::Zero();
   Vec3 M_Jc_B = Vec3::Zero();
+  /// The same in the parent's frame P, R_WPᵀ times the W values (W for a joint to the world):
+  /// what a housing feels from the shaft it carries [N, N·m].
+  Vec3 F_Jc_P = Vec3::Zero();
+  Vec3 M_Jc_P = Vec3::Zero();
   /// Multipliers of its rows [N or N·m]; for a driver the force/moment it supplies.
   std::vector<double> lambda;
   /// Power of its forces on all its bodies [W] (0 for ideal joints and rolling).
