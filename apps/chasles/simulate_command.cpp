@@ -202,15 +202,67 @@ std::string EventsText(const Scene& scene, const StudyResult& r, const Show& sho
          });
 }
 
-std::string JumpsText(const StudyResult& r, const TextUnits& u) {
+/// One jump's velocity jumps per body and the supports' impulsive reactions (on the child at
+/// the joint point, world frame; planar: [x, y] and about z). Components below 1e-12 of the
+/// jump's largest of their kind are round-off and print as 0.
+std::string JumpDetailText(const Scene& scene, const StudyJump& x, const Show& show,
+                           double length) {
+  double dv = 0.0, dw = 0.0, J = 0.0, M = 0.0;
+  for (const BodyImpulseBalance& b : x.bodies) {
+    dv = std::max(dv, b.dv_WBcm_W.stableNorm());
+    dw = std::max(dw, b.dw_WB_W.stableNorm());
+    J = std::max(J, b.mass * b.dv_WBcm_W.stableNorm());
+  }
+  for (const StudyReaction& r : x.reactions) {
+    J = std::max(J, r.F_Jc_W.stableNorm());
+    M = std::max(M, r.M_Jc_W.stableNorm());
+  }
+  M = std::max(M, J * length);
+  std::string out = scene.planar ? "    velocity jumps (centre of mass [x, y], angular about z)\n"
+                                 : "    velocity jumps (centre of mass, angular; world frame)\n";
+  for (const BodyImpulseBalance& b : x.bodies) {
+    out += scene.planar ? fmt::format("      {}: dv {}, domega {}\n", b.body,
+                                      show.Xy(b.dv_WBcm_W, kVelocityDim, dv),
+                                      show(Clean(b.dw_WB_W.z(), dw), kRateDim, Angular::kYes))
+                        : fmt::format("      {}: dv {}, dw {}\n", b.body,
+                                      show(b.dv_WBcm_W, kVelocityDim, Angular::kNo, dv),
+                                      show(b.dw_WB_W, kRateDim, Angular::kYes, dw));
+  }
+  if (!x.reactions.empty()) {
+    out += "    impulsive reactions (on the child at the joint point)\n";
+  }
+  for (const StudyReaction& r : x.reactions) {
+    out += scene.planar
+               ? fmt::format("      {} at {}: impulse {}, moment impulse {}\n", r.name,
+                             show.Xy(r.p_WJ, kLength, length), show.Xy(r.F_Jc_W, kMomentumDim, J),
+                             show(Clean(r.M_Jc_W.z(), M), kAngularMomentumDim))
+               : fmt::format("      {} at {}: impulse {}, moment impulse {}\n", r.name,
+                             show(r.p_WJ, kLength, Angular::kNo, length),
+                             show(r.F_Jc_W, kMomentumDim, Angular::kNo, J),
+                             show(r.M_Jc_W, kAngularMomentumDim, Angular::kNo, M));
+  }
+  if (!x.impacts.empty()) {
+    out += fmt::format("    contact impacts at this instant: {} (under \"Impacts at contacts\")\n",
+                       x.impacts.size());
+  }
+  return out;
+}
+
+std::string JumpsText(const Scene& scene, const StudyResult& r, const TextUnits& u,
+                      const ReportScales& k) {
   if (r.jumps.empty()) return "";
   std::string out = "\nImpulses and impacts\n";
   for (const auto& x : r.jumps) {
     out += fmt::format("  t = {}: {}; energy {} -> {} (change {})\n", u.Time(x.t), x.description,
                        u.Energy(x.energy_before), u.Energy(x.energy_after),
                        u.Energy(x.energy_after - x.energy_before));
-    out += fmt::format("    afterwards: v = {}, w = {}\n", u.show(x.v_after_W, kVelocityDim),
-                       u.show(x.w_after_W, kRateDim, Angular::kYes));
+    out += scene.planar
+               ? fmt::format("    afterwards: v = {}, omega = {}\n",
+                             u.show.Xy(x.v_after_W, kVelocityDim),
+                             u.show(x.w_after_W.z(), kRateDim, Angular::kYes))
+               : fmt::format("    afterwards: v = {}, w = {}\n", u.show(x.v_after_W, kVelocityDim),
+                             u.show(x.w_after_W, kRateDim, Angular::kYes));
+    out += JumpDetailText(scene, x, u.show, k.length);
   }
   return out;
 }
@@ -429,7 +481,7 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
       fmt::format("Simulated to t = {}{} (report in {} units; CSV and JSON in SI)\n",
                   u.Time(r.t_end), r.stopped_by_event ? ", stopped by an event" : "", units.spec());
   out += EventsText(scene, r, u.show);
-  out += JumpsText(r, u);
+  out += JumpsText(scene, r, u, k);
   out += ContactEventsText(r, u);
   out += StringEventsText(r, u);
   out += ImpactsText(r, u);

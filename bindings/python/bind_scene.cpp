@@ -349,11 +349,34 @@ void BindStudyParts(py::module_& m) {
   py::class_<StudyEvent>(m, "Event", "A scene event located during the run.")
       RO(StudyEvent, name, "") RO(StudyEvent, t, "[s]") RO(StudyEvent, stopped, "")
           RO(StudyEvent, snapshot, "");
+  py::class_<BodyImpulse>(m, "BodyImpulse",
+                          "One impulse on a body at an impulse or impact (values in W).")
+      RO(BodyImpulse, source, "'applied', a constraint's name or \"contact '<point>'\"")
+          .def_readonly("point", &BodyImpulse::p_WP, "[m]")
+          .def_readonly("impulse", &BodyImpulse::J_W, "[N*s]")
+          .def_readonly("moment_impulse", &BodyImpulse::M_W, "About the point [N*m*s]");
+  py::class_<BodyImpulseBalance>(m, "JumpBody",
+                                 "A body's velocity jumps at an impulse or impact and every "
+                                 "impulse on it: m dv = sum J, dH = sum (r x J + M).")
+      .def_readonly("name", &BodyImpulseBalance::body) RO(BodyImpulseBalance, mass, "[kg]")
+      .def_readonly("center_of_mass", &BodyImpulseBalance::p_WBcm, "[m]")
+      .def_readonly("velocity_after", &BodyImpulseBalance::v_WBcm_W, "[m/s]")
+      .def_readonly("angular_velocity_after", &BodyImpulseBalance::w_WB_W, "In W [rad/s]")
+      .def_readonly("velocity_change", &BodyImpulseBalance::dv_WBcm_W, "[m/s]")
+      .def_readonly("angular_velocity_change", &BodyImpulseBalance::dw_WB_W, "[rad/s]")
+      .def_readonly("angular_momentum_after", &BodyImpulseBalance::H_Bcm_W,
+                    "About the centre of mass [kg*m^2/s]")
+      .def_readonly("angular_momentum_change", &BodyImpulseBalance::dH_Bcm_W, "[kg*m^2/s]")
+          RO(BodyImpulseBalance, impulses, "");
   py::class_<StudyJump>(m, "Jump", "An impulse or impact applied during the run.")
       RO(StudyJump, kind, "") RO(StudyJump, description, "") RO(StudyJump, t, "")
           RO(StudyJump, energy_before, "[J]") RO(StudyJump, energy_after, "[J]")
               .def_readonly("velocity_after", &StudyJump::v_after_W)
-              .def_readonly("angular_velocity_after", &StudyJump::w_after_W);
+              .def_readonly("angular_velocity_after", &StudyJump::w_after_W)
+                  RO(StudyJump, reactions,
+                     "The supports' impulsive reactions (Reaction records in N*s, N*m*s)")
+                      RO(StudyJump, bodies, "Every body's velocity jumps and impulses")
+                          RO(StudyJump, impacts, "Indices into run.impacts of this instant");
   py::class_<StudyContactEvent>(m, "StudyContactEvent", "A contact mode change.")
       RO(StudyContactEvent, t, "[s]") RO(StudyContactEvent, point, "")
           RO(StudyContactEvent, contact, "")

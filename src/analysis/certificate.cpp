@@ -27,6 +27,8 @@ enum Check {
   kLedger,
   kLinearBalance,
   kAngularBalance,
+  kLinearImpulseBalance,
+  kAngularImpulseBalance,
   kNumChecks
 };
 
@@ -47,6 +49,10 @@ constexpr CheckInfo kChecks[kNumChecks] = {
     {"ledger", "work-energy balance: |E - E0 - W_nc - jumps| = 0", "J"},
     {"linear momentum balance", "per body: |m a_cm - sum F| = 0 (all forces)", "N"},
     {"angular momentum balance", "per body: |dH_cm/dt - sum M_cm| = 0 (all forces)", "N*m"},
+    {"linear impulse balance",
+     "per body at each impulse or impact: |m dv_cm - sum J| = 0 (all impulses)", "N*s"},
+    {"angular impulse balance",
+     "per body at each impulse or impact: |dH_cm - sum (r x J + M)| = 0 (all impulses)", "N*m*s"},
 };
 
 }  // namespace
@@ -63,6 +69,8 @@ const char* CheckPhaseName(CheckPhase phase) {
       return "after a contact transition";
     case CheckPhase::kSolve:
       return "solved state";
+    case CheckPhase::kJump:
+      return "impulse or impact";
   }
   return "";
 }
@@ -96,6 +104,38 @@ void CertificateBuilder::CheckLedger(double t, double residual, double energy_sc
                                      CheckPhase phase) {
   energy_ = std::max(energy_, std::abs(energy_scale));
   Add(kLedger, std::abs(residual), Scale::kEnergy, 1.0, 0.0, 0.0, "all bodies", t, phase);
+}
+
+void CertificateBuilder::CheckImpulseBalance(double t,
+                                             const std::vector<BodyImpulseBalance>& bodies) {
+  // Impulse-momentum per body over the instant (eqs. 8.118, 8.119): m Δv_cm = ΣJ and
+  // ΔH_cm = Σ (r × J + M), r from the centre of mass to the impulse's point. Round-off is
+  // relative to what was summed: the impulses, and the momenta before and after whose
+  // difference is the jump.
+  for (const BodyImpulseBalance& b : bodies) {
+    Vec3 J = Vec3::Zero(), H = Vec3::Zero();
+    double J_size = 0.0, H_size = 0.0;
+    for (const BodyImpulse& i : b.impulses) {
+      const Vec3 r = i.p_WP - b.p_WBcm;
+      J += i.J_W;
+      H += r.cross(i.J_W) + i.M_W;
+      J_size += i.J_W.norm();
+      H_size += r.norm() * i.J_W.norm() + i.M_W.norm();
+      impulse_ = std::max(impulse_, i.J_W.norm());
+      angular_impulse_ = std::max({angular_impulse_, r.norm() * i.J_W.norm(), i.M_W.norm()});
+      length_ = std::max(length_, i.p_WP.norm());
+    }
+    const Vec3 dP = b.mass * b.dv_WBcm_W;
+    const double P_size = b.mass * (b.v_WBcm_W.norm() + (b.v_WBcm_W - b.dv_WBcm_W).norm()) + J_size;
+    const double L_size = b.H_Bcm_W.norm() + (b.H_Bcm_W - b.dH_Bcm_W).norm() + H_size;
+    impulse_ = std::max(impulse_, dP.norm());
+    angular_impulse_ = std::max(angular_impulse_, b.dH_Bcm_W.norm());
+    const std::string where = fmt::format("body '{}'", b.body);
+    Add(kLinearImpulseBalance, (dP - J).norm(), Scale::kImpulse, 1.0, 0.0, P_size, where, t,
+        CheckPhase::kJump);
+    Add(kAngularImpulseBalance, (b.dH_Bcm_W - H).norm(), Scale::kAngularImpulse, 1.0, 0.0, L_size,
+        where, t, CheckPhase::kJump);
+  }
 }
 
 void CertificateBuilder::CheckState(const Model& model, const State& state, CheckPhase phase) {
@@ -323,6 +363,8 @@ CertificateBuilder::Scales CertificateBuilder::CurrentScales() const {
   const double v_floor = mass_ > 0.0 ? std::sqrt(force_ * length_ / mass_) : 0.0;
   k.velocity = std::max(velocity_, v_floor);
   k.rate = std::max(rate_, radius_ > 0.0 ? v_floor / radius_ : 0.0);
+  // As for moments: at least the impulse scale times the largest radius of gyration.
+  k.angular_impulse = std::max(angular_impulse_, impulse_ * radius_);
   return k;
 }
 
@@ -346,6 +388,14 @@ double CertificateBuilder::Tolerance(const Entry& e, const Scales& k) const {
     case Scale::kEnergy:
       rel = tol_.ledger;
       run = energy_;
+      break;
+    case Scale::kImpulse:
+      rel = tol_.impulse;
+      run = impulse_;
+      break;
+    case Scale::kAngularImpulse:
+      rel = tol_.impulse;
+      run = k.angular_impulse;
       break;
   }
   return rel * std::max(run, e.local_scale);
@@ -392,6 +442,8 @@ Certificate CertificateBuilder::Finish() const {
   cert.length_scale = length_;
   cert.velocity_scale = k.velocity;
   cert.energy_scale = energy_;
+  cert.impulse_scale = impulse_;
+  cert.angular_impulse_scale = k.angular_impulse;
   for (int c = 0; c < kNumChecks; ++c) {
     CheckResult r;
     r.name = kChecks[c].name;

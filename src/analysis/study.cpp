@@ -79,7 +79,10 @@ class StudyRun {
   void Start();
   void RecordImpacts(const ImpactResult& r, double t);
   void RecordChanges(const std::vector<ContactModeChange>& changes, double t, const char* reason);
-  void SettleContacts(const char* reason);
+  /// Impacts of the contacts driven into their planes, then every point's mode; appends each
+  /// impact's and jam's impulse on its body (contact point, impulse in W) to `impulses` when
+  /// given.
+  void SettleContacts(const char* reason, std::vector<std::pair<int, Vec3>>* impulses = nullptr);
   void Certify(const State& s, CheckPhase phase);
   void OnStep(double t);
   void RunTo(double t_b);
@@ -88,6 +91,8 @@ class StudyRun {
   void RecordSimulation(const SimulationResult& r, const std::vector<ContactMode>& carried,
                         const std::vector<EventSpec>& events);
   void ApplyJump(const Jump& j);
+  double AnswerJump(const State& before, std::vector<study_internal::JumpImpulse> impulses,
+                    StudyJump& rec);
   void Finish();
   /// Appends the output row of `s` (and its snapshot when the definition asks for them).
   void AddRow(const Model& model, const State& s);
@@ -203,12 +208,17 @@ void StudyRun::RecordChanges(const std::vector<ContactModeChange>& changes, doub
 
 // Contacts that approach take their impact first; then every contact point gets a consistent
 // mode, so that the next output row already shows it.
-void StudyRun::SettleContacts(const char* reason) {
+void StudyRun::SettleContacts(const char* reason, std::vector<std::pair<int, Vec3>>* impulses) {
   if (seg_.model->num_contacts() == 0) return;
   const ContactTolerances tol;
-  RecordImpacts(ResolveImpacts(*seg_.model, state_, tol), state_.t);
+  const ImpactResult impacts = ResolveImpacts(*seg_.model, state_, tol);
+  RecordImpacts(impacts, state_.t);
   ModeSelectionNotes notes;
   RecordChanges(SelectContactModes(*seg_.model, state_, tol, {}, &notes), state_.t, reason);
+  if (impulses != nullptr) {
+    for (const ContactImpulse& i : impacts.impulses) impulses->emplace_back(i.point, i.impulse_W);
+    for (const JamImpulse& j : notes.jams) impulses->emplace_back(j.point, j.impulse_W);
+  }
   for (const JamImpulse& j : notes.jams) {
     result_.impacts.push_back({state_.t, Label(j.point), 0.0, j.normal_impulse, j.energy_lost,
                                false, std::numeric_limits<double>::quiet_NaN(), true, "", false});
@@ -438,14 +448,53 @@ void StudyRun::RecordSimulation(const SimulationResult& r, const std::vector<Con
   result_.warnings.insert(result_.warnings.end(), r.warnings.begin(), r.warnings.end());
 }
 
+// The supports' and contacts' answer to a jump whose applied impulses `impulses` are in
+// state_ already: the supports' impulsive reaction, then the contacts driven into their planes,
+// recorded in `rec` (reactions, every body's jumps from `before`, the impacts) and checked.
+// Returns the energy between the two.
+double StudyRun::AnswerJump(const State& before, std::vector<study_internal::JumpImpulse> impulses,
+                            StudyJump& rec) {
+  const Model& model = *seg_.model;
+  Eigen::VectorXd mu = Eigen::VectorXd::Zero(model.num_constraint_rows());
+  if (model.num_constraints() > 0) {
+    // The supports' impulsive reaction: projecting the velocities onto the constraints with the
+    // mass metric, du = M⁻¹ Jᵀ μ, is exactly the response of ideal constraints to the impulse
+    // (impulse-momentum with the constraint impulse Jᵀ μ; docs/constraints.md).
+    Data data = MakeData(model);
+    ProjectOntoConstraints(model, state_, data, {}, &mu);
+  }
+  // A contact the jump drives into its plane takes an impact; then the modes are chosen again
+  // for the new velocities (a sticking point may now slip). The impacts take the constraints'
+  // share with them: SupportImpulseOf recovers it.
+  const State projected = state_;
+  const size_t first_impact = result_.impacts.size();
+  std::vector<std::pair<int, Vec3>> contact_impulses;
+  SettleContacts("impulse", &contact_impulses);
+  CheckFinite(model, state_);
+  for (size_t i = first_impact; i < result_.impacts.size(); ++i) {
+    rec.impacts.push_back(static_cast<int>(i));
+  }
+  const std::vector<study_internal::JumpImpulse> contacts =
+      study_internal::ContactJumpImpulses(model, state_, contact_impulses, labels_);
+  mu += study_internal::SupportImpulseOf(model, projected, contacts);
+  impulses.insert(impulses.end(), contacts.begin(), contacts.end());
+  study_internal::RecordJumpImpulses(model, before, state_, mu, impulses,
+                                     def_.num_reported_constraints, rec);
+  certificate_.CheckImpulseBalance(rec.t, rec.bodies);
+  return CalcMechanicalEnergy(model, projected);
+}
+
 void StudyRun::ApplyJump(const Jump& j) {
   study_internal::CloseSegment(*seg_.model, state_, carry_);
   StudyJump rec;
   rec.t = state_.t;
   rec.energy_before = CalcMechanicalEnergy(*seg_.model, state_);
+  const std::shared_ptr<const Model> model_before = seg_.model;
+  const State state_before = state_;
+  std::vector<study_internal::JumpImpulse> impulses;
   int shown = 0;
   if (j.impulse) {
-    shown = study_internal::ApplyStudyImpulse(*j.impulse, seg_, state_);
+    shown = study_internal::ApplyStudyImpulse(*j.impulse, seg_, state_, &impulses);
     rec.kind = "impulse";
     rec.description =
         fmt::format("impulse on {}", def_.bodies[static_cast<size_t>(j.impulse->body)].name);
@@ -461,33 +510,30 @@ void StudyRun::ApplyJump(const Jump& j) {
           "embedded one in the other)",
           j.impact->t, projectile, target));
     }
-    shown = study_internal::ApplyStudyImpact(*j.impact, def_.build_model, seg_, state_);
+    shown = study_internal::ApplyStudyImpact(*j.impact, def_.build_model, seg_, state_, &impulses);
     rec.kind = j.impact->exit_fraction > 0 ? "pass-through" : "embedding";
     rec.description = j.impact->exit_fraction > 0
                           ? fmt::format("{} passes through {} keeping {:.4g} of its velocity",
                                         projectile, target, j.impact->exit_fraction)
                           : fmt::format("{} embeds in {}", projectile, target);
   }
-  if (seg_.model->num_constraints() > 0) {
-    // The supports' impulsive reaction: projecting the velocities onto the constraints with the
-    // mass metric, du = -M⁻¹ Jᵀ μ, is exactly the response of ideal constraints to the impulse
-    // (impulse-momentum with the constraint impulse Jᵀ μ).
-    Data data = MakeData(*seg_.model);
-    ProjectOntoConstraints(*seg_.model, state_, data);
-  }
-  // A contact the jump drives into its plane takes an impact; then the modes are chosen again
-  // for the new velocities (a sticking point may now slip).
-  SettleContacts("impulse");
-  CheckFinite(*seg_.model, state_);
-  rec.energy_after = CalcMechanicalEnergy(*seg_.model, state_);
+  // The velocity jumps are counted from the state before; after an embedding (a new Model) from
+  // the composite moving with the two bodies' momentum, so that they are the supports' doing.
+  const State before = seg_.model == model_before ? state_before : state_;
+  const double energy_between = AnswerJump(before, std::move(impulses), rec);
+  const Model& model = *seg_.model;
+  rec.energy_after = CalcMechanicalEnergy(model, state_);
   const BodyState& s = state_.bodies[static_cast<size_t>(shown)];
   rec.v_after_W = s.v_WBcm_W;
   rec.w_after_W = s.q_WB * s.w_WB_B;
   carry_.jumps += rec.energy_after - rec.energy_before;
-  carry_.scale = std::max({carry_.scale, std::abs(rec.energy_before), std::abs(rec.energy_after)});
+  // The energy between the supports' answer and the contacts' is on the ledger's scale too: a
+  // contact impact may take all the impulse gave (a rod struck onto the floor it rests on).
+  carry_.scale = std::max({carry_.scale, std::abs(rec.energy_before), std::abs(rec.energy_after),
+                           std::abs(energy_between)});
   carry_.segment_initial = state_;
-  result_.jumps.push_back(rec);
-  AddRow(*seg_.model, state_);
+  result_.jumps.push_back(std::move(rec));
+  AddRow(model, state_);
   Certify(state_, CheckPhase::kSample);
 }
 

@@ -1,15 +1,21 @@
 // The instants of a study where the state jumps: impulses, projectiles passing through a body,
-// and projectiles that embed (a new Model with the composite body), and the ledger at the end
-// (include/chasles/analysis/study.h).
+// and projectiles that embed (a new Model with the composite body), the impulses of the
+// supports and contacts at those instants with every body's velocity jumps, and the ledger at
+// the end (include/chasles/analysis/study.h).
 
 #include <algorithm>
 
 #include <fmt/format.h>
 
+#include "chasles/analysis/instantaneous.h"
 #include "chasles/analysis/ledger.h"
 #include "chasles/analysis/study.h"
+#include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/impulse.h"
+#include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
+#include "chasles/model/data.h"
 #include "internal/study_steps.h"
 
 namespace chasles::study_internal {
@@ -66,18 +72,26 @@ Segment FirstSegment(const StudyDefinition& definition) {
   return seg;
 }
 
-int ApplyStudyImpulse(const StudyImpulseSpec& impulse, const Segment& seg, State& state) {
+int ApplyStudyImpulse(const StudyImpulseSpec& impulse, const Segment& seg, State& state,
+                      std::vector<JumpImpulse>* applied) {
   const BodyPlacement& pl = seg.map.place[static_cast<size_t>(impulse.body)];
-  const Mat3 R_WM = state.bodies[static_cast<size_t>(pl.model_body)].q_WB.toRotationMatrix();
+  const BodyState& bs = state.bodies[static_cast<size_t>(pl.model_body)];
+  const Mat3 R_WM = bs.q_WB.toRotationMatrix();
   const Vec3 J_W =
       impulse.frame == VectorFrame::kWorld ? impulse.J : Vec3(R_WM * pl.R_MB * impulse.J);
-  ApplyImpulse(*seg.model, pl.model_body, seg.map.PointInModelBody(impulse.body, impulse.p_BoP_B),
-               J_W, state);
+  const Vec3 p_MoP_M = seg.map.PointInModelBody(impulse.body, impulse.p_BoP_B);
+  if (applied != nullptr) {
+    // P in W as ApplyImpulse places it.
+    const Vec3 p_WP = bs.p_WBcm + bs.q_WB.normalized() *
+                                      seg.model->body(pl.model_body).PointFromCenterOfMass(p_MoP_M);
+    applied->push_back({pl.model_body, {"applied", p_WP, J_W, Vec3::Zero()}});
+  }
+  ApplyImpulse(*seg.model, pl.model_body, p_MoP_M, J_W, state);
   return pl.model_body;
 }
 
 int ApplyStudyImpact(const StudyImpactSpec& impact, const ModelBuilder& build, Segment& seg,
-                     State& state) {
+                     State& state, std::vector<JumpImpulse>* applied) {
   const Model& model = *seg.model;
   const int mt = seg.map.place[static_cast<size_t>(impact.target)].model_body;
   const int mp = seg.map.place[static_cast<size_t>(impact.projectile)].model_body;
@@ -91,8 +105,15 @@ int ApplyStudyImpact(const StudyImpactSpec& impact, const ModelBuilder& build, S
   const BodyState& sp = state.bodies[static_cast<size_t>(mp)];
   if (impact.exit_fraction > 0) {
     const Vec3 v_p = sp.v_WBcm_W;
-    ApplyPassThrough(model, mt, sp.p_WBcm, model.body(mp).mass(), v_p, impact.exit_fraction, state);
-    state.bodies[static_cast<size_t>(mp)].v_WBcm_W = impact.exit_fraction * v_p;
+    const Vec3 p_WP = sp.p_WBcm;
+    const PassThroughResult r =
+        ApplyPassThrough(model, mt, p_WP, model.body(mp).mass(), v_p, impact.exit_fraction, state);
+    state.bodies[static_cast<size_t>(mp)].v_WBcm_W = r.projectile_exit_velocity_W;
+    if (applied != nullptr) {
+      // Action and reaction between the two at the projectile's centre of mass.
+      applied->push_back({mt, {"applied", p_WP, r.impulse_W, Vec3::Zero()}});
+      applied->push_back({mp, {"applied", p_WP, -r.impulse_W, Vec3::Zero()}});
+    }
     return mt;
   }
   const BodyMotion target = ModelBodyMotion(model, state, mt);
@@ -132,6 +153,111 @@ int ApplyStudyImpact(const StudyImpactSpec& impact, const ModelBuilder& build, S
   seg = std::move(next);
   state = std::move(s2);
   return shown;
+}
+
+std::vector<JumpImpulse> ContactJumpImpulses(const Model& model, const State& state,
+                                             const std::vector<std::pair<int, Vec3>>& impulses,
+                                             const std::vector<std::string>& labels) {
+  std::vector<JumpImpulse> out;
+  if (impulses.empty()) return out;
+  const std::vector<ContactPointOutput> points = CalcContactOutputs(model, state);
+  for (const auto& [p, J_W] : impulses) {
+    const ContactPointOutput& o = points[static_cast<size_t>(p)];
+    const Contact& c = model.contact(model.contact_of_point(p));
+    const std::string source = fmt::format("contact '{}'", static_cast<size_t>(p) < labels.size()
+                                                               ? labels[static_cast<size_t>(p)]
+                                                               : model.contact_point_name(p));
+    out.push_back({c.body(), {source, o.p_WC, J_W, Vec3::Zero()}});
+    // The other sphere's surface point: C_O = c_O + R_O n = C - gap n (contact_solve.cpp).
+    if (c.other_body() != kWorld) {
+      out.push_back({c.other_body(), {source, o.p_WC - o.gap * o.n_W, -J_W, Vec3::Zero()}});
+    }
+  }
+  return out;
+}
+
+Eigen::VectorXd SupportImpulseOf(const Model& model, const State& state,
+                                 const std::vector<JumpImpulse>& impulses) {
+  Eigen::VectorXd mu = Eigen::VectorXd::Zero(model.num_constraint_rows());
+  if (model.num_constraints() == 0 || impulses.empty()) return mu;
+  State scratch = state;
+  for (const JumpImpulse& i : impulses) {
+    ApplyImpulseAtWorldPoint(model, i.body, i.impulse.p_WP, i.impulse.J_W, scratch);
+  }
+  Data data = MakeData(model);
+  ProjectOntoConstraints(model, scratch, data, {}, &mu);
+  return mu;
+}
+
+namespace {
+
+/// Each constraint's share of Jᵀμ on body `b` ([F; M about Bcm] in W, from the rows on b),
+/// as an impulse at the constraint's point J: M_J = M_Bcm - (p_WJ - p_WBcm) × F.
+void AddSupportImpulses(const Model& model, const State& state, const Data& data,
+                        const Eigen::VectorXd& mu, int b, std::vector<BodyImpulse>& out) {
+  const Vec3& p_WBcm = state.bodies[static_cast<size_t>(b)].p_WBcm;
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const Constraint& con = model.constraint(c);
+    const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+    const int n = con.num_rows();
+    const auto mu_c = mu.segment(model.constraint_row_offset(c), n);
+    const ConstraintEval::Rows* rows = nullptr;
+    if (b == con.child()) rows = &e.J_child;
+    if (b == con.parent()) rows = &e.J_parent;
+    for (int k = 0; k < e.num_extra; ++k) {
+      if (e.extra_body[static_cast<size_t>(k)] == b) rows = &e.J_extra[static_cast<size_t>(k)];
+    }
+    if (rows == nullptr) continue;
+    const Eigen::Matrix<double, 6, 1> share = rows->topRows(n).transpose() * mu_c;
+    const Vec3 F = share.head<3>();
+    const Vec3 p_WJ = data.constraints[static_cast<size_t>(c)].p_WJ;
+    out.push_back({con.name(), p_WJ, F, Vec3(share.tail<3>() - (p_WJ - p_WBcm).cross(F))});
+  }
+}
+
+}  // namespace
+
+void RecordJumpImpulses(const Model& model, const State& before, const State& after,
+                        const Eigen::VectorXd& mu, const std::vector<JumpImpulse>& impulses,
+                        int num_reported_constraints, StudyJump& jump) {
+  // The reactions of the multipliers μ at the instant's configuration, by the constraint
+  // stage's own conversion (CalcConstraintReactions, then MakeReactionReport): impulses now.
+  Data data = MakeData(model);
+  CalcKinematics(model, after, data);
+  if (model.num_constraints() > 0) {
+    CalcConstraintRows(model, after, data);
+    CalcConstraintReactions(model, after, mu, data);
+  }
+  const int reported = num_reported_constraints < 0
+                           ? model.num_constraints()
+                           : std::min(num_reported_constraints, model.num_constraints());
+  for (int c = 0; c < reported; ++c) {
+    jump.reactions.push_back(MakeReactionReport(model, data, c));
+    jump.reactions.back().power = 0.0;
+  }
+  // Each body: ΔH_cm = R I_B (ω_B after - ω_B before) (the instant moves nothing).
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    const Body& body = model.body(b);
+    const BodyState& s1 = after.bodies[i];
+    const BodyState& s0 = before.bodies[i];
+    const Mat3& R = data.R_WB[i];
+    BodyImpulseBalance r;
+    r.body = body.name();
+    r.mass = body.mass();
+    r.p_WBcm = s1.p_WBcm;
+    r.v_WBcm_W = s1.v_WBcm_W;
+    r.w_WB_W = R * s1.w_WB_B;
+    r.dv_WBcm_W = s1.v_WBcm_W - s0.v_WBcm_W;
+    r.dw_WB_W = R * (s1.w_WB_B - s0.w_WB_B);
+    r.H_Bcm_W = R * (body.I_BBcm_B() * s1.w_WB_B);
+    r.dH_Bcm_W = R * (body.I_BBcm_B() * (s1.w_WB_B - s0.w_WB_B));
+    for (const JumpImpulse& j : impulses) {
+      if (j.body == b) r.impulses.push_back(j.impulse);
+    }
+    AddSupportImpulses(model, after, data, mu, b, r.impulses);
+    jump.bodies.push_back(std::move(r));
+  }
 }
 
 StudyLedger FinalLedger(const StudyDefinition& definition, const Model& model, const State& state,

@@ -223,8 +223,9 @@ ConstraintViolation CalcConstraintViolation(const Model& model, const State& sta
 }
 
 void ProjectOntoConstraints(const Model& model, State& state, Data& data,
-                            const ProjectionOptions& options) {
+                            const ProjectionOptions& options, VectorXd* velocity_impulse) {
   CheckDataFor(model, data);
+  if (velocity_impulse != nullptr) velocity_impulse->setZero(model.num_constraint_rows());
   if (model.num_constraints() == 0) return;
   const int nb = model.num_bodies();
   std::vector<int> hol;  // holonomic rows
@@ -293,8 +294,12 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
   data.schur.noalias() = data.JMinv * data.J.transpose();
   VectorXd r = res;
   internal::HoldReleasedRows(data.row_released, data.schur, r);
-  SolveSchur(model, nullptr, data.schur, data.schur_ldlt.ldlt, r, mu, nullptr, 0.0);
+  // Asked for the impulse, redundant rows get the reactions' weighted least-norm split
+  // (SolveSchur): du is the same whatever the split.
+  SolveSchur(model, nullptr, data.schur, data.schur_ldlt.ldlt, r, mu, nullptr, 0.0,
+             velocity_impulse != nullptr ? &data : nullptr);
   const VectorXd du = -data.JMinv.transpose() * mu;
+  if (velocity_impulse != nullptr) *velocity_impulse = -mu;  // du = M⁻¹ Jᵀ (-mu)
   for (int b = 0; b < nb; ++b) {
     const auto i = static_cast<size_t>(b);
     BodyState& bs = state.bodies[i];
@@ -302,6 +307,17 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
     bs.w_WB_B += data.R_WB[i].transpose() * du.segment<3>(6 * b + 3);
   }
   CalcKinematics(model, state, data);  // leave the kinematics stage consistent with `state`
+}
+
+void CalcConstraintReactions(const Model& model, const State& state, const VectorXd& lambda,
+                             Data& data) {
+  CheckDataFor(model, data);
+  if (lambda.size() != model.num_constraint_rows()) {
+    throw UsageError(fmt::format("CalcConstraintReactions: {} multipliers for {} constraint rows",
+                                 lambda.size(), model.num_constraint_rows()));
+  }
+  data.lambda = lambda;
+  internal::FillConstraintReactions(model, state, data);
 }
 
 }  // namespace chasles

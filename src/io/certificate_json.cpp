@@ -26,7 +26,9 @@ nlohmann::json CertificateJson(const Certificate& c) {
             {"moment", c.moment_scale},
             {"length", c.length_scale},
             {"velocity", c.velocity_scale},
-            {"energy", c.energy_scale}}},
+            {"energy", c.energy_scale},
+            {"impulse", c.impulse_scale},
+            {"angular_impulse", c.angular_impulse_scale}}},
           {"checks", checks}};
 }
 

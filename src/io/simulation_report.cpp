@@ -74,7 +74,59 @@ nlohmann::json SnapshotJson(const StudySnapshot& snap, bool planar) {
 
 namespace {
 
-nlohmann::json JumpsJson(const std::vector<StudyJump>& jumps) {
+/// The supports' impulsive reactions of a jump (StudyJump::reactions): impulses on the child
+/// at the joint point, in W, in the child's frame and in the parent's [N·s, N·m·s].
+nlohmann::json ImpulsiveReactionsJson(const std::vector<StudyReaction>& reactions, bool planar) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& x : reactions) {
+    out.push_back({{"name", x.name},
+                   {"kind", x.kind},
+                   {"point", VecJson(x.p_WJ)},
+                   {"impulse", VecJson(x.F_Jc_W)},
+                   {"moment_impulse", VecJson(x.M_Jc_W)},
+                   {"impulse_body", VecJson(x.F_Jc_B)},
+                   {"moment_impulse_body", VecJson(x.M_Jc_B)},
+                   {"impulse_parent", VecJson(x.F_Jc_P)},
+                   {"moment_impulse_parent", VecJson(x.M_Jc_P)},
+                   {"multipliers", x.lambda}});
+    if (planar) {
+      out.back()["planar"] = {{"Jx", x.F_Jc_W.x()}, {"Jy", x.F_Jc_W.y()}, {"Mz", x.M_Jc_W.z()}};
+    }
+  }
+  return out;
+}
+
+/// Every body's velocity jumps and the impulses on it (StudyJump::bodies), so that m Δv = ΣJ
+/// and ΔH_cm = Σ (r × J + M) can be checked from the JSON alone.
+nlohmann::json JumpBodiesJson(const std::vector<BodyImpulseBalance>& bodies, bool planar) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& b : bodies) {
+    nlohmann::json impulses = nlohmann::json::array();
+    for (const BodyImpulse& i : b.impulses) {
+      impulses.push_back({{"source", i.source},
+                          {"point", VecJson(i.p_WP)},
+                          {"impulse", VecJson(i.J_W)},
+                          {"moment_impulse", VecJson(i.M_W)}});
+    }
+    out.push_back({{"name", b.body},
+                   {"mass", b.mass},
+                   {"center_of_mass", VecJson(b.p_WBcm)},
+                   {"velocity_after", VecJson(b.v_WBcm_W)},
+                   {"angular_velocity_after", VecJson(b.w_WB_W)},
+                   {"velocity_change", VecJson(b.dv_WBcm_W)},
+                   {"angular_velocity_change", VecJson(b.dw_WB_W)},
+                   {"angular_momentum_after", VecJson(b.H_Bcm_W)},
+                   {"angular_momentum_change", VecJson(b.dH_Bcm_W)},
+                   {"impulses", impulses}});
+    if (planar) {
+      out.back()["planar"] = {
+          {"dvx", b.dv_WBcm_W.x()}, {"dvy", b.dv_WBcm_W.y()}, {"domega", b.dw_WB_W.z()}};
+    }
+  }
+  return out;
+}
+
+nlohmann::json JumpsJson(const std::vector<StudyJump>& jumps, bool planar) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& x : jumps) {
     out.push_back({{"kind", x.kind},
@@ -84,7 +136,10 @@ nlohmann::json JumpsJson(const std::vector<StudyJump>& jumps) {
                    {"energy_after", x.energy_after},
                    {"energy_change", x.energy_after - x.energy_before},
                    {"velocity_after", VecJson(x.v_after_W)},
-                   {"angular_velocity_after", VecJson(x.w_after_W)}});
+                   {"angular_velocity_after", VecJson(x.w_after_W)},
+                   {"reactions", ImpulsiveReactionsJson(x.reactions, planar)},
+                   {"bodies", JumpBodiesJson(x.bodies, planar)},
+                   {"impacts", x.impacts}});
   }
   return out;
 }
@@ -185,7 +240,7 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
                            {"stopped", e.stopped},
                            {"state", SnapshotJson(e.snapshot, header.planar)}});
   }
-  j["jumps"] = JumpsJson(r.jumps);
+  j["jumps"] = JumpsJson(r.jumps, header.planar);
   j["final"] =
       SnapshotJson({r.final_bodies, r.final_reactions, r.final_contacts, {}}, header.planar);
   j["final"]["t"] = r.t_end;

@@ -308,3 +308,30 @@ def test_pool_balls_event_driven():
     assert run.certificate.passed
     assert chasles.run(chasles.load_scene(example("problem-8.26-spinning-ball.yaml"))) \
         .event_driven is None
+
+
+def test_struck_double_pendulum_pin_impulses():
+    # examples/double-pendulum-struck.yaml (closed forms in its comments): hanging rods
+    # (m1 = 2 kg, L1 = 1 m; m2 = 1 kg, L2 = 0.8 m) struck along x by J = 3 N*s at s = 0.6 m
+    # below the elbow. With M11 = (m1/3 + m2) L1^2, M12 = m2 L1 L2/2, M22 = m2 L2^2/3 the
+    # angular velocity jumps are M^-1 (J L1, J s); impulse-momentum of each rod gives the pins'
+    # impulses R_E = m2 (L1 w1 + L2 w2/2) - J and R_O = m1 (L1/2) w1 + R_E along x.
+    m1, L1, m2, L2, s, J = 2.0, 1.0, 1.0, 0.8, 0.6, 3.0
+    M12 = m2 * L1 * L2 / 2
+    M = np.array([[(m1 / 3 + m2) * L1**2, M12], [M12, m2 * L2**2 / 3]])
+    w1, w2 = np.linalg.solve(M, [J * L1, J * s])
+    R_E = m2 * (L1 * w1 + L2 * w2 / 2) - J
+    R_O = m1 * L1 / 2 * w1 + R_E
+    run = chasles.run(chasles.load_scene(example("double-pendulum-struck.yaml")))
+    (jump,) = run.jumps
+    pins = {r.name: r for r in jump.reactions}
+    assert_rel(pins["O"].force, [R_O, 0, 0], 1e-12, J)
+    assert_rel(pins["elbow"].force, [R_E, 0, 0], 1e-12, J)
+    # The elbow's parent is the upper rod, hanging: its x axis is W's -y, its y axis W's x.
+    assert_rel(pins["elbow"].force_parent, [0, R_E, 0], 1e-12, J)
+    upper, lower = jump.bodies
+    assert_rel(upper.angular_velocity_change, [0, 0, w1], 1e-12, w2)
+    assert_rel(lower.velocity_change, [L1 * w1 + L2 / 2 * w2, 0, 0], 1e-12, J / m2)
+    assert [i.source for i in lower.impulses][:2] == ["applied", "elbow"]
+    assert jump.impacts == []
+    assert run.certificate.passed

@@ -3,9 +3,10 @@
 /// The certificate: a run (or an instantaneous solve) checks its own answer at every output
 /// sample and at every event — the Coulomb cone of sticking points, the kinetic friction of
 /// sliding points, N >= 0, gaps, constraint residuals, the work-energy ledger and the
-/// Newton–Euler balance of every body with all the forces that act on it (docs/contact.md,
-/// "Certificate"). Each check compares its worst value with a tolerance scaled by the
-/// problem's own sizes (force, moment, length, velocity, energy), never a bare number.
+/// Newton–Euler balance of every body with all the forces that act on it — and at every
+/// impulse or impact the impulse-momentum balance of every body with all the impulses on it
+/// (docs/contact.md, "Certificate"). Each check compares its worst value with a tolerance scaled by
+/// the problem's own sizes (force, moment, length, velocity, energy), never a bare number.
 ///
 /// Use: a CertificateBuilder is fed states (CheckState) and ledger residuals (CheckLedger) in
 /// any order; Finish() turns what it saw into a Certificate. The scales are those of the whole
@@ -37,10 +38,55 @@ struct CertificateTolerances {
   /// The ledger residual E - E0 - W_nc - jumps, relative to the energy scale: the global
   /// integration error of the whole run (raised likewise with a looser tolerance).
   double ledger = 1e-7;
+  /// Impulse-momentum balance of every body at an impulse or impact (CheckImpulseBalance):
+  /// the velocity jumps and the supports' impulses come from one projection (a linear solve)
+  /// and the contact impacts' impulses, exact up to round-off as the force-level checks are;
+  /// relative to the impulse scale (the largest impulse or momentum change of the run's jumps)
+  /// or the angular impulse scale.
+  double impulse = 1e-11;
 };
 
 /// When a state was checked.
-enum class CheckPhase { kSample, kEvent, kBeforeTransition, kAfterTransition, kSolve };
+enum class CheckPhase { kSample, kEvent, kBeforeTransition, kAfterTransition, kSolve, kJump };
+
+/// One impulse on a body over an impulsive instant (chapter 8.5): a force impulse J at a point
+/// P and a moment impulse about P.
+struct BodyImpulse {
+  /// Where it comes from: "applied" (an impulse, or a projectile passing through), a
+  /// constraint's name (its share on this body), "contact '<point>'" (an impact or a jam).
+  std::string source;
+  /// P in W [m].
+  Vec3 p_WP = Vec3::Zero();
+  /// Force impulse, in W [N·s].
+  Vec3 J_W = Vec3::Zero();
+  /// Moment impulse about P, in W [N·m·s].
+  Vec3 M_W = Vec3::Zero();
+};
+
+/// One body over an impulsive instant: its velocity jumps and every impulse on it, so that the
+/// impulse-momentum principle (eqs. 8.118, 8.119) is checkable from these values alone:
+///   m Δv_cm = Σ J,   ΔH_cm = Σ (p_WP - p_WBcm) × J + M,
+/// with ΔH_cm = I_W Δω (the positions do not move over the instant). For a body made at the
+/// instant (a projectile embedding in a target) "before" is the two bodies' momentum as one
+/// body: Δ is then what the supports did.
+struct BodyImpulseBalance {
+  /// Name of the body.
+  std::string body;
+  /// Mass [kg] and centre of mass in W [m].
+  double mass = 0.0;
+  Vec3 p_WBcm = Vec3::Zero();
+  /// Velocity of the centre of mass and angular velocity just after, in W [m/s, rad/s].
+  Vec3 v_WBcm_W = Vec3::Zero();
+  Vec3 w_WB_W = Vec3::Zero();
+  /// Their jumps over the instant, in W [m/s, rad/s].
+  Vec3 dv_WBcm_W = Vec3::Zero();
+  Vec3 dw_WB_W = Vec3::Zero();
+  /// Angular momentum about the centre of mass just after, and its jump, in W [kg·m²/s].
+  Vec3 H_Bcm_W = Vec3::Zero();
+  Vec3 dH_Bcm_W = Vec3::Zero();
+  /// Every impulse on the body.
+  std::vector<BodyImpulse> impulses;
+};
 
 /// "sample", "event", "before a contact transition", ...
 const char* CheckPhaseName(CheckPhase phase);
@@ -67,9 +113,10 @@ struct CheckResult {
 
 struct Certificate {
   std::vector<CheckResult> checks;
-  /// The scales the tolerances multiply [N, N·m, m, m/s, J].
+  /// The scales the tolerances multiply [N, N·m, m, m/s, J, N·s, N·m·s] (the last two 0 for a
+  /// run without impulses or impacts).
   double force_scale = 0.0, moment_scale = 0.0, length_scale = 0.0, velocity_scale = 0.0,
-         energy_scale = 0.0;
+         energy_scale = 0.0, impulse_scale = 0.0, angular_impulse_scale = 0.0;
   bool passed() const;
   /// One sentence per failed check (the warnings of a report).
   std::vector<std::string> FailureMessages() const;
@@ -85,6 +132,9 @@ class CertificateBuilder {
   void CheckState(const Model& model, const State& state, CheckPhase phase);
   /// Checks the ledger residual [J] against the energy scale [J] at time t.
   void CheckLedger(double t, double residual, double energy_scale, CheckPhase phase);
+  /// Checks every body's impulse-momentum balance over the impulsive instant at time t
+  /// (BodyImpulseBalance), from the values given.
+  void CheckImpulseBalance(double t, const std::vector<BodyImpulseBalance>& bodies);
 
   Certificate Finish() const;
 
@@ -92,7 +142,7 @@ class CertificateBuilder {
   /// One value of one check and what its tolerance scales with: the run's scale of its kind
   /// times `a` plus `b` (a constraint row mixes a length and an angle, a velocity and a rate:
   /// a L + b, a V + b Ω), or `local_scale` (the size of the value's own terms) if larger.
-  enum class Scale { kForce, kMoment, kLength, kVelocity, kEnergy };
+  enum class Scale { kForce, kMoment, kLength, kVelocity, kEnergy, kImpulse, kAngularImpulse };
   struct Entry {
     int check;
     double value;
@@ -105,9 +155,9 @@ class CertificateBuilder {
   };
   void Add(int check, double value, Scale scale, double a, double b, double local_scale,
            std::string where, double t, CheckPhase phase);
-  /// The moment, velocity and rate scales derived from the run's scales so far.
+  /// The moment, velocity, rate and angular impulse scales derived from the run's scales so far.
   struct Scales {
-    double moment = 0.0, velocity = 0.0, rate = 0.0;
+    double moment = 0.0, velocity = 0.0, rate = 0.0, angular_impulse = 0.0;
   };
   Scales CurrentScales() const;
   double Tolerance(const Entry& e, const Scales& k) const;
@@ -146,6 +196,9 @@ class CertificateBuilder {
   /// [m/s], angular speed [rad/s], energy [J], radius of gyration [m].
   double force_ = 0.0, moment_ = 0.0, length_ = 0.0, velocity_ = 0.0, rate_ = 0.0, energy_ = 0.0,
          radius_ = 0.0;
+  /// The jumps' scales so far: largest impulse or momentum change [N·s], angular impulse or
+  /// angular momentum change [N·m·s].
+  double impulse_ = 0.0, angular_impulse_ = 0.0;
   /// Largest total mass of the models checked [kg].
   double mass_ = 0.0;
 };

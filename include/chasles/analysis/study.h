@@ -184,6 +184,11 @@ struct StudyDefinition {
   bool record_row_snapshots = false;
 };
 
+/// The reaction of one constraint (name, kind, point, force and moment in W, in the child's frame
+/// and in the parent's, power): the same record `SolveInstantaneous` reports, made from the
+/// constraint stage's ConstraintOutput by MakeReactionReport.
+using StudyReaction = ReactionReport;
+
 /// An impulse or impact applied during the run.
 struct StudyJump {
   /// "impulse", "embedding" or "pass-through".
@@ -199,6 +204,20 @@ struct StudyJump {
   /// in W [m/s, rad/s].
   Vec3 v_after_W = Vec3::Zero();
   Vec3 w_after_W = Vec3::Zero();
+  /// The supports' impulsive reaction over the instant, for every reported joint, rolling
+  /// contact, driver and gear (Model order, as StudySnapshot::reactions): the impulse of the
+  /// parent's reaction on the child, a force impulse [N·s] and a moment impulse about J
+  /// [N·m·s], in W (F_Jc_W, M_Jc_W), in the child's frame and in the parent's; `lambda` the
+  /// rows' impulses, a rolling contact's normal and friction impulses in `normal_force` and
+  /// `friction_W`; `power` 0 (docs/constraints.md, "Impulsive reactions").
+  std::vector<StudyReaction> reactions;
+  /// Every body of the Model after the instant, with its velocity jumps and every impulse on
+  /// it: the applied one, each constraint's share (a planar scene's plane constraints too) and
+  /// each contact impact's, so that its impulse-momentum balance is checkable from these alone
+  /// (the certificate checks it).
+  std::vector<BodyImpulseBalance> bodies;
+  /// Indices into StudyResult::impacts of the contact impacts and jams of this instant.
+  std::vector<int> impacts;
 };
 
 /// A mode change of one contact point (the mode timeline; the initial modes come first, with
@@ -325,11 +344,6 @@ struct StudyLedger {
   Vec3 angular_momentum_Scm_W = Vec3::Zero();
   Vec3 angular_momentum_Wo_W = Vec3::Zero();
 };
-
-/// The reaction of one constraint (name, kind, point, force and moment in W and in the child's
-/// frame, power): the same record `SolveInstantaneous` reports, made from the constraint stage's
-/// ConstraintOutput by MakeReactionReport.
-using StudyReaction = ReactionReport;
 
 /// One force (or pure moment) a force element applies at one instant (AppliedForceRecord with
 /// names): gravity on each body, an applied force, each end of a spring, a drive's moment.

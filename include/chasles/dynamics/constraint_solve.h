@@ -63,7 +63,24 @@ struct ProjectionOptions {
 /// Projects `state` onto the constraint manifold: positions (Gauss–Newton, mass-weighted),
 /// then velocities (exact). Leaves models without constraints unchanged. Throws InputError
 /// naming the constraint when the positions cannot be assembled.
+///
+/// With `velocity_impulse` given it receives the multipliers μ of the velocity step, one per
+/// constraint row, signed as the constraint stage's λ: du = M⁻¹ Jᵀ μ. At an impulsive instant
+/// this step is the ideal supports' response (chapter 8.5, eqs. 8.118-8.119 with the supports'
+/// impulse Jᵀ μ on the right: M du = Jᵀ μ with J (u + du) = b), so μ are the supports'
+/// impulsive reactions [N·s or N·m·s per row]; zero when the velocities were on the
+/// constraints already. CalcConstraintReactions turns them into each constraint's reaction.
 void ProjectOntoConstraints(const Model& model, State& state, Data& data,
-                            const ProjectionOptions& options = {});
+                            const ProjectionOptions& options = {},
+                            Eigen::VectorXd* velocity_impulse = nullptr);
+
+/// Sets Data::lambda to `lambda` (one multiplier per constraint row) and fills Data::constraints
+/// from it at `state`, as the constraint stage does from its own λ: each constraint's share of
+/// Jᵀλ on its child, moved to the joint point, in W and in the child's frame, and its power
+/// λᵀ J u. For multipliers found elsewhere, such as the velocity impulse of
+/// ProjectOntoConstraints (the reactions are then impulses: N·s and N·m·s). Needs the rows at
+/// `state` (CalcKinematics, then CalcConstraintRows).
+void CalcConstraintReactions(const Model& model, const State& state, const Eigen::VectorXd& lambda,
+                             Data& data);
 
 }  // namespace chasles

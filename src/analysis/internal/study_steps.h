@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "chasles/analysis/ledger.h"
@@ -104,14 +105,48 @@ struct Segment {
 /// The first segment: one Model body per user body, the identity map.
 Segment FirstSegment(const StudyDefinition& definition);
 
-/// Applies an impulse to `state`; returns the Model body to show in the jump's record.
-int ApplyStudyImpulse(const StudyImpulseSpec& impulse, const Segment& seg, State& state);
+/// An impulse on a Model body at a jump (applied, or a contact's), its point and values in W.
+struct JumpImpulse {
+  int body = 0;
+  BodyImpulse impulse;
+};
+
+/// Applies an impulse to `state`; returns the Model body to show in the jump's record. Appends
+/// the impulse to `applied` when given.
+int ApplyStudyImpulse(const StudyImpulseSpec& impulse, const Segment& seg, State& state,
+                      std::vector<JumpImpulse>* applied = nullptr);
 
 /// Applies an impact: a pass-through changes `state`; an embedding replaces `seg` (the
 /// composite body, the new map and Model built by `build`) and `state`. Returns the Model body
-/// to show. Throws InputError when the two are already one body.
+/// to show. Throws InputError when the two are already one body. A pass-through appends its
+/// impulses to `applied` when given (J on the target at the projectile's centre, -J on the
+/// projectile); an embedding none (the composite's momentum is the two bodies').
 int ApplyStudyImpact(const StudyImpactSpec& impact, const ModelBuilder& build, Segment& seg,
-                     State& state);
+                     State& state, std::vector<JumpImpulse>* applied = nullptr);
+
+/// The impulses of contact impacts and jams at `state` (after them: the positions are those of
+/// the instant), each given as (contact point, impulse on the contact's body in W): on the
+/// body at the contact point, and the opposite on the other body (a sphere-sphere contact) at
+/// its own surface point, C - gap n. Labelled "contact '<label>'".
+std::vector<JumpImpulse> ContactJumpImpulses(const Model& model, const State& state,
+                                             const std::vector<std::pair<int, Vec3>>& impulses,
+                                             const std::vector<std::string>& labels);
+
+/// The supports' impulse (multipliers per constraint row, du = M⁻¹ Jᵀ μ) that goes with
+/// impulses given on the bodies of a constrained Model at `state` (on the constraints): that
+/// of the ideal supports' response, found by applying them to a copy and projecting it
+/// (ProjectOntoConstraints). Contact impacts take the constraints' share with them this way
+/// (impact.h: the inverse mass restricted to the constraints), so this recovers it.
+Eigen::VectorXd SupportImpulseOf(const Model& model, const State& state,
+                                 const std::vector<JumpImpulse>& impulses);
+
+/// Fills jump.reactions (the first `num_reported_constraints`, -1: all) and jump.bodies: the
+/// constraints' impulsive reactions from the multipliers `mu` at `after`, and every body's
+/// velocity jumps from `before` to `after` (same Model) with the impulses on it: `impulses`
+/// (applied and contacts) and every constraint's share of Jᵀμ at its joint point.
+void RecordJumpImpulses(const Model& model, const State& before, const State& after,
+                        const Eigen::VectorXd& mu, const std::vector<JumpImpulse>& impulses,
+                        int num_reported_constraints, StudyJump& jump);
 
 /// The ledger at the end of the run.
 StudyLedger FinalLedger(const StudyDefinition& definition, const Model& model, const State& state,

@@ -174,5 +174,65 @@ TEST(Certificate, LongRunsKeepTheWorstValue) {
   EXPECT_FALSE(r.passed());
 }
 
+// Section 8.5: a cube (mass m, side a) at rest, its frame at a corner, struck at the corner
+// (a, 0, 0) by J along y. Impulse-momentum (eqs. 8.118, 8.119): m Δv = J, and about the centre
+// (a/2)(1, 1, 1) ΔH = r × J with r = (a/2)(1, -1, -1). The balance made from these passes; one
+// with a wrong impulse or an extra moment impulse fails with the error as its worst value.
+struct StruckCube {
+  double m = 3.0, a = 0.5;
+  Vec3 J = Vec3(0, 2, 0);
+  BodyImpulseBalance Balance() const {
+    BodyImpulseBalance b;
+    b.body = "cube";
+    b.mass = m;
+    b.p_WBcm = Vec3::Constant(a / 2);
+    const Vec3 r = Vec3(a, 0, 0) - b.p_WBcm;
+    b.dv_WBcm_W = b.v_WBcm_W = J / m;
+    b.dH_Bcm_W = b.H_Bcm_W = r.cross(J);
+    b.dw_WB_W = b.w_WB_W = b.dH_Bcm_W / (m * a * a / 6);  // I = m a²/6 E (Appendix A)
+    b.impulses = {{"applied", Vec3(a, 0, 0), J, Vec3::Zero()}};
+    return b;
+  }
+};
+
+TEST(Certificate, ImpulseBalanceOfAStruckCubePassesAndAWrongImpulseFails) {
+  const StruckCube cube;
+  CertificateTolerances tol;
+  {
+    CertificateBuilder builder(tol);
+    builder.CheckImpulseBalance(0.1, {cube.Balance()});
+    const Certificate c = builder.Finish();
+    for (const char* name : {"linear impulse balance", "angular impulse balance"}) {
+      EXPECT_EQ(Find(c, name).count, 1) << name;
+      EXPECT_TRUE(Find(c, name).passed()) << name;
+      EXPECT_LE(Find(c, name).worst, kExact * cube.J.norm()) << name;
+    }
+    EXPECT_EQ(c.impulse_scale, cube.J.norm());
+  }
+  // The impulse reported 0.1 % too large: m Δv - J' = -0.001 J.
+  BodyImpulseBalance wrong = cube.Balance();
+  wrong.impulses[0].J_W *= 1.001;
+  CertificateBuilder builder(tol);
+  builder.CheckImpulseBalance(0.1, {wrong});
+  const Certificate c = builder.Finish();
+  const CheckResult& linear = Find(c, "linear impulse balance");
+  EXPECT_FALSE(linear.passed());
+  EXPECT_NEAR(linear.worst, 0.001 * cube.J.norm(), kExact);
+  EXPECT_EQ(linear.where, "body 'cube'");
+  EXPECT_EQ(linear.t, 0.1);
+  EXPECT_EQ(linear.phase, CheckPhase::kJump);
+  EXPECT_FALSE(Find(c, "angular impulse balance").passed());
+  EXPECT_FALSE(c.passed());
+  // A moment impulse the body did not take: only the angular balance fails, by its size.
+  BodyImpulseBalance extra = cube.Balance();
+  extra.impulses.push_back({"extra", Vec3::Zero(), Vec3::Zero(), Vec3(0, 0, 1e-4)});
+  CertificateBuilder again(tol);
+  again.CheckImpulseBalance(0.2, {extra});
+  const Certificate e = again.Finish();
+  EXPECT_TRUE(Find(e, "linear impulse balance").passed());
+  EXPECT_FALSE(Find(e, "angular impulse balance").passed());
+  EXPECT_NEAR(Find(e, "angular impulse balance").worst, 1e-4, kExact);
+}
+
 }  // namespace
 }  // namespace chasles

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "chasles/analysis/instantaneous.h"
+#include "chasles/dynamics/impulse.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
 #include "chasles/integrate/simulate.h"
@@ -244,6 +245,47 @@ TEST(ConstraintSolve, RedundantHingesGiveLeastNormReactionsAndAWarning) {
   const ConstraintViolation v = CalcConstraintViolation(model, r.final_state, data);
   EXPECT_LT(v.position, 1e-12);
   EXPECT_LT(v.velocity, 1e-12);
+}
+
+// The same rod hanging straight down (mass m, length L, its centre at (0, -L/2, 0)) on the two
+// hinges, struck at its lower end by J along z. About the hinge axis (chapter 8.5, eq. 8.119)
+// (m L²/3) Δω_x = (r_P × J)_x = -L J, so Δω_x = -3 J / (m L) and Δv_cm = 3 J / (2 m) along z;
+// eq. 8.118 then gives the supports' impulse R = m Δv_cm - J = J/2 along z, shared equally by
+// the two hinges (the weighted least-norm split of the redundant rows, as for the forces).
+// ProjectOntoConstraints hands out the velocity step's multipliers and CalcConstraintReactions
+// turns them into each hinge's impulse at its point.
+TEST(ConstraintSolve, TheProjectionsMultipliersAreTheSupportsImpulses) {
+  const double m = 2.0, L = 1.2, J = 0.9;
+  Model model;
+  model.AddBody("rod", Box(m, Vec3(m * L * L / 12, 0.01, m * L * L / 12)));
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Vec3(0, -L / 2, 0), Quat::Identity(), s);
+  const Mat3 R = FrameWithZAxis(Vec3::UnitX());
+  for (const double x : {-0.4, 0.4}) {
+    model.AddConstraint(
+        std::make_shared<Joint>(x < 0 ? "hinge left" : "hinge right", JointKind::kRevolute, kWorld,
+                                AttachmentFrame{Vec3(x, 0, 0), R}, 0,
+                                AttachmentFrameAtWorldPose(model, s, 0, Vec3(x, 0, 0), R)));
+  }
+  ApplyImpulseAtWorldPoint(model, 0, Vec3(0, -L, 0), Vec3(0, 0, J), s);
+  Data data = MakeData(model);
+  Eigen::VectorXd mu;
+  ProjectOntoConstraints(model, s, data, {}, &mu);
+  ASSERT_EQ(mu.size(), model.num_constraint_rows());
+  EXPECT_TRUE(test::MatNear(s.bodies[0].v_WBcm_W, Vec3(0, 0, 1.5 * J / m), 1e-14));
+  EXPECT_TRUE(test::MatNear(Vec3(s.bodies[0].q_WB * s.bodies[0].w_WB_B),
+                            Vec3(-3 * J / (m * L), 0, 0), 1e-14));
+  CalcConstraintRows(model, s, data);
+  CalcConstraintReactions(model, s, mu, data);
+  for (int c = 0; c < 2; ++c) {
+    const ConstraintOutput& o = data.constraints[static_cast<size_t>(c)];
+    EXPECT_TRUE(test::MatNear(o.F_Jc_W, Vec3(0, 0, J / 4), 1e-14, J)) << c;
+    EXPECT_TRUE(test::MatNear(o.M_Jc_W, Vec3::Zero(), 1e-14, J * L)) << c;
+  }
+  // On the constraints already (to round-off): no impulse beyond round-off.
+  ProjectOntoConstraints(model, s, data, {}, &mu);
+  EXPECT_LE(mu.cwiseAbs().maxCoeff(), 1e-14 * J);
+  EXPECT_THROW(CalcConstraintReactions(model, s, Eigen::VectorXd::Zero(3), data), UsageError);
 }
 
 TEST(ConstraintSolve, InconsistentDriversAreAnInputErrorNamingThem) {

@@ -15,6 +15,8 @@ TEST(CertificateJson, ListsEveryCheckWithWhereAndWhenOnlyForThoseThatApplied) {
   c.length_scale = 0.5;
   c.velocity_scale = 3.0;
   c.energy_scale = 7.0;
+  c.impulse_scale = 4.0;
+  c.angular_impulse_scale = 1.5;
   CheckResult applied;
   applied.name = "gap";
   applied.description = "penetration";
@@ -32,10 +34,13 @@ TEST(CertificateJson, ListsEveryCheckWithWhereAndWhenOnlyForThoseThatApplied) {
 
   const nlohmann::json j = CertificateJson(c);
   EXPECT_FALSE(j["passed"].get<bool>());  // 2e-9 > 1e-9
-  EXPECT_EQ(
-      j["scales"],
-      nlohmann::json(
-          {{"force", 10.0}, {"moment", 2.0}, {"length", 0.5}, {"velocity", 3.0}, {"energy", 7.0}}));
+  EXPECT_EQ(j["scales"], nlohmann::json({{"force", 10.0},
+                                         {"moment", 2.0},
+                                         {"length", 0.5},
+                                         {"velocity", 3.0},
+                                         {"energy", 7.0},
+                                         {"impulse", 4.0},
+                                         {"angular_impulse", 1.5}}));
   ASSERT_EQ(j["checks"].size(), 2u);
   const nlohmann::json& a = j["checks"][0];
   EXPECT_EQ(a["name"], "gap");
