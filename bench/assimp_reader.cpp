@@ -32,6 +32,7 @@ MeshFileData ReadWithAssimp(const std::string& path) {
   }
   MeshFileData data;
   data.format = "assimp";
+  data.single_precision = true;  // assimp's ai_real is a float
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* mesh = scene->mMeshes[m];
     if ((mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
@@ -42,9 +43,9 @@ MeshFileData ReadWithAssimp(const std::string& path) {
     data.xyz.reserve(data.xyz.size() + 3 * std::size_t{mesh->mNumVertices});
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
       const aiVector3D& p = mesh->mVertices[v];
-      data.xyz.push_back(static_cast<float>(p.x));
-      data.xyz.push_back(static_cast<float>(p.y));
-      data.xyz.push_back(static_cast<float>(p.z));
+      data.xyz.push_back(static_cast<double>(p.x));
+      data.xyz.push_back(static_cast<double>(p.y));
+      data.xyz.push_back(static_cast<double>(p.z));
     }
     for (unsigned t = 0; t < mesh->mNumFaces; ++t) {
       const aiFace& face = mesh->mFaces[t];

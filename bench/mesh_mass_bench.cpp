@@ -55,13 +55,16 @@ const TriangleMesh& Torus() {
   return mesh;
 }
 
-// The torus as an STL stores it: three float vertices per triangle, nothing shared.
+// The torus as a binary STL stores it and ReadMeshFile returns it: three float vertices per
+// triangle (widened to double), nothing shared.
 const MeshFileData& Soup() {
   static const MeshFileData soup = [] {
     MeshFileData d;
     for (const TriangleIndices& t : Torus().triangles) {
       for (std::uint32_t i : t) {
-        for (int k = 0; k < 3; ++k) d.xyz.push_back(static_cast<float>(Torus().vertices[i][k]));
+        for (int k = 0; k < 3; ++k) {
+          d.xyz.push_back(static_cast<double>(static_cast<float>(Torus().vertices[i][k])));
+        }
       }
     }
     for (std::size_t i = 0; i < d.xyz.size() / 3; ++i) d.indices.push_back(std::uint32_t(i));
@@ -84,8 +87,10 @@ struct TempStl {
     const float normal[3] = {0, 0, 0};
     const std::uint16_t attr = 0;
     for (std::size_t t = 0; t < n; ++t) {
+      float xyz[9];
+      for (int k = 0; k < 9; ++k) xyz[k] = static_cast<float>(Soup().xyz[9 * t + k]);
       f.write(reinterpret_cast<const char*>(normal), 12);
-      f.write(reinterpret_cast<const char*>(Soup().xyz.data() + 9 * t), 36);
+      f.write(reinterpret_cast<const char*>(xyz), 36);
       f.write(reinterpret_cast<const char*>(&attr), 2);
     }
   }
@@ -133,7 +138,7 @@ void BM_Weld(benchmark::State& state) {
   for (auto _ : state) {
     MeshRepairReport report;
     TriangleMesh m =
-        BuildTriangleMesh(std::span<const float>(soup.xyz),
+        BuildTriangleMesh(std::span<const double>(soup.xyz),
                           std::span<const std::uint32_t>(soup.indices), 1.0, tolerance, &report);
     benchmark::DoNotOptimize(m.vertices.data());
   }
@@ -145,7 +150,7 @@ BENCHMARK(BM_Weld)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 // std::unordered_map from the three coordinates' bits to the vertex index (what one writes
 // first), into the same triangle array.
 struct CornerHash {
-  std::size_t operator()(const std::array<std::uint32_t, 3>& k) const noexcept {
+  std::size_t operator()(const std::array<std::uint64_t, 3>& k) const noexcept {
     return (std::size_t{k[0]} * 0x9E3779B97F4A7C15ULL) ^
            (std::size_t{k[1]} * 0xC2B2AE3D27D4EB4FULL) ^ k[2];
   }
@@ -154,14 +159,14 @@ void BM_WeldReferenceUnorderedMap(benchmark::State& state) {
   const MeshFileData& soup = Soup();
   const std::size_t n = soup.xyz.size() / 3;
   for (auto _ : state) {
-    std::unordered_map<std::array<std::uint32_t, 3>, std::uint32_t, CornerHash> index;
+    std::unordered_map<std::array<std::uint64_t, 3>, std::uint32_t, CornerHash> index;
     std::vector<Vec3> vertices;
     std::vector<TriangleIndices> triangles(n / 3);
     for (std::size_t i = 0; i < n; ++i) {
-      const float* p = soup.xyz.data() + 3 * i;
-      const std::array<std::uint32_t, 3> key{std::bit_cast<std::uint32_t>(p[0]),
-                                             std::bit_cast<std::uint32_t>(p[1]),
-                                             std::bit_cast<std::uint32_t>(p[2])};
+      const double* p = soup.xyz.data() + 3 * i;
+      const std::array<std::uint64_t, 3> key{std::bit_cast<std::uint64_t>(p[0]),
+                                             std::bit_cast<std::uint64_t>(p[1]),
+                                             std::bit_cast<std::uint64_t>(p[2])};
       const auto [it, added] = index.try_emplace(key, std::uint32_t(vertices.size()));
       if (added) vertices.emplace_back(p[0], p[1], p[2]);
       triangles[i / 3][i % 3] = it->second;
@@ -235,7 +240,7 @@ void BM_EndToEndBinaryStlViaAssimp(benchmark::State& state) {
     const MeshFileData d = bench::ReadWithAssimp(path);
     MeshRepairReport report;
     TriangleMesh m =
-        BuildTriangleMesh(std::span<const float>(d.xyz), std::span<const std::uint32_t>(d.indices),
+        BuildTriangleMesh(std::span<const double>(d.xyz), std::span<const std::uint32_t>(d.indices),
                           1.0, std::nan(""), &report);
     ValidateSolid(m, &report);
     benchmark::DoNotOptimize(MassPropertiesFromIntegrals(CalcSolidIntegrals(m), 7850).mass());

@@ -2,9 +2,9 @@
 // integrate). Each input is read as every supported format, in memory, so one corpus of mesh
 // files serves all readers.
 // Promise: a malformed mesh is an InputError — never a crash, a hang, another exception, an
-// index out of range or a non-finite coordinate, or an allocation far beyond the input's size
-// (libFuzzer's -rss_limit_mb and -malloc_limit_mb catch those) — and a mesh that is accepted
-// has finite mass properties in solid and in shell mode.
+// index out of range, a coordinate that is not finite or beyond ±kMaxMeshCoordinate, or an
+// allocation far beyond the input's size (libFuzzer's -rss_limit_mb and -malloc_limit_mb catch
+// those) — and a mesh that is accepted has finite mass properties in solid and in shell mode.
 
 #include <cmath>
 #include <cstdint>
@@ -22,8 +22,10 @@ void CheckMesh(const chasles::MeshFileData& data, const char* ext) {
   if (data.xyz.size() % 3 != 0 || data.indices.size() % 3 != 0) {
     chasles::fuzz::Fail("a reader returned a partial vertex or triangle", ext);
   }
-  for (float c : data.xyz) {
-    if (!std::isfinite(c)) chasles::fuzz::Fail("a reader returned a non-finite coordinate", ext);
+  for (double c : data.xyz) {
+    if (!(std::abs(c) <= chasles::kMaxMeshCoordinate)) {
+      chasles::fuzz::Fail("a reader returned a coordinate beyond the mesh range", ext);
+    }
   }
   for (std::uint32_t i : data.indices) {
     if (i >= data.vertex_count()) chasles::fuzz::Fail("a reader returned a bad index", ext);
@@ -58,7 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         opts.density = 7850.0;
       }
       try {
-        std::vector<float> xyz = mesh.xyz;
+        std::vector<double> xyz = mesh.xyz;
         std::vector<std::uint32_t> indices = mesh.indices;
         const chasles::MeshMassResult r = chasles::ComputeMeshMassProperties(
             std::move(xyz), std::move(indices), opts, std::string("fuzz.") + ext);

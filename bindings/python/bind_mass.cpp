@@ -186,6 +186,11 @@ void BindMesh(py::module_& m) {
       .def_readonly("volume", &MeshMassReport::volume, "Enclosed volume [m^3] (solid mode)")
       .def_readonly("area", &MeshMassReport::area, "Surface area [m^2] (shell mode)")
       .def_readonly("density", &MeshMassReport::density, "Density used [kg/m^3 or kg/m^2]")
+      .def_readonly("single_precision", &MeshMassReport::single_precision,
+                    "True when the file stores floats (binary STL, binary PLY float)")
+      .def_readonly("float32_spacing", &MeshMassReport::float32_spacing,
+                    "Spacing of floats at the mesh's largest coordinate [m] (NaN for text and "
+                    "double files)")
       .def_property_readonly(
           "warnings", [](const MeshMassReport& r) { return r.repair.warnings; },
           "Repairs made and suspicious input");

@@ -436,7 +436,7 @@ void ReadBody(Values& in, const PlyHeader& h, const PlyLayout& l, MeshFileData& 
     }
     for (std::uint64_t r = 0; r < el.count; ++r) {
       if (is_face) fan.Start();
-      float xyz[3] = {0, 0, 0};
+      double xyz[3] = {0, 0, 0};
       for (std::size_t p = 0; p < el.properties.size(); ++p) {
         const PlyProperty& prop = el.properties[p];
         if (!prop.list) {
@@ -444,11 +444,11 @@ void ReadBody(Values& in, const PlyHeader& h, const PlyLayout& l, MeshFileData& 
           const double v = in.Value(prop.type, "a record");
           if (is_vertex && (p == l.x || p == l.y || p == l.z)) {
             const int k = p == l.x ? 0 : p == l.y ? 1 : 2;
-            if (!ToFiniteFloat(v, xyz[k])) {
-              in.FailAt(at, fmt::format("vertex {}: coordinate {} is {}, not a finite "
-                                        "single-precision number",
-                                        r, "xyz"[k], v));
+            if (!IsMeshCoordinate(v)) {
+              in.FailAt(at, fmt::format("vertex {}: coordinate {} is {}, {}", r, "xyz"[k], v,
+                                        kCoordinateRule));
             }
+            xyz[k] = v;
           }
           continue;
         }
@@ -490,6 +490,13 @@ MeshFileData ReadPly(std::string_view bytes, const std::string& name) {
   if (nv > UINT32_MAX) MeshFail(name, "more than 2^32 - 1 vertices");
   MeshFileData data;
   data.format = "PLY";
+  // Binary values are the declared type's (a float widened exactly); ascii ones are the double
+  // nearest to their text, whatever the declared type.
+  const std::vector<PlyProperty>& vertex = h.elements[l.vertex].properties;
+  data.single_precision =
+      h.encoding != PlyEncoding::kAscii &&
+      (vertex[l.x].type == PlyType::kFloat32 || vertex[l.y].type == PlyType::kFloat32 ||
+       vertex[l.z].type == PlyType::kFloat32);
   data.xyz.resize(3 * static_cast<std::size_t>(nv));
   if (h.encoding == PlyEncoding::kAscii) {
     AsciiValues in(bytes, h.body, name);

@@ -69,25 +69,27 @@ void CheckStlCount(const std::string& name, std::uint32_t n, std::uintmax_t size
   }
 }
 
-// Copies the 9 vertex coordinates of `count` records into `out` and checks them: the first
-// record is `first` (for messages).
+// Copies the 9 vertex coordinates of `count` records into `out`, each float widened exactly to
+// double, and checks them: the first record is `first` (for messages).
 void DecodeStlRecords(const unsigned char* records, std::size_t count, std::size_t first,
-                      float* out, const std::string& name) {
+                      double* out, const std::string& name) {
   for (std::size_t r = 0; r < count; ++r) {
-    // Skip the 12-byte normal; copy the 36 bytes of vertices; skip the attribute word.
+    // Skip the 12-byte normal; read the 36 bytes of vertices; skip the attribute word.
     const unsigned char* rec = records + r * kStlRecordBytes + 12;
+    float f[9];
     if constexpr (std::endian::native == std::endian::little) {
-      std::memcpy(out, rec, 36);
+      std::memcpy(f, rec, 36);
     } else {
-      for (int k = 0; k < 9; ++k) out[k] = std::bit_cast<float>(ReadU32LE(rec + 4 * k));
+      for (int k = 0; k < 9; ++k) f[k] = std::bit_cast<float>(ReadU32LE(rec + 4 * k));
     }
+    for (int k = 0; k < 9; ++k) out[k] = static_cast<double>(f[k]);
     for (int k = 0; k < 9; ++k) {
-      if (!std::isfinite(out[k])) {
+      if (!std::isfinite(f[k])) {
         const std::size_t t = first + r;
         throw InputError(fmt::format(
             "mesh file '{}': triangle {} has a non-finite vertex coordinate ({}) (byte offset "
             "{})",
-            name, t + 1, out[k], kStlHeaderBytes + kStlRecordBytes * t + 12 + 4 * k));
+            name, t + 1, f[k], kStlHeaderBytes + kStlRecordBytes * t + 12 + 4 * k));
       }
     }
     out += 9;
@@ -97,6 +99,7 @@ void DecodeStlRecords(const unsigned char* records, std::size_t count, std::size
 MeshFileData NewStlData(std::uint32_t n) {
   MeshFileData data;
   data.format = "binary STL";
+  data.single_precision = true;  // a record holds its vertices as 9 floats
   data.xyz.resize(std::size_t{n} * 9);
   data.indices.resize(std::size_t{n} * 3);
   for (std::size_t i = 0; i < data.indices.size(); ++i) {
@@ -273,13 +276,11 @@ MeshFileData ReadAsciiStl(std::string_view text, const std::string& name) {
         expect("vertex", where);
         for (int k = 0; k < 3; ++k) {
           const auto [x, x_at] = coordinate("a vertex coordinate");
-          float f = 0;
-          if (!ToFiniteFloat(x, f)) {
-            s.FailAt(x_at, fmt::format("facet {}: vertex coordinate {} is not a finite "
-                                       "single-precision number",
-                                       facet + 1, x));
+          if (!IsMeshCoordinate(x)) {
+            s.FailAt(x_at, fmt::format("facet {}: vertex coordinate {} is {}", facet + 1, x,
+                                       kCoordinateRule));
           }
-          data.xyz.push_back(f);
+          data.xyz.push_back(x);
         }
       }
       expect("endloop", where);

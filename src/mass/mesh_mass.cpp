@@ -35,10 +35,15 @@ namespace {
 //   ∫ dA = A,   ∫ r dA = A s / 3,   ∫ r rᵀ dA = A/12 (a aᵀ + b bᵀ + c cᵀ + s sᵀ).
 //
 // Round-off: the vertices are shifted to R (the bounding-box centre) before the products, so
-// a part 10 km from its frame's origin loses no digits to the offset. Each block of kBlock
-// triangles is summed plainly in registers; block sums are added with Neumaier's compensated
-// summation. The error is then that of a kBlock-term sum, independent of the triangle count,
-// at the speed of the plain loop.
+// a part 10 km from its frame's origin loses no digits to the offset: a vertex coordinate x
+// and R's are within a factor of two of each other whenever the part is far from the origin,
+// and then x - R is exact (Sterbenz's lemma); near the origin there is no offset to lose. The
+// integrals about R are shifted back by the parallel-axis theorem in
+// MassPropertiesFromIntegrals, and ComputeMeshMassProperties integrates in the file's unit and
+// scales the results (Scaled below), so the unit's rounding never reaches a difference of
+// vertices. Each block of kBlock triangles is summed plainly in registers; block sums are added
+// with Neumaier's compensated summation. The error is then that of a kBlock-term sum,
+// independent of the triangle count, at the speed of the plain loop.
 
 constexpr std::size_t kBlock = 256;
 
@@ -213,6 +218,49 @@ double CalcMeshSurfaceArea(const TriangleMesh& mesh) {
   return sum + carry;
 }
 
+// The weld tolerance in the file's unit (NaN: the default, relative to the mesh's size).
+double FileUnitTolerance(const MeshMassOptions& o, const std::string& what) {
+  const double tol = o.weld_tolerance;
+  if (!std::isnan(tol) && !(tol >= 0.0 && std::isfinite(tol))) {
+    throw InputError(
+        fmt::format("{}: weld tolerance is {} m; it must be zero or positive", what, tol));
+  }
+  return tol / o.scale;
+}
+
+// Integrals of a mesh in its file's unit taken to metres (s metres a unit): a point scales by
+// s; a solid's volume, first and second moments by s³, s⁴, s⁵; a shell's area and moments by
+// s², s³, s⁴.
+MeshIntegrals Scaled(MeshIntegrals g, double s, bool shell) {
+  const double measure_scale = shell ? s * s : s * s * s;
+  g.p_BoR_B *= s;
+  g.measure *= measure_scale;
+  g.first_moment *= measure_scale * s;
+  g.second_moment *= measure_scale * (s * s);
+  return g;
+}
+
+// The mesh's extent and position for the report, from its vertices in the file's unit; and,
+// for a file of floats, the spacing of floats at its largest coordinate |x|: floats in
+// [2^e, 2^(e+1)) lie 2^(e-23) apart (IEEE 754 binary32: 24-bit significand; below 2^-126 the
+// subnormals, 2^-149 apart).
+void DescribeExtent(const TriangleMesh& mesh, double scale, MeshMassReport& report) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (const Vec3& p : mesh.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double max_abs = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  report.max_abs_coordinate = max_abs * scale;
+  report.extent = (hi - lo).norm() * scale;
+  if (report.single_precision && max_abs > 0.0) {
+    const int e = std::max(std::ilogb(max_abs), -126);
+    report.float32_spacing = std::ldexp(1.0, e - 23) * scale;
+  }
+}
+
+// Validates (solid mode) and integrates `mesh`, whose vertices are in the file's unit.
 MeshMassResult Finish(TriangleMesh& mesh, const MeshMassOptions& opts, double density,
                       const std::string& what, MeshMassReport report) {
   auto t0 = std::chrono::steady_clock::now();
@@ -226,9 +274,13 @@ MeshMassResult Finish(TriangleMesh& mesh, const MeshMassOptions& opts, double de
   report.validate_seconds = Seconds(t0);
   t0 = std::chrono::steady_clock::now();
   const bool shell = opts.mode == MeshMassMode::kShell;
-  const MeshIntegrals integrals = shell ? CalcShellIntegrals(mesh) : CalcSolidIntegrals(mesh);
+  const double s = opts.scale;
+  const MeshIntegrals integrals =
+      Scaled(shell ? CalcShellIntegrals(mesh) : CalcSolidIntegrals(mesh), s, shell);
   (shell ? report.area : report.volume) = integrals.measure;
-  report.surface_area = shell ? integrals.measure : CalcMeshSurfaceArea(mesh);
+  report.surface_area = shell ? integrals.measure : CalcMeshSurfaceArea(mesh) * (s * s);
+  report.repair.weld_tolerance *= s;
+  DescribeExtent(mesh, s, report);
   if (!(integrals.measure > 0.0)) {
     throw InputError(fmt::format("{}: the mesh has zero {}", what, shell ? "area" : "volume"));
   }
@@ -261,21 +313,22 @@ MassProperties MassPropertiesFromIntegrals(const MeshIntegrals& g, double densit
   return MassProperties(density * g.measure, g.p_BoR_B + c, RotationalInertia::FromMatrix(I));
 }
 
-MeshMassResult ComputeMeshMassProperties(std::vector<float>&& xyz,
+MeshMassResult ComputeMeshMassProperties(std::vector<double>&& xyz,
                                          std::vector<std::uint32_t>&& indices,
                                          const MeshMassOptions& opts, const std::string& what,
                                          MeshMassReport report) {
   const double density = DensityFromOptions(opts, what);
+  const double tolerance = FileUnitTolerance(opts, what);
   const auto t0 = std::chrono::steady_clock::now();
-  TriangleMesh mesh;
+  TriangleMesh mesh;  // in the file's unit: Finish scales the integrals
   try {
-    mesh = BuildTriangleMesh(std::span<const float>(xyz), std::span<const std::uint32_t>(indices),
-                             opts.scale, opts.weld_tolerance, &report.repair);
+    mesh = BuildTriangleMesh(std::span<const double>(xyz), std::span<const std::uint32_t>(indices),
+                             1.0, tolerance, &report.repair);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", what, e.what()));
   }
   // Release the raw arrays before validation allocates.
-  std::vector<float>().swap(xyz);
+  std::vector<double>().swap(xyz);
   std::vector<std::uint32_t>().swap(indices);
   report.weld_seconds = Seconds(t0);
   return Finish(mesh, opts, density, what, std::move(report));
@@ -284,6 +337,7 @@ MeshMassResult ComputeMeshMassProperties(std::vector<float>&& xyz,
 MeshMassResult ComputeMeshMassProperties(const TriangleMesh& in, const MeshMassOptions& opts) {
   const std::string what = "mesh";
   const double density = DensityFromOptions(opts, what);
+  const double tolerance = FileUnitTolerance(opts, what);
   MeshMassReport report;
   report.format = "in-memory mesh";
   auto t0 = std::chrono::steady_clock::now();
@@ -293,7 +347,7 @@ MeshMassResult ComputeMeshMassProperties(const TriangleMesh& in, const MeshMassO
                               3 * in.vertices.size()),
       std::span<const std::uint32_t>(in.triangles.empty() ? nullptr : in.triangles.data()->data(),
                                      3 * in.triangles.size()),
-      opts.scale, opts.weld_tolerance, &report.repair);
+      1.0, tolerance, &report.repair);
   report.weld_seconds = Seconds(t0);
   return Finish(mesh, opts, density, what, std::move(report));
 }

@@ -198,6 +198,26 @@ void Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo, doub
   }
 }
 
+// Throws InputError naming the first non-finite coordinate. The test runs branch-free over the
+// whole array (so it vectorises); the loop that names the offender only when one failed.
+template <typename T>
+void CheckFinite(std::span<const T> xyz) {
+  using U = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+  constexpr U kExponent = static_cast<U>(sizeof(T) == 4 ? 0x7f800000ull : 0x7ff0000000000000ull);
+  U non_finite = 0;  // all exponent bits set: an infinity or a NaN
+  for (const T x : xyz)
+    non_finite |= static_cast<U>((std::bit_cast<U>(x) & kExponent) == kExponent);
+  if (non_finite == 0) return;
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    if (!std::isfinite(xyz[i])) {
+      throw InputError(
+          fmt::format("mesh: vertex {} has a non-finite coordinate ({}); the file is "
+                      "garbled",
+                      i / 3, static_cast<double>(xyz[i])));
+    }
+  }
+}
+
 template <typename T>
 TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> indices, double scale,
                        double tolerance, MeshRepairReport* report) {
@@ -233,21 +253,7 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
       }
     }
   }
-  using U = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
-  constexpr U kExponent = static_cast<U>(sizeof(T) == 4 ? 0x7f800000ull : 0x7ff0000000000000ull);
-  U non_finite = 0;  // all exponent bits set: an infinity or a NaN
-  for (const T x : xyz)
-    non_finite |= static_cast<U>((std::bit_cast<U>(x) & kExponent) == kExponent);
-  if (non_finite != 0) {
-    for (std::size_t i = 0; i < xyz.size(); ++i) {
-      if (!std::isfinite(xyz[i])) {
-        throw InputError(
-            fmt::format("mesh: vertex {} has a non-finite coordinate ({}); the file is "
-                        "garbled",
-                        i / 3, static_cast<double>(xyz[i])));
-      }
-    }
-  }
+  CheckFinite(xyz);
   MeshRepairReport local;
   MeshRepairReport& rep = report ? *report : local;
   rep.vertices_in = nv;
@@ -269,6 +275,12 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
   lo *= scale;
   hi *= scale;
   const double diagonal = nv == 0 ? 0.0 : (hi - lo).norm();
+  if (diagonal > 0.0 && diagonal < kMinMeshExtent) {
+    throw InputError(
+        fmt::format("mesh: its bounding box is only {:.3g} across (in its own unit), less than "
+                    "the {:g} a mesh may measure; check the unit of the file",
+                    diagonal, kMinMeshExtent));
+  }
   const double tol = std::isnan(tolerance) ? kDefaultWeldRelativeTolerance * diagonal : tolerance;
   if (!(tol >= 0.0) || !std::isfinite(tol)) {
     throw InputError(fmt::format("mesh weld tolerance is {} m; it must be zero or positive", tol));

@@ -16,6 +16,7 @@ MeshMassResult LoadMeshMassProperties(const std::string& path, const MeshMassOpt
   report.read_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   report.format = data.format;
+  report.single_precision = data.single_precision;
   return ComputeMeshMassProperties(std::move(data.xyz), std::move(data.indices), opts,
                                    fmt::format("mesh file '{}'", path), std::move(report));
 }

@@ -83,11 +83,13 @@ nlohmann::json PartJson(const ScenePart& p) {
   }
   if (!p.geometry.mesh_file.empty()) {
     // The mesh as drawn: the file's vertices scaled to metres, in the part's frame P (the
-    // frame the mass properties were computed in, before the part's position and axis).
+    // frame the mass properties were computed in, before the part's position and axis), as
+    // the floats WebGL draws.
     const MeshFileData mesh = ReadMeshFile(p.geometry.mesh_file);
     std::vector<float> xyz(mesh.xyz.size());
-    const auto s = static_cast<float>(p.geometry.mesh_scale);
-    std::transform(mesh.xyz.begin(), mesh.xyz.end(), xyz.begin(), [s](float x) { return x * s; });
+    const double s = p.geometry.mesh_scale;
+    std::transform(mesh.xyz.begin(), mesh.xyz.end(), xyz.begin(),
+                   [s](double x) { return static_cast<float>(x * s); });
     j["mesh"] = {
         {"vertices", Base64(xyz.data(), xyz.size() * sizeof(float))},
         {"triangles", Base64(mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t))}};

@@ -30,6 +30,16 @@ std::vector<std::string> MeshNotes(const MeshMassReport& r) {
   }
   if (r.repair.inside_out_flipped) read += ", turned right side out";
   notes.push_back(read);
+  if (r.single_precision) {
+    // The file's floats place a vertex only to their spacing at its magnitude: what that is
+    // here, absolutely and against the mesh's size (its bounding-box diagonal).
+    notes.push_back(fmt::format(
+        "{} stores float32: coordinates resolved to {:.2g} m at this mesh's extent (|x| up to "
+        "{:.6g} m), relative {:.1e} of its size {:.3g} m (ASCII STL, OBJ, OFF or PLY double "
+        "keep every digit)",
+        r.format == "PLY" ? "binary PLY 'float'" : r.format, r.float32_spacing,
+        r.max_abs_coordinate, r.float32_spacing / r.extent, r.extent));
+  }
   return notes;
 }
 }  // namespace

@@ -1,8 +1,14 @@
 // End-to-end: mesh parts in scenes and mesh files on the command line, against the exact mass
 // properties of the boxes and cylinders they are made of (Appendix A, eq. 8.29).
 
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <string>
+
+#include <fmt/format.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -151,6 +157,86 @@ TEST(Mesh, OpenMeshInSolidModeSuggestsShell) {
   EXPECT_TRUE(Near(body.at("mass").get<double>(), 5.0, kTight));
   EXPECT_TRUE(MatNear(ToVec(body.at("center_of_mass")), Vec3(0.5, 0.5, 0.4), kTight));
   std::filesystem::remove(path);
+}
+
+// A cube of edge 7 mm whose lower corner is (500000, 500000, 500000) mm, as STL triangles:
+// corner i has the upper coordinate on axis k when bit k of i is set.
+constexpr int kCubeQuads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                  {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+Vec3 FarCubeCorner(int i) {
+  const auto c = [i](int k) { return ((i >> k) & 1) != 0 ? 500007.0 : 500000.0; };
+  return Vec3(c(0), c(1), c(2));
+}
+
+// The cube as a binary STL (each triangle's corners as floats; these are integers below 2^24,
+// so exact) or as an ASCII STL.
+void WriteFarCube(const std::filesystem::path& path, bool binary) {
+  std::ofstream f(path, std::ios::binary);
+  if (!binary) f << "solid cube\n";
+  if (binary) {
+    const std::string header(80, ' ');
+    const std::uint32_t n = 12;
+    f.write(header.data(), 80);
+    f.write(reinterpret_cast<const char*>(&n), 4);
+  }
+  for (const auto& q : kCubeQuads) {
+    for (const std::array<int, 3> corners :
+         {std::array<int, 3>{q[0], q[1], q[2]}, std::array<int, 3>{q[0], q[2], q[3]}}) {
+      if (binary) {
+        float xyz[12] = {};  // the normal, then the three corners
+        for (int v = 0; v < 3; ++v) {
+          for (int k = 0; k < 3; ++k) {
+            xyz[3 + 3 * v + k] = static_cast<float>(FarCubeCorner(corners[v])[k]);
+          }
+        }
+        const std::uint16_t attribute = 0;
+        f.write(reinterpret_cast<const char*>(xyz), sizeof xyz);
+        f.write(reinterpret_cast<const char*>(&attribute), 2);
+        continue;
+      }
+      f << "facet normal 0 0 0\n outer loop\n";
+      for (int v : corners) {
+        const Vec3 p = FarCubeCorner(v);
+        f << "  vertex " << p.x() << " " << p.y() << " " << p.z() << "\n";
+      }
+      f << " endloop\nendfacet\n";
+    }
+  }
+  if (!binary) f << "endsolid cube\n";
+}
+
+TEST(Mesh, BinaryStlSaysItStoresFloatsInTheMassReport) {
+  const auto dir = OutDir("mesh");
+  const auto stl = dir / "far-cube.stl";
+  WriteFarCube(stl, true);
+  // Its largest coordinate, 500007 mm, lies in [2^18, 2^19) mm, where floats are 2^(18 - 23)
+  // mm = 3.1e-05 m apart (IEEE 754 binary32: a 24-bit significand).
+  const std::string note = fmt::format(
+      "binary STL stores float32: coordinates resolved to {:.2g} m at this mesh's extent (|x| "
+      "up to 500.007 m)",
+      std::ldexp(1.0, 18 - 23) * 1e-3);
+  EXPECT_THAT(note, ::testing::HasSubstr("resolved to 3.1e-05 m"));
+  const std::string args = "mass " + Quote(stl.string()) + " --unit mm --density 7850";
+  const CliResult text = RunCli(args);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, ::testing::HasSubstr(note));
+  const CliResult json = RunCli(args + " --format json --units SI");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const auto part = nlohmann::json::parse(json.out).at("bodies").at(0).at("parts").at(0);
+  ASSERT_EQ(part.at("notes").size(), 2u);
+  EXPECT_THAT(part.at("notes").at(1).get<std::string>(), ::testing::HasSubstr(note));
+  // The floats here are the integers of the text: the exact cube, m = ρ a³, I = m a²/6.
+  const double a = 7e-3, m = 7850 * a * a * a;
+  const auto body = nlohmann::json::parse(json.out).at("bodies").at(0);
+  EXPECT_TRUE(Near(body.at("mass").get<double>(), m, kTight));
+  EXPECT_TRUE(MatNear(ToMat(body.at("inertia_about_center_of_mass")),
+                      Mat3(Mat3::Identity() * m * a * a / 6), kTight));
+  // The same cube as text: no such note.
+  const auto ascii = dir / "far-cube-ascii.stl";
+  WriteFarCube(ascii, false);
+  const CliResult from_text = RunCli("mass " + Quote(ascii.string()) + " --unit mm --density 7850");
+  ASSERT_EQ(from_text.exit_code, 0) << from_text.err;
+  EXPECT_THAT(from_text.out, ::testing::Not(::testing::HasSubstr("float32")));
 }
 
 }  // namespace

@@ -124,8 +124,28 @@ def test_mesh_file(tmp_path):
     assert_rel(r.mass_properties.mass, m)
     assert_rel(r.mass_properties.inertia, np.eye(3) * m * a**2 / 6)
     assert r.report.format
+    assert not r.report.single_precision  # text: the doubles it denotes
+    assert np.isnan(r.report.float32_spacing)
     scene = chasles.load_mesh_scene(str(path), unit="mm", density="1 g/cm^3")
     assert_rel(scene.bodies[0].mass_properties.mass, m)
+
+
+def test_binary_stl_reports_its_float_spacing(tmp_path):
+    # The same cube as a binary STL (80-byte header, uint32 count, 50-byte records of 12
+    # little-endian floats and a uint16): its largest coordinate, 25 mm, lies in [2^4, 2^5),
+    # where floats are 2^(4 - 23) mm apart (IEEE 754 binary32: a 24-bit significand).
+    a = 0.05
+    v, t = cube_mesh(a * 1000)
+    records = np.zeros(len(t), dtype=[("normal", "<f4", 3), ("xyz", "<f4", 9), ("attr", "<u2")])
+    records["xyz"] = v[t].reshape(len(t), 9)
+    path = tmp_path / "cube.stl"
+    path.write_bytes(b" " * 80 + np.uint32(len(t)).tobytes() + records.tobytes())
+    r = chasles.mesh_mass_properties(str(path), scale=1e-3, density=1000.0)
+    assert r.report.format == "binary STL"
+    assert r.report.single_precision
+    assert r.report.float32_spacing == 2.0 ** (4 - 23) * 1e-3
+    m = 1000.0 * a**3  # 25 mm is a float: the cube is exact
+    assert_rel(r.mass_properties.inertia, np.eye(3) * m * a**2 / 6)
 
 
 def test_scene_mass_properties_two_rods():

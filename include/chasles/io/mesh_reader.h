@@ -2,8 +2,8 @@
 /// @file
 /// Reading triangle meshes from files: binary and ASCII STL, OBJ, PLY (ASCII and binary) and
 /// OFF, each by a strict reader of chasles' own (docs/reliability-mesh.md). Mesh files carry no
-/// units: coordinates come back exactly as stored, and the caller applies the scale (unit) and
-/// pose.
+/// units: coordinates come back exactly as stored (in double precision), and the caller applies
+/// the scale (unit) and pose.
 
 #include <cstdint>
 #include <string>
@@ -11,16 +11,27 @@
 
 namespace chasles {
 
+/// The largest magnitude of a mesh coordinate, in the file's own unit: 3.4028234663852886e38,
+/// the largest float, so every format (binary STL stores floats) accepts the same range, and the
+/// mass integrals, which take fifth powers of coordinate differences, stay finite in double.
+inline constexpr double kMaxMeshCoordinate = 3.4028234663852886e38;
+
 /// A triangle mesh as stored in a file, before any welding or validation.
 struct MeshFileData {
-  /// Vertex coordinates x0, y0, z0, x1, ... in the file's own length unit (single precision,
-  /// which is what STL stores); all finite.
-  std::vector<float> xyz;
+  /// Vertex coordinates x0, y0, z0, x1, ... in the file's own length unit, each exactly the
+  /// number the file stores: the double nearest to the decimal text (ASCII STL, OBJ, OFF, ASCII
+  /// PLY of any declared type), a binary PLY `double` as is, a float (binary STL, binary PLY
+  /// `float`) widened to double; all finite and within ±kMaxMeshCoordinate.
+  std::vector<double> xyz;
   /// Vertex indices, three per triangle, into the vertices of `xyz`. A binary STL gives every
   /// triangle its own three vertices (0, 1, 2, 3, 4, 5, ...): it shares none.
   std::vector<std::uint32_t> indices;
   /// What was read: "binary STL", "ASCII STL", "OBJ", "PLY" or "OFF".
   std::string format;
+  /// True when the file stores a coordinate as a float (binary STL; a binary PLY whose x, y or
+  /// z is `float`): its vertices are resolved only to float32's spacing at their magnitude,
+  /// 2^-23 to 2^-24 of it.
+  bool single_precision = false;
 
   /// Number of vertices.
   std::size_t vertex_count() const { return xyz.size() / 3; }

@@ -7,6 +7,12 @@
 /// mesh is a sheet of uniform areal density in the thin-shell limit (mass on the surface).
 /// Both are exact for the polyhedral surface given; a tessellated curved part is off by the
 /// tessellation error, which falls with the square of the edge length.
+///
+/// Precision: the integrals are taken about a reference point inside the mesh's bounding box
+/// (its centre), in the mesh's own unit, and only then scaled to metres and shifted back by the
+/// parallel-axis theorem; so a small part far from its frame's origin (CAD assembly
+/// coordinates) keeps every digit of its vertices: a vertex minus a nearby reference point is
+/// exact in double (Sterbenz), and the unit's scale multiplies the results, not the vertices.
 
 #include <limits>
 #include <string>
@@ -75,6 +81,16 @@ struct MeshMassReport {
   std::string path;
   /// Format read ("binary STL", "ASCII STL", "OBJ", "PLY", ...).
   std::string format;
+  /// True when the file stores its coordinates as floats (MeshFileData::single_precision: binary
+  /// STL, binary PLY `float`); the caller that read the file sets it.
+  bool single_precision = false;
+  /// Largest |x|, |y| or |z| of the welded vertices, in the mesh's frame [m].
+  double max_abs_coordinate = std::numeric_limits<double>::quiet_NaN();
+  /// Diagonal of the welded vertices' bounding box [m].
+  double extent = std::numeric_limits<double>::quiet_NaN();
+  /// When single_precision: the spacing of floats at max_abs_coordinate (in the file's unit,
+  /// then scaled) [m], how finely the file can place this mesh's vertices; NaN otherwise.
+  double float32_spacing = std::numeric_limits<double>::quiet_NaN();
   /// Welding, degenerate triangles, orientation repairs and warnings.
   MeshRepairReport repair;
   /// Triangles used in the integrals.
@@ -108,16 +124,19 @@ struct MeshMassResult {
 /// Mass properties of a triangle soup as a file reader returns it: `xyz` holds vertex
 /// coordinates in the unit given by opts.scale, `indices` three vertex indices per triangle.
 /// Welds and cleans it (BuildTriangleMesh), validates and orients it in solid mode
-/// (ValidateSolid), integrates and applies the material. The arrays are taken by value and
-/// released once welded, so peak memory stays near the welded mesh. `what` names the source
-/// in errors ("mesh file 'part.stl'"); `report` arrives with what the reader filled in (path,
-/// format, read time). Throws InputError on a bad mesh or bad options.
-MeshMassResult ComputeMeshMassProperties(std::vector<float>&& xyz,
+/// (ValidateSolid), integrates and applies the material, all in the file's unit (coordinates
+/// and volumes in repair warnings and errors are the file's), then scales the results to SI.
+/// The arrays are taken by value and released once welded, so peak memory stays near the
+/// welded mesh. `what` names the source in errors ("mesh file 'part.stl'"); `report` arrives
+/// with what the reader filled in (path, format, single_precision, read time). Throws
+/// InputError on a bad mesh or bad options.
+MeshMassResult ComputeMeshMassProperties(std::vector<double>&& xyz,
                                          std::vector<std::uint32_t>&& indices,
                                          const MeshMassOptions& opts, const std::string& what,
                                          MeshMassReport report = {});
 
-/// The same for an in-memory mesh whose vertices are in the unit given by opts.scale.
+/// The same for an in-memory mesh whose vertices are in the unit given by opts.scale (welded,
+/// validated and integrated in that unit too).
 MeshMassResult ComputeMeshMassProperties(const TriangleMesh& mesh, const MeshMassOptions& opts);
 
 }  // namespace chasles

@@ -51,13 +51,21 @@ struct MeshRepairReport {
 /// Relative weld tolerance used when none is given: a fraction of the bounding-box diagonal.
 inline constexpr double kDefaultWeldRelativeTolerance = 1e-9;
 
+/// The least bounding-box diagonal a mesh may have (in the unit of its vertices, after
+/// scaling), unless all its vertices coincide: a mesh's second moments are fifth powers of its
+/// size, which stay above 1e-150 for this size, far from double's underflow near 1e-308, and
+/// so do the products of the exact zero-area and orientation tests.
+inline constexpr double kMinMeshExtent = 1e-30;
+
 /// Builds an indexed mesh from coordinates `xyz` (x0, y0, z0, x1, ...) multiplied by `scale`
 /// and triangle indices (three per triangle). Vertices with bit-identical coordinates are
 /// merged by hashing, then vertices closer than `tolerance` (after scaling; a NaN tolerance
 /// means kDefaultWeldRelativeTolerance times the bounding-box diagonal) by a grid search; each
 /// vertex goes to the first earlier kept vertex within the tolerance. Then degenerate
 /// triangles are dropped (see MeshRepairReport). Throws InputError on an index out of range, a
-/// non-finite coordinate, or no triangle left.
+/// non-finite coordinate, a mesh smaller than kMinMeshExtent, or no triangle left. Exact: the
+/// vertices are `xyz` times `scale` (exactly `xyz` for a scale of 1, the coordinates of a
+/// single-precision input widened to double).
 TriangleMesh BuildTriangleMesh(std::span<const float> xyz, std::span<const std::uint32_t> indices,
                                double scale, double tolerance, MeshRepairReport* report);
 /// The same for double-precision coordinates.

@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "chasles/io/mesh_reader.h"
 
 namespace chasles::internal {
 
@@ -50,12 +51,13 @@ inline bool ParseInt(std::string_view tok, std::int64_t& out) {
   return ec == std::errc() && end == tok.data() + tok.size();
 }
 
-/// A coordinate as stored (single precision, what MeshFileData holds): false when it is not
-/// finite once rounded to float (NaN, inf, or beyond 3.4e38).
-inline bool ToFiniteFloat(double v, float& out) {
-  out = static_cast<float>(v);
-  return std::isfinite(out);
+/// True when `v` may be a mesh coordinate: finite and within ±kMaxMeshCoordinate.
+inline bool IsMeshCoordinate(double v) {
+  return std::abs(v) <= kMaxMeshCoordinate;  // false for NaN and the infinities too
 }
+
+/// How a rejected coordinate is described in messages.
+inline constexpr std::string_view kCoordinateRule = "not a finite number within ±3.4e38";
 
 /// Walks a text mesh file token by token. Tokens are runs of characters other than space,
 /// tab, CR, LF (and the comment character, which starts a comment running to the end of the
@@ -139,16 +141,16 @@ class TextScanner {
       FailAt(start, fmt::format("{}: '{}' is not a number", what, Short(tok)));
     return v;
   }
-  /// A finite coordinate on the current line (single precision).
-  float CoordinateOnLine(std::string_view what) {
+  /// A coordinate on the current line: the double nearest to its text, finite and within
+  /// ±kMaxMeshCoordinate.
+  double CoordinateOnLine(std::string_view what) {
     std::size_t at = 0;
     const double v = NumberOnLine(what, &at);
-    float f = 0;
-    if (!ToFiniteFloat(v, f)) {
-      FailAt(at, fmt::format("{} is {}, not a finite single-precision number", what,
-                             Short(text_.substr(at, TokenLength(at)))));
+    if (!IsMeshCoordinate(v)) {
+      FailAt(at, fmt::format("{} is {}, {}", what, Short(text_.substr(at, TokenLength(at))),
+                             kCoordinateRule));
     }
-    return f;
+    return v;
   }
   /// An integer token; `same_line` keeps it on the current line.
   std::int64_t Integer(std::string_view what, bool same_line) {

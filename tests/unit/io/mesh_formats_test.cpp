@@ -225,10 +225,10 @@ std::string Ply(const Shape& s, const PlyStyle& st) {
 
 // ---- Mass properties of what a reader returns ----
 
-std::vector<float> Xyz(const Shape& s) {
-  std::vector<float> xyz;
+std::vector<double> Xyz(const Shape& s) {
+  std::vector<double> xyz;
   for (const Vec3& p : s.vertices) {
-    for (int k = 0; k < 3; ++k) xyz.push_back(static_cast<float>(p[k]));
+    for (int k = 0; k < 3; ++k) xyz.push_back(p[k]);
   }
   return xyz;
 }
@@ -245,7 +245,7 @@ Shape Scaled(Shape s, double k) {
 void ExpectShape(const MeshFileData& d, const Shape& s, const std::string& what) {
   MeshMassOptions o;
   o.density = 1000;
-  std::vector<float> xyz = d.xyz;
+  std::vector<double> xyz = d.xyz;
   std::vector<std::uint32_t> indices = d.indices;
   const MeshMassResult r =
       ComputeMeshMassProperties(std::move(xyz), std::move(indices), o, "mesh " + what);
@@ -416,7 +416,7 @@ TEST(MeshFormats, RandomCorruptionNeverCrashes) {
         const MeshFileData d = f.read(bytes, f.name);
         EXPECT_EQ(d.indices.size() % 3, 0u);
         for (std::uint32_t i : d.indices) ASSERT_LT(i, d.vertex_count());
-        for (float x : d.xyz) ASSERT_TRUE(std::isfinite(x));
+        for (double x : d.xyz) ASSERT_TRUE(std::abs(x) <= kMaxMeshCoordinate);
       } catch (const InputError& e) {
         ASSERT_THAT(e.what(), HasSubstr("mesh file '" + f.name + "': "));
       }
@@ -595,12 +595,12 @@ TEST(MeshFormats, NonFiniteCoordinates) {
     std::string stl = AsciiStl(s);
     stl.replace(stl.find("vertex 0.5 0 0"), 14, std::string("vertex 0.5 ") + bad + " 0");
     EXPECT_MESH_ERROR(ReadStl, stl, "n.stl", HasSubstr("facet 1: vertex coordinate"),
-                      HasSubstr("is not a finite single-precision number (line 6)"));
+                      HasSubstr("is not a finite number within ±3.4e38 (line 6)"));
     std::string obj = Obj(s, 0);
     obj.replace(obj.find("v 0.5 0 0"), 9, std::string("v 0.5 0 ") + bad);
     EXPECT_MESH_ERROR(ReadObj, obj, "n.obj",
                       HasSubstr(std::string("vertex z is ") + bad +
-                                ", not a finite single-precision number (line 5)"));
+                                ", not a finite number within ±3.4e38 (line 5)"));
     std::string off = Off(s);
     off.replace(off.find("0.5 0 0"), 7, std::string(bad) + " 0 0");
     EXPECT_MESH_ERROR(ReadOff, off, "n.off", HasSubstr(std::string("vertex x is ") + bad),
@@ -622,7 +622,7 @@ TEST(MeshFormats, NonFiniteCoordinates) {
   std::memcpy(ply.data() + body + 1 + 8 * 2, &inf, 8);  // vertex 0, z
   EXPECT_MESH_ERROR(ReadPly, ply, "n.ply",
                     HasSubstr(fmt::format("vertex 0: coordinate z is inf, not a finite "
-                                          "single-precision number (byte offset {})",
+                                          "number within ±3.4e38 (byte offset {})",
                                           body + 17)));
 }
 
