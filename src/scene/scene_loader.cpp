@@ -342,7 +342,7 @@ SceneBody SceneReader::ReadBody(const At& at, size_t index) {
   if (parts.node.size() == 0) report_.Fail(parts, "the body has no parts; add at least one");
   MassProperties sum = MassProperties::Zero();
   for (size_t i = 0; i < parts.node.size(); ++i) {
-    ScenePart part = ReadPart(parts.Item(i), i, at);
+    ScenePart part = ReadPart(parts.Item(i), i, at, body.name);
     try {
       sum = sum + part.mass_properties;
     } catch (const InputError& e) {
@@ -416,7 +416,8 @@ Mat3 SceneReader::ReadOrientation(const At& part) {
   }
 }
 
-ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
+ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at,
+                                const std::string& body_name) {
   if (!at.node.IsMap()) {
     report_.Fail(at, fmt::format("expected a part (a mapping with 'shape:' and its dimensions), "
                                  "got {}",
@@ -437,7 +438,8 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at) {
   } else if (part.shape == "planar") {
     local = ReadPlanarPart(at, part, p_BoPo_B);
   } else if (part.shape == "mesh") {
-    local = ReadMeshPart(at, body_at, fmt::format("part '{}' (mesh)", part.name), part);
+    local = ReadMeshPart(at, body_at,
+                         fmt::format("body '{}', part '{}' (mesh)", body_name, part.name), part);
     if (at.Has("position")) p_BoPo_B = BodyVector(at.Child("position"), kLength, "a position");
     R_BP = ReadOrientation(at);
   } else {

@@ -169,8 +169,8 @@ Vec3 FarCubeCorner(int i) {
 }
 
 // The cube as a binary STL (each triangle's corners as floats; these are integers below 2^24,
-// so exact) or as an ASCII STL.
-void WriteFarCube(const std::filesystem::path& path, bool binary) {
+// so exact) or as an ASCII STL; `reversed`, inside out.
+void WriteFarCube(const std::filesystem::path& path, bool binary, bool reversed = false) {
   std::ofstream f(path, std::ios::binary);
   if (!binary) f << "solid cube\n";
   if (binary) {
@@ -180,8 +180,9 @@ void WriteFarCube(const std::filesystem::path& path, bool binary) {
     f.write(reinterpret_cast<const char*>(&n), 4);
   }
   for (const auto& q : kCubeQuads) {
-    for (const std::array<int, 3> corners :
+    for (const std::array<int, 3> t :
          {std::array<int, 3>{q[0], q[1], q[2]}, std::array<int, 3>{q[0], q[2], q[3]}}) {
+      const std::array<int, 3> corners = reversed ? std::array<int, 3>{t[0], t[2], t[1]} : t;
       if (binary) {
         float xyz[12] = {};  // the normal, then the three corners
         for (int v = 0; v < 3; ++v) {
@@ -237,6 +238,21 @@ TEST(Mesh, BinaryStlSaysItStoresFloatsInTheMassReport) {
   const CliResult from_text = RunCli("mass " + Quote(ascii.string()) + " --unit mm --density 7850");
   ASSERT_EQ(from_text.exit_code, 0) << from_text.err;
   EXPECT_THAT(from_text.out, ::testing::Not(::testing::HasSubstr("float32")));
+}
+
+TEST(Mesh, RepairWarningsNameTheBodyAndThePart) {
+  const auto dir = OutDir("mesh");
+  WriteFarCube(dir / "inside-out.stl", false, true);
+  const auto scene = dir / "inside-out.yaml";
+  std::ofstream(scene) << "chasles: 1\nbodies:\n  - name: bracket\n    parts:\n"
+                          "      - {name: housing, shape: mesh, file: inside-out.stl, unit: mm, "
+                          "density: 7850 kg/m^3}\n";
+  const CliResult r = RunCli("mass " + Quote(scene.string()) + " --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto warnings = nlohmann::json::parse(r.out).at("warnings");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_THAT(warnings.at(0).get<std::string>(),
+              ::testing::StartsWith("body 'bracket', part 'housing' (mesh): mesh was inside out"));
 }
 
 }  // namespace

@@ -86,7 +86,7 @@ class SceneReader {
   void ReadParameters(const At& root);
   void ReadMaterials(const At& root);
   SceneBody ReadBody(const At& at, size_t index);
-  ScenePart ReadPart(const At& at, size_t index, const At& body_at);
+  ScenePart ReadPart(const At& at, size_t index, const At& body_at, const std::string& body_name);
   /// A `point` or `custom` part, and a part of a shape in the shape table (shape_table.cpp):
   /// mass properties in the part frame P, with P's position and orientation in B.
   MassProperties ReadPointOrCustomPart(const At& at, ScenePart& part, Vec3& p_BoPo_B, Mat3& R_BP);
@@ -104,7 +104,8 @@ class SceneReader {
   };
   MassSource FindMassSource(const At& at, const At& body_at,
                             std::initializer_list<const char*> keys, const std::string& missing);
-  /// A `shape: mesh` part (scene_mesh.cpp): mass properties in the part frame.
+  /// A `shape: mesh` part (scene_mesh.cpp): mass properties in the part frame. `what` names
+  /// the body and the part, in errors and in the repair warnings.
   MassProperties ReadMeshPart(const At& at, const At& body_at, const std::string& what,
                               ScenePart& part);
   double MaterialDensity(const At& at);
