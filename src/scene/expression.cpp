@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -110,6 +111,7 @@ class ExpressionCompiler {
     Expression e;
     e.text_ = std::string(text_);
     e.dim_ = nodes_[root].dim;
+    e.unit_note_ = unit_note_;
     int depth = 0, max_depth = 0;
     Emit(root, e.program_, depth, max_depth, e.variable_count_);
     if (max_depth > Expression::kMaxStack) {
@@ -253,8 +255,10 @@ class ExpressionCompiler {
   // Largest |exponent| a dimension may reach: m^1000 is surely a mistake.
   static constexpr int kMaxDimensionExponent = 64;
 
+  // Every error after a unit suffix took a parameter's or variable's name as a unit says so
+  // (ParseUnit): that reading is the likely cause.
   [[noreturn]] void Fail(const std::string& message, size_t offset) const {
-    throw ExpressionError(message, offset);
+    throw ExpressionError(unit_note_.empty() ? message : message + "; " + unit_note_, offset);
   }
 
   // ---- lexer ----------------------------------------------------------------------------
@@ -447,12 +451,14 @@ class ExpressionCompiler {
 
   // term := product [unit] (('*' | '/') product [unit])*
   int ParseTerm() {
-    int n = MaybeUnitSuffix(ParseProduct());
+    size_t start = tok_.pos;
+    int n = MaybeUnitSuffix(start, ParseProduct());
     while (IsOp('*') || IsOp('/')) {
       const bool mul = IsOp('*');
       const size_t pos = tok_.pos;
       Advance();
-      const int r = MaybeUnitSuffix(ParseProduct());
+      start = tok_.pos;
+      const int r = MaybeUnitSuffix(start, ParseProduct());
       n = MulDiv(mul, n, r, pos);
     }
     return n;
@@ -473,11 +479,14 @@ class ExpressionCompiler {
     }
   }
 
-  // A name right after a product (no operator between) starts a unit suffix.
-  int MaybeUnitSuffix(int n) {
+  // A name right after a product (no operator between) starts a unit suffix; the product's
+  // text starts at `start` (for messages about the suffix).
+  int MaybeUnitSuffix(size_t start, int n) {
     if (tok_.kind != Tok::kName) return n;
     const size_t pos = tok_.pos;
+    suffix_ = {start, pos};
     const Quantity unit = ParseUnit(/*allow_groups=*/false);
+    suffix_.reset();
     return MulDiv(true, n, Const(unit.value, unit.dim, pos), pos);
   }
 
@@ -712,10 +721,28 @@ class ExpressionCompiler {
     while (IsOp('*') || IsOp('/')) {
       const Token next = Peek();
       if (next.kind != Tok::kName && !(allow_groups && IsOp(next, '('))) break;
-      // A parameter that is not a unit ends the suffix: "100 kg/m^4 * x" is
-      // (100 kg/m^4) * x. Since '*' and '/' associate left, the value is the same as if x
-      // were part of the unit; names that are units stay units ("kg/m^3" with a parameter m).
-      if (next.kind == Tok::kName && !LookupUnit(next.text) && Resolve(next.text)) break;
+      // A name that is not a unit but a parameter or variable, a function or pi ends the
+      // suffix: "100 kg/m^4 * x" is (100 kg/m^4) * x and "1000 kg/m^3 * exp(z/R)" is
+      // (1000 kg/m^3) * exp(z/R). Since '*' and '/' associate left, the value is the same as
+      // if the name were part of the unit. Names that are units stay units ("kg/m^3" with a
+      // parameter m), which the note below explains if the expression then fails.
+      if (next.kind == Tok::kName && !LookupUnit(next.text) &&
+          (Resolve(next.text) || FindFunction(next.text) || next.text == "pi")) {
+        break;
+      }
+      if (next.kind == Tok::kName && suffix_ && LookupUnit(next.text) && Resolve(next.text) &&
+          unit_note_.empty()) {
+        unit_note_ = fmt::format(
+            "'{}' after '{}' was read as the unit {} (a name after a unit and '{}' continues the "
+            "unit, even when a parameter or variable has that name); to use the {} '{}' write "
+            "({}) {} {}",
+            next.text, Trimmed(suffix_->value, tok_.pos + 1), next.text, tok_.text,
+            symbol_names_ != nullptr && std::find(symbol_names_->begin(), symbol_names_->end(),
+                                                  next.text) != symbol_names_->end()
+                ? "variable"
+                : "parameter",
+            next.text, Trimmed(suffix_->value, tok_.pos), tok_.text, next.text);
+      }
       const bool mul = IsOp('*');
       Advance();
       const size_t pos = tok_.pos;
@@ -785,6 +812,22 @@ class ExpressionCompiler {
                "' there, write the operator and parentheses, e.g. (2 m)*" + s,
            pos);
     }
+    if (suffix_ && suffix_->unit < pos) {
+      // After '*' or '/' inside a unit suffix: say that the suffix went on, and how to end it.
+      std::vector<std::string> candidates = UnitNames();
+      if (symbol_names_ != nullptr) {
+        candidates.insert(candidates.begin(), symbol_names_->begin(), symbol_names_->end());
+      }
+      for (const Function& fn : kFunctions) candidates.emplace_back(fn.name);
+      const size_t op = text_.find_last_of("*/", pos);
+      Fail(fmt::format("'{}' was read as a unit: a name after a unit and '{}' continues the unit, "
+                       "and '{}' is not a unit, a parameter, a variable or a function{}; to "
+                       "multiply by something else write ({}) {} ...",
+                       Trimmed(suffix_->unit, pos + name.size()), text_[op], s,
+                       DidYouMeanHint(SuggestNames(name, candidates)), Trimmed(suffix_->value, op),
+                       text_[op]),
+           pos);
+    }
     Fail("unknown unit '" + s + "'" + DidYouMeanHint(SuggestUnitNames(name)), pos);
   }
 
@@ -814,6 +857,22 @@ class ExpressionCompiler {
   Token tok_;
   Token prev_;
   bool has_prev_ = false;
+  /// While a unit suffix is read (MaybeUnitSuffix): where its value's text and the unit start.
+  struct Suffix {
+    size_t value = 0;
+    size_t unit = 0;
+  };
+  std::optional<Suffix> suffix_;
+  /// Set when a unit suffix took a parameter's or variable's name as a unit.
+  std::string unit_note_;
+
+  /// text_[begin, end) without the spaces around it.
+  std::string Trimmed(size_t begin, size_t end) const {
+    std::string_view t = text_.substr(begin, end > begin ? end - begin : 0);
+    while (!t.empty() && std::isspace(static_cast<unsigned char>(t.front()))) t.remove_prefix(1);
+    while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.remove_suffix(1);
+    return std::string(t);
+  }
   int nesting_ = 0;
 };
 

@@ -178,8 +178,9 @@ Expression SceneReader::StateExpression(const At& at, const Dimension& expected,
     return Expression::Parse(ExactText(Value(at, expected, what)), {});
   }
   if (e.dimension() != expected) {
-    report_.Fail(at, fmt::format("expected {} for {}, got {}", expected.Describe(), what,
-                                 e.dimension().Describe()));
+    report_.Fail(at, fmt::format("expected {} for {}, got {}{}", expected.Describe(), what,
+                                 e.dimension().Describe(),
+                                 e.unit_note().empty() ? "" : "; " + e.unit_note()));
   }
   return e;
 }

@@ -138,7 +138,9 @@ double SceneReader::Value(const At& at, const Dimension& expected, std::string_v
       value *= DefaultUnitFactor(expected);
     } else {
       std::string hint;
-      if (e.dimension() == kDimensionless) {
+      if (!e.unit_note().empty()) {
+        hint = "; " + e.unit_note();
+      } else if (e.dimension() == kDimensionless) {
         hint =
             "; give it a unit (e.g. '2 m') — parameters written without a unit are plain "
             "numbers";
@@ -739,8 +741,9 @@ MassProperties SceneReader::ReadShapeMass(const At& at, const At& body_at, const
     return uniform(PositiveValue(source, kDensity, "the density"));
   }
   if (e.dimension() != kDensity) {
-    report_.Fail(source, fmt::format("expected a density field ({}), got {}", kDensity.Describe(),
-                                     e.dimension().Describe()));
+    report_.Fail(source, fmt::format("expected a density field ({}), got {}{}", kDensity.Describe(),
+                                     e.dimension().Describe(),
+                                     e.unit_note().empty() ? "" : "; " + e.unit_note()));
   }
   if (measure != Shape::Measure::kVolume) {
     report_.Fail(source,

@@ -23,11 +23,14 @@
 ///    7850*(kg/m^3), "-9.81 m/s^2" is (-9.81)*(m/s^2), "2 m + 3 cm" is 2*m + 3*cm. Inside a
 ///    unit suffix every name that is a unit is read as the unit, even when a parameter has
 ///    the same name ("7850 kg/m^3" with a parameter m still means metres). '*' or '/'
-///    continue the unit only when a name follows ("2 m / 4 s" is (2 m)/(4 s)), and a
-///    parameter that is not a unit ends it ("100 kg/m^4 * x" is (100 kg/m^4)*x, the same
-///    value by left associativity). Beware: "2 m * L" with a parameter L multiplies by the
-///    litre; write "(2 m)*L" or "L*2 m". A name directly after a value that is not a unit
-///    is an error ("2 x": write 2*x).
+///    continue the unit only when a name follows ("2 m / 4 s" is (2 m)/(4 s)), and a name
+///    that is not a unit but a parameter or variable, a function or pi ends it
+///    ("100 kg/m^4 * x" is (100 kg/m^4)*x, "1000 kg/m^3 * exp(z/R)" is
+///    (1000 kg/m^3)*exp(z/R): the same value by left associativity). Beware: "2 m * L" with a
+///    parameter L multiplies by the litre; write "(2 m)*L" or "L*2 m" (an error in such an
+///    expression says so: Expression::unit_note). A name directly after a value that is not
+///    a unit is an error ("2 x": write 2*x), and so is a name after a unit and '*' that is
+///    none of these (the message shows the unit as read and how to end it).
 ///  - Elsewhere a name is resolved, in order, as: a function if '(' follows (sqrt cbrt abs
 ///    sin cos tan asin acos atan atan2 exp log log10 min max hypot pow); a symbol of the
 ///    caller's resolver (named parameters, variables x, y, z); the constant pi; a unit.
@@ -116,6 +119,10 @@ class Expression {
   int variable_count() const { return variable_count_; }
   /// The source text.
   const std::string& text() const { return text_; }
+  /// Set when a unit suffix read a name that is also a parameter or variable as the unit
+  /// ("2 N * t": t the tonne): what happened and how to write the other reading, for a caller
+  /// whose dimension check then fails ("" otherwise).
+  const std::string& unit_note() const { return unit_note_; }
 
   /// Value in SI units of dimension(), with the variables (SI) at their slot indices.
   /// Throws std::invalid_argument if fewer than variable_count() values are given.
@@ -131,6 +138,7 @@ class Expression {
     double value;  // constant
   };
   std::string text_;
+  std::string unit_note_;
   Dimension dim_;
   int variable_count_ = 0;
   std::vector<Instruction> program_;

@@ -147,6 +147,53 @@ TEST(Expression, JuxtapositionAppliesTheUnitToTheWholeProduct) {
   EXPECT_TRUE(Near(Eval("1 rev/s").value, 2 * kPi, kExact));
 }
 
+// A function or pi after '*' or '/' ends a unit suffix as a parameter does: a density field
+// "1000 kg/m^3 * exp(z/R)" is (1000 kg/m^3) * exp(z/R), the same value by left associativity.
+TEST(Expression, AFunctionAfterAUnitAndAnOperatorEndsTheUnit) {
+  Table t;
+  t.symbols["z"] = Symbol::Variable(0, kLength);
+  t.symbols["R"] = Symbol::Constant({0.25, kLength});
+  const Expression rho = Expression::Parse("1000 kg/m^3 * exp(z/R)", t.resolver(), t.names());
+  EXPECT_EQ(rho.dimension(), kDensity);
+  EXPECT_TRUE(rho.unit_note().empty());
+  for (const double z : {0.0, 0.1, -0.3}) {
+    const double vars[1] = {z};
+    EXPECT_TRUE(Near(rho.Evaluate(vars), 1000.0 * std::exp(z / 0.25), kExact)) << z;
+  }
+  EXPECT_TRUE(Near(Eval("2 m / sqrt(4)").value, 1.0, kExact));
+  EXPECT_EQ(Eval("2 m / sqrt(4)").dim, kLength);
+  EXPECT_TRUE(Near(Eval("2 m * pi").value, 2.0 * kPi, kExact));
+}
+
+// What is still refused after a unit says what was read and how to write it.
+TEST(Expression, ANameAUnitSuffixCannotTakeSaysWhatWasReadAndHowToWriteIt) {
+  Table t;
+  t.symbols["rho0"] = Symbol::Constant({7850.0, kDensity});
+  // A name that is no unit, parameter, variable or function, after '*'.
+  const ExpressionError unknown = ErrorOf("1000 kg/m^3 * rhoo", t);
+  EXPECT_EQ(unknown.message(),
+            "'kg/m^3 * rhoo' was read as a unit: a name after a unit and '*' continues the unit, "
+            "and 'rhoo' is not a unit, a parameter, a variable or a function (did you mean "
+            "'rho0'?); to multiply by something else write (1000 kg/m^3) * ...");
+  EXPECT_EQ(unknown.offset(), 14u);
+  // A function right after a value, with no operator.
+  EXPECT_THAT(ErrorOf("1000 exp(2)", t).message(),
+              HasSubstr("'exp' is a function, not a unit: write '*' before it"));
+  // A parameter or variable that is also a unit is read as the unit; an error that follows
+  // says so. t is both the tonne and the time here: 2 N * t + 1 N*s is N*kg + N*s.
+  Table time;
+  time.symbols["t"] = Symbol::Variable(0, Dimension{0, 0, 1});
+  EXPECT_EQ(ErrorOf("2 N * t + 1 N*s", time).message(),
+            "cannot add mass^2*length/time^2 and momentum or impulse (mass*length/time); 't' "
+            "after '2 N *' was read as the unit t (a name after a unit "
+            "and '*' continues the unit, even when a parameter or variable has that name); to "
+            "use the variable 't' write (2 N) * t");
+  // The note also goes with an expression that parses, for its caller's dimension check.
+  const Expression shadowed = Expression::Parse("2 N * t", time.resolver(), time.names());
+  EXPECT_EQ(shadowed.dimension(), (Dimension{1, 2, -2}));
+  EXPECT_THAT(shadowed.unit_note(), HasSubstr("write (2 N) * t"));
+}
+
 TEST(Expression, ParametersShadowUnitsOutsideAUnitSuffix) {
   Table t;
   t.symbols["m"] = Symbol::Constant({2.0, kMass});  // a parameter named m: 2 kg

@@ -184,5 +184,42 @@ TEST(SceneLoader, ErrorsCarryPosition) {
   }
 }
 
+// A density field written with a function after the unit: "1000 kg/m^3 * exp(z/R)" is
+// (1000 kg/m^3) * exp(z/R). A box a x b x c centred on its origin has the mass
+//   M = rho0 a b integral_{-c/2}^{c/2} exp(z/R) dz = 2 rho0 a b R sinh(c/(2R)),
+// met to the cubature's tolerance (1e-10 relative).
+TEST(SceneLoader, ADensityFieldWithAFunctionAfterItsUnit) {
+  const Scene s = LoadSceneText(R"(
+parameters:
+  R: 0.5 m
+bodies:
+  - parts: [{shape: box, size: [1 m, 2 m, 0.4 m], density: 1000 kg/m^3 * exp(z/R)}]
+)",
+                                "t.yaml");
+  const double M = 2 * 1000.0 * 1.0 * 2.0 * 0.5 * std::sinh(0.4 / (2 * 0.5));
+  EXPECT_TRUE(Near(Body0(s).mass(), M, 1e-9));
+}
+
+// A parameter named like a unit, after a unit and '*', is read as the unit; the error that
+// follows says so and how to write the product.
+TEST(SceneLoader, AParameterReadAsAUnitIsNamedInTheError) {
+  try {
+    LoadSceneText(R"(
+parameters:
+  h: 2
+bodies:
+  - parts: [{shape: sphere, radius: 3 cm * h, mass: 1 kg}]
+)",
+                  "t.yaml");
+    FAIL() << "loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 5);
+    EXPECT_EQ(e.message(),
+              "expected length for the radius, got length*time; 'h' after '3 cm *' was read as "
+              "the unit h (a name after a unit and '*' continues the unit, even when a parameter "
+              "or variable has that name); to use the parameter 'h' write (3 cm) * h");
+  }
+}
+
 }  // namespace
 }  // namespace chasles
