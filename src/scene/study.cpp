@@ -190,12 +190,14 @@ std::string PlaneConstraintName(const Scene& scene, int b) {
 }
 
 /// A scene string as the model's StringConstraint: each end's point (the body's centre of mass
-/// by default) in its body's frame, and its `length` (default: the free length it has at the
-/// initial configuration), which it keeps. The model's second end must be a body, so a string
-/// given from a body to the world is turned round: the world end first, the pulleys in reverse
-/// order, every sense flipped (followed the other way, the string goes round each circle the
-/// other way); the reports say so (StringTurnRoundWarnings).
-void AddSceneString(const SceneString& st, const BodyMap& map, const State& s0, Model& model) {
+/// by default; in a planar scene its projection on the plane of motion, z = 0, since a part's
+/// offset along z plays no part there) in its body's frame, and its `length` (default: the free
+/// length it has at the initial configuration), which it keeps. The model's second end must be
+/// a body, so a string given from a body to the world is turned round: the world end first, the
+/// pulleys in reverse order, every sense flipped (followed the other way, the string goes round
+/// each circle the other way); the reports say so (StringTurnRoundWarnings).
+void AddSceneString(const SceneString& st, bool planar, const BodyMap& map, const State& s0,
+                    Model& model) {
   auto model_body = [&](int b) {
     return b == kWorld ? kWorld : map.place[static_cast<size_t>(b)].model_body;
   };
@@ -208,36 +210,52 @@ void AddSceneString(const SceneString& st, const BodyMap& map, const State& s0, 
     to.sense = -to.sense;
     for (SceneStringPulley& p : over) p.sense = -p.sense;
   }
-  std::vector<Vec3> points;  // in W, for the plane check
-  const auto end = [&](const SceneStringEnd& e) {
+  // In W, for the plane check, with what each is in the file.
+  std::vector<std::pair<Vec3, std::string>> points;
+  const auto end = [&](const SceneStringEnd& e, const char* key) {
     const int b = model_body(e.body);
-    const Vec3 p_W = e.p_W.allFinite() ? e.p_W : s0.bodies[static_cast<size_t>(b)].p_WBcm;
-    points.push_back(p_W);
+    Vec3 p_W = e.p_W;
+    std::string what =
+        fmt::format("the '{}' end's {}", key, e.radius > 0 ? "drum centre" : "point");
+    if (!p_W.allFinite()) {
+      p_W = s0.bodies[static_cast<size_t>(b)].p_WBcm;
+      if (planar) p_W.z() = 0.0;
+      what += " (no 'at': its body's centre of mass)";
+    }
+    points.emplace_back(p_W, what);
     const AttachmentFrame X = AttachmentFrameAtWorldPose(model, s0, b, p_W, Mat3::Identity());
     return StringEnd{b, X.p_BoJ_B, e.radius, e.sense};
   };
-  const StringEnd a = end(from), b = end(to);
+  const bool turned = st.to.body == kWorld;  // from and to were swapped above
+  const StringEnd a = end(from, turned ? "to" : "from"), b = end(to, turned ? "from" : "to");
   std::vector<StringPulley> pulleys;
-  for (const SceneStringPulley& p : over) {
+  for (size_t k = 0; k < over.size(); ++k) {
+    const SceneStringPulley& p = over[k];
     // A pulley on a body: its centre in the body's frame (the world pose at the start).
     const int pb = model_body(p.body);
     const Vec3 c = AttachmentFrameAtWorldPose(model, s0, pb, p.center_W, Mat3::Identity()).p_BoJ_B;
     pulleys.push_back({c, p.radius, p.sense, pb});
-    points.push_back(p.center_W);
+    points.emplace_back(p.center_W,
+                        fmt::format("the centre of pulley {}", turned ? over.size() - k : k + 1));
   }
   // With a pulley or a drum the path is planar (model/string_constraint.h): every point and
   // centre in one plane normal to the string's normal.
   if (a.radius > 0.0 || b.radius > 0.0 || !pulleys.empty()) {
     double scale = 1e-3;
-    for (const Vec3& p : points) scale = std::max(scale, p.norm());
-    for (const Vec3& p : points) {
-      const double off = st.normal_W.dot(p - points.front());
+    for (const auto& [p, what] : points) scale = std::max(scale, p.norm());
+    const auto& [first, first_what] = points.front();
+    for (const auto& [p, what] : points) {
+      const double off = st.normal_W.dot(p - first);
       if (std::abs(off) > 1e-9 * scale) {
+        // In a planar scene every point is in the plane z = 0 (world points are [x, y], an
+        // end's default is projected), so only a 3-D scene gets here.
         throw InputError(fmt::format(
             "string '{}': its ends, drums and pulleys must lie in one plane normal to its "
-            "normal [{:.6g}, {:.6g}, {:.6g}], but the point [{:.6g}, {:.6g}, {:.6g}] is {:.6g} m "
-            "off the plane through the first end; move it, or set 'normal'",
-            st.name, st.normal_W.x(), st.normal_W.y(), st.normal_W.z(), p.x(), p.y(), p.z(), off));
+            "normal [{:.6g}, {:.6g}, {:.6g}], but {} at [{:.6g}, {:.6g}, {:.6g}] is {:.6g} m off "
+            "the plane through {}; give the points in one plane ('at' of an end, 'center' of a "
+            "pulley), or set 'normal' to the normal of the plane the string runs in",
+            st.name, st.normal_W.x(), st.normal_W.y(), st.normal_W.z(), what, p.x(), p.y(), p.z(),
+            off, first_what));
       }
     }
   }
@@ -307,7 +325,7 @@ void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
         g.name, g.kind, model_body(g.parent), circle(g.parent, g.parent_circle),
         model_body(g.child), circle(g.child, g.child_circle), g.keep_contact));
   }
-  for (const SceneString& st : c.strings) AddSceneString(st, map, s0, model);
+  for (const SceneString& st : c.strings) AddSceneString(st, scene.planar, map, s0, model);
   if (scene.planar) {
     // Every body of a planar scene is held in its plane z = const by one kPlanar joint with
     // the world at its centre of mass (3 rows: v_z, w_x, w_y). The scene's joints contribute

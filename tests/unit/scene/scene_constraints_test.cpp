@@ -4,8 +4,11 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 // Before gtest: <signal.h> (via gtest) defines a macro si_value, a parameter name in units.h.
 #include "chasles/analysis/instantaneous.h"
+#include "chasles/model/string_constraint.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/study.h"
@@ -113,6 +116,63 @@ simulation: {until: 1 s}
   EXPECT_NEAR(s.reactions[0].p_WJ.x(), 1.4, 1e-12);
   EXPECT_NEAR(s.reactions[0].F_Jc_W.z(), m * g * I / (I + m * d * d), 1e-12 * m * g);
   EXPECT_NEAR(s.reactions[0].F_Jc_W.x(), 0.0, 1e-12 * m * g);
+}
+
+// A planar yo-yo (examples/yo-yo.yaml) whose disk sits 1 cm off the plane along z: the offset
+// plays no part in plane motion, so the string's drum, at the centre of mass by default, is its
+// projection on the plane, z = 0, and the yo-yo falls as the flat one does. Its hub (radius r)
+// rolls down the string, v = omega r, so m a = m g - T and I a / r = T r give
+//   a = g / (1 + I/(m r^2)),  I = m R^2/2 (a cylinder about its axis; Appendix A).
+TEST(SceneConstraints, APlanarStringsDrumIsTheCentreOfMassInThePlane) {
+  const double R = 0.03, r = 0.008, g = 9.81;  // m = 0.2 kg cancels
+  for (const char* offset : {"0", "1 cm"}) {
+    const Scene scene = LoadSceneText(fmt::format(R"(
+planar: true
+bodies:
+  - name: yoyo
+    parts: [{{shape: cylinder, radius: 3 cm, length: 2 cm, mass: 0.2 kg, position: [0, 0, {}]}}]
+gravity: 9.81 m/s^2
+strings:
+  - name: string
+    from: {{body: world, at: [-8 mm, 1 m]}}
+    to: {{body: yoyo, radius: 8 mm, sense: counterclockwise}}
+)",
+                                                  offset),
+                                      "yoyo.yaml");
+    const Study study = BuildStudy(scene, 1.0);
+    const auto& string = dynamic_cast<const StringConstraint&>(study.model->constraint(0));
+    // The drum's centre in B: the centre of mass's x and y, in the plane z = 0.
+    EXPECT_EQ(string.end_b().p_BoP_B, Vec3::Zero()) << offset;
+    const InstantaneousSolution s = SolveInstantaneous(*study.model, study.initial);
+    const double a = g / (1 + R * R / (2 * r * r));
+    EXPECT_NEAR(s.bodies[0].a_WBcm_W.y(), -a, 1e-12 * g) << offset;
+  }
+}
+
+// In 3-D the ends of a string with a drum must lie in the plane normal to 'normal'; an end
+// left at its body's centre of mass off that plane is named, with what to give.
+TEST(SceneConstraints, AStringOffItsPlaneNamesThePointAndWhatToGive) {
+  const Scene scene = LoadSceneText(R"(
+bodies:
+  - name: spool
+    parts: [{shape: cylinder, radius: 3 cm, length: 2 cm, mass: 0.2 kg}]
+    initial: {position: [0, 0, 5 cm]}
+strings:
+  - name: string
+    from: {body: world, at: [-8 mm, 1 m, 0]}
+    to: {body: spool, radius: 8 mm, sense: counterclockwise}
+)",
+                                    "spool.yaml");
+  try {
+    BuildStudy(scene, 1.0);
+    FAIL() << "built";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr(
+                              "but the 'to' end's drum centre (no 'at': its body's centre of "
+                              "mass) at [0, 0, 0.05] is 0.05 m off the plane through the 'from' "
+                              "end's point; give the points in one plane ('at' of an end, "
+                              "'center' of a pulley), or set 'normal'"));
+  }
 }
 
 }  // namespace
