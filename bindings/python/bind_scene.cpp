@@ -259,8 +259,10 @@ void BindSolve(py::module_& m) {
       .def_property_readonly(
           "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); })
       .def_readonly("parameters", &SweepTable::parameters, "A grid's parameter names")
-      .def_readonly("errors", &SweepTable::errors,
-                    "Per row why its run failed ('' when it ran); empty when no row can fail")
+      .def_readonly(
+          "errors", &SweepTable::errors,
+          "Per row why a value is missing (NaN): its run failed, or a quantity could not be had "
+          "('' when every value is there); empty when no row can fail")
       .def(
           "to_json", [](const SweepTable& t) { return DumpJson(SweepJson(t), "the sweep table"); },
           "The table as `chasles solve --sweep ... --format json` prints it")

@@ -71,7 +71,8 @@ std::vector<std::string> ParameterNames(const Scene& scene) {
 }
 
 /// The row of one point: its parameters (the scene's values when it loaded), then the
-/// quantities, or NaN for them and the reason.
+/// quantities; NaN for a quantity that could not be had (all of them when the point failed),
+/// and the reason.
 struct PointRow {
   std::vector<double> values;
   std::string error;
@@ -419,7 +420,18 @@ SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
       StudyOptions study = sweep_options.study;
       study.progress = nullptr;
       const StudyResult r = RunStudy(scene, study);
-      for (const SweepQuantity& q : quantities) row.values.push_back(SweepQuantityValue(r, q));
+      // A quantity the run cannot give (an event that fired too few times) leaves its own
+      // cell empty, with the reason; the others are the run's.
+      std::vector<std::string> missing;
+      for (const SweepQuantity& q : quantities) {
+        try {
+          row.values.push_back(SweepQuantityValue(r, q));
+        } catch (const InputError& e) {
+          row.values.push_back(kNaN);
+          missing.push_back(fmt::format("{}: {}", q.text, OneLine(e.what())));
+        }
+      }
+      row.error = fmt::format("{}", fmt::join(missing, "; "));
       if (sweep_options.on_run) sweep_options.on_run(k, scene, r);
     } catch (const InputError& e) {
       row.values.resize(grid.specs.size());
@@ -539,16 +551,19 @@ SweepTable MassSweep(const std::function<Scene(const SceneOptions&)>& load,
       const Scene scene = load(grid.PointOptions(options, k));
       row.values = SceneValues(grid, scene);
       const nlohmann::json report = MassReportJson(scene, UnitSystem::Parse("SI"));
+      // A quantity the report does not give leaves its own cell empty, with the reason.
+      std::vector<std::string> missing;
       for (size_t j = 0; j < what.size(); ++j) {
         const double v = MassQuantity(report.at("bodies").at(what[j].first), what[j].second).first;
         if (!std::isfinite(v)) {
           const nlohmann::json& b = report.at("bodies").at(what[j].first);
           const std::string note = b.value(what[j].second + "_note", std::string());
-          throw InputError(
+          missing.push_back(
               fmt::format("{}: not given{}", quantities[j], note.empty() ? "" : " (" + note + ")"));
         }
-        row.values.push_back(v);
+        row.values.push_back(std::isfinite(v) ? v : kNaN);
       }
+      row.error = fmt::format("{}", fmt::join(missing, "; "));
     } catch (const InputError& e) {
       row.values.resize(grid.specs.size());
       row.values.resize(grid.specs.size() + quantities.size(), kNaN);

@@ -227,20 +227,23 @@ TEST(SimulateSweep, JobsGiveIdenticalBytes) {
   EXPECT_EQ(rows, 12);
 }
 
-// A point whose run fails is a row with its parameters, no values and the reason: here the
-// longer pendulum does not reach the bottom by --until (T/4 = 0.36 s for L = 0.5 m, 0.72 s
-// for L = 2 m), and a negative radius is bad input at one point of a mass sweep.
+// A quantity a run cannot give leaves its own field empty, with the reason, and the row's
+// other quantities are the run's: here the longer pendulum does not reach the bottom by
+// --until (T/4 = 0.36 s for L = 0.5 m, 0.72 s for L = 2 m), and its run still ends at
+// t_end = 0.5 s.
 TEST(SimulateSweep, FailedPointIsARowWithItsReason) {
   const std::string scene = Pendulum(
       "pendulum_fail", "{name: bottom, when: bob_x, crosses: 0 m, direction: falling}", "5 s");
-  const std::string args =
-      "simulate " + Quote(scene) +
-      " --sweep 'L=0.5 m:2 m:2' --quantity 'event(bottom)' --until 0.5 --quiet";
+  const std::string args = "simulate " + Quote(scene) +
+                           " --sweep 'L=0.5 m:2 m:2' --quantity 'event(bottom)' --quantity "
+                           "t_end --until 0.5 --quiet";
   const CliResult csv = RunCli(args);
   ASSERT_EQ(csv.exit_code, 0) << csv.err;
-  EXPECT_THAT(csv.out, ::testing::HasSubstr("\n2,,\"event 'bottom' fired 0 times by the run's "
-                                            "end at t = 0.5 s"));
-  EXPECT_THAT(csv.err, ::testing::HasSubstr("warning: L = 2: event 'bottom' fired 0 times"));
+  EXPECT_THAT(csv.out, ::testing::HasSubstr("\n2,,0.5,\"event(bottom): event 'bottom' fired 0 "
+                                            "times by the run's end at t = 0.5 s; "
+                                            "event(bottom, 1) needs 1\"\n"));
+  EXPECT_THAT(csv.err,
+              ::testing::HasSubstr("warning: L = 2: event(bottom): event 'bottom' fired 0 times"));
   const CliResult json = RunCli(args + " --format json");
   ASSERT_EQ(json.exit_code, 0) << json.err;
   const Table t = ParseTable(json.out);
@@ -250,6 +253,7 @@ TEST(SimulateSweep, FailedPointIsARowWithItsReason) {
       Near(t.rows[0].at("event(bottom)").get<double>(), QuarterPeriod(0.5, 30 * kPi / 180), kRun));
   EXPECT_EQ(t.rows[1].at("L").get<double>(), 2.0);
   EXPECT_TRUE(t.rows[1].at("event(bottom)").is_null());
+  EXPECT_EQ(t.rows[1].at("t_end").get<double>(), 0.5);
   EXPECT_THAT(t.errors[1].get<std::string>(), ::testing::HasSubstr("fired 0 times"));
   // --strict: a failed row exits 3.
   EXPECT_EQ(RunCli(args + " --strict").exit_code, 3);
@@ -322,6 +326,29 @@ bodies:
   ASSERT_EQ(bad.exit_code, 0) << bad.err;
   EXPECT_THAT(bad.out, ::testing::HasSubstr("radius must be positive"));
   EXPECT_THAT(bad.out, ::testing::HasSubstr("\n0.01,0.00015,\n"));
+}
+
+// A mass property the report does not give (the volume of a body with a `custom` part) leaves
+// only its own field empty: the mass, m, is there in every row.
+TEST(MassSweep, AQuantityTheReportDoesNotGiveLeavesOnlyItsFieldEmpty) {
+  const std::string scene = WriteScene("custom", R"(parameters:
+  m: 2 kg
+bodies:
+  - name: block
+    parts:
+      - {shape: custom, mass: m, inertia: {Ixx: 1 kg*m^2, Iyy: 1 kg*m^2, Izz: 1 kg*m^2}}
+)");
+  const CliResult r = RunCli("mass " + Quote(scene) +
+                             " --sweep 'm=1 kg:3 kg:3' --quantity volume --quantity mass "
+                             "--format json --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Table t = ParseTable(r.out);
+  ASSERT_EQ(t.rows.size(), 3u);
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_TRUE(t.rows[k].at("volume").is_null()) << k;
+    EXPECT_EQ(t.rows[k].at("mass").get<double>(), 1.0 + static_cast<double>(k)) << k;
+    EXPECT_THAT(t.errors[k].get<std::string>(), ::testing::HasSubstr("volume: not given")) << k;
+  }
 }
 
 // Progress on standard error: runs done of the total (off a terminal, one line per interval).

@@ -203,15 +203,23 @@ int RunPlot(const PlotArgs& args) {
   for (size_t i = 1; i < args.columns.size(); ++i) {
     ys.push_back(CsvColumnIndex(t, args.columns[i], csv));
   }
-  // A sweep's failed points (their values empty, the "error" column saying why) are left out.
+  // A sweep's values that are missing (empty: a failed point, or a quantity its run could not
+  // give; the "error" column says why) are left out, point by point.
   std::vector<size_t> rows;
+  size_t missing = 0;
   for (size_t r = 0; r < t.rows.size(); ++r) {
-    if (r >= t.errors.size() || t.errors[r].empty()) rows.push_back(r);
+    bool some = false;
+    for (size_t y : ys) {
+      const bool given = std::isfinite(t.rows[r][x]) && std::isfinite(t.rows[r][y]);
+      some = some || given;
+      missing += given ? 0 : 1;
+    }
+    if (some) rows.push_back(r);
   }
   if (rows.empty()) throw InputError(fmt::format("{}: the table has no rows to plot", csv));
-  if (rows.size() < t.rows.size()) {
+  if (missing > 0) {
     std::fprintf(stderr, "note: %s: %zu failed point(s) of the sweep left out of the plot\n",
-                 csv.c_str(), t.rows.size() - rows.size());
+                 csv.c_str(), missing);
   }
   // The series: one per Y column, or with --by one per Y column and value of that column (in
   // the order the table first has it), labelled "Y [unit], BY = value".
@@ -238,6 +246,7 @@ int RunPlot(const PlotArgs& args) {
       }
       for (size_t r : rows) {
         if (!args.by.empty() && t.rows[r][by] != g) continue;
+        if (!std::isfinite(t.rows[r][y])) continue;  // counted in `missing`
         // A logarithmic axis has no place for x <= 0 or y <= 0: such points are left out.
         if (args.log && !(t.rows[r][x] > 0.0 && t.rows[r][y] > 0.0)) {
           ++left_out;
@@ -274,7 +283,7 @@ int RunPlot(const PlotArgs& args) {
   }
   std::filesystem::remove(temp);
   std::printf("Wrote %s (%zu series, %zu points in all, from %s)\n", args.output.c_str(),
-              series.size(), rows.size() * ys.size() - left_out, csv.c_str());
+              series.size(), t.rows.size() * ys.size() - missing - left_out, csv.c_str());
   return 0;
 }
 

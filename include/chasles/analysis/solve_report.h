@@ -122,9 +122,10 @@ struct SweepTable {
   std::vector<std::string> warnings;
   /// True when a check failed at some value.
   bool failed = false;
-  /// Per row, why its run failed ("" when it did not); empty when no row can fail (solve).
-  /// A failed row has its parameters and NaN for every other value: the writers print those
-  /// as empty CSV fields and JSON nulls, with the reason in an "error" column.
+  /// Per row, why a value is missing ("" when none is); empty when no row can fail (solve).
+  /// A failed row has its parameters and NaN for every other value; a row whose run could
+  /// not give a quantity has NaN for that one alone. The writers print NaN as empty CSV fields
+  /// and JSON nulls, with the reasons in an "error" column.
   std::vector<std::string> errors;
 };
 

@@ -96,8 +96,10 @@ struct SimulateSweepOptions {
 /// Runs the scene at every point of the grid of `specs` and tabulates `quantities`: columns
 /// the parameters then the quantities (their text as the name), one row per point in grid
 /// order. A point whose scene fails to load or whose run fails (bad input at that point, a
-/// limit reached, an event that did not fire) has its parameters, NaN values and the reason in
-/// SweepTable::errors. Unknown parameters, columns and events are SceneErrors before any run.
+/// limit reached) has its parameters, NaN values and the reason in SweepTable::errors; a
+/// quantity its run cannot give (an event that did not fire as often as asked) is NaN alone,
+/// the others computed, with its reason in SweepTable::errors. Unknown parameters, columns and
+/// events are SceneErrors before any run.
 SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
                          const SceneOptions& options, const std::vector<SweepSpec>& specs,
                          const std::vector<SweepQuantity>& quantities,

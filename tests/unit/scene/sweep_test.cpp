@@ -4,6 +4,7 @@
 #include "chasles/scene/sweep.h"
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <stdexcept>
@@ -105,6 +106,50 @@ TEST(SweepQuantity, ValuesOfARun) {
   EXPECT_EQ(SweepQuantityValue(r, ParseSweepQuantity("t_end")), 2.0);
   EXPECT_THROW(SweepQuantityValue(r, ParseSweepQuantity("event(low, 3)")), InputError);
   EXPECT_THROW(SweepQuantityValue(r, ParseSweepQuantity("final(y)")), InputError);
+}
+
+// A quantity a run cannot give leaves only its own cell empty. A ball dropped from rest at
+// height h falls z = h - g t^2/2, so it reaches the ground at sqrt(2 h / g) and stands at
+// h - g T^2/2 when the run ends at T = 1 s: dropped from 5 m or 9 m it has not landed by then
+// (sqrt(2 h/g) > 1 s), and only event(ground) is missing from those rows.
+TEST(SimulateSweep, AQuantityThatCannotBeHadLeavesOnlyItsCellEmpty) {
+  const char* text = R"(
+parameters:
+  h: 1 m
+bodies:
+  - name: ball
+    parts: [{shape: sphere, radius: 1 cm, mass: 1 kg}]
+    initial: {position: [0, 0, h]}
+gravity: [0, 0, -9.81 m/s^2]
+events:
+  - {name: ground, when: ball_z, crosses: 0 m, direction: falling, action: record}
+simulation: {until: 1 s, tolerance: 1e-12}
+)";
+  const auto load = [text](const SceneOptions& o) { return LoadSceneText(text, "drop.yaml", o); };
+  SimulateSweepOptions options;
+  options.jobs = 1;
+  const SweepTable t = SimulateSweep(
+      load, {}, {ParseSweep("h=1 m:9 m:3")},
+      {ParseSweepQuantity("event(ground)"), ParseSweepQuantity("final(ball_z)")}, options, 100);
+  const double g = 9.81, T = 1.0;
+  ASSERT_EQ(t.rows.size(), 3u);
+  ASSERT_EQ(t.errors.size(), 3u);
+  EXPECT_EQ(t.columns, (std::vector<std::string>{"h", "event(ground)", "final(ball_z)"}));
+  for (size_t i = 0; i < 3; ++i) {
+    const double h = 1.0 + 4.0 * static_cast<double>(i);
+    // Free fall is a quadratic in t, which the integrator follows to round-off.
+    EXPECT_NEAR(t.rows[i][2], h - g * T * T / 2, 1e-12 * h) << h;
+    if (i == 0) {
+      EXPECT_NEAR(t.rows[i][1], std::sqrt(2 * h / g), 1e-12) << h;
+      EXPECT_EQ(t.errors[i], "");
+    } else {
+      EXPECT_TRUE(std::isnan(t.rows[i][1])) << h;
+      EXPECT_EQ(t.errors[i],
+                "event(ground): event 'ground' fired 0 times by the run's end at t = 1 s; "
+                "event(ground, 1) needs 1")
+          << h;
+    }
+  }
 }
 
 // Every index runs once whatever the thread count; results land by index; an exception stops
