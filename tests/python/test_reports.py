@@ -5,6 +5,8 @@ import json
 import os
 import subprocess
 
+import numpy as np
+
 import pytest
 
 from conftest import example
@@ -65,3 +67,18 @@ def test_read_csv_finds_columns_by_name_and_full_precision_reads_back_bitwise(ch
     assert t.units == run.units
     assert t.unit("t") == "s"
     assert (t.data == run.data).all()
+
+
+@needs_cli
+def test_principal_axes_are_columns_here_and_rows_in_the_mass_json(chasles):
+    """docs/python.md: `principal_axes[:, i]` goes with `principal_moments[i]`; the mass JSON
+    lists the same axes as rows, so its matrix is the transpose (Example 8.2's two rods, whose
+    three moments differ)."""
+    rods = example("example-8.2-two-rods.yaml")
+    mp = chasles.load_scene(rods).mass_properties()["rods"]
+    body = json.loads(cli("mass", rods, "--format", "json", "--units", "SI"))["bodies"][0]
+    assert (np.array(body["principal_axes"]).T == mp.principal_axes).all()
+    I = mp.inertia
+    for i in range(3):
+        e = mp.principal_axes[:, i]
+        assert np.allclose(I @ e, mp.principal_moments[i] * e, rtol=0, atol=1e-15 * np.trace(I))
