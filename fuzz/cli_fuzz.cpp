@@ -1,7 +1,8 @@
 // Fuzz target: the command-line parser and the checks each command makes of its options.
 // The input is split at NUL bytes into arguments. Commands that only read (mass, check,
-// solve) are then run, provided every file they would read is inside the source tree and no
-// output file is asked for; simulate is only parsed (it writes files and may run long).
+// solve, upgrade without --in-place) are then run, provided every file they would read is
+// inside the source tree and no output file is asked for; simulate is only parsed (it writes
+// files and may run long).
 // Promise: parse errors are reported (exit 2), and a run's exit code is never 1.
 
 #include <cstdint>
@@ -64,6 +65,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     run = SafeToRead(p.check_args.scene.scene);
   } else if (p.solve->parsed()) {
     run = SafeToRead(p.solve_args.scene.scene);
+  } else if (p.upgrade->parsed()) {
+    run = SafeToRead(p.upgrade_args.scene) && p.upgrade_args.output.empty() &&
+          !p.upgrade_args.in_place;
   } else if (p.materials->parsed()) {
     run = true;
   }

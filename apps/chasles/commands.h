@@ -108,6 +108,19 @@ struct ReportArgs {
 CLI::App* AddReportCommand(CLI::App& app, ReportArgs& args);
 int RunReport(const ReportArgs& args);
 
+/// `chasles upgrade FILE`: the scene rewritten as the current format version, shown as a
+/// unified diff and written with -o or --in-place (docs/scene-format.md, "Changes between
+/// versions").
+struct UpgradeArgs {
+  std::string scene;
+  std::string output;  // -o: write the upgraded scene here
+  bool in_place = false;
+  bool check = false;  // only say whether the file needs upgrading (exit 3 when it does)
+  size_t max_scene_bytes = kDefaultMaxSceneBytes;
+};
+CLI::App* AddUpgradeCommand(CLI::App& app, UpgradeArgs& args);
+int RunUpgrade(const UpgradeArgs& args);
+
 CLI::App* AddMaterialsCommand(CLI::App& app);
 int RunMaterials();
 

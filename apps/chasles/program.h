@@ -27,12 +27,14 @@ struct Program {
   SolveArgs solve_args;
   ReportArgs report_args;
   PlotArgs plot_args;
+  UpgradeArgs upgrade_args;
   CLI::App* mass = nullptr;
   CLI::App* check = nullptr;
   CLI::App* simulate = nullptr;
   CLI::App* solve = nullptr;
   CLI::App* materials = nullptr;
   CLI::App* report = nullptr;
+  CLI::App* upgrade = nullptr;
   CLI::App* plot = nullptr;  // null in a build without PLplot
 };
 

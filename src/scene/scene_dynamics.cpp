@@ -130,7 +130,11 @@ std::optional<Symbol> SceneReader::ResolveStateSymbol(const At& at, std::string_
                             suffix < 0 ? kTime : kSuffixDimensions[static_cast<size_t>(suffix)]);
   }
   std::optional<Symbol> parameter = ResolveParameter(name);
-  if (!parameter && planar_) PlanarNameHint(at, name);
+  if (!parameter && planar_) {
+    // A version-1 name (scene_versions.cpp), else a 3-D name: say which planar name to use.
+    if (std::optional<Symbol> renamed = PlanarOldName(at, name)) return renamed;
+    PlanarNameHint(at, name);
+  }
   return parameter;
 }
 

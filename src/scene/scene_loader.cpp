@@ -271,13 +271,7 @@ Scene SceneReader::Read(const YAML::Node& document) {
   report_.CheckMap(root, kRootKeys, "the scene");
   Scene scene;
   scene.file = report_.file();
-  if (root.Has("chasles")) {
-    const At v = root.Child("chasles");
-    if (report_.Text(v, "the format version") != "1") {
-      report_.Fail(v, fmt::format("format version '{}' is not known; this chasles reads version 1",
-                                  v.node.Scalar()));
-    }
-  }
+  ReadVersion(root, scene);
   if (root.Has("title")) scene.title = report_.Text(root.Child("title"), "a title");
   if (root.Has("description")) {
     scene.description = report_.Text(root.Child("description"), "a description");

@@ -37,13 +37,10 @@ void SceneReader::ReadPlanar(const At& root, Scene& scene) {
 
 Vec3 SceneReader::WorldVector(const At& at, const Dimension& expected, std::string_view what) {
   if (!planar_) return Vector(at, expected, what);
-  if (!at.node.IsSequence() || at.node.size() != 2) {
-    if (at.node.IsSequence() && at.node.size() == 3) {
-      report_.Fail(at, fmt::format("{}: a planar scene moves in the x-y plane; give [x, y] (two "
-                                   "values), not [x, y, z]: out-of-plane components have no "
-                                   "place in a planar problem",
-                                   what));
-    }
+  if (at.node.IsSequence() && at.node.size() == 3) {
+    // [x, y, 0]: the version-1 spelling (scene_versions.cpp).
+    PlanarThreeValues(at, what, "[x, y]", [&] { return Value(at.Item(2), expected, what) == 0.0; });
+  } else if (!at.node.IsSequence() || at.node.size() != 2) {
     report_.Fail(at, fmt::format("expected {} as a list of two values [x, y] (a planar scene), "
                                  "got {}",
                                  what, KindOf(at.node)));
@@ -109,12 +106,13 @@ SceneVectorExpression SceneReader::PlanarStateVector(const At& at, const Dimensi
     v.components[2] = StateExpression(at, expected, what);
     return v;
   }
-  if (!at.node.IsSequence() || at.node.size() != 2) {
-    if (at.node.IsSequence() && at.node.size() == 3) {
-      report_.Fail(at, fmt::format("{}: a planar scene moves in the x-y plane; give [Fx, Fy] "
-                                   "(two values), not three",
-                                   what));
-    }
+  if (at.node.IsSequence() && at.node.size() == 3) {
+    // [Fx, Fy, 0]: the version-1 spelling (scene_versions.cpp).
+    PlanarThreeValues(at, what, "[Fx, Fy]", [&] {
+      const Expression z = StateExpression(at.Item(2), expected, what);
+      return z.is_constant() && z.Evaluate({}) == 0.0;
+    });
+  } else if (!at.node.IsSequence() || at.node.size() != 2) {
     report_.Fail(at, fmt::format("expected {} as a list of two values [x, y] (a planar scene), "
                                  "got {}",
                                  what, KindOf(at.node)));

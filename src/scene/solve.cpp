@@ -131,9 +131,12 @@ SolveReport SolveScene(const Scene& scene) {
     SolveReport s;
     s.solution = SolveInstantaneous(model, state);
     s.planar = scene.planar;
-    // Initial values the projection changed (`project_initial: true`) come first.
+    // The scene's own warnings (version-1 spellings, mesh repairs) come first, then the
+    // initial values the projection changed (`project_initial: true`).
     s.solution.warnings.insert(s.solution.warnings.begin(), study.warnings.begin(),
                                study.warnings.end());
+    s.solution.warnings.insert(s.solution.warnings.begin(), scene.warnings.begin(),
+                               scene.warnings.end());
     CertificateBuilder certificate;
     certificate.CheckState(model, state, CheckPhase::kSolve);
     s.certificate = certificate.Finish();

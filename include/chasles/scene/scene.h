@@ -18,6 +18,10 @@
 
 namespace chasles {
 
+/// The scene format version this chasles writes (`chasles: 2`). It also reads version 1, with a
+/// warning for each version-1 spelling (docs/scene-format.md, "Changes between versions").
+inline constexpr int kSceneFormatVersion = 2;
+
 /// What a drawing of a part needs (the browser report, docs/report.md): the shape's dimensions
 /// and the part's own frame P in the body frame B.
 struct ScenePartGeometry {
@@ -82,6 +86,8 @@ struct SceneBody {
 struct Scene {
   /// File name as given (or "<built-in>" for the demonstration scene).
   std::string file;
+  /// The format version the file was read as: its `chasles` key, 1 when it has none.
+  int format_version = kSceneFormatVersion;
   std::string title;
   std::string description;
   /// The scene's unit choice (key `units`), e.g. "SI" or "in, lb": bare numbers in the file are

@@ -5,6 +5,7 @@
 /// scene layer; its parts live in one .cpp per section of the format (scene_loader.cpp for
 /// parameters, materials, bodies and parts).
 
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -21,6 +22,7 @@
 #include "chasles/scene/expression.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/units.h"
+#include "scene_rewrite.h"
 #include "shape_table.h"
 #include "yaml_reader.h"
 
@@ -42,6 +44,8 @@ class SceneReader {
       : report_(std::move(file)), options_(options) {}
 
   Scene Read(const YAML::Node& document);
+  /// The version-1 spellings the last Read met, in the order met (the version line first).
+  const std::vector<SceneRewrite>& rewrites() const { return rewrites_; }
 
   /// A reader that evaluates command-line text against a loaded scene's units and parameters.
   SceneReader(const Scene& scene, std::string source, const SceneOptions& options)
@@ -173,6 +177,25 @@ class SceneReader {
   std::string ConstraintName(const At& at, const char* kind, size_t index,
                              std::vector<std::string>& taken);
 
+  // Format versions (scene_versions.cpp) ----------------------------------------------------
+  /// Reads `chasles` (the format version; a file without it is version 1) into version_ and
+  /// scene.format_version; a version-1 file gets the rewrite of its version line.
+  void ReadVersion(const At& root, Scene& scene);
+  /// A world vector of a planar scene given as three values at `at` (`form` is its planar
+  /// form, "[x, y]" or "[Fx, Fy]"): in a version-1 file whose third value is 0 (`zero_z`,
+  /// asked only there) a warning and a rewrite to two values, after which the caller reads the
+  /// first two; otherwise fails naming the two-value form.
+  void PlanarThreeValues(const At& at, std::string_view what, const char* form,
+                         const std::function<bool()>& zero_z);
+  /// A version-1 name of a planar scene's body variable ("rod_wz" for "rod_omega"): in a
+  /// version-1 file the symbol of its new name, with a warning and a rewrite for each use in
+  /// the expression at `at`; in a later one fails naming the new name. nullopt for any other
+  /// name.
+  std::optional<Symbol> PlanarOldName(const At& at, std::string_view name);
+  /// A warning naming the place and the new spelling of a version-1 one (rewritten by
+  /// `chasles upgrade`), and the rewrite.
+  void OldSpelling(SceneRewrite rewrite, const std::string& what);
+
   // Planar scenes (scene_planar.cpp) -------------------------------------------------------
   /// Reads `planar` (before the bodies).
   void ReadPlanar(const At& root, Scene& scene);
@@ -223,6 +246,9 @@ class SceneReader {
 
   Reporter report_;
   SceneOptions options_;
+  /// The file's format version (`chasles`; 1 when it has none).
+  int version_ = 1;
+  std::vector<SceneRewrite> rewrites_;
   bool planar_ = false;
   std::unique_ptr<UnitSystem> units_;
   std::string units_text_ = "SI";
