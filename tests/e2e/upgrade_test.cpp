@@ -2,7 +2,8 @@
 // `chasles upgrade` shows, writes or checks the rewrite of a version-1 scene; a version-1 scene
 // loads with a warning for each old spelling in every report; and an upgraded scene gives the
 // same mass, solve and simulate outputs, byte for byte apart from those warnings, as the
-// version-1 file it came from: every scene in tests/format_v1.
+// version-1 file it came from: every scene in tests/format_v1 and every example as it was
+// before the examples became version 2 (the upgrade changed only their version line).
 
 #include <algorithm>
 #include <cstdlib>
@@ -279,6 +280,22 @@ TEST(Upgrade, VersionOneScenesGiveTheSameOutputsUpgraded) {
     ExpectSameOutputs(entry.path().stem().string(), ReadText(entry.path()), "");
   }
   EXPECT_GE(count, 10);
+}
+
+// Every example as it was in version 1 (its version line was all the upgrade changed), the
+// runs cut to 50 ms.
+TEST(Upgrade, EveryExampleAsVersionOneGivesTheSameOutputsUpgraded) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(SourcePath("examples"))) {
+    if (entry.path().extension() != ".yaml") continue;
+    std::string text = ReadText(entry.path());
+    const size_t at = text.find("\nchasles: 2\n");
+    ASSERT_NE(at, std::string::npos) << entry.path() << " is not version 2";
+    text.replace(at, 12, "\nchasles: 1\n");
+    ++count;
+    ExpectSameOutputs(entry.path().stem().string(), text, "--until 0.05");
+  }
+  EXPECT_GE(count, 60);
 }
 
 }  // namespace
