@@ -401,6 +401,14 @@ std::string EndContactsText(const Scene& scene, const StudyResult& r, const Show
                        scene.planar ? show.Xy(c.slip_velocity_W, kVelocityDim, k.speed)
                                     : show(c.slip_velocity_W, kVelocityDim, Angular::kNo, k.speed),
                        show(std::abs(c.gap) <= 1e-12 * k.length ? 0.0 : c.gap, kLength));
+    if (c.rolling_moment_W.squaredNorm() > 0.0) {
+      // Rolling resistance: the moment holding the rolling, or resisting it (about z in a
+      // planar scene).
+      out += fmt::format("    rolling-resistance moment {}\n",
+                         scene.planar ? show(Clean(c.rolling_moment_W.z(), k.moment), kMomentDim)
+                                      : show(c.rolling_moment_W, kMomentDim, Angular::kNo,
+                                             std::max(k.moment, c.rolling_moment_W.norm())));
+    }
   }
   return out;
 }

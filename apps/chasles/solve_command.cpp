@@ -242,6 +242,24 @@ std::string ReactionsText(const SolveReport& s, const ReportScales& k, const Sho
   return out;
 }
 
+/// A sticking round point's rolling resistance: the moment holding its rolling, or resisting it.
+std::string RollingResistanceText(const SolveReport& s, const ContactPointReport& c,
+                                  const ReportScales& k, const Show& u) {
+  const Vec3& M = c.out.rolling_moment_W;
+  const double cap = c.out.rolling_moment_capacity;
+  const double scale = std::max({k.moment, M.stableNorm(), cap});
+  // A planar scene's moments are about z.
+  const std::string moment =
+      s.planar ? "Mz " + u(Clean(M.z(), scale), kMomentDim) : u.Vec(M, kMomentDim, scale);
+  if (c.out.rolling_held) {
+    return fmt::format(
+        "    rolling held: moment {} (|M| {}) within mu_r N R = {} (|M|/(mu_r N R) = {:.9g})\n",
+        moment, u(M.norm(), kMomentDim), u(cap, kMomentDim), cap > 0.0 ? M.norm() / cap : 0.0);
+  }
+  return fmt::format("    rolling: moment {} = mu_r N R = {} against the rolling (mu_r = {:.6g})\n",
+                     moment, u(cap, kMomentDim), c.mu_r);
+}
+
 /// Each contact point's mode and forces.
 std::string ContactsText(const SolveReport& s, const ReportScales& k, const Show& u) {
   if (s.contacts.empty()) return "";
@@ -258,6 +276,7 @@ std::string ContactsText(const SolveReport& s, const ReportScales& k, const Show
                     u(c.out.friction_force_W.norm(), kForceDim));
     if (c.out.mode == ContactMode::kSticking) {
       out += fmt::format("    f/N = {:.9g} against mu_s = {:.6g}\n", c.FrictionRatio(), c.mu_s);
+      if (c.round && c.mu_r > 0.0) out += RollingResistanceText(s, c, k, u);
     } else {
       out += fmt::format("    slip velocity {}, f/N = mu_k = {:.6g}\n",
                          u.InPlane(s.planar, c.out.slip_velocity_W, kVelocityDim), c.mu_k);

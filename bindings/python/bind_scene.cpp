@@ -206,7 +206,12 @@ void BindSolve(py::module_& m) {
           ContactPointReport, mu_s, "") RO(ContactPointReport, mu_k, "")
           .def_property_readonly("mode", [](const ContactPointReport& c) { return c.out.mode; })
           .def_property_readonly("regime", &ContactPointReport::Regime,
-                                 "'rolls', 'sticks', 'slides' or 'separated'")
+                                 "'rolls', 'rolling held', 'sticks', 'slides' or 'separated'")
+          .def_property_readonly("rolling_held",
+                                 [](const ContactPointReport& c) { return c.out.rolling_held; })
+          .def_property_readonly(
+              "rolling_moment", [](const ContactPointReport& c) { return c.out.rolling_moment_W; },
+              "Rolling-resistance moment on the body, in W [N*m]")
           .def_property_readonly("normal_force",
                                  [](const ContactPointReport& c) { return c.out.normal_force; })
           .def_property_readonly("friction",

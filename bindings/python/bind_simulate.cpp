@@ -183,6 +183,10 @@ void BindResult(py::module_& m) {
       .def_readonly("point", &ContactEvent::point)
       .def_readonly("from_mode", &ContactEvent::from)
       .def_readonly("to_mode", &ContactEvent::to)
+      .def_readonly("held_from", &ContactEvent::held_from,
+                    "Rolling held by rolling resistance before the change")
+      .def_readonly("held_to", &ContactEvent::held_to,
+                    "Rolling held by rolling resistance after the change")
       .def_property_readonly("reason", [](const ContactEvent& e) {
         return std::string(ContactEventReasonName(e.reason));
       });

@@ -20,6 +20,7 @@ namespace {
 enum Check {
   kFrictionCone,
   kSlidingFriction,
+  kRollingResistance,
   kNormalForce,
   kGap,
   kConstraintPosition,
@@ -41,6 +42,8 @@ struct CheckInfo {
 constexpr CheckInfo kChecks[kNumChecks] = {
     {"friction cone", "sticking points: |f| - mu_s N <= 0", "N"},
     {"sliding friction", "sliding points: |f + mu_k N s| = 0 (s the unit slip)", "N"},
+    {"rolling resistance",
+     "held rolling: |M| - mu_r N R <= 0; rolling: |M + mu_r N R w_r/|w_r|| = 0", "N*m"},
     {"normal force", "points in contact: -N <= 0", "N"},
     {"gap", "every contact point: -gap <= 0", "m"},
     {"constraint position", "holonomic rows of joints, rolling, gears, drivers: |g| = 0",
@@ -268,7 +271,34 @@ void CertificateBuilder::CheckContacts(const Model& model, const State& state, c
       }
       Add(kSlidingFriction, value, Scale::kForce, 1.0, 0.0, local, where, t, phase);
     }
+    if (o.mode == ContactMode::kSticking && o.rolling_moment_capacity > 0.0) {
+      CheckRollingResistance(o, where, t, phase);
+    }
   }
+}
+
+void CertificateBuilder::CheckRollingResistance(const ContactPointOutput& o,
+                                                const std::string& where, double t,
+                                                CheckPhase phase) {
+  // Rolling resistance, a complementarity like Coulomb's: a held rolling needs at most
+  // mu_r N R; a rolling point gets mu_r N R against its rolling. A rolling speed at the
+  // velocity scale's round-off has no direction of its own (the engine keeps the mode's
+  // reference, as it does when the rolling starts from rest): its size alone is checked.
+  const double cap = o.rolling_moment_capacity;
+  const double M = o.rolling_moment_W.norm();
+  moment_ = std::max(moment_, M);
+  double value = 0.0;
+  if (o.rolling_held) {
+    value = std::max(0.0, M - cap);
+  } else {
+    const double wr = o.rolling_velocity_W.norm();
+    if (wr > std::max(tol_.state * rate_, kSlipSpeedRoundOff)) {
+      value = (o.rolling_moment_W + cap * o.rolling_velocity_W / wr).norm();
+    } else {
+      value = std::abs(M - cap);
+    }
+  }
+  Add(kRollingResistance, value, Scale::kMoment, 1.0, 0.0, M + cap, where, t, phase);
 }
 
 void CertificateBuilder::CheckBalances(const Model& model, const State& state, const Data& data,

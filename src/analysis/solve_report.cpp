@@ -10,6 +10,7 @@ namespace chasles {
 std::string ContactPointReport::Regime() const {
   switch (out.mode) {
     case ContactMode::kSticking:
+      if (out.rolling_held) return "rolling held";
       return round ? "rolls" : "sticks";
     case ContactMode::kSliding:
       return "slides";

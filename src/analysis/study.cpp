@@ -88,7 +88,7 @@ class StudyRun {
   void RunTo(double t_b);
   void RunEvents(double t_b);
   void RecordSphereEvents(const SphereEventResult& r);
-  void RecordSimulation(const SimulationResult& r, const std::vector<ContactMode>& carried,
+  void RecordSimulation(const SimulationResult& r, const std::vector<ContactPointState>& carried,
                         const std::vector<EventSpec>& events);
   void ApplyJump(const Jump& j);
   double AnswerJump(const State& before, std::vector<study_internal::JumpImpulse> impulses,
@@ -174,10 +174,11 @@ void StudyRun::Start() {
           std::any_of(result_.contact_events.begin(), result_.contact_events.end(),
                       [&](const StudyContactEvent& e) { return e.point == Label(p); });
       if (listed) continue;
-      const ContactMode m = state_.contacts[static_cast<size_t>(p)].mode;
+      const ContactPointState& ps = state_.contacts[static_cast<size_t>(p)];
+      const std::string regime = ContactRegimeName(ps.mode, ps.rolling_held);
       result_.contact_events.push_back({state_.t, Label(p),
-                                        model.contact(model.contact_of_point(p)).name(),
-                                        ContactModeName(m), ContactModeName(m), "initial"});
+                                        model.contact(model.contact_of_point(p)).name(), regime,
+                                        regime, "initial"});
     }
   }
   carry_.segment_initial = as_given;
@@ -200,9 +201,9 @@ void StudyRun::RecordChanges(const std::vector<ContactModeChange>& changes, doub
                              const char* reason) {
   const Model& m = *seg_.model;
   for (const ContactModeChange& c : changes) {
-    result_.contact_events.push_back({t, Label(c.point),
-                                      m.contact(m.contact_of_point(c.point)).name(),
-                                      ContactModeName(c.from), ContactModeName(c.to), reason});
+    result_.contact_events.push_back(
+        {t, Label(c.point), m.contact(m.contact_of_point(c.point)).name(),
+         ContactRegimeName(c.from, c.held_from), ContactRegimeName(c.to, c.held_to), reason});
   }
 }
 
@@ -304,8 +305,7 @@ void StudyRun::RunTo(double t_b) {
     };
     const double t_from = state_.t;
     // Modes carried into this run: its "initial" records that only restate them are dropped.
-    std::vector<ContactMode> carried(state_.contacts.size());
-    for (size_t p = 0; p < carried.size(); ++p) carried[p] = state_.contacts[p].mode;
+    const std::vector<ContactPointState> carried = state_.contacts;
     SimulationResult r;
     try {
       r = Simulate(*seg_.model, state_, o);
@@ -355,8 +355,9 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
   for (const ContactEvent& e : r.contact_events) {
     const std::string& contact = m.contact(m.contact_of_point(e.point)).name();
     if (e.reason == ContactEventReason::kInitial) listed[static_cast<size_t>(e.point)] = true;
-    result_.contact_events.push_back({e.t, Label(e.point), contact, ContactModeName(e.from),
-                                      ContactModeName(e.to), ContactEventReasonName(e.reason)});
+    result_.contact_events.push_back(
+        {e.t, Label(e.point), contact, ContactRegimeName(e.from, e.held_from),
+         ContactRegimeName(e.to, e.held_to), ContactEventReasonName(e.reason)});
   }
   for (int p = 0; p < m.num_contact_points(); ++p) {
     if (listed[static_cast<size_t>(p)]) continue;
@@ -398,7 +399,8 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
       StudyEventDriven{r.stats, static_cast<long>(r.collisions.size()), r.energy};
 }
 
-void StudyRun::RecordSimulation(const SimulationResult& r, const std::vector<ContactMode>& carried,
+void StudyRun::RecordSimulation(const SimulationResult& r,
+                                const std::vector<ContactPointState>& carried,
                                 const std::vector<EventSpec>& events) {
   const Model& m = *seg_.model;
   CheckFinite(m, r.final_state);
@@ -421,14 +423,17 @@ void StudyRun::RecordSimulation(const SimulationResult& r, const std::vector<Con
     // point's starting mode (as a change from separated); only a mode it chose differently
     // from the one carried in is news.
     ContactMode from = e.from;
+    bool held_from = e.held_from;
     if (e.reason == ContactEventReason::kInitial) {
       const auto p = static_cast<size_t>(e.point);
-      from = p < carried.size() ? carried[p] : ContactMode::kSeparated;
-      if (from == e.to) continue;
+      from = p < carried.size() ? carried[p].mode : ContactMode::kSeparated;
+      held_from = p < carried.size() && carried[p].rolling_held;
+      if (from == e.to && held_from == e.held_to) continue;
     }
     result_.contact_events.push_back(
-        {e.t, Label(e.point), m.contact(m.contact_of_point(e.point)).name(), ContactModeName(from),
-         ContactModeName(e.to), ContactEventReasonName(e.reason)});
+        {e.t, Label(e.point), m.contact(m.contact_of_point(e.point)).name(),
+         ContactRegimeName(from, held_from), ContactRegimeName(e.to, e.held_to),
+         ContactEventReasonName(e.reason)});
   }
   for (const ConstraintEvent& e : r.constraint_events) {
     const std::string& name = m.constraint(e.constraint).name();

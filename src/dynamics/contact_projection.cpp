@@ -31,6 +31,33 @@ void AppendPointRow(const ContactPointGeometry& g, const Vec3& k, internal::Bloc
   rows.EndRow();
 }
 
+// The velocity rows of the points in contact (W = J) with their residuals in c from row k on:
+// the normal velocity, the slip of a sticking point, and the rolling of a held one
+// (a·w_rel = 0 about each rolling axis).
+void AppendVelocityRows(const Model& model, const State& state, const Data& data,
+                        internal::BlockRows& rows, Eigen::VectorXd& c, Eigen::Index k) {
+  for (int p = 0; p < model.num_contact_points(); ++p) {
+    const ContactMode mode = ModeOf(state, p);
+    if (mode == ContactMode::kSeparated) continue;
+    const ContactPointGeometry g = internal::CalcContactPointGeometry(model, state, data, p);
+    AppendPointRow(g, g.n, rows);
+    c[k++] = g.v_n;
+    if (mode != ContactMode::kSticking) continue;
+    for (const Vec3* t : {&g.t1, &g.t2}) {
+      AppendPointRow(g, *t, rows);
+      c[k++] = t->dot(g.v_rel);
+    }
+    for (int i = 0; i < internal::HeldRows(model, state, p); ++i) {
+      internal::Vec6 on_body = internal::Vec6::Zero(), on_other = internal::Vec6::Zero();
+      g.AddRollingBlocks(g.rolling_axis[i], on_body, on_other);
+      rows.Add(g.body, on_body, on_body);
+      if (g.other != kWorld) rows.Add(g.other, on_other, on_other);
+      rows.EndRow();
+      c[k++] = g.rolling_axis[i].dot(g.w_rel);
+    }
+  }
+}
+
 // δ = -M⁻¹Gᵀ(G M⁻¹Gᵀ)⁺ r for the rows G in sp.rows with residual ws.c; the correction goes to
 // `d`. Any λ with (G M⁻¹Gᵀ) λ = r gives the same δ (two differ by a vector of null(Gᵀ)), so
 // the sparse path (dynamics/internal/sparse_solve.h: LDLᵀ, or its least-norm iteration for
@@ -100,7 +127,8 @@ void ProjectOntoContactModes(const Model& model, State& state, Data& data,
   for (int p = 0; p < np; ++p) {
     const ContactMode m = ModeOf(state, p);
     if (m != ContactMode::kSeparated) ++n_contact;
-    n_velocity_contact += m == ContactMode::kSticking ? 3 : (m == ContactMode::kSliding ? 1 : 0);
+    n_velocity_contact += m == ContactMode::kSticking ? 3 + internal::HeldRows(model, state, p)
+                                                      : (m == ContactMode::kSliding ? 1 : 0);
   }
   for (int iter = 0; iter <= options.max_iterations; ++iter) {
     CalcKinematics(model, state, data);
@@ -176,20 +204,7 @@ void ProjectOntoContactModes(const Model& model, State& state, Data& data,
     ws.c.head(nc_rows).noalias() = data.J * data.u;
     ws.c.head(nc_rows) -= data.velocity_rhs;
   }
-  Eigen::Index k = nc_rows;
-  for (int p = 0; p < np; ++p) {
-    const ContactMode mode = ModeOf(state, p);
-    if (mode == ContactMode::kSeparated) continue;
-    const ContactPointGeometry g = internal::CalcContactPointGeometry(model, state, data, p);
-    AppendPointRow(g, g.n, sp.rows);
-    ws.c[k++] = g.v_n;
-    if (mode == ContactMode::kSticking) {
-      for (const Vec3* t : {&g.t1, &g.t2}) {
-        AppendPointRow(g, *t, sp.rows);
-        ws.c[k++] = t->dot(g.v_rel);
-      }
-    }
-  }
+  AppendVelocityRows(model, state, data, sp.rows, ws.c, nc_rows);
   if (ws.c.size() == 0 || ws.c.cwiseAbs().maxCoeff() == 0.0) return;
   MassWeightedCorrection(model, data, sp, ws, pw.dx);
   for (int b = 0; b < nb; ++b) {

@@ -47,6 +47,10 @@ ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& s
     //   lowest point (as RollingContact's disk, whose derivation of ṁ this repeats).
     Vec3 m = n, m_dot = Vec3::Zero();
     double s = 1.0;
+    if (f.kind == ContactFeatureKind::kSphere) {
+      g.num_rolling_axes = 2;
+      g.rolling_axis[0] = g.t1, g.rolling_axis[1] = g.t2;  // fixed in W: no bias
+    }
     if (f.kind == ContactFeatureKind::kRim) {
       const Vec3 e = R * f.axis_B;
       const double sigma = n.dot(e);
@@ -59,12 +63,23 @@ ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& s
         const Vec3 u_dot = -sigma_dot * e - sigma * e_dot;
         const double s_dot = -sigma * sigma_dot / s;
         m_dot = u_dot / s - u * (s_dot / (s * s));
+        // Rolling axis a = (e - σ n)/s, the rim's axis in the plane (|e - σ n| = s);
+        // ȧ = (ė - σ̇ n)/s - a ṡ/s, and the row a·w has the bias -ȧ·w.
+        const Vec3 a = (e - sigma * n) / s;
+        const Vec3 a_dot = (e_dot - sigma_dot * n) / s - a * (s_dot / s);
+        g.num_rolling_axes = 1;
+        g.rolling_axis[0] = a;
+        g.rolling_bias[0] = -a_dot.dot(w);
       } else {
         // Rim flat on the plane: every rim point is equally low; take a fixed one (a rim
-        // lying flat should be modelled as a disk face).
+        // lying flat should be modelled as a disk face). Its rolling axis, along the plane
+        // and across the radius to that point, turns with the body.
         m = R * FrameWithZAxis(f.axis_B).col(0);
         m_dot = w.cross(m);
         s = 0.0;
+        // (ȧ = w × a, so the bias -ȧ·w is zero.)
+        g.num_rolling_axes = 1;
+        g.rolling_axis[0] = R * FrameWithZAxis(f.axis_B).col(1);
       }
     }
     const double Rf = f.kind == ContactFeatureKind::kPoint ? 0.0 : f.radius;
@@ -108,6 +123,12 @@ ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& s
     g.w_x_rdot = w.cross(r_c_dot - f.radius * n_dot);
     g.w_x_rdot_other = wO.cross(wO.cross(r_cO) + RO_rad * n_dot);
     g.n_dot = n_dot;
+    // Rolling about the tangents, which turn with n: on the held manifold w_rel = (n·w_rel) n,
+    // so the bias -k̇·w_rel = -(n·w_rel)(k̇·n) = (n·w_rel)(k·ṅ).
+    g.num_rolling_axes = 2;
+    g.rolling_axis[0] = g.t1, g.rolling_axis[1] = g.t2;
+    g.rolling_bias[0] = g.n.dot(g.w_rel) * g.t1.dot(n_dot);
+    g.rolling_bias[1] = g.n.dot(g.w_rel) * g.t2.dot(n_dot);
   }
   g.v_n = g.n.dot(g.v_rel);
   g.v_t = g.v_rel - g.v_n * g.n;
@@ -186,17 +207,54 @@ Vec3 ContactPointGeometry::SlipDirection(const Vec3& s_ref) const {
 }
 
 Vec3 ContactPointGeometry::RollingVelocity() const {
-  return w_rel - w_rel.dot(n) * n;
+  Vec3 wr = Vec3::Zero();
+  for (int i = 0; i < num_rolling_axes; ++i) wr += rolling_axis[i].dot(w_rel) * rolling_axis[i];
+  return wr;
 }
 
 Vec3 ContactPointGeometry::RollingDirection(const Vec3& r_ref) const {
+  if (r_ref.squaredNorm() == 0.0) return Vec3::Zero();
   const Vec3 wr = RollingVelocity();
   const double m = wr.norm();
-  if (r_ref.squaredNorm() == 0.0) return Vec3::Zero();
-  if (!(m > 0.0)) return r_ref;
+  // As SlipDirection: a rolling speed |w_r| R at round-off of the material points' speeds
+  // (a rolling that starts from rest, a state just projected) keeps the reference.
+  if (!(m > 0.0) || m * radius <= std::max(1e-10 * speed_scale, kSlipSpeedRoundOff)) return r_ref;
   Vec3 d = wr / m;
   if (d.dot(r_ref) < 0.0) d = -d;
   return d;
+}
+
+Vec3 ContactPointGeometry::RollingAcceleration(const Eigen::VectorXd& u_dot) const {
+  Vec3 a_r = Vec3::Zero();
+  for (int i = 0; i < num_rolling_axes; ++i) {
+    const Vec3& a = rolling_axis[i];
+    double rate = a.dot(u_dot.segment<3>(6 * body + 3));
+    if (other != kWorld) rate -= a.dot(u_dot.segment<3>(6 * other + 3));
+    a_r += (rate - rolling_bias[i]) * a;
+  }
+  return a_r;
+}
+
+void ContactPointGeometry::AddRollingBlocks(const Vec3& a, Eigen::Matrix<double, 6, 1>& on_body,
+                                            Eigen::Matrix<double, 6, 1>& on_other) const {
+  on_body.tail<3>() += a;
+  on_other.tail<3>() -= a;
+}
+
+int HeldRows(const Model& model, const State& state, int p) {
+  if (static_cast<size_t>(p) >= state.contacts.size()) return 0;
+  const ContactPointState& ps = state.contacts[static_cast<size_t>(p)];
+  if (ps.mode != ContactMode::kSticking || !ps.rolling_held) return 0;
+  const int ci = model.contact_of_point(p);
+  switch (model.contact(ci).feature(p - model.contact_point_offset(ci)).kind) {
+    case ContactFeatureKind::kSphere:
+      return 2;
+    case ContactFeatureKind::kRim:
+      return 1;
+    case ContactFeatureKind::kPoint:
+      return 0;
+  }
+  return 0;
 }
 
 // Solves A x = r, LDLᵀ / LU when well conditioned, (weighted) least-norm (COD) otherwise.
@@ -305,6 +363,15 @@ const ContactPointState& PointStateOf(const State& state, int p) {
                                                         : none;
 }
 
+using internal::HeldRows;
+
+// Whether the rolling-resistance moment -mu_r N R ŵ_r of a rolling point enters its normal
+// row (then the system J M⁻¹ Wᵀ is not symmetric).
+bool RollsWithResistance(const ContactPointState& ps) {
+  return ps.mode == ContactMode::kSticking && !ps.rolling_held &&
+         ps.rolling_direction_W.squaredNorm() > 0.0;
+}
+
 // The force direction of a pressing point's normal row, by blocks: J_n, minus mu_k J_s when it
 // slides (friction -mu_k N s), minus mu_r R ŵ_r in the angular part when a round feature rolls
 // (sticks) with rolling resistance (moment -mu_r N R ŵ_r). A sliding point has no rolling
@@ -320,7 +387,7 @@ void NormalForceBlocks(const Contact& con, const ContactPointGeometry& g, Contac
     const Vec3 s = g.SlipDirection(ps.slip_direction_W);
     if (s.squaredNorm() > 0.0 && con.mu_k() > 0.0) g.AddBlocks(s, -con.mu_k(), on_body, on_other);
   }
-  if (con.mu_r() > 0.0 && g.round && mode == ContactMode::kSticking) {
+  if (con.mu_r() > 0.0 && g.round && mode == ContactMode::kSticking && !ps.rolling_held) {
     const Vec3 roll_dir = g.RollingDirection(ps.rolling_direction_W);
     if (roll_dir.squaredNorm() > 0.0) {
       const Vec3 M = -con.mu_r() * g.radius * roll_dir;  // ContactPointGeometry::AddMoment
@@ -361,22 +428,33 @@ bool CalcRedundantRowWeights(const Model& model, const State& state, const Data&
     const ContactMode m = ModeOf(state, p);
     if (m == ContactMode::kSeparated) continue;
     n_ref = std::max(n_ref, lambda[k]);
-    k += m == ContactMode::kSticking ? 3 : 1;
+    k += m == ContactMode::kSticking ? 3 + HeldRows(model, state, p) : 1;
   }
   k = nc_rows;
   for (int p = 0; p < model.num_contact_points(); ++p) {
     const ContactMode m = ModeOf(state, p);
     if (m == ContactMode::kSeparated) continue;
     if (m == ContactMode::kSticking) {
-      const double mu = model.contact(model.contact_of_point(p)).mu_s();
+      const int ci = model.contact_of_point(p);
+      const Contact& con = model.contact(ci);
+      const double N = std::max(lambda[k], 0.0);
       // A floor keeps the column alive (a point carrying nothing still closes the rows).
       // Column scale D = √(capacity): the solve minimises Σ (f_i / D_i)² = Σ f_i² / c_i.
-      if (n_ref > 0.0 && mu > 0.0) {
-        const double w = std::sqrt(std::max(mu * std::max(lambda[k], 0.0) / n_ref, 1e-12));
+      if (n_ref > 0.0 && con.mu_s() > 0.0) {
+        const double w = std::sqrt(std::max(con.mu_s() * N / n_ref, 1e-12));
         scale[k + 1] = scale[k + 2] = w;
         any = true;
       }
-      k += 3;
+      // Held rolling shared the same way by capacity mu_r N R, a moment weighing as a force
+      // at the feature's radius (as the constraint weights do): D = R √(mu_r N / n_ref).
+      const int held = HeldRows(model, state, p);
+      if (held > 0 && n_ref > 0.0) {
+        const double R = con.feature(p - model.contact_point_offset(ci)).radius;
+        const double w = R * std::sqrt(std::max(con.mu_r() * N / n_ref, 1e-12));
+        for (int i = 0; i < held; ++i) scale[k + 3 + i] = w;
+        any = true;
+      }
+      k += 3 + held;
     } else {
       k += 1;
     }
@@ -420,6 +498,13 @@ void AppendContactRows(const Model& model, const State& state, Data& data,
         g.AddBlocks(*t, 1.0, jb, jo);
         add(jb, jo, jb, jo);
         c[k++] = g.AccelerationBias(*t);
+      }
+      // Held rolling: a_i·ẇ_rel = bias_i, multipliers the holding moment about a_i.
+      for (int i = 0; i < HeldRows(model, state, p); ++i) {
+        jb.setZero(), jo.setZero();
+        g.AddRollingBlocks(g.rolling_axis[i], jb, jo);
+        add(jb, jo, jb, jo);
+        c[k++] = g.rolling_bias[i];
       }
     }
   }
@@ -478,11 +563,9 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
   bool symmetric = true;
   for (int p = 0; p < model.num_contact_points(); ++p) {
     const ContactMode m = ModeOf(state, p);
-    if (m == ContactMode::kSticking) rows += 3;
+    if (m == ContactMode::kSticking) rows += 3 + HeldRows(model, state, p);
     if (m == ContactMode::kSliding) rows += 1, symmetric = false;
-    if (m == ContactMode::kSticking && model.contact(model.contact_of_point(p)).mu_r() > 0.0) {
-      symmetric = false;
-    }
+    if (RollsWithResistance(PointStateOf(state, p))) symmetric = false;
   }
   // The active rows by body blocks: constraints, then contact points.
   internal::BlockRows& br = internal::GetSparseWorkspace(data.sparse_contacts).rows;
@@ -536,7 +619,13 @@ void SolveContactForces(const Model& model, const State& state, Data& data) {
       out.friction_force_W = -con.mu_k() * N * s;
       out.friction_power = out.friction_force_W.dot(g.v_t);
     }
-    if (out.mode == ContactMode::kSticking && con.mu_r() > 0.0 && g.round) {
+    out.rolling_velocity_W = g.RollingVelocity();
+    out.rolling_acceleration_W = g.RollingAcceleration(u_dot);
+    if (con.mu_r() > 0.0 && g.round) out.rolling_moment_capacity = con.mu_r() * N * g.radius;
+    const int held = HeldRows(model, state, p);
+    out.rolling_held = held > 0;
+    for (int i = 0; i < held; ++i) out.rolling_moment_W += ws.lambda[k++] * g.rolling_axis[i];
+    if (held == 0 && out.mode == ContactMode::kSticking && con.mu_r() > 0.0 && g.round) {
       const Vec3 roll = g.RollingDirection(ps.rolling_direction_W);
       out.rolling_moment_W = -con.mu_r() * N * g.radius * roll;
       out.rolling_power = out.rolling_moment_W.dot(g.w_rel);
@@ -564,8 +653,10 @@ struct PointPlan {
   int point = -1;
   ContactMode mode = ContactMode::kSticking;  // kSticking: tangential rows; kSliding: friction
   Vec3 s = Vec3::Zero();                      // slip direction of a sliding point
+  bool held = false;                          // sticking with its rolling held: rolling rows
   double target_n = 0.0;                      // c_n
   Vec3 target_t = Vec3::Zero();               // c_t1, c_t2 (first two entries)
+  Vec3 target_r = Vec3::Zero();               // held rolling rows' targets (first entries)
 };
 
 struct PlanSolution {
@@ -587,9 +678,12 @@ PlanSolution SolvePlan(const Model& model, const Data& data,
                        const VectorXd& c_constraints, bool complementary, const State* rolling) {
   const int nb = model.num_bodies();
   const int ncr = model.num_constraint_rows();
-  int n_stick = 0;
-  for (const PointPlan& pp : plan) n_stick += pp.mode == ContactMode::kSticking ? 1 : 0;
-  const auto nE = static_cast<Eigen::Index>(ncr + 2 * n_stick);
+  int n_bilateral = 0;
+  for (const PointPlan& pp : plan) {
+    if (pp.mode != ContactMode::kSticking) continue;
+    n_bilateral += 2 + (pp.held ? geo[static_cast<size_t>(pp.point)].num_rolling_axes : 0);
+  }
+  const auto nE = static_cast<Eigen::Index>(ncr + n_bilateral);
   const auto nN = static_cast<Eigen::Index>(plan.size());
   MatrixXd JE = MatrixXd::Zero(nE, 6 * nb), Jn = MatrixXd::Zero(nN, 6 * nb);
   MatrixXd Wn = MatrixXd::Zero(nN, 6 * nb);
@@ -615,6 +709,10 @@ PlanSolution SolvePlan(const Model& model, const Data& data,
       cE[e++] = pp.target_t[0];
       g.SetRow(g.t2, JE.row(e));
       cE[e++] = pp.target_t[1];
+      for (int a = 0; pp.held && a < g.num_rolling_axes; ++a) {
+        g.AddMoment(g.rolling_axis[a], JE.row(e));  // the row a·w_rel
+        cE[e++] = pp.target_r[a];
+      }
     }
   }
   MatrixXd JEMi, WnMi;
@@ -677,6 +775,12 @@ class ModeSelector {
   bool DropPullingPoint(const std::vector<ContactPointOutput>& out);
   bool StartSlips(const std::vector<ContactPointOutput>& out);
   bool SettleStartingSlips(const std::vector<ContactPointOutput>& out);
+  bool StartRollings(const std::vector<ContactPointOutput>& out);
+  bool SettleStartingRollings(const std::vector<ContactPointOutput>& out);
+  // Whether point p, sticking, holds its rolling: a round feature with rolling resistance
+  // that is not rolling (no rolling reference).
+  bool HoldsRolling(int p) const;
+  void SetSticking(PointPlan& pp) const;
   void BookJams(State& state, const std::vector<PointPlan>& vplan, const PlanSolution& sol,
                 double dT, ModeSelectionNotes* notes) const;
 
@@ -684,6 +788,7 @@ class ModeSelector {
   const ContactTolerances& tol_;
   const std::vector<int>& slip_starts_;
   const std::vector<int>& lift_offs_;
+  const std::vector<int>& rolling_starts_;
   int np_;
   Data data_;
   VectorXd u_free_, u_, c_con_;
@@ -694,6 +799,12 @@ class ModeSelector {
   // starting to slip and found to stick (not tried again).
   std::vector<int> starting_;
   std::vector<int> turns_;  // direction updates of a starting slip
+  // The same for rolling: 1 a held rolling released to roll, 2 tried and found to hold; and
+  // whether it was released with a crossed limit (rolling_starts): a body held at several
+  // points shares its rolling by capacity, so they reach their limits together and a crossing
+  // at one is a crossing at all.
+  std::vector<int> rolling_starting_, rolling_turns_;
+  std::vector<char> rolling_forced_;
   std::vector<int> jammed_;
   State trial_;
   Data tdata_;
@@ -705,6 +816,7 @@ ModeSelector::ModeSelector(const Model& model, const State& state, const Contact
       tol_(tol),
       slip_starts_(hints.slip_starts),
       lift_offs_(hints.lift_offs),
+      rolling_starts_(hints.rolling_starts),
       np_(model.num_contact_points()),
       data_(MakeData(model)) {
   CalcKinematics(model, state, data_);
@@ -730,6 +842,9 @@ ModeSelector::ModeSelector(const Model& model, const State& state, const Contact
   a_cone_ = tol.cone * a_scale_;
   starting_.assign(static_cast<size_t>(np_), 0);
   turns_.assign(static_cast<size_t>(np_), 0);
+  rolling_starting_.assign(static_cast<size_t>(np_), 0);
+  rolling_turns_.assign(static_cast<size_t>(np_), 0);
+  rolling_forced_.assign(static_cast<size_t>(np_), 0);
   // Each pass evaluates the active set with the contact stage itself (the forces the
   // integrator will use, friction shared as there), so what is checked is what is integrated.
   trial_ = state;
@@ -737,15 +852,30 @@ ModeSelector::ModeSelector(const Model& model, const State& state, const Contact
   // The rolling reference of each round point with rolling resistance, as WriteModes will
   // write it (the rolling direction, or none below stick_speed): the plan and its evaluation
   // then use the moment the integrator will.
+  // A round point not rolling faster than stick_speed (as a rim speed |w_r| R) has none: if it
+  // sticks, its rolling is held (HoldsRolling).
   for (int p = 0; p < np_; ++p) {
     const ContactPointGeometry& g = geo_[static_cast<size_t>(p)];
     Vec3& ref = trial_.contacts[static_cast<size_t>(p)].rolling_direction_W;
     ref.setZero();
-    if (model.contact(model.contact_of_point(p)).mu_r() > 0.0 && g.round) {
+    trial_.contacts[static_cast<size_t>(p)].rolling_held = false;
+    if (model.contact(model.contact_of_point(p)).mu_r() > 0.0 && g.num_rolling_axes > 0) {
       const Vec3 wr = g.RollingVelocity();
-      if (wr.norm() > tol.stick_speed / std::max(g.radius, 1e-300)) ref = wr.normalized();
+      if (wr.norm() * g.radius > tol.stick_speed) ref = wr.normalized();
     }
   }
+}
+
+bool ModeSelector::HoldsRolling(int p) const {
+  return model_.contact(model_.contact_of_point(p)).mu_r() > 0.0 &&
+         geo_[static_cast<size_t>(p)].num_rolling_axes > 0 &&
+         trial_.contacts[static_cast<size_t>(p)].rolling_direction_W.squaredNorm() == 0.0;
+}
+
+void ModeSelector::SetSticking(PointPlan& pp) const {
+  pp.mode = ContactMode::kSticking;
+  pp.s.setZero();
+  pp.held = HoldsRolling(pp.point);
 }
 
 void ModeSelector::PlanCandidates() {
@@ -764,6 +894,8 @@ void ModeSelector::PlanCandidates() {
     }
     pp.target_n = g.AccelerationBias(g.n);
     pp.target_t = Vec3(g.AccelerationBias(g.t1), g.AccelerationBias(g.t2), 0.0);
+    pp.target_r = Vec3(g.rolling_bias[0], g.rolling_bias[1], 0.0);
+    if (pp.mode == ContactMode::kSticking) pp.held = HoldsRolling(p);
     plan_.push_back(pp);
   }
 }
@@ -791,7 +923,9 @@ void ModeSelector::SelectModes() {
       continue;
     }
     if (StartSlips(out)) continue;
-    if (!SettleStartingSlips(out)) break;
+    if (StartRollings(out)) continue;
+    const bool slips_settled = !SettleStartingSlips(out);
+    if (!SettleStartingRollings(out) && slips_settled) break;
   }
   plan_ = active_;
 }
@@ -804,7 +938,8 @@ bool ModeSelector::TakeSlidingAsSticking() {
   bool changed = false;
   for (PointPlan& pp : plan_) {
     if (pp.mode == ContactMode::kSliding && pp.s.squaredNorm() > 0.0) {
-      pp.mode = ContactMode::kSticking, changed = true;
+      SetSticking(pp);
+      changed = true;
       if (geo_[static_cast<size_t>(pp.point)].v_t.norm() > tol_.stick_speed) {
         jammed_.push_back(pp.point);
       }
@@ -818,11 +953,13 @@ const std::vector<ContactPointOutput>& ModeSelector::EvaluateActive() {
   for (ContactPointState& ps : trial_.contacts) {
     ps.mode = ContactMode::kSeparated;
     ps.slip_direction_W.setZero();
+    ps.rolling_held = false;
   }
   for (const PointPlan& pp : active_) {
     ContactPointState& ps = trial_.contacts[static_cast<size_t>(pp.point)];
     ps.mode = pp.mode;
     ps.slip_direction_W = pp.s;
+    ps.rolling_held = pp.held;
   }
   CalcAccelerations(model_, trial_, tdata_);
   return tdata_.contact_points;
@@ -887,6 +1024,7 @@ bool ModeSelector::StartSlips(const std::vector<ContactPointOutput>& out) {
     for (PointPlan& pp : plan_) {
       if (pp.point != r.point) continue;
       pp.mode = ContactMode::kSliding;
+      pp.held = false;
       pp.s = -r.f.normalized();  // slip starts against the friction it needed
     }
     starting_[static_cast<size_t>(r.point)] = 1;
@@ -910,8 +1048,7 @@ bool ModeSelector::SettleStartingSlips(const std::vector<ContactPointOutput>& ou
     const bool forced = Contains(slip_starts_, pp.point);
     if (a_s < -a_cone_ || (!forced && a_s <= a_cone_)) {
       revert = pp.point;
-      pp.mode = ContactMode::kSticking;
-      pp.s.setZero();
+      SetSticking(pp);
       starting_[ip] = 2;
       break;
     }
@@ -924,18 +1061,111 @@ bool ModeSelector::SettleStartingSlips(const std::vector<ContactPointOutput>& ou
   return revert >= 0 || turned;
 }
 
+// Rolling-resistance check of the points whose rolling is held, as StartSlips for friction:
+// the holding moment M against the capacity mu_r N R. Ranks: 3, its limit was just crossed
+// (rolling_starts); 2, over the capacity by more than round-off; 1, at the limit. Every
+// point over its capacity is released one at a time, largest excess first; otherwise the
+// crossed and at-limit points are released together. A released point rolls in the
+// direction of impending rolling, against the moment that held it (then along its rolling
+// acceleration: SettleStartingRollings). Returns whether a point was released.
+bool ModeSelector::StartRollings(const std::vector<ContactPointOutput>& out) {
+  struct Ranked {
+    int point, rank;
+    double excess;
+    Vec3 M;
+    double size;  // max(|M|, mu_r N R)
+  };
+  std::vector<Ranked> ranked;
+  for (const PointPlan& pp : active_) {
+    if (pp.mode != ContactMode::kSticking || !pp.held) continue;
+    const auto ip = static_cast<size_t>(pp.point);
+    if (rolling_starting_[ip] == 2) continue;
+    const Vec3& M = out[ip].rolling_moment_W;
+    const double cap = out[ip].rolling_moment_capacity;
+    const double radius = geo_[ip].radius;
+    const double excess = M.norm() - cap;
+    const double band = tol_.cone * std::max({M.norm(), cap, 1e-6 * f_scale_ * radius});
+    int rank = 0;
+    if (Contains(rolling_starts_, pp.point) && M.norm() > band) {
+      rank = 3;
+    } else if (excess > band) {
+      rank = 2;
+    } else if (excess >= -band && M.norm() > band) {
+      rank = 1;
+    }
+    if (rank > 0) ranked.push_back({pp.point, rank, excess, M, std::max(M.norm(), cap)});
+  }
+  if (ranked.empty()) return false;
+  // At a crossed limit (an event located to its round-off band, 1e-9 of the moment), the
+  // points that share the rolling reached their limits at the same instant: one over by no
+  // more than that band is at its limit, not past it.
+  const bool crossed =
+      std::any_of(ranked.begin(), ranked.end(), [](const Ranked& r) { return r.rank == 3; });
+  for (Ranked& r : ranked) {
+    if (crossed && r.rank == 2 && r.excess <= 1e-9 * r.size) r.rank = 1;
+  }
+  const auto worst =
+      std::max_element(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) {
+        return a.rank == 2 && b.rank == 2 ? a.excess < b.excess : (a.rank == 2) < (b.rank == 2);
+      });
+  for (const Ranked& r : ranked) {
+    if (worst->rank == 2 ? r.point != worst->point : r.rank == 2) continue;
+    for (PointPlan& pp : plan_) {
+      if (pp.point == r.point) pp.held = false;
+    }
+    const auto ip = static_cast<size_t>(r.point);
+    trial_.contacts[ip].rolling_direction_W = -r.M.normalized();
+    rolling_starting_[ip] = 1;
+    rolling_forced_[ip] = worst->rank != 2 && crossed;
+  }
+  return true;
+}
+
+// Consistency of the rollings that start, as SettleStartingSlips: the rolling acceleration
+// must point along the rolling direction d (a rolling that starts grows along d, and the
+// moment -mu_r N R d opposes it); d follows it where it has turned (fixed point
+// d = a_r/|a_r|), and a point whose rolling would not grow is held after all. Returns whether
+// a point reverted or turned.
+bool ModeSelector::SettleStartingRollings(const std::vector<ContactPointOutput>& out) {
+  bool changed = false;
+  for (PointPlan& pp : plan_) {
+    const auto ip = static_cast<size_t>(pp.point);
+    if (rolling_starting_[ip] != 1 || pp.mode != ContactMode::kSticking || pp.held) continue;
+    Vec3& d = trial_.contacts[ip].rolling_direction_W;
+    const Vec3& a_r = out[ip].rolling_acceleration_W;
+    const double a_d = a_r.dot(d);
+    const bool forced = rolling_forced_[ip] != 0;
+    if (a_d < -a_cone_ || (!forced && a_d <= a_cone_)) {
+      d.setZero();
+      pp.held = true;
+      rolling_starting_[ip] = 2;
+      return true;
+    }
+    if (a_r.norm() > a_cone_ && rolling_turns_[ip] < 20 && (a_r.normalized() - d).norm() > 1e-12) {
+      d = a_r.normalized();
+      ++rolling_turns_[ip];
+      changed = true;
+    }
+  }
+  return changed;
+}
+
 void ModeSelector::WriteModes(State& state) const {
   for (int p = 0; p < np_; ++p) {
     ContactPointState& ps = state.contacts[static_cast<size_t>(p)];
     ps.mode = ContactMode::kSeparated;
     ps.slip_direction_W.setZero();
     ps.rolling_direction_W.setZero();
+    ps.rolling_held = false;
   }
   for (const PointPlan& pp : plan_) {
     ContactPointState& ps = state.contacts[static_cast<size_t>(pp.point)];
     ps.mode = pp.mode;
     if (pp.mode == ContactMode::kSliding) ps.slip_direction_W = pp.s;
-    ps.rolling_direction_W = trial_.contacts[static_cast<size_t>(pp.point)].rolling_direction_W;
+    ps.rolling_held = pp.mode == ContactMode::kSticking && pp.held;
+    ps.rolling_direction_W =
+        ps.rolling_held ? Vec3::Zero()
+                        : trial_.contacts[static_cast<size_t>(pp.point)].rolling_direction_W;
   }
 }
 
@@ -947,7 +1177,7 @@ void ModeSelector::ProjectVelocities(State& state, ModeSelectionNotes* notes) co
   if (plan_.empty()) return;
   const double T0 = internal::KineticEnergy(model_, state);
   std::vector<PointPlan> vplan = plan_;
-  for (PointPlan& pp : vplan) pp.target_n = 0.0, pp.target_t.setZero();
+  for (PointPlan& pp : vplan) pp.target_n = 0.0, pp.target_t.setZero(), pp.target_r.setZero();
   // Sliding points keep their slip: only their normal row (no friction in this correction).
   for (PointPlan& pp : vplan) {
     if (pp.mode == ContactMode::kSliding) pp.s.setZero();
@@ -976,7 +1206,7 @@ void ModeSelector::BookJams(State& state, const std::vector<PointPlan>& vplan,
     Vec3 Pt = Vec3::Zero();
     if (pp.mode == ContactMode::kSticking) {
       Pt = sol.lambda_E[e] * g.t1 + sol.lambda_E[e + 1] * g.t2;
-      e += 2;
+      e += 2 + (pp.held ? g.num_rolling_axes : 0);
     }
     if (!Contains(jammed_, pp.point)) continue;
     jams.push_back({pp.point, Pn, Pn * g.n + Pt, g.v_t.norm()});
@@ -1015,9 +1245,7 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
   if (state.contacts.size() != static_cast<size_t>(np)) {
     state.contacts.assign(static_cast<size_t>(np), ContactPointState{});
   }
-  std::vector<ContactMode> before(static_cast<size_t>(np));
-  for (int p = 0; p < np; ++p)
-    before[static_cast<size_t>(p)] = state.contacts[static_cast<size_t>(p)].mode;
+  const std::vector<ContactPointState> before = state.contacts;
   ModeSelector selector(model, state, tol, hints);
   selector.PlanCandidates();
   selector.SelectModes();
@@ -1025,9 +1253,10 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
   selector.ProjectVelocities(state, notes);
   std::vector<ContactModeChange> changes;
   for (int p = 0; p < np; ++p) {
-    const ContactMode m = state.contacts[static_cast<size_t>(p)].mode;
-    if (m != before[static_cast<size_t>(p)])
-      changes.push_back({p, before[static_cast<size_t>(p)], m});
+    const ContactPointState& a = before[static_cast<size_t>(p)];
+    const ContactPointState& b = state.contacts[static_cast<size_t>(p)];
+    if (a.mode != b.mode || a.rolling_held != b.rolling_held)
+      changes.push_back({p, a.mode, b.mode, a.rolling_held, b.rolling_held});
   }
   return changes;
 }

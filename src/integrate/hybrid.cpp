@@ -25,7 +25,16 @@ namespace {
 // zero at its transition (docs/contact.md, "Events"). kStringGap and kStringTension are those
 // of a constraint that can let go (a string): its slack g = L0 - L while slack, its tension
 // while taut (docs/constraints.md, "Strings that go slack").
-enum class Fn { kGap, kNormalForce, kSlip, kFrictionMargin, kRolling, kStringGap, kStringTension };
+enum class Fn {
+  kGap,
+  kNormalForce,
+  kSlip,
+  kFrictionMargin,
+  kRolling,
+  kRollingMargin,
+  kStringGap,
+  kStringTension
+};
 
 // A gap closes like a contact's: the same location logic (closest approach, short flights).
 bool IsGap(Fn f) {
@@ -56,7 +65,9 @@ std::vector<ContactFn> EventFunctions(const Model& model, const State& s) {
       case ContactMode::kSticking:
         fns.push_back({p, Fn::kNormalForce, ContactEventReason::kLiftOff});
         fns.push_back({p, Fn::kFrictionMargin, ContactEventReason::kFrictionLimit});
-        if (ps.rolling_direction_W.squaredNorm() > 0.0) {
+        if (ps.rolling_held) {
+          fns.push_back({p, Fn::kRollingMargin, ContactEventReason::kRollingLimit});
+        } else if (ps.rolling_direction_W.squaredNorm() > 0.0) {
           fns.push_back({p, Fn::kRolling, ContactEventReason::kRollingStopped});
         }
         break;
@@ -110,7 +121,7 @@ void EvalFunctions(const Model& model, const State& s, const std::vector<Contact
     }
     const ContactPointOutput& out = data.contact_points[static_cast<size_t>(f.point)];
     const ContactPointState& ps = s.contacts[static_cast<size_t>(f.point)];
-    const Contact& con = model.contact(model.contact_of_point(f.point));
+    const double mu_s = model.contact(model.contact_of_point(f.point)).mu_s();
     switch (f.fn) {
       case Fn::kGap:
         g[i] = out.gap;
@@ -125,21 +136,20 @@ void EvalFunctions(const Model& model, const State& s, const std::vector<Contact
         g[i] = out.slip_velocity_W.dot(ps.slip_direction_W);
         break;
       case Fn::kFrictionMargin:
-        g[i] = con.mu_s() * out.normal_force - out.friction_force_W.norm();
+        g[i] = mu_s * out.normal_force - out.friction_force_W.norm();
         break;
       case Fn::kStringGap:
       case Fn::kStringTension:
         break;
-      case Fn::kRolling: {
-        const Vec3 w_rel = [&] {
-          const auto b = static_cast<size_t>(con.body());
-          Vec3 w = data.w_WB_W[b];
-          if (con.other_body() != kWorld) w -= data.w_WB_W[static_cast<size_t>(con.other_body())];
-          return w;
-        }();
-        g[i] = (w_rel - w_rel.dot(out.n_W) * out.n_W).dot(ps.rolling_direction_W);
+      case Fn::kRolling:
+        // Rolling along the mode's reference direction: falls through zero when it stops.
+        g[i] = out.rolling_velocity_W.dot(ps.rolling_direction_W);
         break;
-      }
+      case Fn::kRollingMargin:
+        // The held rolling's margin mu_r N R - |M|: falls through zero when the moment needed
+        // to hold it reaches what rolling resistance can give.
+        g[i] = out.rolling_moment_capacity - out.rolling_moment_W.norm();
+        break;
     }
   }
 }
@@ -147,7 +157,7 @@ void EvalFunctions(const Model& model, const State& s, const std::vector<Contact
 // Round-off band of an event function at the current evaluation (data filled by
 // EvalFunctions): relative 1e-9 of the largest contact force, or of the largest slip or
 // rolling speed and 1 m/s, so a value inside it is zero for the event logic.
-double RoundOffBand(const ContactFn& f, const Data& data) {
+double RoundOffBand(const Model& model, const ContactFn& f, const Data& data) {
   double force = 0.0, speed = 1.0;
   for (const ContactPointOutput& o : data.contact_points) {
     force = std::max({force, std::abs(o.normal_force), o.friction_force_W.norm()});
@@ -160,6 +170,12 @@ double RoundOffBand(const ContactFn& f, const Data& data) {
     case Fn::kFrictionMargin:
     case Fn::kStringTension:
       return 1e-9 * force;
+    case Fn::kRollingMargin: {
+      // A moment: the force scale at the feature's radius.
+      const int ci = model.contact_of_point(f.point);
+      return 1e-9 * force *
+             model.contact(ci).feature(f.point - model.contact_point_offset(ci)).radius;
+    }
     default:
       return 1e-9 * speed;
   }
@@ -281,10 +297,10 @@ class HybridRun {
     }
     CheckFiniteState(model_, s);
     for (int p = 0; p < model_.num_contact_points(); ++p) {
-      r_.contact_events.insert(
-          r_.contact_events.begin() + p,
-          {s.t, p, ContactMode::kSeparated, s.contacts[static_cast<size_t>(p)].mode,
-           ContactEventReason::kInitial});
+      const ContactPointState& ps = s.contacts[static_cast<size_t>(p)];
+      r_.contact_events.insert(r_.contact_events.begin() + p,
+                               {s.t, p, ContactMode::kSeparated, ps.mode,
+                                ContactEventReason::kInitial, false, ps.rolling_held});
     }
     // Keep only the kInitial records for the first instant (the Transition's own are the same
     // changes).
@@ -325,7 +341,7 @@ class HybridRun {
     st.band.resize(st.fns.size());
     st.armed.assign(st.fns.size(), 0);
     for (size_t i = 0; i < st.fns.size(); ++i) {
-      st.band[i] = RoundOffBand(st.fns[i], data_);
+      st.band[i] = RoundOffBand(model_, st.fns[i], data_);
       st.armed[i] = !IsGap(st.fns[i].fn) && st.g0[i] <= st.band[i];
     }
     return st;
@@ -572,7 +588,11 @@ class HybridRun {
 
   void TransitionContacts(State& s, int trigger, ContactEventReason reason) {
     std::vector<ContactMode> before(s.contacts.size());
-    for (size_t p = 0; p < s.contacts.size(); ++p) before[p] = s.contacts[p].mode;
+    std::vector<char> held_before(s.contacts.size());
+    for (size_t p = 0; p < s.contacts.size(); ++p) {
+      before[p] = s.contacts[p].mode;
+      held_before[p] = s.contacts[p].rolling_held;
+    }
     // Approach speeds before the impulses, for the accumulation test.
     const std::vector<ContactPointOutput> pre = CalcContactOutputs(model_, s);
     int plastic = -1;
@@ -629,6 +649,8 @@ class HybridRun {
     if (reason == ContactEventReason::kFrictionLimit && trigger >= 0)
       hints.slip_starts.push_back(trigger);
     if (reason == ContactEventReason::kLiftOff && trigger >= 0) hints.lift_offs.push_back(trigger);
+    if (reason == ContactEventReason::kRollingLimit && trigger >= 0)
+      hints.rolling_starts.push_back(trigger);
     ModeSelectionNotes notes;
     SelectContactModes(model_, s, tol_, hints, &notes);
     for (const JamImpulse& j : notes.jams) {
@@ -652,11 +674,15 @@ class HybridRun {
       const ContactMode to = s.contacts[p].mode;
       if (to != ContactMode::kSeparated) bounces_[p].count = 0;  // resting: a new sequence later
       // The triggering point is recorded even when its mode stays (a bounce, rolling that
-      // stopped, slip that turned); the others only when their mode changes.
-      if (to == before[p] && static_cast<int>(p) != trigger) continue;
+      // stopped, slip that turned); the others only when their mode (or rolling sub-mode)
+      // changes.
+      const bool held = s.contacts[p].rolling_held;
+      if (to == before[p] && held == (held_before[p] != 0) && static_cast<int>(p) != trigger)
+        continue;
       ContactEventReason why = static_cast<int>(p) == trigger ? reason : ContactEventReason::kOther;
       if (static_cast<int>(p) == plastic) why = ContactEventReason::kAccumulation;
-      r_.contact_events.push_back({s.t, static_cast<int>(p), before[p], to, why});
+      r_.contact_events.push_back(
+          {s.t, static_cast<int>(p), before[p], to, why, held_before[p] != 0, held});
     }
   }
 

@@ -165,6 +165,8 @@ const char* ContactEventReasonName(ContactEventReason reason) {
       return "friction limit";
     case ContactEventReason::kRollingStopped:
       return "rolling stopped";
+    case ContactEventReason::kRollingLimit:
+      return "rolling resistance limit";
     case ContactEventReason::kAccumulation:
       return "bounces accumulated";
     case ContactEventReason::kCollision:

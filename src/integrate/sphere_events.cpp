@@ -407,11 +407,12 @@ class Runner {
   };
   struct Group {
     std::vector<int> members;
-    std::vector<BodyState> states;   // at t_a
-    std::vector<ContactMode> modes;  // of the members' plane points at t_a (the hybrid's)
-    std::vector<Vec3> origin;        // the members' centres at t_o, when the window was planned
-    double speed = 0.0;              // the window's speed bound σ
-    double span = kInf;              // the longest window to plan (kMinSpan)
+    std::vector<BodyState> states;  // at t_a
+    // Mode and rolling sub-mode of the members' plane points at t_a (the hybrid's).
+    std::vector<ContactPointState> modes;
+    std::vector<Vec3> origin;  // the members' centres at t_o, when the window was planned
+    double speed = 0.0;        // the window's speed bound σ
+    double span = kInf;        // the longest window to plan (kMinSpan)
     double t_o = 0.0, t_a = 0.0, t_b = 0.0;
     Box box;                      // the window's claim: where its members may be until t_b
     std::unique_ptr<Window> run;  // the window's speculative run, from t_o to t_b
@@ -797,7 +798,9 @@ State Runner::StateAt(double t) const {
       const auto m = static_cast<size_t>(
           std::find(g.members.begin(), g.members.end(), static_cast<int>(i)) - g.members.begin());
       s.bodies[i] = g.states[m];
-      s.contacts[static_cast<size_t>(balls_[i].point)].mode = g.modes[m];
+      ContactPointState& cp = s.contacts[static_cast<size_t>(balls_[i].point)];
+      cp.mode = g.modes[m].mode;
+      cp.rolling_held = g.modes[m].rolling_held;
       continue;
     }
     const Segment& seg = chain_[i].At(t);
@@ -817,6 +820,8 @@ State Runner::StateAt(double t) const {
         seg.phase == Phase::kRolling && balls_[i].mu_r > 0.0 && v_plane.norm() > w_.tol.stick_speed
             ? Vec3(w_.n.cross(v_plane).normalized())
             : Vec3::Zero();
+    // At rest on the level table, rolling resistance holds the rolling (a moment of zero).
+    cp.rolling_held = seg.phase == Phase::kRest && balls_[i].mu_r > 0.0;
   }
   return s;
 }
@@ -1155,7 +1160,10 @@ void Runner::Join(int g, int i, double t) {
   Group& gr = groups_[static_cast<size_t>(g)];
   gr.members.push_back(i);
   gr.states.push_back(bs);
-  gr.modes.push_back(ModeOfPhase(seg.phase));
+  ContactPointState cp;
+  cp.mode = ModeOfPhase(seg.phase);
+  cp.rolling_held = seg.phase == Phase::kRest && balls_[iu].mu_r > 0.0;
+  gr.modes.push_back(cp);
   CheckSize(gr.members, t);
 }
 
@@ -1298,7 +1306,8 @@ void Runner::Commit(int g, const Window& w, const SimulationResult* head) {
   gr.modes.resize(k);
   for (size_t m = 0; m < k; ++m) {
     gr.states[m] = r.final_state.bodies[m];
-    gr.modes[m] = r.final_state.contacts[m].mode;
+    gr.modes[m].mode = r.final_state.contacts[m].mode;
+    gr.modes[m].rolling_held = r.final_state.contacts[m].rolling_held;
   }
   gr.t_a = r.final_state.t;
 }
@@ -1639,6 +1648,7 @@ void Runner::Handle(const Event& e) {
       ev.to = ModeOfPhase(s1.phase);
       ev.reason = s0.phase == Phase::kSliding ? ContactEventReason::kSlipStopped
                                               : ContactEventReason::kRollingStopped;
+      ev.held_to = s1.phase == Phase::kRest && balls_[iu].mu_r > 0.0;
       res_.contact_events.push_back(ev);
       break;
     }

@@ -65,7 +65,8 @@ nlohmann::json SnapshotJson(const StudySnapshot& snap, bool planar) {
                         {"gap", c.gap},
                         {"friction_work", c.friction_work},
                         {"rolling_work", c.rolling_work},
-                        {"impact_work", c.impact_work}});
+                        {"impact_work", c.impact_work},
+                        {"rolling_moment", VecJson(c.rolling_moment_W)}});
   }
   nlohmann::json j = {{"bodies", bodies}, {"reactions", reactions}};
   if (!snap.contacts.empty()) j["contacts"] = contacts;

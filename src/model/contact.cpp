@@ -65,6 +65,11 @@ const char* ContactModeName(ContactMode mode) {
   return "unknown";
 }
 
+const char* ContactRegimeName(ContactMode mode, bool rolling_held) {
+  return mode == ContactMode::kSticking && rolling_held ? "sticking, rolling held"
+                                                        : ContactModeName(mode);
+}
+
 const char* RestitutionLawName(RestitutionLaw law) {
   switch (law) {
     case RestitutionLaw::kNewton:

@@ -104,6 +104,7 @@ std::vector<ContactPointReport> ContactReports(const Scene& scene, const Model& 
     r.out = outputs[static_cast<size_t>(p)];
     r.mu_s = con.mu_s();
     r.mu_k = con.mu_k();
+    r.mu_r = con.mu_r();
     r.round = con.feature(p - model.contact_point_offset(c)).kind != ContactFeatureKind::kPoint;
     reports.push_back(std::move(r));
   }

@@ -180,6 +180,10 @@ class CertificateBuilder {
   /// The contact checks (gap, normal force, Coulomb), adding the contact forces to `r`.
   void CheckContacts(const Model& model, const State& state, const Data& data, CheckPhase phase,
                      BodyResultants& r);
+  /// Rolling resistance at a sticking point with mu_r > 0 (held: inside mu_r N R; rolling:
+  /// mu_r N R against the rolling).
+  void CheckRollingResistance(const ContactPointOutput& o, const std::string& where, double t,
+                              CheckPhase phase);
   /// Newton–Euler per body against the resultants.
   void CheckBalances(const Model& model, const State& state, const Data& data, CheckPhase phase,
                      const BodyResultants& r);

@@ -65,11 +65,12 @@ struct ContactPointReport {
   std::string point, contact;
   /// Mode, normal and friction force, slip velocity, gap, point and normal in W.
   ContactPointOutput out;
-  /// The contact's coefficients of static and kinetic friction.
-  double mu_s = 0.0, mu_k = 0.0;
+  /// The contact's coefficients of static and kinetic friction and of rolling resistance.
+  double mu_s = 0.0, mu_k = 0.0, mu_r = 0.0;
   /// A round feature (sphere, rim): a sticking one rolls without slipping.
   bool round = false;
-  /// "rolls" or "sticks" (sticking), "slides", "separated".
+  /// "rolls", "rolling held" (a round point whose rolling resistance holds it) or "sticks"
+  /// (sticking), "slides", "separated".
   std::string Regime() const;
   /// |f| / N: the friction a sticking point needs (compare with mu_s), mu_k when sliding, 0
   /// when separated.

@@ -283,6 +283,8 @@ struct StudyContactPoint {
   /// Work of sliding friction, of rolling resistance, and energy lost in impacts at this point
   /// since t = 0 [J] (each <= 0).
   double friction_work = 0.0, rolling_work = 0.0, impact_work = 0.0;
+  /// Rolling-resistance moment on the body, in W [N·m] (holding or resisting the rolling).
+  Vec3 rolling_moment_W = Vec3::Zero();
 };
 
 /// Motion of one body of the final Model.

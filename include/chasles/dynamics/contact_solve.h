@@ -63,6 +63,8 @@ struct ContactModeChange {
   int point = -1;
   ContactMode from = ContactMode::kSeparated;
   ContactMode to = ContactMode::kSeparated;
+  /// Rolling held before and after (ContactPointState::rolling_held).
+  bool held_from = false, held_to = false;
 };
 
 /// A jam: sliding points whose contact forces had no consistent solution (a Painlevé-type
@@ -91,6 +93,8 @@ struct ModeHints {
   /// press into the surface by more than round-off (normal acceleration below -tol.relative
   /// of the acceleration scale).
   std::vector<int> lift_offs;
+  /// Points whose held rolling just reached its limit mu_r N R (tried as rolling first).
+  std::vector<int> rolling_starts;
 };
 
 /// What SelectContactModes had to do beyond choosing modes.

@@ -43,6 +43,7 @@ enum class ContactEventReason {
   kSlipStopped,     ///< slip speed reached zero (then stick, or slide the other way)
   kFrictionLimit,   ///< sticking needed more friction than mu_s N
   kRollingStopped,  ///< rolling angular velocity reached zero (rolling resistance)
+  kRollingLimit,    ///< a held rolling needed more moment than mu_r N R (starts to roll)
   kAccumulation,    ///< bounces shrinking geometrically summed to rest (Zeno limit)
   kCollision,       ///< a collision between balls changed the velocities (SimulateSphereEvents)
   kOther,           ///< re-selection after another point's event changed the forces
@@ -60,6 +61,8 @@ struct ContactEvent {
   ContactMode from = ContactMode::kSeparated;
   ContactMode to = ContactMode::kSeparated;
   ContactEventReason reason = ContactEventReason::kOther;
+  /// Whether the point's rolling was held before and after (ContactPointState::rolling_held).
+  bool held_from = false, held_to = false;
 };
 
 struct EventSpec {

@@ -57,6 +57,11 @@ enum class ContactMode {
 /// Name of a mode ("separated", "sliding", "sticking").
 const char* ContactModeName(ContactMode mode);
 
+/// Name of a mode with its rolling sub-mode: "sticking, rolling held" for a sticking point
+/// whose rolling is held by rolling resistance (ContactPointState::rolling_held), else
+/// ContactModeName(mode).
+const char* ContactRegimeName(ContactMode mode, bool rolling_held);
+
 /// Everything needed to add a contact. Fields not used by the shape are ignored. Lengths are
 /// given in the body's own frame B from Bo, like mass properties.
 struct ContactSpec {

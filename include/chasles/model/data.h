@@ -119,8 +119,19 @@ struct ContactPointOutput {
   /// Tangential (slip) velocity of the body's material point at C relative to the plane
   /// (other body), in W [m/s].
   Vec3 slip_velocity_W = Vec3::Zero();
-  /// Rolling-resistance moment on the body, in W [N·m].
+  /// Rolling-resistance moment on the body, in W [N·m]: -mu_r N R ŵ_r while the point rolls,
+  /// the holding moment (|M| <= mu_r N R) while its rolling is held.
   Vec3 rolling_moment_W = Vec3::Zero();
+  /// Whether the point was evaluated with its rolling held (ContactPointState::rolling_held).
+  bool rolling_held = false;
+  /// Rolling angular velocity of the body relative to the plane (other body), in W [rad/s]:
+  /// the part of the relative angular velocity about the feature's rolling axes (both
+  /// tangents for a sphere, the rim's axis projected on the plane for a rim; zero for a
+  /// point).
+  Vec3 rolling_velocity_W = Vec3::Zero();
+  /// Largest rolling-resistance moment the point can hold, mu_r N R [N·m] (0 without rolling
+  /// resistance).
+  double rolling_moment_capacity = 0.0;
   /// Power of sliding friction, f·v_slip [W] (<= 0).
   double friction_power = 0.0;
   /// Power of the rolling-resistance moment [W] (<= 0).
@@ -131,6 +142,10 @@ struct ContactPointOutput {
   /// body), in W [m/s²]: zero for a sticking point; for a sliding point whose slip is zero it
   /// says where the slip goes (used to check that a slip that starts is consistent).
   Vec3 slip_acceleration_W = Vec3::Zero();
+  /// Rolling angular acceleration (the rate of rolling_velocity_W about the fixed rolling
+  /// axes), in W [rad/s²]: zero while the rolling is held; for a rolling point whose rolling
+  /// is zero it says where the rolling goes (a rolling start is checked with it).
+  Vec3 rolling_acceleration_W = Vec3::Zero();
 };
 
 /// Workspace of the contact stage: the stacked active rows of constraints and contacts, the

@@ -51,6 +51,10 @@ struct ContactPointState {
   /// Reference rolling direction (unit angular velocity of rolling, in W) for rolling
   /// resistance, fixed like slip_direction_W when the mode began; zero when not rolling.
   Vec3 rolling_direction_W = Vec3::Zero();
+  /// A sticking round point with rolling resistance whose rolling is held (static rolling
+  /// resistance): its rolling angular velocity is held at zero by a resisting moment of at
+  /// most mu_r N R (docs/contact.md, "Rolling resistance"). False in every other mode.
+  bool rolling_held = false;
   /// Work done by sliding friction on the bodies since the start, ∫ f·v_slip dt [J] (<= 0).
   double friction_work = 0.0;
   /// Work done by the rolling-resistance moment since the start [J] (<= 0).

@@ -42,6 +42,14 @@ struct ContactPointGeometry {
   Vec3 w_rel = Vec3::Zero();
   /// w × ṙ of each side (the velocity-product terms of the rows) [m/s²].
   Vec3 w_x_rdot = Vec3::Zero(), w_x_rdot_other = Vec3::Zero();
+  /// Rolling axes (unit, in W) of a round feature: the rolling angular velocity is
+  /// Σ (a_i·w_rel) a_i. A sphere rolls about both tangents, a rim about its axis projected on
+  /// the plane (its lean and its turn about the normal are not rolling); a point, or a rim
+  /// lying flat, has none (num_rolling_axes = 0).
+  int num_rolling_axes = 0;
+  Vec3 rolling_axis[2] = {Vec3::Zero(), Vec3::Zero()};
+  /// Acceleration right-hand side of the row a_i·w_rel (a held rolling): -ȧ_i·w_rel [rad/s²].
+  double rolling_bias[2] = {0.0, 0.0};
 
   /// Acceleration right-hand side c_k of the row k·v_rel (k = n, t1 or t2).
   double AccelerationBias(const Vec3& k) const;
@@ -59,11 +67,23 @@ struct ContactPointGeometry {
   void AddMoment(const Vec3& M, RowRef row) const;
   /// Unit slip direction, sign relative to the reference `s_ref` (see ContactPointState).
   Vec3 SlipDirection(const Vec3& s_ref) const;
-  /// Rolling angular velocity: the relative angular velocity's part along the plane.
+  /// Rolling angular velocity Σ (a_i·w_rel) a_i over the rolling axes [rad/s].
   Vec3 RollingVelocity() const;
-  /// Unit rolling direction, sign relative to `r_ref`; zero when r_ref is zero.
+  /// Unit rolling direction, sign relative to `r_ref`; zero when r_ref is zero. A rolling
+  /// speed at round-off (|w_r| R within 1e-10 of speed_scale) has no direction of its own:
+  /// the reference holds, as for SlipDirection.
   Vec3 RollingDirection(const Vec3& r_ref) const;
+  /// Rolling angular acceleration Σ a_i (a_i·ẇ_rel - bias_i) for generalised accelerations
+  /// u̇ (the rate of the rolling about axes held fixed) [rad/s²].
+  Vec3 RollingAcceleration(const Eigen::VectorXd& u_dot) const;
+  /// Adds the blocks of the row a·w_rel ([0; a] on the body, [0; -a] on the other).
+  void AddRollingBlocks(const Vec3& a, Eigen::Matrix<double, 6, 1>& on_body,
+                        Eigen::Matrix<double, 6, 1>& on_other) const;
 };
+
+/// Rows that hold the rolling of point p (ContactPointGeometry::num_rolling_axes: 2 for a
+/// sphere, 1 for a rim) when it sticks with its rolling held; 0 otherwise.
+int HeldRows(const Model& model, const State& state, int p);
 
 /// Needs the kinematics stage (Data::R_WB, Data::w_WB_W).
 ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& state,
