@@ -271,6 +271,10 @@ std::string ContactEventsText(const StudyResult& r, const TextUnits& u) {
   if (r.contact_events.empty()) return "";
   return "\nContact modes (time, contact point: from -> to, why)\n" +
          Abridged(r.contact_events, 20, 5, "change", [&](const StudyContactEvent& e) {
+           if (e.from == e.to && e.reason == "rolling stopped") {  // and rolls on, turned
+             return fmt::format("  t = {}  {}: {} (rolling stopped and rolls on the other way)\n",
+                                u.Time(e.t), e.point, e.to);
+           }
            if (e.from == e.to && e.reason != "initial") {  // a bounce: touch-down, apart at once
              return fmt::format("  t = {}  {}: stays {} ({})\n", u.Time(e.t), e.point, e.to,
                                 e.reason);
@@ -415,15 +419,16 @@ std::string EndContactsText(const Scene& scene, const StudyResult& r, const Show
 
 std::string LedgerText(const Scene& scene, const StudyResult& r, const TextUnits& u) {
   const StudyLedger& L = r.ledger;
-  // Works below 1e-12 of the energy scale are round-off (an ideal joint's work) and print as
-  // 0; the balance residual prints as it is, being the check.
+  // Works and kinetic energies below 1e-12 of the energy scale are round-off (an ideal
+  // joint's work, a body brought to rest) and print as 0; the balance residual prints as it
+  // is, being the check.
   const auto W = [&](double w) {
     return u.Energy(std::abs(w) <= 1e-12 * L.energy_scale ? 0.0 : w);
   };
   std::string out = "\nLedger (from t = 0)\n";
   out += fmt::format("  kinetic energy      {} (translation {}, rotation {})\n",
-                     u.Energy(L.kinetic_translational + L.kinetic_rotational),
-                     u.Energy(L.kinetic_translational), u.Energy(L.kinetic_rotational));
+                     W(L.kinetic_translational + L.kinetic_rotational), W(L.kinetic_translational),
+                     W(L.kinetic_rotational));
   std::string parts;
   for (const auto& [name, v] : L.potential_by_force) {
     parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", name, u.Energy(v));

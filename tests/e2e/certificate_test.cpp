@@ -194,7 +194,7 @@ TEST(Certificate, SolveReportsTheChecks) {
   ASSERT_EQ(json.exit_code, 0) << json.err;
   const nlohmann::json j = nlohmann::json::parse(json.out);
   EXPECT_TRUE(j.at("checks").at("passed").get<bool>());
-  EXPECT_EQ(j.at("checks").at("checks").size(), 11u);
+  EXPECT_EQ(j.at("checks").at("checks").size(), 12u);
   EXPECT_GT(Check(j, "linear momentum balance").at("count").get<int>(), 0);
   EXPECT_GT(Check(j, "constraint velocity").at("count").get<int>(), 0);
   EXPECT_EQ(Check(j, "ledger").at("count").get<int>(), 0);  // no run: not applicable
