@@ -2,7 +2,7 @@
 // (1, 2, 3) kg·m², ω₀ = (0.01, 10, 0.01) rad/s, no force) for 100 s, against a plain
 // hand-written double RK4 loop at h = 1e-3 s (100,000 steps) timed in the same run.
 //
-// Reference: the same equations — Euler's equations (chapter eq. 8.62) with M = 0 in the body
+// Reference: the same equations — Euler's equations (chapter eqs. 8.79-8.81) with M = 0 in the body
 // frame, q̇ = ½ q ⊗ (0, ω) — integrated in long double (64-bit significand) by classical RK4 at
 // h = 1e-4 s (1,000,000 steps; truncation error (1e-4/1e-3)⁴ = 1e-4 of the h = 1e-3 run's) with
 // the quaternion renormalised each step. The reference is also run at h = 2e-4 s; the counter

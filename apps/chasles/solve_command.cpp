@@ -302,7 +302,7 @@ std::string Text(const Scene& scene, const SolveReport& s, const UnitSystem& uni
     out += fmt::format("    T {} (translational {}, rotational {})\n", u.E(m.T_trans + m.T_rot),
                        u.E(m.T_trans), u.E(m.T_rot));
     if (s.planar) {
-      // In the plane: p = (p_x, p_y), H about z (eq. 8.40).
+      // In the plane: p = (p_x, p_y), H about z (eq. 8.38).
       out += fmt::format("    p   {}\n", u.InPlane(true, m.P, kMomentumDim, k.p));
       out += fmt::format("    H_z {} (about {})\n", u(Clean(m.H_cm.z(), k.h), kAngularMomentumDim),
                          cm);

@@ -7,10 +7,10 @@
 //   I_O = m (L²/3 + r²/4)      (m L²/3 for a slender rod, r -> 0).
 //  - At release (ω = 0): I_O α = m g L/2 (moment of gravity about O), so
 //    α = m g L / (2 I_O)  (= 3g/(2L) for a slender rod); the centre of mass, at L/2 from O,
-//    accelerates downwards at α L/2, and Newton's second law (eq. 8.39) on the bar,
+//    accelerates downwards at α L/2, and Newton's second law (eqs. 8.76-8.78) on the bar,
 //    R - m g = -m α L/2, gives the pivot's upward reaction R = m g - m α L/2 (= m g/4),
 //    with no horizontal component (ω = 0: no centripetal acceleration).
-//  - Hanging straight down, having fallen by L/2 (work-energy, eq. 8.86):
+//  - Hanging straight down, having fallen by L/2 (work-energy, eq. 8.112):
 //    ½ I_O ω² = m g L/2, so ω² = m g L / I_O (= 3g/L); there α = 0 (gravity has no moment
 //    about O) and the centre of mass accelerates upwards at ω² L/2 towards O:
 //    R = m g + m ω² L/2 (= 5/2 m g).

@@ -6,12 +6,12 @@
 // with gravity -g z, moving along x with velocity v and spin ω about y. The contact point
 // C = centre - R z slips at s = v - ω R (ω ŷ × (-R ẑ) = -ω R x̂). While it slides, kinetic
 // friction mu_k m g opposes the slip (N = m g: no vertical motion):
-//   m v̇ = -mu_k m g sgn(s0),   I ω̇ = +mu_k m g R sgn(s0)     (eqs. 8.39, 8.40)
+//   m v̇ = -mu_k m g sgn(s0),   I ω̇ = +mu_k m g R sgn(s0)     (eqs. 8.76, 8.40)
 // so ṡ = -mu_k g sgn(s0) (1 + m R²/I) = -7/2 mu_k g sgn(s0), and the slip is zero at
 //   t* = 2 |s0| / (7 mu_k g),
 // where v* = v0 - mu_k g t* sgn(s0) = (5 v0 + 2 R ω0) / 7 and ω* = v*/R. From then on the ball
 // rolls: no slip, no friction, constant speed and kinetic energy 7/10 m v*². The energy lost
-// is the work of friction (eq. 8.86): W_f = 7/10 m v*² - (½ m v0² + 1/5 m R² ω0²).
+// is the work of friction (eq. 8.112): W_f = 7/10 m v*² - (½ m v0² + 1/5 m R² ω0²).
 // For the thrown ball (ω0 = 0): t* = 2 v0/(7 mu_k g), v* = 5/7 v0, W_f = -m v0²/7; it slid
 // x* = v0 t* - ½ mu_k g t*² = 12 v0²/(49 mu_k g).
 // The program exits 1 if any value differs from its closed form by more than 1e-9 relative.

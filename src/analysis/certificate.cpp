@@ -304,7 +304,7 @@ void CertificateBuilder::CheckRollingResistance(const ContactPointOutput& o,
 void CertificateBuilder::CheckBalances(const Model& model, const State& state, const Data& data,
                                        CheckPhase phase, const BodyResultants& r) {
   const double t = state.t;
-  // Newton–Euler per body (eq. 8.39 and Euler's equations, eqs. 8.75-8.81): m a_cm = ΣF;
+  // Newton–Euler per body (eqs. 8.76-8.78 and Euler's equations, eqs. 8.75-8.81): m a_cm = ΣF;
   // dH_cm/dt = R (I ω̇ + ω × I ω) with ω in B = ΣM_cm.
   for (int b = 0; b < model.num_bodies(); ++b) {
     const auto i = static_cast<size_t>(b);

@@ -47,7 +47,7 @@ inline double ProductError(double a, double b, double p) {
 }
 
 /// Translation under uniform gravity, exact: p ← p + h v + ½h² g, v ← v + h g (a quadratic in
-/// t; RK4 is exact on it as well, eq. 8.39 with F = m g), with compensated updates.
+/// t; RK4 is exact on it as well, eqs. 8.76-8.78 with F = m g), with compensated updates.
 inline void TranslateCompensated(const Arrays& s, int i, double h, const double hg[3],
                                  const double hhg[3]) {
   for (int j = 0; j < 3; ++j) {
@@ -57,7 +57,7 @@ inline void TranslateCompensated(const Arrays& s, int i, double h, const double 
 }
 
 /// Right-hand side of the rotation: q̇ = ½ q ⊗ (0, ω) and Euler's equations in the principal
-/// frame without moment, ω̇₁ = a₁ ω₂ω₃ (cyclic), a₁ = (I₂ − I₃)/I₁ (eq. 8.62).
+/// frame without moment, ω̇₁ = a₁ ω₂ω₃ (cyclic), a₁ = (I₂ − I₃)/I₁ (eqs. 8.79-8.81).
 inline void Rhs(const double q[4], const double w[3], double a1, double a2, double a3, double dq[4],
                 double dw[3]) {
   dq[0] = 0.5 * (-q[1] * w[0] - q[2] * w[1] - q[3] * w[2]);

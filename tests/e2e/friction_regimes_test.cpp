@@ -5,7 +5,7 @@
 // A round body (mass m, radius R, I = β m R² about its axle: cylinder β = 1/2, sphere 2/5,
 // hoop 1) pushed through its centre by F(t) = k t rolls while the friction it needs is within
 // the cone: m a = F - f, β m R² α = f R, a = α R give a = F / (m (1 + β)) and
-// f = F β / (1 + β) (eq. 8.83-8.85 with a force in place of gravity's component). It starts to
+// f = F β / (1 + β) (eqs. 8.49-8.51 with a force in place of gravity's component). It starts to
 // slide when f = μs m g:  t* = μs m g (1 + β) / (β k). Afterwards the contact slips forward
 // and kinetic friction μk m g acts backward: m a = k t - μk m g, β m R² α = μk m g R. So
 //   v(t) = k t*² / (2 m (1 + β)) + k (t² - t*²) / (2 m) - μk g (t - t*),

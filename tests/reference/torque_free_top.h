@@ -3,7 +3,7 @@
 /// The Dzhanibekov body as a reference for the integrators' round-off (the RK4 test and
 /// bench/dzhanibekov_bench.cpp): principal moments I = (1, 2, 3) kg·m², no force,
 /// ω₀ = (0.01, 10, 0.01) rad/s about the unstable middle axis. Euler's equations (chapter
-/// eq. 8.62) with M = 0,
+/// eqs. 8.79-8.81) with M = 0,
 ///   I₁ ω̇₁ = (I₂ − I₃) ω₂ ω₃,  I₂ ω̇₂ = (I₃ − I₁) ω₃ ω₁,  I₃ ω̇₃ = (I₁ − I₂) ω₁ ω₂,
 /// and q̇ = ½ q ⊗ (0, ω_B), integrated by a plain hand-written classical RK4 in any floating
 /// type T: in long double it is the reference; in double, the uncompensated update.
@@ -30,7 +30,7 @@ Top<T> Derivative(const Top<T>& s) {
   const T* q = s.y + 3;
   const T I0 = kI[0], I1 = kI[1], I2 = kI[2];
   Top<T> d;
-  d.y[0] = (I1 - I2) * w[1] * w[2] / I0;  // eq. 8.62 with M = 0
+  d.y[0] = (I1 - I2) * w[1] * w[2] / I0;  // eqs. 8.79-8.81 with M = 0
   d.y[1] = (I2 - I0) * w[2] * w[0] / I1;
   d.y[2] = (I0 - I1) * w[0] * w[1] / I2;
   // q̇ = ½ q ⊗ (0, ω): scalar −½ q_v·ω, vector ½ (q_w ω + q_v × ω).

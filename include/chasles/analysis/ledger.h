@@ -60,7 +60,7 @@ struct ContactLedger {
 struct LedgerSample {
   /// Time [s].
   double t = 0.0;
-  /// Kinetic energy, translational (eq. 8.115) and rotational (eq. 8.116) parts [J].
+  /// Kinetic energy, translational (eq. 8.115) and rotational (eq. 8.115) parts [J].
   double kinetic_translational = 0.0;
   double kinetic_rotational = 0.0;
   /// Total potential energy (gravity, springs, central gravity) [J].

@@ -9,7 +9,7 @@ namespace chasles {
 
 /// Translational kinetic energy Σ ½ m |v_Bcm|² (eq. 8.115) [J].
 double CalcTranslationalKineticEnergy(const Model& model, const State& state);
-/// Rotational kinetic energy Σ ½ w_Bᵀ I_Bcm w_B (eq. 8.116) [J].
+/// Rotational kinetic energy Σ ½ w_Bᵀ I_Bcm w_B (eq. 8.115) [J].
 double CalcRotationalKineticEnergy(const Model& model, const State& state);
 /// Linear momentum Σ m v_Bcm, in W [kg·m/s].
 Vec3 CalcLinearMomentum(const Model& model, const State& state);

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Newton–Euler equations of free rigid bodies (chapter 8.3): for every body
-///   m a_Bcm = ΣF                            (eq. 8.39)
+///   m a_Bcm = ΣF                            (eqs. 8.76-8.78)
 ///   I ẇ + w × (I w) = ΣM_Bcm                (Euler's equations, eqs. 8.75-8.81, in B)
 /// with the full inertia tensor I about Bcm in B (non-principal frames included), solved with
 /// its precomputed inverse. The three stages fill the Data fields named after them.

@@ -6,7 +6,7 @@
 /// Two steppers:
 ///  - kRk4: classical RK4 with compensated updates (as Rk4Integrator) on Newton's equation m a = m
 ///  g and Euler's equations in the
-///    principal frame P (chapter eq. 8.62 with M = 0: I₁ω̇₁ = (I₂ − I₃) ω₂ω₃ and cyclic) with
+///    principal frame P (chapter eqs. 8.79-8.81 with M = 0: I₁ω̇₁ = (I₂ − I₃) ω₂ω₃ and cyclic) with
 ///    q̇ = ½ q ⊗ (0, ω). The same method and step as Rk4Integrator; the translation is taken
 ///    in closed form (RK4 is exact on it too).
 ///  - kSplitting: a second-order symmetric splitting (docs/design.md, "Batched free bodies"):

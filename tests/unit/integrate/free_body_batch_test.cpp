@@ -60,7 +60,7 @@ double Angle(const Quat& a, const Quat& b) {
   return a.angularDistance(b);
 }
 
-// Axisymmetric top, I₁ = I₂ = A, I₃ = C, no moment. Euler's equations (eq. 8.62) give ω₃
+// Axisymmetric top, I₁ = I₂ = A, I₃ = C, no moment. Euler's equations (eqs. 8.79-8.81) give ω₃
 // constant and ω̇₁ = −Ω ω₂, ω̇₂ = Ω ω₁ with Ω = (C − A) ω₃/A: (ω₁, ω₂) turns about the symmetry
 // axis at Ω. The orientation: ω_B = L_B/A + (1/C − 1/A) L₃ e₃ = L_B/A − Ω e₃, a spin |L|/A
 // about the fixed L_W composed with a spin −Ω about the body's e₃, which commute along the
@@ -173,7 +173,7 @@ TEST(FreeBodyBatch, SplittingKeepsAngularMomentumAndQuaternionNormAndEnergyDoesN
   }
 }
 
-// Under uniform gravity p = p₀ + v₀ t + ½ g t², v = v₀ + g t (eq. 8.39 with F = m g): both
+// Under uniform gravity p = p₀ + v₀ t + ½ g t², v = v₀ + g t (eqs. 8.76-8.78 with F = m g): both
 // steppers take it exactly; only the rounding of the sums remains.
 TEST(FreeBodyBatch, TranslationUnderUniformGravityIsExact) {
   std::mt19937_64 rng(11);

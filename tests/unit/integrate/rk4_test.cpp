@@ -1,6 +1,6 @@
 // Compensated state updates (src/integrate/internal/compensated.h) on the Dzhanibekov body:
 // principal moments I = (1, 2, 3) kg·m², no force, ω₀ = (0.01, 10, 0.01) rad/s about the
-// unstable middle axis. The motion obeys Euler's equations (chapter eq. 8.62) with M = 0,
+// unstable middle axis. The motion obeys Euler's equations (chapter eqs. 8.79-8.81) with M = 0,
 //   I₁ ω̇₁ = (I₂ − I₃) ω₂ ω₃,  I₂ ω̇₂ = (I₃ − I₁) ω₃ ω₁,  I₃ ω̇₃ = (I₁ − I₂) ω₁ ω₂,
 // and the quaternion kinematics q̇ = ½ q ⊗ (0, ω_B). The reference integrates exactly these
 // equations in long double (64-bit significand, unit round-off 5.4e-20) with the same

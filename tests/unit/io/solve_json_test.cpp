@@ -16,7 +16,7 @@ namespace {
 using ::testing::StartsWith;
 
 /// A disk rolling down an incline at angle 30°, made by hand: a = (2/3) g sin θ along the
-/// slope (eq. 8.81 for a uniform disk, I = ½ m r²), the friction it needs f = (1/3) m g sin θ
+/// slope (eq. 8.50 for a uniform disk, I = ½ m r²), the friction it needs f = (1/3) m g sin θ
 /// against N = m g cos θ, so f/N = (1/3) tan θ; and a block sliding on the floor with N = 10 N
 /// and friction (3, 4, 0) N, so |f| = 5 N and |f|/N = 0.5.
 SolveReport HandMade(bool planar) {

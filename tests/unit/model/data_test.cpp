@@ -25,7 +25,7 @@ using testing::ThrowsMessage;
 
 constexpr const char* kOtherModel = "this Data was made for another Model";
 
-// One free body of mass m = 2 kg under uniform gravity g: a = g (eq. 8.39, m a = m g).
+// One free body of mass m = 2 kg under uniform gravity g: a = g (eqs. 8.76-8.78, m a = m g).
 Model FallingBody(double g) {
   Model m;
   m.AddBody("ball", MassProperties(2.0, Vec3::Zero(), RotationalInertia(1, 1, 1)));
