@@ -108,6 +108,21 @@ struct ReportArgs {
 CLI::App* AddReportCommand(CLI::App& app, ReportArgs& args);
 int RunReport(const ReportArgs& args);
 
+/// `chasles audit FILE...`: robot descriptions (URDF, MJCF, SDF) checked against their own
+/// geometry (docs/audit.md).
+struct AuditArgs {
+  std::vector<std::string> files;
+  std::string format = "text";        // text | json
+  std::string output;                 // -o: the report to this file
+  std::string html;                   // --html: the browser report
+  bool fix = false;                   // --fix: write corrected files
+  std::string out_dir;                // --out: where --fix writes
+  std::vector<std::string> packages;  // --package NAME=DIR
+  std::vector<std::string> joints;    // --joint NAME=VALUE (the robot's total)
+};
+CLI::App* AddAuditCommand(CLI::App& app, AuditArgs& args);
+int RunAudit(const AuditArgs& args);
+
 CLI::App* AddMaterialsCommand(CLI::App& app);
 int RunMaterials();
 

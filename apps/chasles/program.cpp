@@ -35,14 +35,16 @@ std::unique_ptr<Program> MakeProgram() {
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
       "  chasles solve examples/example-8.3-cylinder-incline.yaml\n"
       "  chasles simulate examples/dzhanibekov.yaml --html dzhanibekov.html\n"
+      "  chasles audit robot.urdf --fix --out fixed\n"
       "Scene format: docs/scene-format.md. Exit codes: 0 ok, 2 bad input, 3 a failed check "
-      "with --strict (simulate, solve), 1 internal error.");
+      "with --strict (simulate, solve) or an error found by audit, 1 internal error.");
   p->mass = AddMassCommand(app, p->mass_args);
   p->check = AddCheckCommand(app, p->check_args);
   p->simulate = AddSimulateCommand(app, p->simulate_args);
   p->solve = AddSolveCommand(app, p->solve_args);
   p->materials = AddMaterialsCommand(app);
   p->report = AddReportCommand(app, p->report_args);
+  p->audit = AddAuditCommand(app, p->audit_args);
 #ifdef CHASLES_HAVE_PLOT
   p->plot = AddPlotCommand(app, p->plot_args);
 #endif
@@ -90,6 +92,7 @@ int RunCommand(Program& p) {
   if (p.solve->parsed()) return RunSolve(p.solve_args);
   if (p.materials->parsed()) return RunMaterials();
   if (p.report->parsed()) return RunReport(p.report_args);
+  if (p.audit->parsed()) return RunAudit(p.audit_args);
   if (p.plot && p.plot->parsed()) return RunPlot(p.plot_args);
   std::fprintf(stderr,
                "chasles: no command given, so here is the built-in demonstration scene "

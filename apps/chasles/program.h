@@ -27,7 +27,9 @@ struct Program {
   SolveArgs solve_args;
   ReportArgs report_args;
   PlotArgs plot_args;
+  AuditArgs audit_args;
   CLI::App* mass = nullptr;
+  CLI::App* audit = nullptr;
   CLI::App* check = nullptr;
   CLI::App* simulate = nullptr;
   CLI::App* solve = nullptr;

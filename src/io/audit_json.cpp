@@ -1,0 +1,88 @@
+// The JSON of `chasles audit` (chasles/io/audit_json.h).
+
+#include "chasles/io/audit_json.h"
+
+#include <cmath>
+
+#include "chasles/io/json_report.h"
+
+namespace chasles {
+
+namespace {
+
+nlohmann::json Values(const MassProperties& mp) {
+  return {{"mass", mp.mass()},
+          {"center_of_mass", VecJson(mp.p_BoBcm_B())},
+          {"inertia", MatJson(mp.I_BBcm_B().matrix())}};
+}
+
+nlohmann::json FindingJson(const Finding& f) {
+  nlohmann::json j = {{"severity", SeverityName(f.severity)},
+                      {"code", FindingCodeName(f.code)},
+                      {"message", f.message},
+                      {"line", f.line},
+                      {"fix", nullptr}};
+  if (f.fix) {
+    j["fix"] = Values(*f.fix);
+    j["fix"]["rule"] = f.fix_rule;
+    if (!f.effect.empty()) j["fix"]["effect"] = f.effect;
+  }
+  return j;
+}
+
+nlohmann::json LinkJson(const LinkAudit& l) {
+  nlohmann::json j = {
+      {"name", l.name}, {"line", l.line}, {"given", nullptr}, {"computed", nullptr}};
+  if (l.has_inertial) j["given"] = Values(l.given);
+  if (l.computed) {
+    const GeometryEstimate& e = l.estimates[*l.computed];
+    const MassProperties mp =
+        l.has_inertial && l.given.mass() > 0.0 ? e.AtMass(l.given.mass()) : e.unit_density;
+    j["computed"] = Values(mp);
+    j["computed"]["source"] = GeometrySetName(e.set);
+    j["computed"]["method"] = GeometryMethodName(e.method);
+    j["computed"]["volume"] = e.volume;
+    j["computed"]["density"] = mp.mass() / e.volume;
+    j["computed"]["lines"] = e.lines;
+  }
+  j["findings"] = nlohmann::json::array();
+  for (const Finding& f : l.findings) j["findings"].push_back(FindingJson(f));
+  const Finding* fix = FixToApply(l);
+  j["fix_applied"] = fix ? nlohmann::json(FindingCodeName(fix->code)) : nlohmann::json(nullptr);
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json AuditFileJson(const RobotAudit& a) {
+  nlohmann::json j = {{"path", a.file},
+                      {"format", RobotFormatName(a.format)},
+                      {"robot_name", a.robot_name},
+                      {"links", nlohmann::json::array()},
+                      {"robot", nullptr},
+                      {"robot_notes", a.robot_notes},
+                      {"warnings", a.warnings}};
+  for (const LinkAudit& l : a.links) j["links"].push_back(LinkJson(l));
+  if (std::isfinite(a.robot.mass())) j["robot"] = Values(a.robot);
+  return j;
+}
+
+nlohmann::json AuditJson(const std::vector<RobotAudit>& audits) {
+  nlohmann::json j = {{"files", nlohmann::json::array()}, {"robot", nullptr}};
+  std::size_t counts[3] = {0, 0, 0};
+  for (const RobotAudit& a : audits) {
+    j["files"].push_back(AuditFileJson(a));
+    for (const Severity s : {Severity::kNote, Severity::kWarning, Severity::kError}) {
+      counts[static_cast<int>(s)] += a.Count(s);
+    }
+  }
+  if (!audits.empty()) j["robot"] = j["files"][0]["robot"];
+  j["errors"] = counts[2];
+  j["warnings"] = counts[1];
+  j["notes"] = counts[0];
+  j["inertia_convention"] =
+      "tensor entries, Ixy = -∫xy dm, about the centre of mass in the link frame [kg m^2]";
+  return j;
+}
+
+}  // namespace chasles
