@@ -42,6 +42,8 @@ struct MassArgs {
   // these say what the scene's mesh part would.
   std::string mesh_unit, mesh_mode, mesh_density, mesh_material, mesh_mass, mesh_areal_density,
       mesh_thickness;
+  // A robot file given instead of a scene (chasles mass robot.urdf --joint elbow=0.5).
+  std::vector<std::string> robot_packages, robot_joints;
 };
 
 CLI::App* AddMassCommand(CLI::App& app, MassArgs& args);
