@@ -5,6 +5,7 @@
 #include "chasles/analysis/audit.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include <fmt/format.h>
@@ -81,6 +82,32 @@ std::size_t RobotAudit::Count(Severity severity) const {
   return n;
 }
 
+namespace {
+
+/// True when `v` passes the checks that need no judgement: a valid tensor and, against the
+/// geometry, a plausible density, the radius of gyration within reach, the centre of mass
+/// inside, and no disagreement of an error's size.
+bool FixHolds(const LinkAudit& link, const MassProperties& v) {
+  using T = internal::AuditThresholds;
+  if (!(v.mass() > 0.0) || !v.I_BBcm_B().CheckPhysicallyValid().empty()) return false;
+  if (!link.computed) return true;
+  const GeometryEstimate& e = link.estimates[*link.computed];
+  const double rho = v.mass() / e.volume;
+  if (rho < T::kDensityLow || rho > T::kDensityHigh) return false;
+  const Mat3& I = v.I_BBcm_B().matrix();
+  if (std::sqrt(I.trace() / (2 * v.mass())) > T::kReach * e.RadiusAbout(v.p_BoBcm_B()))
+    return false;
+  const double margin = T::kComMargin * (e.box_max - e.box_min).norm();
+  const Vec3& c = v.p_BoBcm_B();
+  if (((c.array() < e.box_min.array() - margin) || (c.array() > e.box_max.array() + margin))
+          .any()) {
+    return false;
+  }
+  return internal::TensorFactor(I, e.AtMass(v.mass()).I_BBcm_B().matrix()) <= T::kMismatchError;
+}
+
+}  // namespace
+
 const Finding* FixToApply(const LinkAudit& link) {
   const bool error = std::any_of(link.findings.begin(), link.findings.end(),
                                  [](const Finding& f) { return f.severity == Severity::kError; });
@@ -93,12 +120,16 @@ const Finding* FixToApply(const LinkAudit& link) {
       FindingCode::kRadiusOfGyration,   FindingCode::kComOutsideGeometry,
       FindingCode::kPlaceholderInertia, FindingCode::kMismatchGeometry,
       FindingCode::kMirrorMismatch,     FindingCode::kDuplicateInertial};
+  // The first fix in that order that passes the plain checks; else the first there is.
+  const Finding* first = nullptr;
   for (const FindingCode code : kOrder) {
     for (const Finding& f : link.findings) {
-      if (f.code == code && f.fix) return &f;
+      if (f.code != code || !f.fix) continue;
+      if (FixHolds(link, *f.fix)) return &f;
+      if (!first) first = &f;
     }
   }
-  return nullptr;
+  return first;
 }
 
 namespace {
@@ -151,8 +182,9 @@ RobotAudit AuditRobot(const RobotModel& model, const AuditOptions& options) {
   out.format = model.format;
   out.robot_name = model.name;
   out.warnings = model.warnings;
-  internal::MeshCache meshes(options.load_mesh);
-  for (const RobotLink& link : model.links) out.links.push_back(AuditLink(model, link, meshes));
+  const std::shared_ptr<AuditMeshCache> meshes =
+      options.cache ? options.cache : MakeAuditMeshCache(options.load_mesh);
+  for (const RobotLink& link : model.links) out.links.push_back(AuditLink(model, link, *meshes));
   internal::CheckAcrossLinks(model, out.links);
   // Findings first by severity (errors first), then in file order.
   for (LinkAudit& a : out.links) {

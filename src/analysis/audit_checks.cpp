@@ -89,8 +89,9 @@ Mat3 NearestValidTensor(const Mat3& I) {
   const double floor = 1e-6 * std::max(x.maxCoeff(), 1e-12 * scale);
   x = x.cwiseMax(floor);
   // Raising a small moment may break the triangle inequality by that much: restore it.
+  // Kept 1e-4 inside the cone, so that it stays valid once written with 6 digits.
   std::sort(x.data(), x.data() + 3);
-  x[2] = std::min(x[2], x[0] + x[1]);
+  x[2] = std::min(x[2], (1 - 1e-4) * (x[0] + x[1]));
   return es.eigenvectors() * x.asDiagonal() * es.eigenvectors().transpose();
 }
 

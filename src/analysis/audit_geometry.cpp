@@ -46,9 +46,11 @@ double GeometryEstimate::RadiusAbout(const Vec3& p) const {
   return r;
 }
 
-namespace internal {
+std::shared_ptr<AuditMeshCache> MakeAuditMeshCache(MeshLoader load) {
+  return std::make_shared<AuditMeshCache>(std::move(load));
+}
 
-const TriangleSoup* MeshCache::Get(const std::string& path, std::string* problem) {
+const TriangleSoup* AuditMeshCache::Get(const std::string& path, std::string* problem) {
   if (const auto it = problems_.find(path); it != problems_.end()) {
     *problem = it->second;
     return nullptr;
@@ -65,6 +67,8 @@ const TriangleSoup* MeshCache::Get(const std::string& path, std::string* problem
     return nullptr;
   }
 }
+
+namespace internal {
 
 namespace {
 
@@ -172,27 +176,35 @@ std::optional<Part> MeshPart(const RobotGeometry& g, MeshCache& meshes, std::str
     *problem = g.mesh_problem;
     return std::nullopt;
   }
-  const TriangleSoup* soup = meshes.Get(g.mesh_path, problem);
-  if (!soup) return std::nullopt;
-  std::vector<double> xyz = soup->xyz;
-  for (std::size_t i = 0; i < xyz.size(); ++i) xyz[i] *= g.mesh_scale[i % 3];
-  TriangleMesh mesh;
-  try {
-    mesh = BuildTriangleMesh(std::span<const double>(xyz), soup->indices, 1.0,
-                             std::numeric_limits<double>::quiet_NaN(), nullptr);
-  } catch (const InputError& e) {
-    *problem = e.what();
-    return std::nullopt;
+  const std::array<double, 3> scale = {g.mesh_scale.x(), g.mesh_scale.y(), g.mesh_scale.z()};
+  auto cached = meshes.solids.find({g.mesh_path, scale});
+  if (cached == meshes.solids.end()) {
+    const TriangleSoup* soup = meshes.Get(g.mesh_path, problem);
+    if (!soup) return std::nullopt;
+    std::vector<double> xyz = soup->xyz;
+    for (std::size_t i = 0; i < xyz.size(); ++i) xyz[i] *= scale[i % 3];
+    TriangleMesh mesh;
+    try {
+      mesh = BuildTriangleMesh(std::span<const double>(xyz), soup->indices, 1.0,
+                               std::numeric_limits<double>::quiet_NaN(), nullptr);
+    } catch (const InputError& e) {
+      *problem = e.what();
+      return std::nullopt;
+    }
+    MeshSolidPart solid;
+    solid.unit_density = MeshSolid(mesh, &solid.method, &solid.why_open);
+    solid.vertices = std::move(mesh.vertices);
+    cached = meshes.solids.emplace(std::make_pair(g.mesh_path, scale), std::move(solid)).first;
   }
+  const MeshSolidPart& solid = cached->second;
   Part part;
-  std::string why_open;
-  const MassProperties mp = MeshSolid(mesh, &part.method, &why_open);
-  part.mp = mp.ExpressedInParent(g.R_LG, g.p_LoGo_L);
-  part.points.reserve(mesh.vertices.size());
-  for (const Vec3& v : mesh.vertices) part.points.push_back(g.p_LoGo_L + g.R_LG * v);
+  part.method = solid.method;
+  part.mp = solid.unit_density.ExpressedInParent(g.R_LG, g.p_LoGo_L);
+  part.points.reserve(solid.vertices.size());
+  for (const Vec3& v : solid.vertices) part.points.push_back(g.p_LoGo_L + g.R_LG * v);
   if (part.method != GeometryMethod::kExactMesh) {
     part.note = fmt::format("mesh '{}' (line {}) bounds no solid ({}); its {} is used instead",
-                            g.mesh_uri, g.line, why_open, GeometryMethodName(part.method));
+                            g.mesh_uri, g.line, solid.why_open, GeometryMethodName(part.method));
   }
   return part;
 }
@@ -201,9 +213,11 @@ std::optional<Part> MeshPart(const RobotGeometry& g, MeshCache& meshes, std::str
 
 std::vector<GeometryEstimate> EstimateGeometry(const RobotLink& link, MeshCache& meshes) {
   std::vector<GeometryEstimate> out;
-  for (const GeometrySet set : {GeometrySet::kCollision, GeometrySet::kVisual}) {
-    // The visual set is computed only when the collision set could not be.
-    if (set == GeometrySet::kVisual && !out.empty() && out.front().volume > 0.0) break;
+  // The visual geometry first: it is the part's shape, where collision geometry is often a
+  // coarser, larger stand-in (capsules, boxes); the collision set only when the visual one
+  // could not be computed.
+  for (const GeometrySet set : {GeometrySet::kVisual, GeometrySet::kCollision}) {
+    if (set == GeometrySet::kCollision && !out.empty() && out.front().volume > 0.0) break;
     GeometryEstimate e;
     e.set = set;
     std::optional<MassProperties> sum;

@@ -145,11 +145,14 @@ void CheckDuplicates(const RobotModel& model, std::vector<LinkAudit>& audits) {
 void CheckAcrossLinks(const RobotModel& model, std::vector<LinkAudit>& audits) {
   CheckDuplicates(model, audits);
   CheckTwins(model, audits);
-  // A massless link with geometry: the robot's median density (of its links whose inertial
-  // agrees with their geometry) times its volume, the geometry's tensor at that mass.
+  // A massless link with geometry, or one of implausible density that no slip explains: the
+  // robot's median density (of its links without errors or warnings) times its volume, the
+  // geometry's tensor at that mass.
   std::vector<double> densities;
   for (const LinkAudit& a : audits) {
-    if (a.has_inertial && a.computed && a.given.mass() > 0.0 && a.findings.empty()) {
+    const bool sound = std::none_of(a.findings.begin(), a.findings.end(),
+                                    [](const Finding& f) { return f.severity != Severity::kNote; });
+    if (a.has_inertial && a.computed && a.given.mass() > 0.0 && sound) {
       densities.push_back(a.given.mass() / a.estimates[*a.computed].volume);
     }
   }
@@ -159,7 +162,8 @@ void CheckAcrossLinks(const RobotModel& model, std::vector<LinkAudit>& audits) {
   for (LinkAudit& a : audits) {
     if (!a.computed || !(a.estimates[*a.computed].volume > 0.0)) continue;
     for (Finding& f : a.findings) {
-      if (f.code != FindingCode::kZeroMass) continue;
+      const bool density = f.code == FindingCode::kImplausibleDensity && !f.fix;
+      if (f.code != FindingCode::kZeroMass && !density) continue;
       const MassProperties fix =
           a.estimates[*a.computed].AtMass(rho * a.estimates[*a.computed].volume);
       f.fix = fix;

@@ -99,6 +99,16 @@ std::vector<Candidate> Candidates(const RobotInertial& in, const GeometryEstimat
   return out;
 }
 
+/// A smaller disagreement that the products' sign alone explains: products of at least
+/// kProducts of the trace, and with their sign turned the tensor agrees within kSignAgree.
+bool SignSlip(const RobotInertial& in, const GeometryEstimate& geo, double factor) {
+  const Mat3& W = in.I_LcmI_I;
+  const Mat3 off = W - Mat3(W.diagonal().asDiagonal());
+  if (!(factor > T::kAgree) || !(off.norm() >= T::kProducts * std::abs(W.trace()))) return false;
+  const Mat3 flipped = in.R_LI * (W - 2 * off) * in.R_LI.transpose();
+  return TensorFactor(flipped, geo.AtMass(in.mass).I_BBcm_B().matrix()) <= T::kSignAgree;
+}
+
 /// The one slip that explains the disagreement, if exactly one does (for decimal slips: one
 /// number); preference: decimal point, swapped entries, signs, frame.
 const Candidate* Explain(const std::vector<Candidate>& candidates) {
@@ -125,12 +135,12 @@ bool CheckDensity(const RobotLink& link, LinkAudit& a, const GeometryEstimate& g
   std::string why;
   std::optional<MassProperties> fix;
   bool geometry_ok = true;
-  if (plausible(rho / 1000)) {
+  if (rho / 1000 >= T::kDensityLow && rho / 1000 <= T::kDensityHigh) {
     why = fmt::format(
         "the mass looks like grams taken as kilograms: {:g} kg / 1000 gives {:.4g} "
-        "kg/m³; write mass {:g}",
+        "kg/m³; write mass {:g} (and the tensor, in g·m² too, divided by 1000)",
         m, rho / 1000, m / 1000);
-    fix = geo.AtMass(m / 1000);
+    fix = MassProperties(m / 1000, a.given.p_BoBcm_B(), a.given.I_BBcm_B() * 1e-3);
   } else if (plausible(rho * 1e9) || plausible(rho / 1e9)) {
     why =
         fmt::format("the geometry looks {} (its volume is off by 10⁹): give the mesh scale=\"{}\"",
@@ -145,7 +155,7 @@ bool CheckDensity(const RobotLink& link, LinkAudit& a, const GeometryEstimate& g
                          "kg/m³, outside {:g} to {:g} kg/m³ (hollow covers to tungsten){}{}",
                          m, GeometrySetName(geo.set), V, GeometryMethodName(geo.method), rho,
                          T::kDensityLow, T::kDensityHigh, why.empty() ? "" : ": ", why),
-             fix, fix ? "the mass divided by 1000 and the geometry's tensor at that mass" : "");
+             fix, fix ? "the mass and the tensor divided by 1000" : "");
   return geometry_ok;
 }
 
@@ -201,8 +211,13 @@ void CheckAgainstGeometry(const RobotLink& link, LinkAudit& a) {
                expected, geometry_rule);
   }
   const double factor = TensorFactor(I, expected.I_BBcm_B().matrix());
-  if (!(factor > T::kMismatchWarning)) return;
-  const std::vector<Candidate> candidates = Candidates(in, geo);
+  const bool small = !(factor > T::kMismatchWarning);
+  if (small && !SignSlip(in, geo, factor)) return;
+  std::vector<Candidate> candidates = Candidates(in, geo);
+  if (small) {  // only the sign explains a disagreement this small
+    std::erase_if(candidates,
+                  [](const Candidate& k) { return k.code != FindingCode::kSignOfProducts; });
+  }
   if (const Candidate* k = Explain(candidates)) {
     const char* rules[] = {"the unique decimal repair", "the entries put back in place",
                            "the products with their sign restored",

@@ -15,6 +15,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -115,8 +116,8 @@ struct LinkAudit {
   /// tensor turned from its frame I into L). Absent when the link has none.
   bool has_inertial = false;
   MassProperties given;
-  /// What the geometry implies, per set present; `computed` is the one compared (collision
-  /// when it could be computed, else visual).
+  /// What the geometry implies, per set present; `computed` is the one compared (visual when
+  /// it could be computed, the part's own shape; else collision, often a larger stand-in).
   std::vector<GeometryEstimate> estimates;
   std::optional<std::size_t> computed;
   std::vector<Finding> findings;
@@ -144,10 +145,19 @@ struct RobotAudit {
 /// layer's, and the Collada reader for .dae).
 using MeshLoader = std::function<TriangleSoup(const std::string& path)>;
 
+/// Meshes read and integrated, by file and scale: kept across the audits that share it (the
+/// variants of one robot), each mesh read and integrated once.
+class AuditMeshCache;
+
+/// A cache for AuditOptions::cache, reading meshes with `load`.
+std::shared_ptr<AuditMeshCache> MakeAuditMeshCache(MeshLoader load);
+
 /// Options of the audit.
 struct AuditOptions {
   /// Reads meshes; without one, meshes are not read (a note says so).
   MeshLoader load_mesh;
+  /// Meshes kept from earlier audits (then load_mesh is not used); null: read afresh.
+  std::shared_ptr<AuditMeshCache> cache;
   /// Joint values [rad or m] by joint name, for the robot's total (zero when not given).
   std::map<std::string, double> joints;
 };
@@ -157,8 +167,10 @@ RobotAudit AuditRobot(const RobotModel& model, const AuditOptions& options);
 
 /// The finding whose fix `--fix` writes for a link with at least one error: of the findings
 /// with a fix, the most specific explanation first (decimal_slip, transposed_entries,
-/// sign_of_products, frame), then the validity rules, then the geometry's values; null when
-/// the link has no error or no finding gives a fix.
+/// sign_of_products, frame), then the validity rules, then the geometry's values; the first
+/// whose values pass the plain checks (a valid tensor; against the geometry a plausible
+/// density, the radius of gyration within reach, the centre of mass inside, no disagreement of
+/// an error's size), else the first; null when the link has no error or no finding gives a fix.
 const Finding* FixToApply(const LinkAudit& link);
 
 }  // namespace chasles

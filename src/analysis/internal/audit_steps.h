@@ -5,6 +5,7 @@
 /// link's inertial on its own and against its geometry (audit_checks.cpp, audit_repairs.cpp),
 /// and the checks across links (audit_links.cpp).
 
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -33,22 +34,44 @@ struct AuditThresholds {
   /// A repair is looked for when the tensor is off by more than kMismatchWarning, and accepted
   /// when it brings the tensor within this factor of the geometry's.
   static constexpr double kAgree = 1.5;
+  /// Products of at least this fraction of the trace whose sign, turned, brings the tensor
+  /// within kSignAgree of the geometry's: a sign slip even below kMismatchWarning.
+  static constexpr double kProducts = 0.1, kSignAgree = 1.2;
   /// The centre of mass may lie outside the geometry's box by this fraction of its diagonal.
   static constexpr double kComMargin = 0.05;
 };
 
-/// Meshes read once per audit, by resolved path.
-class MeshCache {
+/// A mesh's solid in its own frame G at unit density: how it was obtained and its vertices.
+struct MeshSolidPart {
+  MassProperties unit_density;
+  GeometryMethod method = GeometryMethod::kExactMesh;
+  std::string why_open;
+  std::vector<Vec3> vertices;
+};
+
+}  // namespace chasles::internal
+
+namespace chasles {
+
+class AuditMeshCache {
  public:
-  explicit MeshCache(const MeshLoader& load) : load_(load) {}
+  explicit AuditMeshCache(MeshLoader load) : load_(std::move(load)) {}
   /// The soup of `path`, or null with `problem` set when it cannot be read.
   const TriangleSoup* Get(const std::string& path, std::string* problem);
+  /// Solids already integrated, by path and scale.
+  std::map<std::pair<std::string, std::array<double, 3>>, internal::MeshSolidPart> solids;
 
  private:
-  const MeshLoader& load_;
+  MeshLoader load_;
   std::map<std::string, std::optional<TriangleSoup>> soups_;
   std::map<std::string, std::string> problems_;
 };
+
+}  // namespace chasles
+
+namespace chasles::internal {
+
+using MeshCache = AuditMeshCache;
 
 /// What each geometry set of `link` implies (one estimate per set that has geometry).
 std::vector<GeometryEstimate> EstimateGeometry(const RobotLink& link, MeshCache& meshes);
