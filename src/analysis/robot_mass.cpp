@@ -43,6 +43,7 @@ std::vector<LinkPose> CalcLinkPoses(const RobotModel& model,
     children[model.joints[j].parent].push_back(j);
   }
   std::vector<LinkPose> poses(model.links.size());
+  if (poses.empty()) return poses;
   std::vector<std::size_t> stack{model.root};
   while (!stack.empty()) {
     const std::size_t p = stack.back();

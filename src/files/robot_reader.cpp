@@ -77,6 +77,11 @@ std::size_t LinkIndex::Find(const std::string& name, const XmlFile& xml, int lin
 }
 
 void CheckTree(RobotModel& model, const XmlFile& xml) {
+  if (model.links.empty() && model.format == RobotFormat::kSdf) {
+    // sdformat drops the massless links of a URDF it converts: a model may be left empty.
+    model.warnings.push_back(fmt::format("{}: the model has no link", xml.name()));
+    return;
+  }
   if (model.links.empty()) xml.Fail(xml.Line(xml.root()), "the robot has no link");
   const std::size_t n = model.links.size();
   std::vector<std::size_t> parent_joint(n, n + model.joints.size());

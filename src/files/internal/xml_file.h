@@ -25,8 +25,9 @@ inline constexpr std::size_t kMaxXmlBytes = std::size_t{512} << 20;
 /// Deepest nesting of elements.
 inline constexpr int kMaxXmlDepth = 200;
 /// Largest magnitude of a number in a robot file (a length in m, a mass in kg, an inertia in
-/// kg·m², a scale): far beyond any robot, and small enough that no product of two overflows.
-inline constexpr double kMaxRobotNumber = 1e15;
+/// kg·m², a scale): far beyond any robot (sdformat writes ±1e16 for the limits of a continuous
+/// joint), and small enough that no product of a few of them overflows.
+inline constexpr double kMaxRobotNumber = 1e18;
 
 /// The bytes of a file, or an InputError "what 'PATH': cannot be opened ..." / "... is larger
 /// than N bytes".
