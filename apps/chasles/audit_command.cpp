@@ -117,7 +117,7 @@ int RunAudit(const AuditArgs& args) {
   RobotReadOptions read;
   read.packages = ParsePackageOptions(args.packages);
   AuditOptions options;
-  options.load_mesh = LoadMeshTriangles;
+  options.cache = MakeAuditMeshCache(LoadMeshTriangles);  // a mesh shared by files is read once
   options.joints = ParseJointOptions(args.joints);
   if (!args.output.empty()) CheckOutputTarget(args.output);
   if (!args.html.empty()) {

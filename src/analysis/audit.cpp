@@ -158,7 +158,7 @@ LinkAudit AuditLink(const RobotModel& model, const RobotLink& link, internal::Me
   a.line = link.line;
   a.has_inertial = link.has_inertial;
   if (link.has_inertial) a.given = GivenMassProperties(link.inertial);
-  a.estimates = internal::EstimateGeometry(link, meshes);
+  a.estimates = internal::EstimateGeometry(link, meshes, model.file);
   for (std::size_t i = 0; i < a.estimates.size(); ++i) {
     if (a.estimates[i].volume > 0.0 && !a.computed) a.computed = i;
   }

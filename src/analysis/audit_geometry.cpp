@@ -60,12 +60,10 @@ const TriangleSoup* AuditMeshCache::Get(const std::string& path, std::string* pr
     *problem = problems_[path] = "meshes are not read in this audit";
     return nullptr;
   }
-  try {
-    return &*(soups_[path] = load_(path));
-  } catch (const InputError& e) {
-    *problem = problems_[path] = e.what();
-    return nullptr;
-  }
+  // A malformed mesh is an error of the input, as a malformed robot file is (the caller says
+  // where the robot file names it); a missing one was found when its URI was resolved.
+  TriangleSoup soup = load_(path);
+  return &*(soups_[path] = std::move(soup));
 }
 
 namespace internal {
@@ -171,7 +169,8 @@ MassProperties MeshSolid(TriangleMesh mesh, GeometryMethod* method, std::string*
 }
 
 /// A mesh part, or nullopt with `problem` set.
-std::optional<Part> MeshPart(const RobotGeometry& g, MeshCache& meshes, std::string* problem) {
+std::optional<Part> MeshPart(const RobotGeometry& g, MeshCache& meshes, const std::string& file,
+                             std::string* problem) {
   if (g.mesh_path.empty()) {
     *problem = g.mesh_problem;
     return std::nullopt;
@@ -179,7 +178,12 @@ std::optional<Part> MeshPart(const RobotGeometry& g, MeshCache& meshes, std::str
   const std::array<double, 3> scale = {g.mesh_scale.x(), g.mesh_scale.y(), g.mesh_scale.z()};
   auto cached = meshes.solids.find({g.mesh_path, scale});
   if (cached == meshes.solids.end()) {
-    const TriangleSoup* soup = meshes.Get(g.mesh_path, problem);
+    const TriangleSoup* soup = nullptr;
+    try {
+      soup = meshes.Get(g.mesh_path, problem);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}:{}: {}", file, g.line, e.what()));
+    }
     if (!soup) return std::nullopt;
     std::vector<double> xyz = soup->xyz;
     for (std::size_t i = 0; i < xyz.size(); ++i) xyz[i] *= scale[i % 3];
@@ -211,7 +215,8 @@ std::optional<Part> MeshPart(const RobotGeometry& g, MeshCache& meshes, std::str
 
 }  // namespace
 
-std::vector<GeometryEstimate> EstimateGeometry(const RobotLink& link, MeshCache& meshes) {
+std::vector<GeometryEstimate> EstimateGeometry(const RobotLink& link, MeshCache& meshes,
+                                               const std::string& file) {
   std::vector<GeometryEstimate> out;
   // The visual geometry first: it is the part's shape, where collision geometry is often a
   // coarser, larger stand-in (capsules, boxes); the collision set only when the visual one
@@ -228,7 +233,7 @@ std::vector<GeometryEstimate> EstimateGeometry(const RobotLink& link, MeshCache&
       e.lines.push_back(g.line);
       std::string problem;
       const std::optional<Part> part =
-          g.type == GeometryType::kMesh ? MeshPart(g, meshes, &problem) : PrimitivePart(g);
+          g.type == GeometryType::kMesh ? MeshPart(g, meshes, file, &problem) : PrimitivePart(g);
       if (!part) {
         complete = false;
         e.notes.push_back(fmt::format("{} mesh '{}' (line {}) not used: {}", GeometrySetName(set),

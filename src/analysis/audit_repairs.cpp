@@ -249,7 +249,7 @@ void CheckAgainstGeometry(const RobotLink& link, LinkAudit& a) {
                FindingCode::kMismatchGeometry, in.inertia_line,
                fmt::format("the inertia {} differs from the {} geometry's at {:g} kg, {}, by "
                            "factors {:.3g}, {:.3g}, {:.3g} along the directions where they differ "
-                           "most ({}: {})",
+                           "most (the geometry: {}, {:.4g} m³)",
                            TensorText(I), GeometrySetName(geo.set), m,
                            TensorText(expected.I_BBcm_B().matrix()), r[0], r[1], r[2],
                            GeometryMethodName(geo.method), geo.volume),

@@ -93,6 +93,10 @@ ResolvedPath ResolveUriOrRefuse(const std::string& uri, const std::string& robot
       *refusal = fmt::format("mesh URI '{}': the path inside the package is absolute", uri);
       return {};
     }
+    if (const fs::path n = inner.lexically_normal(); !n.empty() && *n.begin() == "..") {
+      *refusal = fmt::format("mesh URI '{}' climbs out of its package '{}'", uri, name);
+      return {};
+    }
     root = FindPackage(name, robot_file, packages);
     if (root.empty()) {
       return {"", fmt::format("package '{}' not found above the robot file (give --package "

@@ -326,6 +326,8 @@ RobotModel ReadSdf(const XmlFile& xml, const RobotReadOptions& options) {
     j.p_JoCo_J = J.R_M.transpose() * (C.p_M - J.p_M);
     model.joints.push_back(std::move(j));
   }
+  // Every frame resolves (a cycle of relative_to is an error even where nothing uses it).
+  for (const auto& [name, frame] : c.frames) Resolve(c, name, frame.line);
   CheckTree(model, xml);
   return model;
 }

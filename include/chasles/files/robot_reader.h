@@ -2,7 +2,7 @@
 /// @file
 /// Reading robot descriptions: URDF, MJCF (MuJoCo) and SDF (SDFormat), told apart by their
 /// root element (<robot>, <mujoco>, <sdf>), by readers as strict as the mesh readers
-/// (docs/audit.md, "Reading robot files"): every number finite and within ±1e15, every
+/// (docs/audit.md, "Reading robot files"): every number finite and within ±1e18, every
 /// reference resolved (a joint's links, an MJCF class or mesh asset), the links a tree
 /// (no cycle, one parent each, one root), mesh URIs confined to their package, sizes and
 /// depths capped. Every error is an InputError "FILE:LINE: WHAT".

@@ -56,7 +56,8 @@ namespace chasles {
 class AuditMeshCache {
  public:
   explicit AuditMeshCache(MeshLoader load) : load_(std::move(load)) {}
-  /// The soup of `path`, or null with `problem` set when it cannot be read.
+  /// The soup of `path`, or null with `problem` set when meshes are not read; throws the
+  /// reader's InputError for a malformed mesh.
   const TriangleSoup* Get(const std::string& path, std::string* problem);
   /// Solids already integrated, by path and scale.
   std::map<std::pair<std::string, std::array<double, 3>>, internal::MeshSolidPart> solids;
@@ -73,8 +74,10 @@ namespace chasles::internal {
 
 using MeshCache = AuditMeshCache;
 
-/// What each geometry set of `link` implies (one estimate per set that has geometry).
-std::vector<GeometryEstimate> EstimateGeometry(const RobotLink& link, MeshCache& meshes);
+/// What each geometry set of `link` implies (one estimate per set that has geometry). Throws
+/// InputError "FILE:LINE: ..." (`file` the robot file, LINE its mesh's) for a malformed mesh.
+std::vector<GeometryEstimate> EstimateGeometry(const RobotLink& link, MeshCache& meshes,
+                                               const std::string& file);
 
 /// Caps the holes of an open mesh: every boundary loop is closed by a fan from its centroid.
 /// False when the boundary is not a set of simple loops (a vertex on two holes, a

@@ -139,11 +139,11 @@ TEST(RobotReader, HostileFilesNameFileAndLine) {
       "<robot name=\"x\">\n<link name=\"a\"><inertial>\n<mass value=\"nan\"/>\n"
       "<inertia ixx=\"1\" iyy=\"1\" izz=\"1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>\n"
       "</robot>";
-  EXPECT_EQ(ErrorOf(nan), "robot.urdf:3: <mass value>: nan is not a finite number within ±1e+15");
+  EXPECT_EQ(ErrorOf(nan), "robot.urdf:3: <mass value>: nan is not a finite number within ±1e+18");
   std::string huge = nan;
   huge.replace(huge.find("nan"), 3, "1e308");
   EXPECT_EQ(ErrorOf(huge),
-            "robot.urdf:3: <mass value>: 1e308 is not a finite number within ±1e+15");
+            "robot.urdf:3: <mass value>: 1e308 is not a finite number within ±1e+18");
   const std::string cycle =
       "<robot name=\"x\">\n<link name=\"a\"/>\n<link name=\"b\"/>\n"
       "<joint name=\"j1\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/></joint>\n"
