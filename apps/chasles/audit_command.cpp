@@ -142,7 +142,8 @@ int RunAudit(const AuditArgs& args) {
     out.Add(args.output, report);
     out.Commit();
   }
-  if (!args.html.empty()) WriteHtmlReport(args.html, AuditReportData(models, audits));
+  if (!args.html.empty())
+    WriteHtmlReport(args.html, AuditReportData(models, audits, options.joints));
   std::size_t errors = 0;
   for (const RobotAudit& a : audits) errors += a.Count(Severity::kError);
   return errors > 0 ? 3 : 0;

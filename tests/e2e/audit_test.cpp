@@ -121,6 +121,63 @@ TEST(AuditCli, PublishedDefectsJsonFixAndRoundTrip) {
   EXPECT_NE(over.err.find("would be written over the input"), std::string::npos) << over.err;
 }
 
+TEST(AuditCli, BrowserReportDrawsLinksAndListsFindings) {
+  const std::string shared = Shared();
+  if (shared.empty()) GTEST_SKIP() << "../shared/robots is absent";
+  const fs::path html = ScratchDir("html") / "ur5.html";
+  const std::string ur5 = shared + "/example-robot-data/robots/ur_description/urdf/ur5_robot.urdf";
+  const CliResult r = RunCli("audit " + Quote(ur5) + " --html " + Quote(html.string()));
+  if (r.err.find("has no browser report") != std::string::npos) {
+    GTEST_SKIP() << "this build has no browser report (node and report/'s packages)";
+  }
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  const std::string page = ReadText(html);
+  const std::string tag = "id=\"chasles-data\">";
+  const std::size_t begin = page.find(tag) + tag.size();
+  const nlohmann::json data =
+      nlohmann::json::parse(page.substr(begin, page.find("</script>", begin) - begin));
+  // The findings, per link with its line and body; the links drawn (the seven with a valid
+  // inertial) from their Collada visuals, with the geometry's ellipsoid.
+  EXPECT_EQ(data["kind"], "mass");
+  ASSERT_EQ(data["audit"].size(), 1u);
+  EXPECT_EQ(data["audit"][0]["errors"], 9);
+  bool wrist = false;
+  for (const nlohmann::json& l : data["audit"][0]["links"]) {
+    if (l["name"] == "ee_link") {
+      EXPECT_TRUE(l["body"].is_null());  // zero mass: listed, not drawn
+      EXPECT_EQ(l["findings"][0]["code"], "zero_mass");
+    }
+    if (l["name"] != "wrist_1_link") continue;
+    wrist = true;
+    EXPECT_EQ(l["line"], 153);
+    EXPECT_EQ(l["findings"][0]["code"], "com_outside_geometry");
+    EXPECT_EQ(l["findings"][0]["severity"], "error");
+    const nlohmann::json& b = data["bodies"][l["body"].get<std::size_t>()];
+    EXPECT_EQ(b["name"], "wrist_1_link");
+    EXPECT_EQ(b["mass"], 1.219);
+    EXPECT_EQ(b["computed"]["source"], "visual");
+    EXPECT_EQ(b["computed"]["ellipsoid"]["semi_axes"].size(), 3u);
+    bool mesh = false;
+    for (const nlohmann::json& p : b["parts"]) mesh = mesh || p.contains("mesh");
+    EXPECT_TRUE(mesh);  // its Collada visual, drawn
+  }
+  EXPECT_EQ(data["bodies"].size(), 7u);
+  EXPECT_TRUE(wrist);
+  // The exit codes stay the audit's: 0 for the fixed file, 2 (and no page) for a hostile one.
+  const fs::path fixed = ScratchDir("html-fixed");
+  ASSERT_EQ(RunCli("audit " + Quote(ur5) + " --fix --out " + Quote(fixed.string())).exit_code, 3);
+  const CliResult clean =
+      RunCli("audit " + Quote((fixed / "ur5_robot.urdf").string()) + Packages(shared) + " --html " +
+             Quote((fixed / "a.html").string()));
+  EXPECT_EQ(clean.exit_code, 0) << clean.err;
+  EXPECT_TRUE(fs::exists(fixed / "a.html"));
+  const CliResult bad =
+      RunCli("audit " + Quote(SourcePath("tests/bad_input/robots/unclosed.urdf")) + " --html " +
+             Quote((fixed / "b.html").string()));
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_FALSE(fs::exists(fixed / "b.html"));
+}
+
 // Every robot of the shared folder in URDF, and its MJCF and SDF versions (tests/robots), read
 // and audited without an input error, the whole folder in under 3 s.
 TEST(AuditCli, EveryRobotInEveryFormat) {
