@@ -116,9 +116,13 @@ std::map<FindingCode, Injector> Injectors() {
   };
   in[FindingCode::kMissingInertial] = [](const Clean& c, std::size_t i, std::mt19937&) {
     if (c.model.links[i].geometries.empty()) return std::string();
-    const std::size_t begin = c.model.links[i].inertial.text.element_begin;
-    const std::size_t end = c.model.text.find("</inertial>", begin);
-    return Splice(c.model.text, {{TextSpan{begin, end + 11 - begin}, ""}});
+    // The element removed: MJCF's <inertial .../> ends its start tag, URDF's and SDF's end at
+    // </inertial>.
+    const InertialText& t = c.model.links[i].inertial.text;
+    const bool empty = c.model.text.compare(t.start_tag_end - 2, 2, "/>") == 0;
+    const std::size_t end =
+        empty ? t.start_tag_end : c.model.text.find("</inertial>", t.element_begin) + 11;
+    return Splice(c.model.text, {{TextSpan{t.element_begin, end - t.element_begin}, ""}});
   };
   in[FindingCode::kPlaceholderInertia] = [=](const Clean& c, std::size_t i, std::mt19937&) {
     return Rewrite(c, i, given(c, i).mass(), given(c, i).p_BoBcm_B(), 1e-3 * Mat3::Identity());
@@ -167,8 +171,12 @@ std::map<FindingCode, Injector> Injectors() {
     return Rewrite(c, i, given(c, i).mass(), given(c, i).p_BoBcm_B(), I);
   };
   in[FindingCode::kSignOfProducts] = [=](const Clean& c, std::size_t i, std::mt19937&) {
-    // The geometry's own tensor, its products with the other sign.
-    if (!Geometry(c, i)) return std::string();
+    // The geometry's own tensor, its products with the other sign; only where the file writes
+    // products (MJCF's diaginertia on its principal axes has none to slip).
+    if (!Geometry(c, i) ||
+        (c.model.format == RobotFormat::kMjcf && !c.model.links[i].inertial.text.mjcf_full)) {
+      return std::string();
+    }
     const MassProperties e = Expected(c, i);
     const Mat3 I = e.I_BBcm_B().matrix();
     const Mat3 off = I - Mat3(I.diagonal().asDiagonal());
@@ -244,18 +252,32 @@ TEST(AuditInjection, EveryDefectFoundAtItsLinkAndFixed) {
       "example-robot-data/robots/solo_description/robots/solo12.urdf",
       "compas_fab/robot_library/abb_irb4600_40_255/urdf/robot_description.urdf",
       "compas_fab/robot_library/ur5_robot/urdf/robot_description.urdf"};
+  // And their MJCF and SDF versions (tests/robots; the SDF's meshes as model:// URIs).
+  std::vector<std::string> paths;
+  for (const std::string& f : files) paths.push_back((root / f).string());
+  const std::filesystem::path versions = std::filesystem::path(CHASLES_SOURCE_DIR) / "tests/robots";
+  for (const char* f :
+       {"mjcf/ur5.xml", "mjcf/panda.xml", "mjcf/panda_collision.xml",
+        "mjcf/double_pendulum_simple.xml", "mjcf/solo12.xml", "sdf/ur5.sdf", "sdf/panda.sdf",
+        "sdf/panda_collision.sdf", "sdf/double_pendulum_simple.sdf", "sdf/solo12.sdf",
+        "sdf/abb_irb4600.sdf", "sdf/compas_ur5.sdf"}) {
+    paths.push_back((versions / f).string());
+  }
+  RobotReadOptions read;
+  read.packages = {{"example-robot-data", (root / "example-robot-data").string()},
+                   {"ur_description", (root / "compas_fab/robot_library/ur_description").string()}};
   std::vector<Clean> robots;
-  for (const std::string& f : files) {
+  for (const std::string& f : paths) {
     Clean c;
-    c.model = ReadRobotFile((root / f).string());
+    c.model = ReadRobotFile(f, read);
     c.audit = Audit(c.model);
     for (const LinkAudit& l : c.audit.links) c.errors.push_back(Errors(l));
     robots.push_back(std::move(c));
   }
   const std::map<FindingCode, Injector> injectors = Injectors();
   std::mt19937 rng(20261128);
-  std::map<FindingCode, int> done;
-  const long cases = test::Repeats(560);
+  std::map<std::pair<RobotFormat, FindingCode>, int> done;
+  const long cases = test::Repeats(1000);
   long made = 0;
   for (long attempt = 0; made < cases && attempt < 50 * cases; ++attempt) {
     const auto it = std::next(injectors.begin(), static_cast<long>(rng() % injectors.size()));
@@ -267,10 +289,10 @@ TEST(AuditInjection, EveryDefectFoundAtItsLinkAndFixed) {
     const std::string text = it->second(c, i, rng);
     if (text.empty()) continue;
     ++made;
-    ++done[code];
+    ++done[{c.model.format, code}];
     SCOPED_TRACE(::testing::Message() << FindingCodeName(code) << " at " << c.model.file
                                       << " link '" << clean.name << "'");
-    const RobotModel m = ReadRobotBytes(text, c.model.file);
+    const RobotModel m = ReadRobotBytes(text, c.model.file, read);
     const RobotAudit a = Audit(m);
     bool found = false;
     for (const Finding& f : a.links[i].findings) {
@@ -285,7 +307,7 @@ TEST(AuditInjection, EveryDefectFoundAtItsLinkAndFixed) {
       }
     }
     // The fix round trip: no error left on the link, none new elsewhere.
-    const RobotModel fixed = ReadRobotBytes(RewriteInertials(m, Fixes(a)), c.model.file);
+    const RobotModel fixed = ReadRobotBytes(RewriteInertials(m, Fixes(a)), c.model.file, read);
     const RobotAudit again = Audit(fixed);
     for (std::size_t j = 0; j < again.links.size(); ++j) {
       for (const FindingCode e : Errors(again.links[j])) {
@@ -295,10 +317,21 @@ TEST(AuditInjection, EveryDefectFoundAtItsLinkAndFixed) {
     }
   }
   EXPECT_GE(made, cases);
-  // Every class was injected (the codes that need no more than the file itself, and those that
-  // need geometry, which the UR5, the Panda and the pendulum have).
-  for (const auto& [code, injector] : injectors) {
-    EXPECT_GT(done[code], 0) << FindingCodeName(code) << " never injected";
+  std::map<RobotFormat, int> per_format;
+  for (const auto& [key, n] : done) per_format[key.first] += n;
+  for (const auto& [format, n] : per_format) RecordProperty(RobotFormatName(format), n);
+  // Every class was injected in every format (the codes that need no more than the file
+  // itself, and those that need geometry, which the UR5, the Panda and the pendulum have; a
+  // copied inertial is written as URDF's text only; MuJoCo wrote every clean MJCF's tensors as
+  // diaginertia, without products whose sign could slip).
+  for (const RobotFormat format : {RobotFormat::kUrdf, RobotFormat::kMjcf, RobotFormat::kSdf}) {
+    for (const auto& [code, injector] : injectors) {
+      if (code == FindingCode::kDuplicateInertial && format != RobotFormat::kUrdf) continue;
+      if (code == FindingCode::kSignOfProducts && format == RobotFormat::kMjcf) continue;
+      const std::pair<RobotFormat, FindingCode> key{format, code};
+      EXPECT_GT(done[key], 0) << FindingCodeName(code) << " never injected in "
+                              << RobotFormatName(format);
+    }
   }
 }
 
