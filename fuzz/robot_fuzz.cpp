@@ -1,9 +1,9 @@
 // Fuzz target: the robot readers (URDF, MJCF, SDF), the Collada reader, the audit and the
 // rewriting of fixed inertials. Each input is read as a robot file and as a Collada mesh, in
 // memory (mesh URIs are resolved in the scratch folder, never opened).
-// Promise: a malformed file is an InputError — never a crash, a hang, another exception or an
-// allocation far beyond the input's size — an accepted robot is audited to finite numbers, and
-// the file with its fixes written back reads again.
+// Promise: a malformed file is an InputError naming the file and the line — never a crash, a
+// hang, another exception or an allocation far beyond the input's size — an accepted robot is
+// audited to finite numbers, and the file with its fixes written back reads again.
 
 #include <cmath>
 #include <cstdint>
@@ -47,6 +47,19 @@ void AuditAndRewrite(const chasles::RobotModel& model) {
   }
 }
 
+/// The reader's error names the file and a line ("NAME:LINE: ..."), but for a file too large to
+/// read at all.
+void CheckFileAndLine(const std::string& name, const std::string& what) {
+  if (what.find("larger than the limit") != std::string::npos) return;
+  std::size_t i = name.size() + 1;
+  const bool named =
+      what.compare(0, name.size(), name) == 0 && what.size() > i && what[i - 1] == ':';
+  while (named && i < what.size() && what[i] >= '0' && what[i] <= '9') ++i;
+  if (!named || i == name.size() + 1 || i >= what.size() || what[i] != ':') {
+    chasles::fuzz::Fail("a robot file's error without its file and line", what);
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -58,7 +71,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string name = (chasles::fuzz::ScratchDir() / "urdf" / "fuzz.urdf").string();
   try {
     AuditAndRewrite(chasles::ReadRobotBytes(bytes, name));
-  } catch (const chasles::InputError&) {
+  } catch (const chasles::InputError& e) {
+    CheckFileAndLine(name, e.what());
   } catch (const std::exception& e) {
     chasles::fuzz::Fail(e.what(), "robot");
   }
