@@ -94,6 +94,24 @@ TEST(Audit, PrimitivesAgainstClosedForms) {
     EXPECT_TRUE(test::Near(I(0, 0), ixx, kClosedForm));
     EXPECT_TRUE(test::Near(l.estimates[*l.computed].volume, Vc + 2 * Vh, kClosedForm));
   }
+  {
+    // MJCF's ellipsoid (size: the semi-axes): V = 4/3 π a b c, Ixx = m (b² + c²)/5.
+    const double a = 0.1, b = 0.2, c = 0.3;
+    AuditOptions o;
+    const RobotAudit audit = AuditRobot(
+        ReadRobotBytes("<mujoco><worldbody><body name=\"l\"><inertial pos=\"0 0 0\" mass=\"2\" "
+                       "diaginertia=\"1 1 1\"/><geom type=\"ellipsoid\" size=\"0.1 0.2 0.3\"/>"
+                       "</body></worldbody></mujoco>",
+                       "ellipsoid.xml"),
+        o);
+    const LinkAudit& l = Link(audit, "l");
+    const Mat3 I = l.estimates[*l.computed].AtMass(m).I_BBcm_B().matrix();
+    EXPECT_TRUE(
+        test::Near(l.estimates[*l.computed].volume, 4.0 / 3.0 * M_PI * a * b * c, kClosedForm));
+    EXPECT_TRUE(test::Near(I(0, 0), m * (b * b + c * c) / 5, kClosedForm));
+    EXPECT_TRUE(test::Near(I(1, 1), m * (a * a + c * c) / 5, kClosedForm));
+    EXPECT_TRUE(test::Near(I(2, 2), m * (a * a + b * b) / 5, kClosedForm));
+  }
 }
 
 // The same box as Collada and as binary STL: the same volume, centre of mass and inertia (the
@@ -154,6 +172,29 @@ TEST(Audit, ColladaAndStlOfOneMeshAgree) {
   EXPECT_TRUE(test::MatNear(a.p_BoBcm_B(), Vec3(1, 0.5, 2), kClosedForm));
   EXPECT_TRUE(test::MatNear(a.I_BBcm_B().matrix(), b.I_BBcm_B().matrix(), kClosedForm));
   EXPECT_TRUE(test::Near(a.I_BBcm_B().Ixx(), 8000.0 * 17 / 12, kClosedForm));
+  // And as the audit reads them, each the visual mesh of a link of 8 kg (density 1000 kg/m³):
+  // the same method, volume, centre of mass and tensor.
+  AuditOptions options;
+  options.load_mesh = LoadMeshTriangles;
+  std::vector<GeometryEstimate> estimates;
+  for (const char* mesh : {"box.dae", "box.stl"}) {
+    const std::string urdf = std::string("<robot name=\"r\"><link name=\"l\"><inertial>") +
+                             "<mass value=\"8\"/><inertia ixx=\"11.3\" iyy=\"13.3\" izz=\"3.3\" "
+                             "ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial><visual><geometry><mesh "
+                             "filename=\"" +
+                             mesh + "\"/></geometry></visual></link></robot>";
+    const RobotAudit audit = AuditRobot(ReadRobotBytes(urdf, (dir / "r.urdf").string()), options);
+    ASSERT_TRUE(audit.links[0].computed.has_value()) << mesh;
+    estimates.push_back(audit.links[0].estimates[*audit.links[0].computed]);
+  }
+  EXPECT_EQ(estimates[0].method, GeometryMethod::kExactMesh);
+  EXPECT_EQ(estimates[1].method, GeometryMethod::kExactMesh);
+  EXPECT_TRUE(test::Near(estimates[0].volume, 8.0, kClosedForm));
+  EXPECT_TRUE(test::Near(estimates[1].volume, 8.0, kClosedForm));
+  const MassProperties da = estimates[0].AtMass(8.0), db = estimates[1].AtMass(8.0);
+  EXPECT_TRUE(test::MatNear(da.p_BoBcm_B(), db.p_BoBcm_B(), kClosedForm));
+  EXPECT_TRUE(test::MatNear(da.I_BBcm_B().matrix(), db.I_BBcm_B().matrix(), kClosedForm));
+  EXPECT_TRUE(test::Near(da.I_BBcm_B().Iyy(), 8.0 * (4 + 16) / 12, kClosedForm));
   std::filesystem::remove_all(dir);
 }
 
