@@ -16,6 +16,21 @@ nlohmann::json Values(const MassProperties& mp) {
           {"inertia", MatJson(mp.I_BBcm_B().matrix())}};
 }
 
+/// Values, and where the tensor is a body's (positive mass, physically valid) its principal
+/// moments (ascending) and axes (rows, in the link frame) and the radii of gyration about those
+/// axes, k_i = √(I_i / m) (eq. 8.19).
+nlohmann::json Described(const MassProperties& mp) {
+  nlohmann::json j = Values(mp);
+  j["principal_moments"] = j["principal_axes"] = j["radii_of_gyration"] = nullptr;
+  if (!(mp.mass() > 0.0) || !mp.I_BBcm_B().CheckPhysicallyValid().empty()) return j;
+  const PrincipalAxes pa = mp.I_BBcm_B().CalcPrincipalAxes();
+  j["principal_moments"] = VecJson(pa.moments);
+  j["principal_axes"] = MatJson(pa.axes.transpose());
+  j["radii_of_gyration"] =
+      VecJson(pa.moments.cwiseMax(0.0).cwiseQuotient(Vec3::Constant(mp.mass())).cwiseSqrt());
+  return j;
+}
+
 nlohmann::json FindingJson(const Finding& f) {
   nlohmann::json j = {{"severity", SeverityName(f.severity)},
                       {"code", FindingCodeName(f.code)},
@@ -33,12 +48,12 @@ nlohmann::json FindingJson(const Finding& f) {
 nlohmann::json LinkJson(const LinkAudit& l) {
   nlohmann::json j = {
       {"name", l.name}, {"line", l.line}, {"given", nullptr}, {"computed", nullptr}};
-  if (l.has_inertial) j["given"] = Values(l.given);
+  if (l.has_inertial) j["given"] = Described(l.given);
   if (l.computed) {
     const GeometryEstimate& e = l.estimates[*l.computed];
     const MassProperties mp =
         l.has_inertial && l.given.mass() > 0.0 ? e.AtMass(l.given.mass()) : e.unit_density;
-    j["computed"] = Values(mp);
+    j["computed"] = Described(mp);
     j["computed"]["source"] = GeometrySetName(e.set);
     j["computed"]["method"] = GeometryMethodName(e.method);
     j["computed"]["volume"] = e.volume;

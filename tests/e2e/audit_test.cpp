@@ -3,6 +3,7 @@
 // before and after the fix.
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -176,6 +177,35 @@ TEST(AuditCli, BrowserReportDrawsLinksAndListsFindings) {
              Quote((fixed / "b.html").string()));
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
   EXPECT_FALSE(fs::exists(fixed / "b.html"));
+}
+
+// A box link of 2 kg, 0.4 x 0.2 x 0.1 m (Appendix A: I_x = m (b² + c²)/12 and its cyclic
+// forms), its inertial as the closed form: the given and computed principal moments ascending,
+// the radii of gyration k_i = √(I_i / m) (eq. 8.19), no finding, exit 0.
+TEST(AuditCli, JsonGivesPrincipalMomentsAndRadiiOfGyration) {
+  const fs::path urdf = ScratchDir("box") / "box.urdf";
+  std::ofstream(urdf) << R"(<robot name="box"><link name="b"><inertial><mass value="2"/>
+<inertia ixx="0.008333333333333333" iyy="0.028333333333333335" izz="0.03333333333333333"
+ ixy="0" ixz="0" iyz="0"/></inertial>
+<visual><geometry><box size="0.4 0.2 0.1"/></geometry></visual></link></robot>)";
+  const CliResult r = RunCli("audit " + Quote(urdf.string()) + " --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json link = nlohmann::json::parse(r.out)["files"][0]["links"][0];
+  EXPECT_TRUE(link["findings"].empty()) << link.dump();
+  const double m = 2.0, a = 0.4, b = 0.2, c = 0.1;
+  const double moments[3] = {m * (b * b + c * c) / 12, m * (a * a + c * c) / 12,
+                             m * (a * a + b * b) / 12};
+  for (const char* which : {"given", "computed"}) {
+    const nlohmann::json& v = link[which];
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_TRUE(test::Near(v["principal_moments"][i].get<double>(), moments[i], 1e-12)) << which;
+      EXPECT_TRUE(
+          test::Near(v["radii_of_gyration"][i].get<double>(), std::sqrt(moments[i] / m), 1e-12))
+          << which;
+      EXPECT_TRUE(test::Near(std::abs(v["principal_axes"][i][i].get<double>()), 1.0, 1e-12))
+          << which;
+    }
+  }
 }
 
 // Every robot of the shared folder in URDF, and its MJCF and SDF versions (tests/robots), read
