@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets with clang (AddressSanitizer + UndefinedBehaviorSanitizer) into
 # ${FUZZ_BUILD_DIR:-build-fuzz} and runs each one on its corpus for a bounded time.
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET ...]     (default 60 s; targets: scene
-#                                                          expression mesh cli)
+#                                                          expression mesh cli robot)
 # A target that finds a crash, a leak, a timeout (20 s per input), an out-of-memory (2 GiB) or a
 # broken promise (fuzz/fuzz_support.h) stops the script with exit 1; the input is kept under
 # build-fuzz/artifacts/ and its report is printed. Copy it into fuzz/regressions/<target>/ once
@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene expression mesh cli)
+[ ${#targets[@]} -gt 0 ] || targets=(scene expression mesh cli robot)
 build=${FUZZ_BUILD_DIR:-build-fuzz}
 
 if ! command -v clang++ >/dev/null ||
@@ -35,6 +35,7 @@ seeds() {
   case "$1" in
     scene) echo examples tests/bad_input ;;
     mesh) echo fuzz/corpus/mesh examples/meshes tests/bad_input/meshes ;;
+    robot) echo fuzz/corpus/robot tests/bad_input/robots tests/robots/mjcf tests/robots/sdf ;;
     *) echo "fuzz/corpus/$1" ;;
   esac
 }

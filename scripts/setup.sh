@@ -11,6 +11,9 @@ packages=(
   libfmt-dev           # formatting
   libboost-dev         # Boost.Math: quadrature, special functions (header-only)
   nlohmann-json3-dev   # JSON reports
+  libpugixml-dev       # robot files (URDF, MJCF, SDF) and Collada meshes: XML with byte offsets
+  libmujoco-samples    # tests: mujoco-compile checks that MuJoCo compiles what audit --fix wrote
+  ignition-tools libsdformat-dev  # tests/robots: ign sdf -p made the SDF versions
   libplplot-dev plplot-driver-cairo  # chasles plot: axes, legend and series drawn by PLplot (svg, pngcairo)
   libassimp-dev        # bench/ only: the comparison with chasles' own STL reader
   libgtest-dev libgmock-dev  # tests

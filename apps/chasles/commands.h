@@ -42,6 +42,8 @@ struct MassArgs {
   // these say what the scene's mesh part would.
   std::string mesh_unit, mesh_mode, mesh_density, mesh_material, mesh_mass, mesh_areal_density,
       mesh_thickness;
+  // A robot file given instead of a scene (chasles mass robot.urdf --joint elbow=0.5).
+  std::vector<std::string> robot_packages, robot_joints;
 };
 
 CLI::App* AddMassCommand(CLI::App& app, MassArgs& args);
@@ -120,6 +122,21 @@ struct UpgradeArgs {
 };
 CLI::App* AddUpgradeCommand(CLI::App& app, UpgradeArgs& args);
 int RunUpgrade(const UpgradeArgs& args);
+
+/// `chasles audit FILE...`: robot descriptions (URDF, MJCF, SDF) checked against their own
+/// geometry (docs/audit.md).
+struct AuditArgs {
+  std::vector<std::string> files;
+  std::string format = "text";        // text | json
+  std::string output;                 // -o: the report to this file
+  std::string html;                   // --html: the browser report
+  bool fix = false;                   // --fix: write corrected files
+  std::string out_dir;                // --out: where --fix writes
+  std::vector<std::string> packages;  // --package NAME=DIR
+  std::vector<std::string> joints;    // --joint NAME=VALUE (the robot's total)
+};
+CLI::App* AddAuditCommand(CLI::App& app, AuditArgs& args);
+int RunAudit(const AuditArgs& args);
 
 CLI::App* AddMaterialsCommand(CLI::App& app);
 int RunMaterials();

@@ -13,6 +13,7 @@
 #include "chasles/scene/mass_report.h"
 #include "chasles/scene/mesh_file.h"
 #include "chasles/scene/report_data.h"
+#include "chasles/scene/robot_file.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/sweep.h"
@@ -246,8 +247,9 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
       "principal moments and axes, radii of gyration");
   AddSceneArgs(*cmd, args.scene);
   cmd->get_option("scene")->description(
-      "Scene file (YAML), or a mesh file (.stl, .obj, .ply, .off) with --unit and a density. "
-      "Without one, the built-in demonstration scene is used.");
+      "Scene file (YAML), a mesh file (.stl, .obj, .ply, .off) with --unit and a density, or a "
+      "robot file (.urdf, .sdf, MJCF .xml: the robot's total about its base). Without one, the "
+      "built-in demonstration scene is used.");
   cmd->add_option("--units", args.units,
                   "Units of the report: SI, US (in, lb), or a list such as 'mm,g' or 'ft,slug' "
                   "(default: the scene's own units)");
@@ -287,6 +289,14 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
   cmd->add_option("--thickness", args.mesh_thickness, "Shell mode: sheet thickness")->group(mesh);
   cmd->add_option("--areal-density", args.mesh_areal_density, "Shell mode: mass per area")
       ->group(mesh);
+  const std::string robot = "Robot file (when SCENE is a .urdf, .sdf or MJCF .xml file)";
+  cmd->add_option("--joint", args.robot_joints,
+                  "A joint value, NAME=VALUE in rad or m (repeatable; others at zero): the robot's "
+                  "total mass, centre of mass and inertia about its base at that configuration")
+      ->group(robot);
+  cmd->add_option("--package", args.robot_packages,
+                  "Where a package:// URI's package is, NAME=DIR (repeatable)")
+      ->group(robot);
   AddSweepOptions(*cmd, args.sweep, args.quantity, args.jobs, args.max_runs,
                   fmt::format("NAME for a scene of one body, else BODY.NAME, with NAME one of {} "
                               "(repeatable)",
@@ -308,6 +318,7 @@ CLI::App* AddMassCommand(CLI::App& app, MassArgs& args) {
       "  chasles mass examples/example-8.1-cylinder.yaml --set 'h1=0.25*h' --units mm,g\n"
       "  chasles mass examples/example-8.2-two-rods.yaml --format json -o rods.json\n"
       "  chasles mass part.stl --unit mm --density 7850\n"
+      "  chasles mass robot.urdf --joint elbow_joint=1.57\n"
       "  chasles mass examples/example-8.1-cylinder.yaml --sweep 'R=2 cm:8 cm:4' --quantity Izz "
       "--quantity center_of_mass_z\n"
       "Exit codes: 0 success, 2 bad input (the message names file, line, column and key), "
@@ -340,6 +351,14 @@ Scene LoadMassInput(const MassArgs& args) {
       !(args.mesh_unit + args.mesh_mode + args.mesh_density + args.mesh_material + args.mesh_mass +
         args.mesh_areal_density + args.mesh_thickness)
            .empty();
+  if (!args.scene.scene.empty() && IsRobotFileName(args.scene.scene) && !mesh_options) {
+    RobotReadOptions read;
+    read.packages = ParsePackageOptions(args.robot_packages);
+    return LoadRobotAsScene(args.scene.scene, read, ParseJointOptions(args.robot_joints));
+  }
+  if (!args.robot_joints.empty() || !args.robot_packages.empty()) {
+    throw InputError("--joint and --package are for a robot file given instead of a scene");
+  }
   if (!args.scene.scene.empty() && IsMeshFileName(args.scene.scene)) {
     if (!args.scene.set.empty()) {
       throw SceneError("command line", 0, 0, "--set",

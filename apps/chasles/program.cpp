@@ -36,9 +36,10 @@ std::unique_ptr<Program> MakeProgram() {
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
       "  chasles solve examples/example-8.3-cylinder-incline.yaml\n"
       "  chasles simulate examples/dzhanibekov.yaml --html dzhanibekov.html\n"
+      "  chasles audit robot.urdf --fix --out fixed\n"
       "Scene format: docs/scene-format.md. Exit codes: 0 ok, 2 bad input, 3 a failed check "
-      "with --strict (simulate, solve) or a scene to upgrade with upgrade --check, 1 internal "
-      "error.");
+      "with --strict (simulate, solve), a scene to upgrade with upgrade --check or an error "
+      "found by audit, 1 internal error.");
   p->mass = AddMassCommand(app, p->mass_args);
   p->check = AddCheckCommand(app, p->check_args);
   p->simulate = AddSimulateCommand(app, p->simulate_args);
@@ -46,6 +47,7 @@ std::unique_ptr<Program> MakeProgram() {
   p->materials = AddMaterialsCommand(app);
   p->report = AddReportCommand(app, p->report_args);
   p->upgrade = AddUpgradeCommand(app, p->upgrade_args);
+  p->audit = AddAuditCommand(app, p->audit_args);
 #ifdef CHASLES_HAVE_PLOT
   p->plot = AddPlotCommand(app, p->plot_args);
 #endif
@@ -94,6 +96,7 @@ int RunCommand(Program& p) {
   if (p.materials->parsed()) return RunMaterials();
   if (p.report->parsed()) return RunReport(p.report_args);
   if (p.upgrade->parsed()) return RunUpgrade(p.upgrade_args);
+  if (p.audit->parsed()) return RunAudit(p.audit_args);
   if (p.plot && p.plot->parsed()) return RunPlot(p.plot_args);
   std::fprintf(stderr,
                "chasles: no command given, so here is the built-in demonstration scene "

@@ -28,7 +28,9 @@ struct Program {
   ReportArgs report_args;
   PlotArgs plot_args;
   UpgradeArgs upgrade_args;
+  AuditArgs audit_args;
   CLI::App* mass = nullptr;
+  CLI::App* audit = nullptr;
   CLI::App* check = nullptr;
   CLI::App* simulate = nullptr;
   CLI::App* solve = nullptr;

@@ -1,14 +1,16 @@
 #pragma once
 /// @file
-/// The whole chasles library in one include: every public header of the layers math, mass,
-/// model, dynamics, integrate, analysis and io, and the scene layer's entry points (loading a
+/// The whole chasles library in one include: every public header of the layers math, files,
+/// mass, model, dynamics, integrate, analysis and io, and the scene layer's entry points (loading a
 /// scene file, running its study). Link chasles::chasles (docs/cpp.md). tests/layering checks
 /// that every public header of those layers is listed here.
 
+#include "chasles/analysis/audit.h"
 #include "chasles/analysis/certificate.h"
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/analysis/ledger.h"
 #include "chasles/analysis/momentum.h"
+#include "chasles/analysis/robot_mass.h"
 #include "chasles/analysis/solve_report.h"
 #include "chasles/analysis/study.h"
 #include "chasles/dynamics/constraint_modes.h"
@@ -22,6 +24,10 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/files/collada_reader.h"
+#include "chasles/files/robot_model.h"
+#include "chasles/files/robot_reader.h"
+#include "chasles/files/robot_writer.h"
 #include "chasles/integrate/dormand_prince.h"
 #include "chasles/integrate/energy_momentum.h"
 #include "chasles/integrate/free_body_batch.h"
@@ -32,6 +38,7 @@
 #include "chasles/integrate/sphere_events.h"
 #include "chasles/integrate/stats.h"
 #include "chasles/io/atomic_file.h"
+#include "chasles/io/audit_json.h"
 #include "chasles/io/certificate_json.h"
 #include "chasles/io/csv_table.h"
 #include "chasles/io/json_report.h"

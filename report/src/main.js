@@ -397,8 +397,42 @@ function simulateReport(data, parts) {
   update(t0);
 }
 
+/**
+ * chasles audit: the uniform ellipsoid of a link's geometry at the given mass (orange wire),
+ * beside the violet one of the given inertial, and a note saying which geometry it is.
+ */
+function computedEllipsoid(c, side) {
+  const e = c.ellipsoid;
+  const ell = new THREE.Mesh(
+    new THREE.SphereGeometry(1, 32, 16).scale(...e.semi_axes.map((x) => Math.max(x, 1e-9))),
+    new THREE.MeshBasicMaterial({ color: 0xe07b00, wireframe: true, transparent: true, opacity: 0.6 }),
+  );
+  ell.name = 'computed';
+  ell.position.fromArray(e.center);
+  ell.quaternion.copy(quat(e.quaternion));
+  side.append(el('p', { class: 'note' },
+    `The orange wire ellipsoid is the ${c.source} geometry's (${c.method}) at the given mass, centre ${vec(e.center, 4)} m, semi-axes ${vec(e.semi_axes, 4)} m; the violet one is the given inertial's.`));
+  return ell;
+}
+
+/** chasles audit: per file its counts, and per link its findings (errors first, as found). */
+function auditPanel(audit, side) {
+  for (const f of audit) {
+    side.append(el('h2', {}, `${f.path} (${f.format}, robot '${f.robot}')`),
+      el('p', {}, `${f.errors} errors, ${f.warnings} warnings, ${f.notes} notes`));
+    for (const l of f.links) {
+      if (!l.findings.length) continue;
+      side.append(el('h3', {}, `link '${l.name}' (line ${l.line})${l.body === null ? ': not drawn, no valid given inertial' : ''}`));
+      for (const x of l.findings) {
+        side.append(el('p', { class: `finding ${x.severity}` }, `${x.severity} ${x.code} (line ${x.line}): ${x.message}`));
+      }
+    }
+  }
+}
+
 /** The body (or bodies) with principal axes and the equivalent inertia ellipsoid. */
 function massReport(data, parts) {
+  if (data.audit) auditPanel(data.audit, parts.side);
   const { center, size, body, floor } = extent(data, []);
   const view = new View(parts.view, { planar: false, center, size, floor });
   data.bodies.forEach((b, i) => {
@@ -429,6 +463,7 @@ function massReport(data, parts) {
     g.add(frame);
     parts.side.append(el('h2', {}, b.name), bodyTable(b), el('p', { class: 'note' },
       `Principal axes e1, e2, e3 (red, green, blue) through the centre of mass; the violet ellipsoid is the uniform ellipsoid of the same mass and central inertia, semi-axes ${vec(semi, 4)} m.`));
+    if (b.computed) g.add(computedEllipsoid(b.computed, parts.side));
   });
   parts.legend.append(el('span', { class: 'legend-item' }, 'body axes at the body origin: x red, y green, z blue'));
   view.render();

@@ -6,10 +6,10 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { createRequire } from 'node:module';
-import { mkdtempSync, readFileSync, rmSync, mkdirSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync, mkdirSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { execFileSync } from 'node:child_process';
+import { execFileSync, spawnSync } from 'node:child_process';
 import { pathToFileURL } from 'node:url';
 
 const source = process.env.CHASLES_SOURCE;
@@ -252,6 +252,95 @@ test('mass report: a mesh part (the L-bracket OBJ) drawn from its file, in metre
   v.flat().forEach((x, k) => assert.ok(Math.abs(mesh.positions[k] - x * 1e-3) <= 1e-7 * Math.max(1e-3, Math.abs(x * 1e-3))));
   await checkNotBlank(page);
   await screenshot(page, 'report-mass.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+/** A robot of two boxes and the L-bracket OBJ (in mm, scale 0.001), with one decimal slip. */
+const AUDIT_URDF = `<?xml version="1.0"?>
+<robot name="two_boxes">
+  <link name="base">
+    <inertial>
+      <mass value="2"/>
+      <inertia ixx="0.008333333333333333" iyy="0.028333333333333335" izz="0.03333333333333333" ixy="0" ixz="0" iyz="0"/>
+    </inertial>
+    <visual><geometry><box size="0.4 0.2 0.1"/></geometry></visual>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/><child link="arm"/>
+    <origin xyz="0 0 0.05" rpy="0 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="10" velocity="1"/>
+  </joint>
+  <link name="arm">
+    <inertial>
+      <origin xyz="0 0 0.3"/>
+      <mass value="1"/>
+      <inertia ixx="0.030833333333333334" iyy="0.030833333333333334" izz="0.016666666666666666" ixy="0" ixz="0" iyz="0"/>
+    </inertial>
+    <visual><origin xyz="0 0 0.3"/><geometry><box size="0.1 0.1 0.6"/></geometry></visual>
+  </link>
+  <joint name="wrist" type="fixed">
+    <parent link="arm"/><child link="tool"/><origin xyz="0 0 0.6"/>
+  </joint>
+  <link name="tool">
+    <inertial>
+      <mass value="0.1"/>
+      <inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/>
+    </inertial>
+    <visual><geometry><mesh filename="${example('meshes/l-bracket.obj')}" scale="0.001 0.001 0.001"/></geometry></visual>
+  </link>
+</robot>
+`;
+
+test('audit report: links drawn from their geometry, the computed ellipsoid of a box in closed form, findings listed', async () => {
+  const urdf = join(work, 'two_boxes.urdf');
+  writeFileSync(urdf, AUDIT_URDF);
+  const html = join(work, 'audit.html');
+  const r = spawnSync(chasles, ['audit', urdf, '--html', html], { cwd: work, encoding: 'utf8' });
+  assert.equal(r.status, 3, r.stderr);  // the decimal slip is an error
+  const { page, problems } = await openReport(html);
+  const data = await page.evaluate(() => {
+    const d = window.chasles.data;
+    return {
+      audit: d.audit,
+      bodies: d.bodies.map((b) => ({
+        name: b.name,
+        mass: b.mass,
+        cm: b.center_of_mass,
+        computed: b.computed,
+        parts: b.parts.map((p) => ({ name: p.name, shape: p.shape, position: p.position, n: p.mesh ? p.mesh.positions.length : 0 })),
+      })),
+    };
+  });
+  assert.deepEqual(data.bodies.map((b) => b.name), ['base', 'arm', 'tool']);
+  // Legendre's ellipsoid of a uniform box of edges s: I_x = m (s_y² + s_z²) / 12, so
+  // a_x² = 5 (I_y + I_z − I_x) / (2m) = 5 s_x² / 12 (each axis alike), at any mass.
+  const semi = (s) => s.map((x) => x * Math.sqrt(5 / 12)).sort((a, b) => a - b);
+  const near = (a, b, what) => assert.ok(Math.abs(a - b) <= 1e-12 * Math.max(1, Math.abs(b)), `${what}: ${a}, closed form ${b}`);
+  const [base, arm, tool] = data.bodies;
+  [...base.computed.ellipsoid.semi_axes].sort((a, b) => a - b).forEach((x, k) => near(x, semi([0.4, 0.2, 0.1])[k], `base semi-axis ${k}`));
+  [...arm.computed.ellipsoid.semi_axes].sort((a, b) => a - b).forEach((x, k) => near(x, semi([0.1, 0.1, 0.6])[k], `arm semi-axis ${k}`));
+  assert.equal(base.computed.source, 'visual');
+  // Each link at its pose in the base frame (zero configuration): the arm 0.05 m up, its box's
+  // centre 0.3 m along its z; the tool 0.6 m further.
+  [0, 0, 0.35].forEach((x, k) => near(arm.cm[k], x, `arm centre of mass ${k}`));
+  [0, 0, 0.35].forEach((x, k) => near(arm.computed.ellipsoid.center[k], x, `arm computed centre ${k}`));
+  near(arm.mass, 1, 'arm mass (the given one)');
+  assert.deepEqual(arm.parts.map((p) => p.shape), ['box']);
+  const bracket = tool.parts.find((p) => p.shape === 'mesh');
+  const obj = readFileSync(example('meshes/l-bracket.obj'), 'utf8').split('\n');
+  assert.equal(bracket.n, 3 * obj.filter((l) => l.startsWith('v ')).length);
+  [0, 0, 0.65].forEach((x, k) => near(bracket.position[k], x, `bracket position ${k}`));
+  // The findings, per link with its line, as the text report has them.
+  const links = Object.fromEntries(data.audit[0].links.map((l) => [l.name, l]));
+  assert.deepEqual(links.base.findings, []);
+  assert.deepEqual(links.arm.findings.map((f) => [f.code, f.line]), [['decimal_slip', 19]]);
+  assert.equal(links.tool.findings[0].code, 'placeholder_inertia');
+  const text = await page.evaluate(() => document.body.innerText);
+  assert.ok(text.includes('error decimal_slip (line 19)'), 'the error is listed');
+  assert.ok(text.includes('orange wire ellipsoid'), 'the computed ellipsoid is explained');
+  await checkNotBlank(page);
+  await screenshot(page, 'report-audit.png');
   assert.deepEqual(problems, []);
   await page.close();
 });

@@ -1,0 +1,152 @@
+// chasles audit: robot descriptions checked against their own geometry (docs/audit.md).
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include "audit_text.h"
+#include "chasles/analysis/audit.h"
+#include "chasles/error.h"
+#include "chasles/files/robot_reader.h"
+#include "chasles/files/robot_writer.h"
+#include "chasles/io/audit_json.h"
+#include "chasles/io/json_report.h"
+#include "chasles/io/output_set.h"
+#include "chasles/scene/robot_file.h"
+#include "commands.h"
+#include "html_report.h"
+
+namespace chasles::cli {
+
+CLI::App* AddAuditCommand(CLI::App& app, AuditArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "audit",
+      "Check the inertials of robot descriptions (URDF, MJCF, SDF) against each link's own "
+      "geometry, and write fixes in the file's own syntax");
+  cmd->add_option("files", args.files, "Robot files (.urdf, MJCF .xml, .sdf)")->required();
+  cmd->add_option("--format", args.format, "text (for people) or json (for programs)")
+      ->check(CLI::IsMember({"text", "json"}));
+  cmd->add_option("-o,--output", args.output, "Write the report to this file");
+  cmd->add_option("--html", args.html,
+                  "Also write the browser report: each link drawn from its geometry with the "
+                  "ellipsoids of its given and computed inertia, and the findings");
+  cmd->add_flag("--fix", args.fix,
+                "Write each file with its fixable inertials corrected into --out (only their "
+                "numbers change, each with a comment saying why), and print the diff");
+  cmd->add_option("--out", args.out_dir, "Folder for the files --fix writes (never the input's)");
+  cmd->add_option("--package", args.packages,
+                  "Where a package:// URI's package is: NAME=DIR (repeatable; otherwise the "
+                  "folders above the file are searched, as ROS does)");
+  cmd->add_option("--joint", args.joints,
+                  "A joint value for the robot's total: NAME=VALUE in rad or m (repeatable; "
+                  "others at zero)");
+  cmd->footer(
+      "Examples:\n"
+      "  chasles audit robot.urdf\n"
+      "  chasles audit robot.urdf --format json -o audit.json\n"
+      "  chasles audit robot.urdf --fix --out fixed\n"
+      "Exit codes: 0 no error found, 3 at least one finding of severity error, 2 unreadable "
+      "input (file and line named), 1 internal error. Checks: docs/audit.md.");
+  return cmd;
+}
+
+namespace {
+
+/// The rewrites of one audited file: one per link with an error and a fix (FixToApply).
+std::vector<InertialRewrite> Rewrites(const RobotAudit& audit) {
+  std::vector<InertialRewrite> out;
+  for (std::size_t i = 0; i < audit.links.size(); ++i) {
+    const LinkAudit& l = audit.links[i];
+    const Finding* f = FixToApply(l);
+    if (!f || !l.has_inertial) continue;
+    const MassProperties& v = *f->fix;
+    InertialRewrite r;
+    r.link = i;
+    r.mass = v.mass();
+    r.p_LoLcm_L = v.p_BoBcm_B();
+    r.I_LcmL_L = v.I_BBcm_B().matrix();
+    r.comment = fmt::format("{} ({}); written: {}; was mass {:.6g} kg, {}{}{}",
+                            FindingCodeName(f->code), f->fix_rule, AuditFixSummary(v),
+                            l.given.mass(), AuditTensorSummary(l.given.I_BBcm_B().matrix()),
+                            f->effect.empty() ? "" : "; ", f->effect);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+/// --fix: the corrected files (all or none written) and their diffs.
+nlohmann::json WriteFixes(const AuditArgs& args, const std::vector<RobotModel>& models,
+                          const std::vector<RobotAudit>& audits, std::string* diffs) {
+  if (args.out_dir.empty()) {
+    throw InputError("--fix needs --out DIR: corrected files are never written over the input");
+  }
+  CreateOutputFolder(args.out_dir);
+  OutputSet outputs;
+  nlohmann::json fixed = nlohmann::json::array();
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    const std::vector<InertialRewrite> rewrites = Rewrites(audits[i]);
+    if (rewrites.empty()) continue;
+    const std::filesystem::path target =
+        std::filesystem::path(args.out_dir) / std::filesystem::path(models[i].file).filename();
+    std::error_code ec;
+    if (std::filesystem::equivalent(target, models[i].file, ec)) {
+      throw InputError(fmt::format("--out {}: '{}' would be written over the input", args.out_dir,
+                                   target.string()));
+    }
+    const std::string text = RewriteInertials(models[i], rewrites);
+    const std::string diff = UnifiedDiff(models[i].text, text, models[i].file, target.string());
+    *diffs += diff;
+    outputs.Add(target.string(), text);
+    fixed.push_back({{"path", models[i].file},
+                     {"fixed", target.string()},
+                     {"diff", diff},
+                     {"links", rewrites.size()}});
+  }
+  outputs.Commit();
+  return fixed;
+}
+
+}  // namespace
+
+int RunAudit(const AuditArgs& args) {
+  RobotReadOptions read;
+  read.packages = ParsePackageOptions(args.packages);
+  AuditOptions options;
+  options.cache = MakeAuditMeshCache(LoadMeshTriangles);  // a mesh shared by files is read once
+  options.joints = ParseJointOptions(args.joints);
+  if (!args.output.empty()) CheckOutputTarget(args.output);
+  if (!args.html.empty()) {
+    RequireHtmlReport("--html");
+    CheckOutputTarget(args.html);
+  }
+  std::vector<RobotModel> models;
+  std::vector<RobotAudit> audits;
+  for (const std::string& file : args.files) {
+    models.push_back(ReadRobotFile(file, read));
+    audits.push_back(AuditRobot(models.back(), options));
+  }
+  nlohmann::json j = AuditJson(audits);
+  std::string diffs;
+  if (args.fix) j["fixed"] = WriteFixes(args, models, audits, &diffs);
+  std::string report =
+      args.format == "json" ? DumpJson(j, "the audit report") : AuditText(audits) + diffs;
+  if (args.output.empty()) {
+    std::fwrite(report.data(), 1, report.size(), stdout);
+  } else {
+    OutputSet out;
+    out.Add(args.output, report);
+    out.Commit();
+  }
+  if (!args.html.empty())
+    WriteHtmlReport(args.html, AuditReportData(models, audits, options.joints));
+  std::size_t errors = 0;
+  for (const RobotAudit& a : audits) errors += a.Count(Severity::kError);
+  return errors > 0 ? 3 : 0;
+}
+
+}  // namespace chasles::cli
