@@ -159,9 +159,8 @@ TEST(Audit, ColladaAndStlOfOneMeshAgree) {
   o.density = 1000.0;
   TriangleSoup dae = ReadColladaFile((dir / "box.dae").string());
   MeshFileData stl = ReadMeshFile((dir / "box.stl").string());
-  std::vector<float> dae_xyz(dae.xyz.begin(), dae.xyz.end());
   const MassProperties a =
-      ComputeMeshMassProperties(std::move(dae_xyz), std::move(dae.indices), o, "dae")
+      ComputeMeshMassProperties(std::move(dae.xyz), std::move(dae.indices), o, "dae")
           .mass_properties;
   const MassProperties b =
       ComputeMeshMassProperties(std::move(stl.xyz), std::move(stl.indices), o, "stl")
