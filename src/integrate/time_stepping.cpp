@@ -541,6 +541,7 @@ class Run {
 };
 
 void Run::Sample() {
+  result_.sample_energy_error.push_back(result_.summary.numerical_energy_error);
   if (o_.on_sample) o_.on_sample(s_);
   if (o_.store_samples) result_.samples.push_back(s_);
 }
@@ -650,6 +651,12 @@ std::string TimeSteppingObstacle(const Model& model) {
   if (model.num_constraints() > 0) {
     return fmt::format("constraint '{}': time stepping takes free bodies with contacts only",
                        model.constraint(0).name());
+  }
+  for (int c = 0; c < model.num_contacts(); ++c) {
+    if (model.contact(c).mu_r() > 0) {
+      return fmt::format("contact '{}': time stepping does not model rolling resistance (mu_r)",
+                         model.contact(c).name());
+    }
   }
   return {};
 }

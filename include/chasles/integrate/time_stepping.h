@@ -138,6 +138,9 @@ struct TimeSteppingResult {
   /// step that ended there (separated, sticking, sliding).
   std::vector<State> samples;
   State final_state;
+  /// The scheme's energy error accumulated up to each sample (one per sample, kept even
+  /// without store_samples) [J]: the ledger's residual at that sample is this term.
+  std::vector<double> sample_energy_error;
   /// Every step's certificate (with TimeSteppingOptions::store_steps).
   std::vector<TimeSteppingStep> steps;
   TimeSteppingSummary summary;
@@ -151,8 +154,8 @@ struct TimeSteppingResult {
   std::vector<std::string> warnings;
 };
 
-/// Why `model` cannot be time stepped (constraints are not taken yet): names the first
-/// element that does not fit; empty when it can.
+/// Why `model` cannot be time stepped (constraints are not taken yet, nor rolling
+/// resistance): names the first element that does not fit; empty when it can.
 std::string TimeSteppingObstacle(const Model& model);
 
 /// Runs `model` from `initial` to options.t_end by Moreau–Jean time stepping. Throws
