@@ -192,6 +192,52 @@ TEST(TimeStepping, RacksAgreeWithTheEventDrivenBreakToFirstOrder) {
   }
 }
 
+// examples/pool-head-on-events.yaml time stepped: a cue ball rolling at v meets an object ball at
+// rest head-on (frictionless between them, e), on cloth with mu_s, mu_k. Exact (event-driven):
+// the pair impulse P* = m v (1 + e)/2, then each ball slides until it rolls, keeping its angular
+// momentum about its contact line, m v R + I w (friction acts on that line): the cue ends at
+// (5 v_A + 2 v)/7, v_A = v (1 - e)/2, the object at 5/7 v_B, v_B = v (1 + e)/2. The scheme's
+// only error is the collision's step: there both cloth points' friction impulses (each at most
+// mu_s m g h, their normal impulses being m g h) act with the pair's, and Newton's law
+// v_B' - v_A' = e v gives P = P* - (F_object - F_cue)/2, so each final speed is off by
+// |P - P*| / (7/5 m) <= 5/7 mu_s g h: first order in h. The slips' ends are exact (the cone
+// holds the angular momentum about the contact line).
+TEST(TimeStepping, HeadOnCollisionConvergesAtFirstOrder) {
+  const reference::Ball ball{0.17, 0.028575, 0.25, 0.2};
+  const double v = 2.0, d = 0.5, e = 0.93, R = ball.radius;
+  Model model = reference::MakeBallsOnFloor(2, ball, kG);
+  ContactSpec pair;
+  pair.name = "knock";
+  pair.shape = ContactShape::kSphereSphere;
+  pair.body = 1;
+  pair.other_body = 0;
+  pair.radius = pair.other_radius = R;
+  pair.restitution = e;
+  model.AddContact(pair);
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Vec3(0, 0, R), Quat::Identity(), s);
+  SetBodyVelocity(model, 0, Vec3(v, 0, 0), Vec3(0, v / R, 0), s);
+  SetBodyPose(model, 1, Vec3(d, 0, R), Quat::Identity(), s);
+  SetBodyVelocity(model, 1, Vec3::Zero(), Vec3::Zero(), s);
+  const double cue = (5 * v * (1 - e) / 2 + 2 * v) / 7, object = 5.0 / 7.0 * v * (1 + e) / 2;
+  for (const double h : {1e-3, 1e-4, 1e-5}) {
+    TimeSteppingOptions o = Until(1.0, h);  // both roll from t = 0.50 s on
+    o.error_estimate = false;
+    const TimeSteppingResult r = SimulateTimeStepping(model, s, o);
+    const double bound = 5.0 / 7.0 * ball.mu_s * kG * h;
+    EXPECT_LE(std::abs(r.final_state.bodies[0].v_WBcm_W.x() - cue), bound + kRoundOff * v)
+        << "h = " << h;
+    EXPECT_LE(std::abs(r.final_state.bodies[1].v_WBcm_W.x() - object), bound + kRoundOff * v)
+        << "h = " << h;
+    // Rolling: v = R w_y at both.
+    for (size_t b = 0; b < 2; ++b) {
+      EXPECT_NEAR(r.final_state.bodies[b].w_WB_B.y() * R, r.final_state.bodies[b].v_WBcm_W.x(),
+                  kRoundOff * v);
+    }
+    EXPECT_TRUE(r.tolerance_met);
+  }
+}
+
 // Newton's cradle of three touching balls, the first arriving at v (no gravity, no friction).
 // Moreau's law resolves the two contacts at once: U_n⁺ + e U_n⁻ >= 0 ⟂ P_n >= 0 at both, with
 // U_n⁻ = v at the first and 0 at the second. Both press (P_12 > 0, P_23 > 0), so
