@@ -105,6 +105,7 @@ double Clean(double x, double scale) {
 }
 
 constexpr Dimension kTimeDim{0, 0, 1};
+constexpr Dimension kLengthDim{1, 0, 0};
 constexpr Dimension kVelocityDim{1, 0, -1};
 constexpr Dimension kRateDim{0, 0, -1};
 constexpr Dimension kEnergyDim{2, 1, -2};
@@ -171,6 +172,46 @@ struct TextUnits {
 /// "1 collision", "2 collisions".
 std::string Count(long n, const char* noun) {
   return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
+}
+
+/// Moreau–Jean: the certificate of its steps (docs/contact.md, "Time stepping"), the worst
+/// step's values and the ledger's totals; the point whose regime changed most.
+std::string SteppingText(const StudyResult& r, const TextUnits& u) {
+  const StudyResult::TimeStepped& ts = *r.time_stepping;
+  const TimeSteppingSummary& c = ts.summary;
+  std::string busiest = "none";
+  int most = 0;
+  for (const auto& [label, changes] : ts.regime_changes) {
+    if (changes > most) {
+      most = changes;
+      busiest = fmt::format("most at {}: {}", label, changes);
+    }
+  }
+  std::string out = fmt::format(
+      "\nIntegrator: stepping (Moreau–Jean, step {}): {} steps, {} ({}), largest contact "
+      "problem {} points\n",
+      u.Time(ts.step), r.stats.steps, Count(c.regime_changes, "regime change"), busiest,
+      c.largest_island);
+  out += fmt::format(
+      "  contact problems' residual at most {} ({}); momentum balance to {}, angular momentum "
+      "to {}\n",
+      u.show(c.max_residual_impulse, kMomentumDim), u.show(c.max_residual_velocity, kVelocityDim),
+      u.show(c.max_momentum_residual, kMomentumDim),
+      u.show(c.max_angular_momentum_residual, kAngularMomentumDim));
+  out += fmt::format(
+      "  penetration at most {}, gap drift at most {}; step-doubling error estimate per step at "
+      "most {} ({}), summed over the steps {}{}\n",
+      u.show(c.max_penetration, kLengthDim), u.show(c.max_gap_drift, kLengthDim),
+      u.show(c.max_velocity_error, kVelocityDim),
+      u.show(c.max_angular_velocity_error, kRateDim, Angular::kYes),
+      u.show(c.accumulated_velocity_error, kVelocityDim),
+      ts.tolerance_met ? "" : " (a tolerance was missed: see the warnings)");
+  out += fmt::format(
+      "  energy: {} at the start, {} at the end; non-conservative forces {}, normal impulses {}, "
+      "friction {}; the scheme's own error {}\n",
+      u.Energy(c.initial_energy), u.Energy(c.final_energy), u.Energy(c.work_nonconservative),
+      u.Energy(c.work_normal), u.Energy(c.work_friction), u.Energy(c.numerical_energy_error));
+  return out;
 }
 
 /// Items first to last, or, past head + tail + 1 of them, the first `head`, a line saying how
@@ -521,6 +562,8 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
           e.stats.groups, e.stats.group_windows, r.stats.steps, r.stats.rejected_steps,
           r.stats.function_evaluations);
     }
+  } else if (r.time_stepping) {
+    out += SteppingText(r, u);
   } else {
     out += fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n", r.integrator,
                        r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);

@@ -410,6 +410,9 @@ double CertificateBuilder::Tolerance(const Entry& e, const Scales& k) const {
     case Scale::kLength:
       rel = tol_.state;
       run = e.a * length_ + e.b;  // b: the rotational part, per radian
+      if (e.check == kGap && tol_.gap_time > 0.0) {
+        return std::max(rel * std::max(run, e.local_scale), tol_.gap_time * k.velocity);
+      }
       break;
     case Scale::kVelocity:
       rel = tol_.state;

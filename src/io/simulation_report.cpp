@@ -270,6 +270,37 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
                                          {"impacts", e.energy.impacts},
                                          {"residual", e.energy.residual}}}};
   }
+  if (r.time_stepping) {
+    const TimeSteppingSummary& c = r.time_stepping->summary;
+    j["integrator"]["time_stepping"] = {
+        {"step", r.time_stepping->step},
+        {"tolerance_met", r.time_stepping->tolerance_met},
+        {"residual_impulse", c.max_residual_impulse},
+        {"residual_velocity", c.max_residual_velocity},
+        {"momentum_residual", c.max_momentum_residual},
+        {"angular_momentum_residual", c.max_angular_momentum_residual},
+        {"max_penetration", c.max_penetration},
+        {"max_gap_drift", c.max_gap_drift},
+        {"velocity_error_estimate", c.max_velocity_error},
+        {"angular_velocity_error_estimate", c.max_angular_velocity_error},
+        {"accumulated_velocity_error_estimate", c.accumulated_velocity_error},
+        {"regime_changes", c.regime_changes},
+        {"largest_island", c.largest_island},
+        {"newton_iterations", c.newton_iterations},
+        {"sweeps", c.sweeps},
+        {"energy",
+         {{"initial", c.initial_energy},
+          {"final", c.final_energy},
+          {"nonconservative", c.work_nonconservative},
+          {"normal_impulses", c.work_normal},
+          {"friction_impulses", c.work_friction},
+          {"scheme_error", c.numerical_energy_error}}}};
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& [label, changes] : r.time_stepping->regime_changes) {
+      points.push_back({{"point", label}, {"regime_changes", changes}});
+    }
+    j["integrator"]["time_stepping"]["points"] = std::move(points);
+  }
   if (r.islands.count > 0) {
     j["integrator"]["islands"] = {
         {"count", r.islands.count}, {"split", r.islands.split}, {"reason", r.islands.reason}};

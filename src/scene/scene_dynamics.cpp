@@ -539,14 +539,18 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
   if (at.Has("min_step")) sim.min_step = PositiveValue(at.Child("min_step"), kTime, "min_step");
   if (at.Has("until")) sim.until = PositiveValue(at.Child("until"), kTime, "the end time");
   if (at.Has("integrator")) {
-    const std::string name =
-        report_.Text(at.Child("integrator"), "adaptive, rk4, energy_momentum, splitting or events");
+    const std::string name = report_.Text(
+        at.Child("integrator"), "adaptive, rk4, energy_momentum, splitting, events or stepping");
     if (name == "adaptive") {
       sim.integrator = IntegratorKind::kDormandPrince5;
     } else if (name == "events") {
       // Balls on a table between events in closed form; pressing groups on the adaptive one.
       sim.integrator = IntegratorKind::kDormandPrince5;
       sim.event_driven = true;
+    } else if (name == "stepping") {
+      // Moreau–Jean time stepping through the contacts' regime changes.
+      sim.integrator = IntegratorKind::kDormandPrince5;
+      sim.time_stepping = true;
     } else if (name == "rk4") {
       sim.integrator = IntegratorKind::kRk4;
     } else if (name == "energy_momentum") {
@@ -556,13 +560,13 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
     } else {
       report_.Fail(at.Child("integrator"),
                    fmt::format("unknown integrator '{}'{}; integrators: adaptive (default), rk4, "
-                               "energy_momentum, splitting, events",
+                               "energy_momentum, splitting, events, stepping",
                                name,
                                DidYouMean(name, {"adaptive", "rk4", "energy_momentum", "splitting",
-                                                 "events"})));
+                                                 "events", "stepping"})));
     }
   }
-  const bool fixed = sim.integrator != IntegratorKind::kDormandPrince5;
+  const bool fixed = sim.integrator != IntegratorKind::kDormandPrince5 || sim.time_stepping;
   if (at.Has("tolerance")) {
     if (fixed) {
       report_.Fail(at.Child("tolerance"),
@@ -591,15 +595,15 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
                    "move in closed form between events)");
     }
     if (!fixed) {
-      report_.Fail(
-          at.Child("step"),
-          "'step' is for the fixed-step integrators (rk4, energy_momentum, splitting); the "
-          "adaptive integrator chooses its own steps from 'tolerance'");
+      report_.Fail(at.Child("step"),
+                   "'step' is for the fixed-step integrators (rk4, energy_momentum, splitting) "
+                   "and time stepping (stepping); the adaptive integrator chooses its own steps "
+                   "from 'tolerance'");
     }
     sim.step = PositiveValue(at.Child("step"), kTime, "the step");
   } else if (fixed) {
     report_.Fail(at.Child("integrator"),
-                 "a fixed-step integrator needs 'step' (e.g. 'step: 1 ms')");
+                 "a fixed-step integrator or time stepping needs 'step' (e.g. 'step: 1 ms')");
   }
   if (at.Has("output_interval")) {
     sim.output_interval = PositiveValue(at.Child("output_interval"), kTime, "the output interval");
@@ -701,6 +705,21 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
       d.impacts.push_back(ReadImpact(list.Item(i), scene));
   }
 
+  if (d.simulation.time_stepping) {
+    // What time stepping has no place for (docs/scene-format.md, `simulation`).
+    for (const char* key : {"events", "impulses", "impacts"}) {
+      if (root.Has(key)) {
+        report_.Fail(root.Child(key),
+                     fmt::format("'integrator: stepping' takes no '{}' yet; use 'integrator: "
+                                 "adaptive'",
+                                 key));
+      }
+    }
+    if (scene.planar) {
+      report_.Fail(root.Child("simulation").Child("integrator"),
+                   "'integrator: stepping' runs in three dimensions; remove 'planar: true'");
+    }
+  }
   if (d.simulation.event_driven) {
     // What the event-driven path has no place for (docs/scene-format.md, `simulation`).
     const auto refuse = [&](const char* key, const char* why) {

@@ -513,6 +513,8 @@ CertificateTolerances CertificateTolerancesFor(const Scene& scene) {
     t.state *= loosening;
     t.ledger *= loosening;
   }
+  // Moreau–Jean: an approaching point is seen at the step's midpoint (time_stepping.h).
+  if (sim.time_stepping) t.gap_time = 0.5 * sim.step;
   return t;
 }
 
@@ -1011,6 +1013,27 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
     events.pair_law = sim.ball_collisions;
     events.hybrid = def.options.adaptive;  // the pressing groups' runs
     def.sphere_events = events;
+  }
+  if (sim.time_stepping) {
+    const std::string obstacle = TimeSteppingObstacle(first);
+    if (!obstacle.empty()) {
+      throw InputError(fmt::format("'integrator: stepping' cannot run this scene: {}", obstacle));
+    }
+    // Moreau's law at every point at once (docs/contact.md, "Time stepping"): a contact that
+    // asks for another law is told which one it gets.
+    for (int c = 0; c < first.num_contacts(); ++c) {
+      const Contact& con = first.contact(c);
+      if (con.restitution() > 0 && con.restitution_law() != RestitutionLaw::kNewton) {
+        def.warnings.push_back(fmt::format(
+            "contact '{}': time stepping applies Newton's law at all touching points at once; "
+            "its restitution_law '{}' is not used (the laws agree for a frictionless collision "
+            "of two bodies)",
+            con.name(), RestitutionLawName(con.restitution_law())));
+      }
+    }
+    TimeSteppingOptions stepping;
+    stepping.step = sim.step;
+    def.time_stepping = stepping;
   }
   // On the constraints, or an error, or projected with each change a warning.
   def.initial =

@@ -35,6 +35,11 @@ struct CertificateTolerances {
   /// The study raises it with a looser integrator tolerance (CertificateTolerancesFor); it
   /// multiplies the length scale (gap, positions) or the velocity scale (velocities).
   double state = 1e-9;
+  /// Time stepping (time_stepping.h) detects a touching point at its step's midpoint, so an
+  /// approaching point sinks up to half a step times its approach speed before its impulse
+  /// stops it: the gap check then allows this time [s] times the velocity scale as well
+  /// (half the step; 0 for the other integrators, whose projection holds the gap).
+  double gap_time = 0.0;
   /// The ledger residual E - E0 - W_nc - jumps, relative to the energy scale: the global
   /// integration error of the whole run (raised likewise with a looser tolerance).
   double ledger = 1e-7;

@@ -30,6 +30,7 @@
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/integrate/sphere_events.h"
+#include "chasles/integrate/time_stepping.h"
 #include "chasles/mass/mass_properties.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
@@ -156,6 +157,10 @@ struct StudyDefinition {
   /// output_interval are taken from `options`) instead of by `options.integrator`. The Model
   /// must be balls only (SphereEventObstacle); no events, impulses or impacts.
   std::optional<SphereEventOptions> sphere_events;
+  /// Time stepping (SimulateTimeStepping with these options; t_end and output_interval are
+  /// taken from `options`) instead of `options.integrator`. The Model must pass
+  /// TimeSteppingObstacle; no events, impulses or impacts.
+  std::optional<TimeSteppingOptions> time_stepping;
   /// Output columns (t first, by convention).
   std::vector<StudyColumn> columns;
   std::vector<StudyImpulseSpec> impulses;
@@ -425,6 +430,16 @@ struct StudyResult {
   /// Set for an event-driven run (StudyDefinition::sphere_events); `stats` then counts its
   /// pressing groups' hybrid runs.
   std::optional<StudyEventDriven> event_driven;
+  /// Set for a time-stepped run (StudyDefinition::time_stepping): its step [s], the worst of
+  /// its steps' certificates and its ledger's totals, whether every step met its tolerances,
+  /// and each contact point's regime changes over the run (by label, in the model's order).
+  struct TimeStepped {
+    double step = 0.0;
+    TimeSteppingSummary summary;
+    bool tolerance_met = true;
+    std::vector<std::pair<std::string, int>> regime_changes;
+  };
+  std::optional<TimeStepped> time_stepping;
   /// Things to tell the user (impulses after the end time, ...).
   std::vector<std::string> notes;
   /// Things the user must know: initial values changed to satisfy the constraints

@@ -1,0 +1,686 @@
+#include "chasles/integrate/time_stepping.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "chasles/dynamics/newton_euler.h"
+#include "chasles/error.h"
+#include "chasles/math/quaternion.h"
+#include "chasles/model/data.h"
+#include "dynamics/internal/contact_geometry.h"
+
+// Moreau–Jean time stepping (J. J. Moreau, "Unilateral contact and dry friction in finite
+// freedom dynamics", CISM 302, 1988; M. Jean, Comput. Methods Appl. Mech. Eng. 177, 1999) with
+// θ = ½. Velocities u = [v_WBcm; w_WB_W] per body, the rotational part in W at the midpoint
+// configuration, where the mass matrix is M_m = diag(m I, R_m I_B R_mᵀ). Over a step of h:
+//   q_m = q_k + h/2 u_k (the orientation by the exact rotation exp(h/2 w_W) q_k, so that
+//   R_m w_B,k = R_k w_B,k: the world angular velocity at the start is the same in either frame);
+//   u_free = u_k + h M_m⁻¹ (f(q_m, u_k) - [0; w × I_W w]);
+//   u_k+1 = u_free + M_m⁻¹ Jᵀ P, P from the frictional contact problem U = W P + q with
+//   W = J M_m⁻¹ Jᵀ, q = J u_free + e min(J_n u_k, 0) on the normal rows;
+//   p_k+1 = p_k + h (v_k + v_k+1)/2, q_k+1 = exp(h (w_k + w_k+1)/2) q_k (world-frame rotation).
+// Why this balances: with p_m = p_k + h/2 v_k, p_k+1 × v_k+1 - p_k × v_k = p_m × (v_k+1 - v_k),
+// so the angular momentum about Wo changes by exactly the impulses' moments about their
+// points of application at q_m (an isotropic body's spin as well); the kinetic energy changes
+// by (u_k+1 - u_k)ᵀ M_m ū = h fᵀ ū + Pᵀ J ū (ū the step's mean velocity), so each impulse's
+// work is Pᵀ U_mean (normal and friction apart), gravity's h F·v̄ is exactly -ΔV, and what
+// remains (the gyroscopic term's and a velocity-dependent force's work at u_k against ū, a
+// non-isotropic body's inertia turning between q_m and q_k+1) is the scheme's energy error.
+
+namespace chasles {
+namespace {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat63 = Eigen::Matrix<double, 6, 3>;
+
+// One active point at the midpoint configuration: the 3 rows (n, t1, t2) on each body,
+// A = [k; r × k] per row (the other body's with a minus sign), and its coefficients.
+struct ActivePoint {
+  int point = -1;
+  BodyIndex body = kWorld, other = kWorld;
+  Eigen::Matrix<double, 3, 6> A_body, A_other;
+  Vec3 n, t1, t2;
+  /// Offsets from each body's centre of mass to the point, in W [m].
+  Vec3 r = Vec3::Zero(), r_other = Vec3::Zero();
+  double mu = 0.0, restitution = 0.0;
+};
+
+// The bodies' velocities in the step's frame: v and w in W.
+struct Velocities {
+  std::vector<Vec6> u;
+};
+
+double CalcEnergy(const Model& model, const State& s) {
+  double E = 0.0;
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyState& bs = s.bodies[static_cast<size_t>(b)];
+    const Body& body = model.body(b);
+    E += 0.5 * body.mass() * bs.v_WBcm_W.squaredNorm() +
+         0.5 * bs.w_WB_B.dot(body.I_BBcm_B() * bs.w_WB_B);
+  }
+  for (int e = 0; e < model.num_force_elements(); ++e) {
+    const ForceElement& fe = model.force_element(e);
+    if (fe.has_potential()) E += fe.CalcPotentialEnergy(model, s);
+  }
+  return E;
+}
+
+// Disjoint sets over bodies (union by size, path halving).
+class BodySets {
+ public:
+  explicit BodySets(int n) : parent_(static_cast<size_t>(n)), size_(static_cast<size_t>(n), 1) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+  int Find(int x) {
+    while (parent_[static_cast<size_t>(x)] != x) {
+      const auto i = static_cast<size_t>(x);
+      parent_[i] = parent_[static_cast<size_t>(parent_[i])];
+      x = parent_[i];
+    }
+    return x;
+  }
+  void Link(int a, int b) {
+    a = Find(a);
+    b = Find(b);
+    if (a == b) return;
+    if (size_[static_cast<size_t>(a)] < size_[static_cast<size_t>(b)]) std::swap(a, b);
+    parent_[static_cast<size_t>(b)] = a;
+    size_[static_cast<size_t>(a)] += size_[static_cast<size_t>(b)];
+  }
+
+ private:
+  std::vector<int> parent_, size_;
+};
+
+// What one step reports before the certificate is assembled.
+struct StepOutcome {
+  TimeSteppingStep cert;
+  std::vector<ContactRegime> regime;  // per point (open for the inactive ones)
+  std::vector<double> gaps;           // per point at the step's end [m]
+  double energy = 0.0;                // T + V at the step's end [J]
+};
+
+class Stepper {
+ public:
+  Stepper(const Model& model, const TimeSteppingOptions& o)
+      : model_(model),
+        o_(o),
+        data_(MakeData(model)),
+        warm_(static_cast<size_t>(model.num_contact_points()), Eigen::Vector3d::Zero()) {}
+
+  // One Moreau–Jean step of length h, in place.
+  // `gaps` and `energy` are the start's (the previous outcome's).
+  StepOutcome Step(State& s, double h, const std::vector<double>& gaps, double energy);
+  // Gaps of all points at `s` [m].
+  std::vector<double> Gaps(const State& s);
+
+ private:
+  void Midpoint(const State& s, double h, State& mid) const;
+  void FreeVelocities(const State& s, double h, std::vector<Vec6>& u_k, std::vector<Vec6>& u_free);
+  std::vector<ActivePoint> FindActive(const State& mid) const;
+  void SolveIslands(const std::vector<ActivePoint>& active, const std::vector<Vec6>& u_k, double h,
+                    std::vector<Vec6>& u, std::vector<Eigen::Vector3d>& P, StepOutcome& out);
+  void SolveIsland(const std::vector<ActivePoint>& active, const std::vector<int>& members,
+                   const std::vector<Vec6>& u_k, double h, std::vector<Vec6>& u,
+                   std::vector<Eigen::Vector3d>& P, StepOutcome& out);
+  Mat63 MinvAt(BodyIndex b, const Eigen::Matrix<double, 3, 6>& A) const;
+  void Advance(const State& s, const std::vector<Vec6>& u_k, const std::vector<Vec6>& u, double h,
+               State& next) const;
+  void BookForces(const State& mid, const std::vector<Vec6>& u_k, const std::vector<Vec6>& u,
+                  double h, State& next, StepOutcome& out, Vec3& impulse, Vec3& moment);
+  void BookContacts(const State& mid, const std::vector<ActivePoint>& active,
+                    const std::vector<Eigen::Vector3d>& P, const std::vector<Vec6>& u_k,
+                    const std::vector<Vec6>& u, State& next, StepOutcome& out, Vec3& impulse,
+                    Vec3& moment) const;
+  void Certify(const State& s, const State& next, const Vec3& impulse, const Vec3& moment,
+               const std::vector<double>& gaps, double energy, StepOutcome& out);
+
+  const Model& model_;
+  const TimeSteppingOptions& o_;
+  Data data_;
+  std::vector<Mat3> R_m_, I_W_inv_;    // per body at the midpoint
+  std::vector<Vec3> F_, M_;            // applied force and moment about Bcm, in W
+  std::vector<Eigen::Vector3d> warm_;  // last impulse per point, per second of step [N]
+};
+
+void Stepper::Midpoint(const State& s, double h, State& mid) const {
+  mid.t = s.t + 0.5 * h;
+  for (size_t b = 0; b < s.bodies.size(); ++b) {
+    const BodyState& bs = s.bodies[b];
+    BodyState& m = mid.bodies[b];
+    m.p_WBcm = bs.p_WBcm + 0.5 * h * bs.v_WBcm_W;
+    m.q_WB = IntegrateBodyAngularVelocity(bs.q_WB, bs.w_WB_B, 0.5 * h);
+    m.v_WBcm_W = bs.v_WBcm_W;
+    m.w_WB_B = bs.w_WB_B;
+  }
+}
+
+Mat63 Stepper::MinvAt(BodyIndex b, const Eigen::Matrix<double, 3, 6>& A) const {
+  const auto i = static_cast<size_t>(b);
+  Mat63 G;
+  G.topRows<3>() = A.leftCols<3>().transpose() / model_.body(b).mass();
+  G.bottomRows<3>() = I_W_inv_[i] * A.rightCols<3>().transpose();
+  return G;
+}
+
+void Stepper::FreeVelocities(const State& s, double h, std::vector<Vec6>& u_k,
+                             std::vector<Vec6>& u_free) {
+  const int n = model_.num_bodies();
+  R_m_.resize(static_cast<size_t>(n));
+  I_W_inv_.resize(static_cast<size_t>(n));
+  for (int b = 0; b < n; ++b) {
+    const auto i = static_cast<size_t>(b);
+    const Body& body = model_.body(b);
+    const Mat3& R = data_.R_WB[i];
+    R_m_[i] = R;
+    I_W_inv_[i] = R * body.I_BBcm_B_inverse() * R.transpose();
+    const BodyState& bs = s.bodies[i];
+    // R_m w_B,k is the world angular velocity at the start (see the file comment).
+    const Vec3 w = R * bs.w_WB_B;
+    const Mat3 I_W = R * body.I_BBcm_B() * R.transpose();
+    u_k[i] << bs.v_WBcm_W, w;
+    u_free[i] << bs.v_WBcm_W + h * data_.F_Bcm_W[i] / body.mass(),
+        w + h * I_W_inv_[i] * (data_.M_Bcm_W[i] - w.cross(I_W * w));
+  }
+}
+
+std::vector<ActivePoint> Stepper::FindActive(const State& mid) const {
+  std::vector<ActivePoint> active;
+  for (int p = 0; p < model_.num_contact_points(); ++p) {
+    const internal::ContactPointGeometry g =
+        internal::CalcContactPointGeometry(model_, mid, data_, p);
+    if (g.gap > o_.tolerances.gap) continue;
+    ActivePoint a;
+    a.point = p;
+    a.body = g.body;
+    a.other = g.other;
+    a.n = g.n;
+    a.t1 = g.t1;
+    a.t2 = g.t2;
+    a.r = g.r;
+    a.r_other = g.r_other;
+    const Vec3 k[3] = {g.n, g.t1, g.t2};
+    for (int r = 0; r < 3; ++r) {
+      a.A_body.row(r) << k[r].transpose(), g.r.cross(k[r]).transpose();
+      a.A_other.row(r) << -k[r].transpose(), -g.r_other.cross(k[r]).transpose();
+    }
+    const Contact& c = model_.contact(model_.contact_of_point(p));
+    const double slip = g.v_t.norm();
+    a.mu = slip <= o_.tolerances.stick_speed ? c.mu_s() : c.mu_k();
+    a.restitution = c.restitution();
+    active.push_back(std::move(a));
+  }
+  return active;
+}
+
+// The points that touch couple only the bodies they hold: the islands of bodies linked by
+// active points between two bodies each get their own contact problem.
+void Stepper::SolveIslands(const std::vector<ActivePoint>& active, const std::vector<Vec6>& u_k,
+                           double h, std::vector<Vec6>& u, std::vector<Eigen::Vector3d>& P,
+                           StepOutcome& out) {
+  BodySets sets(model_.num_bodies());
+  for (const ActivePoint& a : active) {
+    if (a.other != kWorld) sets.Link(a.body, a.other);
+  }
+  // Islands in the order of their first point, each point once: deterministic.
+  std::vector<int> island_of_root(static_cast<size_t>(model_.num_bodies()), -1);
+  std::vector<std::vector<int>> islands;
+  for (size_t i = 0; i < active.size(); ++i) {
+    int& island = island_of_root[static_cast<size_t>(sets.Find(active[i].body))];
+    if (island < 0) {
+      island = static_cast<int>(islands.size());
+      islands.emplace_back();
+    }
+    islands[static_cast<size_t>(island)].push_back(static_cast<int>(i));
+  }
+  out.cert.islands += static_cast<int>(islands.size());
+  for (const std::vector<int>& members : islands) {
+    SolveIsland(active, members, u_k, h, u, P, out);
+  }
+}
+
+void Stepper::SolveIsland(const std::vector<ActivePoint>& active, const std::vector<int>& members,
+                          const std::vector<Vec6>& u_k, double h, std::vector<Vec6>& u,
+                          std::vector<Eigen::Vector3d>& P, StepOutcome& out) {
+  const int m = static_cast<int>(members.size());
+  // Each body's points in the island, with M⁻¹ Aᵀ of each: W_ij = Σ_b A_i^b M_b⁻¹ A_j^bᵀ.
+  struct Entry {
+    int local;
+    const Eigen::Matrix<double, 3, 6>* A;
+    Mat63 G;
+  };
+  std::vector<std::pair<BodyIndex, Entry>> by_body;
+  FrictionalContactProblem problem;
+  problem.q.resize(3 * m);
+  problem.mu.resize(static_cast<size_t>(m));
+  Eigen::VectorXd warm(3 * m), shift(m);
+  for (int j = 0; j < m; ++j) {
+    const ActivePoint& a = active[static_cast<size_t>(members[static_cast<size_t>(j)])];
+    Eigen::Vector3d q = a.A_body * u[static_cast<size_t>(a.body)];
+    Eigen::Vector3d U_k = a.A_body * u_k[static_cast<size_t>(a.body)];
+    by_body.push_back({a.body, Entry{j, &a.A_body, MinvAt(a.body, a.A_body)}});
+    if (a.other != kWorld) {
+      q += a.A_other * u[static_cast<size_t>(a.other)];
+      U_k += a.A_other * u_k[static_cast<size_t>(a.other)];
+      by_body.push_back({a.other, Entry{j, &a.A_other, MinvAt(a.other, a.A_other)}});
+    }
+    // Newton's law at every point at once: U_n + e min(U_n,k, 0) >= 0.
+    shift[j] = a.restitution * std::min(U_k[0], 0.0);
+    q[0] += shift[j];
+    problem.q.segment<3>(3 * j) = q;
+    problem.mu[static_cast<size_t>(j)] = a.mu;
+    warm.segment<3>(3 * j) = h * warm_[static_cast<size_t>(a.point)];
+  }
+  std::stable_sort(by_body.begin(), by_body.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Eigen::Triplet<double>> t;
+  for (size_t lo = 0, hi; lo < by_body.size(); lo = hi) {
+    for (hi = lo; hi < by_body.size() && by_body[hi].first == by_body[lo].first; ++hi) {
+    }
+    for (size_t x = lo; x < hi; ++x) {
+      for (size_t y = lo; y < hi; ++y) {
+        const Eigen::Matrix3d B = *by_body[x].second.A * by_body[y].second.G;
+        for (int r = 0; r < 3; ++r) {
+          for (int c = 0; c < 3; ++c) {
+            t.emplace_back(3 * by_body[x].second.local + r, 3 * by_body[y].second.local + c,
+                           B(r, c));
+          }
+        }
+      }
+    }
+  }
+  problem.W.resize(3 * m, 3 * m);
+  problem.W.setFromTriplets(t.begin(), t.end());
+  const ContactProblemSolution sol = SolveFrictionalContact(problem, warm, o_.solver);
+  TimeSteppingStep& c = out.cert;
+  c.residual_impulse = std::max(c.residual_impulse, sol.residual_impulse);
+  c.residual_velocity = std::max(c.residual_velocity, sol.residual_velocity);
+  c.impulse_scale = std::max(c.impulse_scale, sol.scale);
+  c.newton_iterations += sol.newton_iterations;
+  c.sweeps += sol.sweeps;
+  c.converged = c.converged && sol.converged;
+  for (const auto& [b, e] : by_body) {
+    u[static_cast<size_t>(b)] += e.G * sol.P.segment<3>(3 * e.local);
+  }
+  for (int j = 0; j < m; ++j) {
+    const ActivePoint& a = active[static_cast<size_t>(members[static_cast<size_t>(j)])];
+    P[static_cast<size_t>(members[static_cast<size_t>(j)])] = sol.P.segment<3>(3 * j);
+    warm_[static_cast<size_t>(a.point)] = sol.P.segment<3>(3 * j) / h;
+    // The regime by the velocities after the step (the impulses of redundant points, and so
+    // the solver's regimes, are not unique): apart if separating, else sliding or sticking.
+    const double U_n = sol.U[3 * j] - shift[j];
+    const double slip = sol.U.segment<2>(3 * j + 1).norm();
+    out.regime[static_cast<size_t>(a.point)] =
+        U_n > o_.tolerances.resting_speed  ? ContactRegime::kOpen
+        : slip > o_.tolerances.stick_speed ? ContactRegime::kSliding
+                                           : ContactRegime::kSticking;
+  }
+}
+
+// Positions from the step's mean velocity; the angular velocity back into B at q_k+1.
+void Stepper::Advance(const State& s, const std::vector<Vec6>& u_k, const std::vector<Vec6>& u,
+                      double h, State& next) const {
+  for (size_t i = 0; i < s.bodies.size(); ++i) {
+    const BodyState& bs = s.bodies[i];
+    BodyState& nb = next.bodies[i];
+    const Vec6 mean = 0.5 * (u_k[i] + u[i]);
+    nb.p_WBcm = bs.p_WBcm + h * mean.head<3>();
+    const Vec3 w_mean_W = mean.tail<3>();
+    nb.q_WB = (QuatExp(h * w_mean_W) * bs.q_WB).normalized();
+    nb.v_WBcm_W = u[i].head<3>();
+    nb.w_WB_B = nb.q_WB.toRotationMatrix().transpose() * u[i].tail<3>();
+    if (!nb.v_WBcm_W.allFinite() || !nb.w_WB_B.allFinite()) {
+      throw InputError(
+          fmt::format("time stepping: the velocity of body '{}' became non-finite "
+                      "at t = {} s",
+                      model_.body(static_cast<BodyIndex>(i)).name(), next.t));
+    }
+  }
+}
+
+std::pair<Vec3, Vec3> Momenta(const Model& model, const State& s) {
+  Vec3 p = Vec3::Zero(), H = Vec3::Zero();
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const BodyState& bs = s.bodies[static_cast<size_t>(b)];
+    const Body& body = model.body(b);
+    const Vec3 mv = body.mass() * bs.v_WBcm_W;
+    p += mv;
+    H += bs.p_WBcm.cross(mv) + bs.q_WB.toRotationMatrix() * (body.I_BBcm_B() * bs.w_WB_B);
+  }
+  return {p, H};
+}
+
+// The force elements' integrals over the step, at the midpoint configuration and the step's
+// mean velocity (gravity's work is then exactly -ΔV); their impulses add to the balance.
+void Stepper::BookForces(const State& mid, const std::vector<Vec6>& u_k, const std::vector<Vec6>& u,
+                         double h, State& next, StepOutcome& out, Vec3& impulse, Vec3& moment) {
+  State mean = mid;
+  for (size_t i = 0; i < mean.bodies.size(); ++i) {
+    const Vec6 m = 0.5 * (u_k[i] + u[i]);
+    mean.bodies[i].v_WBcm_W = m.head<3>();
+    mean.bodies[i].w_WB_B = R_m_[i].transpose() * m.tail<3>();
+  }
+  CalcKinematics(model_, mean, data_);
+  CalcForces(model_, mean, data_);
+  for (size_t e = 0; e < next.force_integrals.size(); ++e) {
+    const ForceElementOutput& fo = data_.elements[e];
+    ForceIntegrals& fi = next.force_integrals[e];
+    fi.work += h * fo.power;
+    fi.work_nonconservative += h * fo.power_nonconservative;
+    fi.linear_impulse_W += h * fo.force_W;
+    fi.angular_impulse_Wo_W += h * fo.moment_Wo_W;
+    out.cert.work_nonconservative += h * fo.power_nonconservative;
+    impulse += h * fo.force_W;
+    moment += h * fo.moment_Wo_W;
+  }
+}
+
+// Each impulse's work on the bodies, Pᵀ U at the step's mean velocity, normal part to the
+// point's impact work and tangential part to its friction work; its impulse and moment about
+// Wo (at the points of application at q_m) to the balance.
+void Stepper::BookContacts(const State& mid, const std::vector<ActivePoint>& active,
+                           const std::vector<Eigen::Vector3d>& P, const std::vector<Vec6>& u_k,
+                           const std::vector<Vec6>& u, State& next, StepOutcome& out, Vec3& impulse,
+                           Vec3& moment) const {
+  for (size_t i = 0; i < active.size(); ++i) {
+    const ActivePoint& a = active[i];
+    const auto b = static_cast<size_t>(a.body);
+    Eigen::Vector3d U = a.A_body * (0.5 * (u_k[b] + u[b]));
+    const Vec3 P_W = a.n * P[i][0] + a.t1 * P[i][1] + a.t2 * P[i][2];
+    const Vec3 at_body = mid.bodies[b].p_WBcm + a.r;
+    impulse += P_W;
+    moment += at_body.cross(P_W);
+    if (a.other != kWorld) {
+      const auto o = static_cast<size_t>(a.other);
+      U += a.A_other * (0.5 * (u_k[o] + u[o]));
+      impulse -= P_W;
+      moment -= (mid.bodies[o].p_WBcm + a.r_other).cross(P_W);
+    }
+    const double w_n = P[i][0] * U[0];
+    const double w_t = P[i].tail<2>().dot(U.tail<2>());
+    ContactPointState& cs = next.contacts[static_cast<size_t>(a.point)];
+    cs.impact_work += w_n;
+    cs.friction_work += w_t;
+    out.cert.work_normal += w_n;
+    out.cert.work_friction += w_t;
+  }
+}
+
+std::vector<double> Stepper::Gaps(const State& s) {
+  CalcKinematics(model_, s, data_);
+  std::vector<double> gaps(static_cast<size_t>(model_.num_contact_points()));
+  for (int p = 0; p < model_.num_contact_points(); ++p) {
+    gaps[static_cast<size_t>(p)] = internal::CalcContactPointGeometry(model_, s, data_, p).gap;
+  }
+  return gaps;
+}
+
+ContactMode ModeOf(ContactRegime r) {
+  switch (r) {
+    case ContactRegime::kOpen:
+      return ContactMode::kSeparated;
+    case ContactRegime::kSticking:
+      return ContactMode::kSticking;
+    case ContactRegime::kSliding:
+      return ContactMode::kSliding;
+  }
+  return ContactMode::kSeparated;
+}
+
+void Stepper::Certify(const State& s, const State& next, const Vec3& impulse, const Vec3& moment,
+                      const std::vector<double>& gaps, double energy, StepOutcome& out) {
+  TimeSteppingStep& c = out.cert;
+  c.t = next.t;
+  const auto [p0, H0] = Momenta(model_, s);
+  const auto [p1, H1] = Momenta(model_, next);
+  c.momentum_residual = (p1 - p0 - impulse).norm();
+  c.angular_momentum_residual = (H1 - H0 - moment).norm();
+  out.energy = CalcEnergy(model_, next);
+  c.energy_change = out.energy - energy;
+  c.numerical_energy_error =
+      c.energy_change - c.work_nonconservative - c.work_normal - c.work_friction;
+  out.gaps = Gaps(next);
+  for (size_t p = 0; p < out.gaps.size(); ++p) {
+    c.max_penetration = std::max(c.max_penetration, -out.gaps[p]);
+    const bool closed = out.regime[p] != ContactRegime::kOpen;
+    const bool was_closed = s.contacts[p].mode != ContactMode::kSeparated;
+    if (closed && was_closed) {
+      c.gap_drift = std::max(c.gap_drift, std::abs(out.gaps[p] - gaps[p]));
+    }
+    if (ModeOf(out.regime[p]) != s.contacts[p].mode) ++c.regime_changes;
+  }
+}
+
+StepOutcome Stepper::Step(State& s, double h, const std::vector<double>& gaps, double energy) {
+  const auto n = static_cast<size_t>(model_.num_bodies());
+  StepOutcome out;
+  out.regime.assign(static_cast<size_t>(model_.num_contact_points()), ContactRegime::kOpen);
+  State mid = s;
+  Midpoint(s, h, mid);
+  CalcKinematics(model_, mid, data_);
+  CalcForces(model_, mid, data_);
+  std::vector<Vec6> u_k(n), u(n);
+  FreeVelocities(s, h, u_k, u);
+  const std::vector<ActivePoint> active = FindActive(mid);
+  std::vector<char> is_active(warm_.size(), 0);
+  for (const ActivePoint& a : active) is_active[static_cast<size_t>(a.point)] = 1;
+  for (size_t p = 0; p < warm_.size(); ++p) {
+    if (!is_active[p]) warm_[p].setZero();
+  }
+  out.cert.active_points = static_cast<int>(active.size());
+  std::vector<Eigen::Vector3d> P(active.size(), Eigen::Vector3d::Zero());
+  SolveIslands(active, u_k, h, u, P, out);
+  State next = s;
+  next.t = s.t + h;
+  Advance(s, u_k, u, h, next);
+  Vec3 impulse = Vec3::Zero(), moment = Vec3::Zero();
+  BookForces(mid, u_k, u, h, next, out, impulse, moment);
+  BookContacts(mid, active, P, u_k, u, next, out, impulse, moment);
+  for (size_t p = 0; p < out.regime.size(); ++p) {
+    ContactPointState& cs = next.contacts[p];
+    cs.mode = ModeOf(out.regime[p]);
+  }
+  Certify(s, next, impulse, moment, gaps, energy, out);
+  s = std::move(next);
+  return out;
+}
+
+// Two outcomes of consecutive half steps as one step's certificate.
+TimeSteppingStep Combine(const TimeSteppingStep& a, const TimeSteppingStep& b) {
+  TimeSteppingStep c = b;
+  c.active_points = std::max(a.active_points, b.active_points);
+  c.islands = std::max(a.islands, b.islands);
+  c.residual_impulse = std::max(a.residual_impulse, b.residual_impulse);
+  c.residual_velocity = std::max(a.residual_velocity, b.residual_velocity);
+  c.impulse_scale = std::max(a.impulse_scale, b.impulse_scale);
+  c.newton_iterations += a.newton_iterations;
+  c.sweeps += a.sweeps;
+  c.momentum_residual = std::max(a.momentum_residual, b.momentum_residual);
+  c.angular_momentum_residual = std::max(a.angular_momentum_residual, b.angular_momentum_residual);
+  c.energy_change += a.energy_change;
+  c.work_nonconservative += a.work_nonconservative;
+  c.work_normal += a.work_normal;
+  c.work_friction += a.work_friction;
+  c.numerical_energy_error += a.numerical_energy_error;
+  c.max_penetration = std::max(a.max_penetration, b.max_penetration);
+  c.gap_drift = std::max(a.gap_drift, b.gap_drift);
+  c.regime_changes += a.regime_changes;
+  c.converged = a.converged && b.converged;
+  return c;
+}
+
+class Run {
+ public:
+  Run(const Model& model, const State& initial, const TimeSteppingOptions& o)
+      : model_(model), o_(o), stepper_(model, o), s_(initial) {
+    if (s_.contacts.empty()) s_.contacts.resize(static_cast<size_t>(model.num_contact_points()));
+    s_.force_integrals.resize(static_cast<size_t>(model.num_force_elements()));
+    gaps_ = stepper_.Gaps(s_);
+    energy_ = CalcEnergy(model, s_);
+    result_.summary.initial_energy = energy_;
+    result_.regime_changes.assign(s_.contacts.size(), 0);
+  }
+
+  TimeSteppingResult Go();
+
+ private:
+  void TakeStep(double h);
+  void Record(const TimeSteppingStep& c, const std::vector<ContactMode>& before);
+  void Sample();
+
+  const Model& model_;
+  const TimeSteppingOptions& o_;
+  Stepper stepper_;
+  State s_;
+  std::vector<double> gaps_;
+  double energy_ = 0.0;
+  TimeSteppingResult result_;
+};
+
+void Run::Sample() {
+  result_.sample_energy_error.push_back(result_.summary.numerical_energy_error);
+  if (o_.on_sample) o_.on_sample(s_);
+  if (o_.store_samples) result_.samples.push_back(s_);
+}
+
+// One step of h: two half steps taken, one full step from the same state as their estimate.
+void Run::TakeStep(double h) {
+  std::vector<ContactMode> before(s_.contacts.size());
+  for (size_t p = 0; p < before.size(); ++p) before[p] = s_.contacts[p].mode;
+  if (!o_.error_estimate) {
+    const StepOutcome out = stepper_.Step(s_, h, gaps_, energy_);
+    gaps_ = out.gaps;
+    energy_ = out.energy;
+    ++result_.stats.function_evaluations;
+    Record(out.cert, before);
+    return;
+  }
+  State full = s_;
+  stepper_.Step(full, h, gaps_, energy_);
+  const StepOutcome a = stepper_.Step(s_, 0.5 * h, gaps_, energy_);
+  const StepOutcome b = stepper_.Step(s_, 0.5 * h, a.gaps, a.energy);
+  gaps_ = b.gaps;
+  energy_ = b.energy;
+  result_.stats.function_evaluations += 3;
+  TimeSteppingStep c = Combine(a.cert, b.cert);
+  for (size_t i = 0; i < s_.bodies.size(); ++i) {
+    const BodyState& x = s_.bodies[i];
+    const BodyState& y = full.bodies[i];
+    c.velocity_error = std::max(c.velocity_error, (x.v_WBcm_W - y.v_WBcm_W).norm());
+    const Vec3 wx = x.q_WB.toRotationMatrix() * x.w_WB_B;
+    const Vec3 wy = y.q_WB.toRotationMatrix() * y.w_WB_B;
+    c.angular_velocity_error = std::max(c.angular_velocity_error, (wx - wy).norm());
+  }
+  Record(c, before);
+}
+
+void Run::Record(const TimeSteppingStep& c0, const std::vector<ContactMode>& before) {
+  TimeSteppingStep c = c0;
+  c.within_tolerance = c.converged && c.velocity_error <= o_.velocity_tolerance;
+  TimeSteppingSummary& m = result_.summary;
+  ++m.steps;
+  ++result_.stats.steps;
+  m.max_residual_impulse = std::max(m.max_residual_impulse, c.residual_impulse);
+  m.max_residual_velocity = std::max(m.max_residual_velocity, c.residual_velocity);
+  m.max_momentum_residual = std::max(m.max_momentum_residual, c.momentum_residual);
+  m.max_angular_momentum_residual =
+      std::max(m.max_angular_momentum_residual, c.angular_momentum_residual);
+  m.max_penetration = std::max(m.max_penetration, c.max_penetration);
+  m.max_gap_drift = std::max(m.max_gap_drift, c.gap_drift);
+  m.max_velocity_error = std::max(m.max_velocity_error, c.velocity_error);
+  m.max_angular_velocity_error = std::max(m.max_angular_velocity_error, c.angular_velocity_error);
+  m.accumulated_velocity_error += c.velocity_error;
+  m.work_nonconservative += c.work_nonconservative;
+  m.work_normal += c.work_normal;
+  m.work_friction += c.work_friction;
+  m.numerical_energy_error += c.numerical_energy_error;
+  m.regime_changes += c.regime_changes;
+  m.newton_iterations += c.newton_iterations;
+  m.sweeps += c.sweeps;
+  m.largest_island = std::max(m.largest_island, c.active_points);
+  for (size_t p = 0; p < before.size(); ++p) {
+    if (s_.contacts[p].mode != before[p]) ++result_.regime_changes[p];
+  }
+  if (!c.within_tolerance && result_.tolerance_met) {
+    result_.tolerance_met = false;
+    result_.warnings.push_back(
+        c.converged
+            ? fmt::format("time stepping: the step ending at t = {} s has an estimated velocity "
+                          "error of {:.3g} m/s, above the requested {:.3g} m/s; take a smaller "
+                          "step",
+                          c.t, c.velocity_error, o_.velocity_tolerance)
+            : fmt::format("time stepping: the contact problem of the step ending at t = {} s "
+                          "reached a residual of {:.3g} N·s ({:.3g} m/s), above its tolerance "
+                          "{:.3g} of the impulse scale {:.3g} N·s",
+                          c.t, c.residual_impulse, c.residual_velocity, o_.solver.tolerance,
+                          c.impulse_scale));
+  }
+  if (o_.store_steps) result_.steps.push_back(c);
+  if (o_.on_step) o_.on_step(c.t);
+}
+
+TimeSteppingResult Run::Go() {
+  const double t0 = s_.t;
+  Sample();
+  // Stretches between output times, each divided into equal steps no longer than `step`.
+  const double interval = o_.output_interval > 0 ? o_.output_interval : o_.t_end - t0;
+  for (long k = 0;; ++k) {
+    const double a = t0 + static_cast<double>(k) * interval;
+    if (a >= o_.t_end) break;
+    const double b = std::min(o_.t_end, t0 + static_cast<double>(k + 1) * interval);
+    const auto n = static_cast<long>(std::ceil((b - a) / o_.step * (1.0 - 1e-12)));
+    const double h = (b - a) / static_cast<double>(std::max(n, 1L));
+    for (long j = 0; j < std::max(n, 1L); ++j) {
+      TakeStep(h);
+      s_.t = j + 1 == std::max(n, 1L) ? b : a + static_cast<double>(j + 1) * h;
+    }
+    if (b < o_.t_end) Sample();
+  }
+  Sample();
+  result_.summary.final_energy = energy_;
+  result_.final_state = s_;
+  return std::move(result_);
+}
+
+}  // namespace
+
+std::string TimeSteppingObstacle(const Model& model) {
+  if (model.num_constraints() > 0) {
+    return fmt::format("constraint '{}': time stepping takes free bodies with contacts only",
+                       model.constraint(0).name());
+  }
+  for (int c = 0; c < model.num_contacts(); ++c) {
+    if (model.contact(c).mu_r() > 0) {
+      return fmt::format("contact '{}': time stepping does not model rolling resistance (mu_r)",
+                         model.contact(c).name());
+    }
+  }
+  return {};
+}
+
+TimeSteppingResult SimulateTimeStepping(const Model& model, const State& initial,
+                                        const TimeSteppingOptions& options) {
+  if (const std::string why = TimeSteppingObstacle(model); !why.empty()) throw InputError(why);
+  ValidateState(model, initial);
+  if (!(options.t_end > initial.t) || !std::isfinite(options.t_end)) {
+    throw InputError(
+        fmt::format("time stepping: t_end = {} s must be finite and after the "
+                    "initial time {} s",
+                    options.t_end, initial.t));
+  }
+  if (!(options.step > 0) || !std::isfinite(options.step)) {
+    throw InputError(
+        fmt::format("time stepping: step = {} s must be positive and finite", options.step));
+  }
+  if (!(options.output_interval >= 0) || !std::isfinite(options.output_interval)) {
+    throw InputError(fmt::format("time stepping: output_interval = {} s must be >= 0 and finite",
+                                 options.output_interval));
+  }
+  Run run(model, initial, options);
+  return run.Go();
+}
+
+}  // namespace chasles

@@ -1,0 +1,148 @@
+// End-to-end: `integrator: stepping` (Moreau–Jean time stepping: docs/scene-format.md,
+// `simulation`, and docs/contact.md, "Time stepping") through the chasles program, against
+// closed forms: the spinning ball of Problems 8.26/8.27, the box held on a slope
+// (examples/contact-box-held-on-slope.yaml), and the certificate in the report and the JSON.
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cli_runner.h"
+#include "test_support.h"
+
+namespace chasles::test {
+namespace {
+
+constexpr double kG = 9.80665;  // `gravity: standard` [m/s²]
+// Round-off of quantities of scale 1 over a run of some thousand steps.
+constexpr double kRoundOff = 1e-12;
+
+std::filesystem::path Out() {
+  return OutDir("stepping_integrator");
+}
+
+std::string WriteScene(const std::string& name, const std::string& text) {
+  const auto path = Out() / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+std::string ReadExample(const std::string& example) {
+  std::ifstream in(SourcePath(example));
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// `text` with its first `from` replaced by `to` (which must be there).
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  if (at == std::string::npos) throw std::runtime_error("no '" + from + "' in the scene");
+  return text.replace(at, from.size(), to);
+}
+
+// Problems 8.26/8.27 (examples/problem-8.26-spinning-ball.yaml) time stepped at h = 1 ms:
+// the scheme keeps the angular momentum about the contact line (friction acts at the contact
+// point, gravity and the normal impulse through it), so the ball rolls at v* = 2/7 R w0 to
+// round-off whatever the step, and friction has taken ½ I w0² - ½ (m + I/R²) v*² (I = 2/5 m R²);
+// the slip stops within a step of t* = 25 ms.
+TEST(SteppingIntegrator, SpinningBallRollsAtTheClosedFormSpeed) {
+  const double h = 1e-3;
+  const std::string scene =
+      Replace(ReadExample("examples/problem-8.26-spinning-ball.yaml"), "  tolerance: 1e-12\n",
+              "  integrator: stepping\n  step: 1 ms\n");
+  const nlohmann::json run =
+      SimulateJson(WriteScene("spinning_ball.yaml", scene), Out(), "--strict");
+  const double R = 9.0 / 8.0 * 0.0254, m = 0.17, w0 = 100 * 2 * std::numbers::pi / 60;
+  const double t_star = 0.025, v = 2.0 / 7.0 * R * w0, I = 0.4 * m * R * R;
+  const auto& in = run.at("integrator");
+  EXPECT_EQ(in.at("name"), "stepping");
+  const auto& ts = in.at("time_stepping");
+  EXPECT_EQ(ts.at("step").get<double>(), h);
+  EXPECT_TRUE(ts.at("tolerance_met").get<bool>());
+  const auto& ball = run.at("final").at("bodies")[0];
+  EXPECT_TRUE(Near(ToVec(ball.at("velocity")).x(), v, kRoundOff));
+  EXPECT_TRUE(Near(ToVec(ball.at("angular_velocity")).y() * R, v, kRoundOff));
+  // The certificate: impulses applied exactly, the solver's residual and the ledger.
+  const double E0 = ts.at("energy").at("initial").get<double>();
+  EXPECT_TRUE(Near(E0, 0.5 * I * w0 * w0 + m * kG * R, kRoundOff));
+  const double lost = 0.5 * I * w0 * w0 - 0.5 * (m + I / (R * R)) * v * v;
+  EXPECT_TRUE(Near(ts.at("energy").at("friction_impulses").get<double>(), -lost, kRoundOff, E0));
+  EXPECT_LE(std::abs(ts.at("energy").at("scheme_error").get<double>()), kRoundOff * E0);
+  EXPECT_LE(ts.at("momentum_residual").get<double>(), kRoundOff * m * v);
+  EXPECT_LE(ts.at("residual_impulse").get<double>(), kRoundOff * m * R * w0);
+  EXPECT_LE(ts.at("max_penetration").get<double>(), kRoundOff * R);
+  // One point: separated -> sliding in the first step, sliding -> sticking at t*.
+  ASSERT_EQ(ts.at("points").size(), 1u);
+  EXPECT_EQ(ts.at("points")[0].at("point"), "floor");
+  EXPECT_EQ(ts.at("points")[0].at("regime_changes").get<int>(), 2);
+  EXPECT_EQ(ts.at("regime_changes").get<int>(), 2);
+  int stops = 0;
+  for (const auto& e : run.at("contact_events")) {
+    if (e.at("from") != "sliding" || e.at("to") != "sticking") continue;
+    ++stops;
+    EXPECT_EQ(e.at("reason"), "time step");
+    EXPECT_LE(std::abs(e.at("t").get<double>() - t_star), h + kRoundOff);
+  }
+  EXPECT_EQ(stops, 1);
+  EXPECT_TRUE(run.at("checks").at("passed").get<bool>());
+  EXPECT_TRUE(Near(run.at("ledger").at("friction_work").get<double>(), -lost, kRoundOff, E0));
+}
+
+// examples/contact-box-held-on-slope.yaml: no creep. The box stays where it was set down, to
+// 1e-12 m after 10 s, its four corners sticking from the first step on.
+TEST(SteppingIntegrator, BoxHeldOnASlopeDoesNotCreep) {
+  const nlohmann::json run =
+      SimulateJson(SourcePath("examples/contact-box-held-on-slope.yaml"), Out(), "--strict");
+  const double mu_s = 0.4, theta = std::atan(0.95 * mu_s), c = 0.06;
+  const Eigen::Vector3d p0(-c / 2 * std::sin(theta), 0, c / 2 * std::cos(theta));
+  const auto& box = run.at("final").at("bodies")[0];
+  EXPECT_LT((ToVec(box.at("center_of_mass")) - p0).norm(), 1e-12);
+  EXPECT_LT(ToVec(box.at("velocity")).norm(), 1e-12);
+  const auto& ts = run.at("integrator").at("time_stepping");
+  EXPECT_EQ(ts.at("regime_changes").get<int>(), 4);
+  EXPECT_TRUE(ts.at("tolerance_met").get<bool>());
+  EXPECT_TRUE(run.at("checks").at("passed").get<bool>());
+}
+
+// The text report names the engine and gives its certificate's lines.
+TEST(SteppingIntegrator, TextReportGivesTheCertificate) {
+  const CliResult r =
+      RunCli("simulate " + Quote(SourcePath("examples/contact-box-held-on-slope.yaml")) +
+             " --out " + Quote(Out().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, testing::HasSubstr("Integrator: stepping (Moreau–Jean, step 0.001 s)"));
+  for (const char* line :
+       {"contact problems' residual at most", "momentum balance to", "gap drift at most",
+        "step-doubling error estimate per step", "the scheme's own error"}) {
+    EXPECT_THAT(r.out, testing::HasSubstr(line));
+  }
+}
+
+// A contact that asks for a restitution law other than Newton's is told that time stepping
+// applies Newton's law at all touching points at once; every step counts against max_steps.
+TEST(SteppingIntegrator, SaysWhichImpactLawItAppliesAndStopsAtTheStepLimit) {
+  std::string scene = Replace(ReadExample("examples/pool-head-on-events.yaml"),
+                              "  integrator: events\n  ball_collisions: {restitution: e}\n",
+                              "  integrator: stepping\n  step: 1 ms\n");
+  scene = Replace(scene, "simulation:\n",
+                  "  - {name: knock, body: object, shape: sphere, radius: R, with: cue, "
+                  "other_radius: R, restitution: e}\nsimulation:\n");
+  const std::string path = WriteScene("head_on.yaml", scene);
+  const nlohmann::json run = SimulateJson(path, Out());
+  ASSERT_EQ(run.at("warnings").size(), 1u);
+  EXPECT_THAT(run.at("warnings")[0].get<std::string>(),
+              testing::HasSubstr("contact 'knock': time stepping applies Newton's law"));
+  const CliResult r =
+      RunCli("simulate " + Quote(path) + " --max-steps 20 --out " + Quote(Out().string()));
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_THAT(r.err, testing::HasSubstr("--max-steps"));
+}
+
+}  // namespace
+}  // namespace chasles::test

@@ -1,0 +1,320 @@
+// Moreau–Jean time stepping (chasles/integrate/time_stepping.h) against closed forms derived
+// here, and its certificate.
+#include "chasles/integrate/time_stepping.h"
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "chasles/error.h"
+#include "chasles/integrate/sphere_events.h"
+#include "chasles/model/forces.h"
+#include "reference/balls_on_floor.h"
+
+namespace chasles {
+namespace {
+
+constexpr double kG = 9.81;
+// Round-off of a quantity of scale 1 over a run of thousands of steps.
+constexpr double kRoundOff = 1e-12;
+
+TimeSteppingOptions Until(double t_end, double step) {
+  TimeSteppingOptions o;
+  o.t_end = t_end;
+  o.step = step;
+  return o;
+}
+
+// Problems 8.26/8.27: a ball set down spinning at w0 slides until t* = 2 R w0 / (7 mu_k g), then
+// rolls at v = 2/7 R w0. The scheme keeps the angular momentum about the contact line exactly
+// (friction's impulse acts at the contact point, gravity and the normal impulse along the
+// normal through it), so the rolling speed is exact to round-off whatever the step; the stick
+// time is found to within the step.
+TEST(TimeStepping, SpinningBallRollsAtTheClosedFormSpeed) {
+  const reference::Ball ball{0.17, 0.028575, 0.35, 0.35};
+  const Model model = reference::MakeBallsOnFloor(1, ball, kG);
+  const double w0 = 100 * 2 * M_PI / 60;
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Vec3(0, 0, ball.radius), Quat::Identity(), s);
+  SetBodyVelocity(model, 0, Vec3::Zero(), Vec3(0, w0, 0), s);
+  const double t_star = reference::StickTime(ball, kG, w0);
+  const double h = 1e-3;
+  TimeSteppingOptions o = Until(3 * t_star, h);
+  o.store_steps = true;
+  const TimeSteppingResult r = SimulateTimeStepping(model, s, o);
+  const double v = reference::RollingSpeed(ball, w0);
+  EXPECT_NEAR(r.final_state.bodies[0].v_WBcm_W.x(), v, kRoundOff * v);
+  EXPECT_NEAR(r.final_state.bodies[0].w_WB_B.y() * ball.radius, v, kRoundOff * v);
+  // The step in which the slip stopped.
+  double t_stick = -1.0;
+  for (const TimeSteppingStep& c : r.steps) {
+    if (c.regime_changes > 0 && c.t > h) {
+      t_stick = c.t;
+      break;
+    }
+  }
+  EXPECT_NEAR(t_stick, t_star, h);
+  EXPECT_TRUE(r.tolerance_met);
+  // Certificate: impulses applied exactly (momentum to round-off of m v), no penetration, and
+  // the energy ledger closes: the scheme's error is the remainder, here round-off (a sphere has
+  // no gyroscopic term and gravity's work is exact).
+  EXPECT_LE(r.summary.max_momentum_residual, kRoundOff * ball.mass * v);
+  EXPECT_LE(r.summary.max_penetration, kRoundOff * ball.radius);
+  const double E0 = r.summary.initial_energy;
+  EXPECT_NEAR(r.summary.final_energy - E0,
+              r.summary.work_friction + r.summary.work_normal + r.summary.numerical_energy_error,
+              kRoundOff * E0);
+  EXPECT_LE(std::abs(r.summary.numerical_energy_error), kRoundOff * E0);
+  // Kinetic energy lost to friction: ½ I w0² - ½ (m + I/R²) v².
+  const double I = 0.4 * ball.mass * ball.radius * ball.radius;
+  const double lost =
+      0.5 * I * w0 * w0 - 0.5 * (ball.mass + I / (ball.radius * ball.radius)) * v * v;
+  EXPECT_NEAR(r.summary.work_friction, -lost, kRoundOff * E0);
+}
+
+// A box on an incline tilted to 95 % of its static friction capacity (tan θ = 0.95 mu_s): the
+// exact cone holds it; the scheme has no regularisation, so it does not creep.
+TEST(TimeStepping, BoxOnASlopeDoesNotCreep) {
+  const double mu_s = 0.4, theta = std::atan(0.95 * mu_s);
+  Model model;
+  const double m = 2.0, a = 0.1, b = 0.05, c = 0.03;
+  const int box = model.AddBody(
+      "box", MassProperties(m, Vec3::Zero(),
+                            RotationalInertia(m / 3 * (b * b + c * c), m / 3 * (a * a + c * c),
+                                              m / 3 * (a * a + b * b))));
+  const Vec3 n(-std::sin(theta), 0, std::cos(theta));
+  ContactSpec cs;
+  cs.name = "slope";
+  cs.shape = ContactShape::kBox;
+  cs.body = box;
+  cs.half_extents = Vec3(a, b, c);
+  cs.plane_normal_W = n;
+  cs.mu_s = mu_s;
+  cs.mu_k = 0.3;
+  model.AddContact(cs);
+  model.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -kG)));
+  State s = MakeRestState(model);
+  const Quat q(Eigen::AngleAxisd(-theta, Vec3::UnitY()));
+  SetBodyPose(model, box, c * n, q, s);
+  SetBodyVelocity(model, box, Vec3::Zero(), Vec3::Zero(), s);
+  const TimeSteppingResult r = SimulateTimeStepping(model, s, Until(10.0, 1e-3));
+  EXPECT_LT((r.final_state.bodies[0].p_WBcm - s.bodies[0].p_WBcm).norm(), 1e-12);
+  EXPECT_TRUE(r.tolerance_met);
+  // Four corners touch; the box sticks at all of them from the first step on.
+  int sticking = 0;
+  for (const ContactPointState& p : r.final_state.contacts) {
+    sticking += p.mode == ContactMode::kSticking;
+  }
+  EXPECT_EQ(sticking, 4);
+  EXPECT_EQ(r.summary.regime_changes, 4);
+}
+
+// A rack of n balls (rows of a triangle 2 mm apart, each ball off its place by up to 0.4 mm,
+// seeded) hit by a rolling cue ball; every pair listed as a sphere-sphere contact (frictionless, e
+// = 0.93) so that both engines see the same pairs. Pool balls on cloth without rolling resistance.
+struct Rack {
+  Model model;
+  State state;
+};
+
+Rack MakeRack(int n, unsigned seed) {
+  const reference::Ball ball{0.17, 0.028575, 0.2, 0.2};
+  Rack r{reference::MakeBallsOnFloor(n, ball, kG), {}};
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      ContactSpec c;
+      c.name = fmt::format("pair{}_{}", i, j);
+      c.shape = ContactShape::kSphereSphere;
+      c.body = i;
+      c.other_body = j;
+      c.radius = c.other_radius = ball.radius;
+      c.restitution = 0.93;
+      r.model.AddContact(c);
+    }
+  }
+  r.state = MakeRestState(r.model);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.4e-3, 0.4e-3);
+  const double R = ball.radius, pitch = 2 * R + 2e-3;
+  int k = 1;
+  for (int row = 0; k < n; ++row) {
+    for (int j = 0; j <= row && k < n; ++j, ++k) {
+      const Vec3 p(0.1 + row * pitch * std::sqrt(3.0) / 2 + jitter(rng),
+                   (j - row / 2.0) * pitch + jitter(rng), R);
+      SetBodyPose(r.model, k, p, Quat::Identity(), r.state);
+      SetBodyVelocity(r.model, k, Vec3::Zero(), Vec3::Zero(), r.state);
+    }
+  }
+  SetBodyPose(r.model, 0, Vec3(-0.05, 0.0, R), Quat::Identity(), r.state);
+  SetBodyVelocity(r.model, 0, Vec3(2.0, 0, 0), Vec3(0, 2.0 / R, 0), r.state);
+  return r;
+}
+
+// Largest velocity difference over the balls [m/s].
+double VelocityDifference(const State& a, const State& b) {
+  double d = 0.0;
+  for (size_t i = 0; i < a.bodies.size(); ++i) {
+    d = std::max(d, (a.bodies[i].v_WBcm_W - b.bodies[i].v_WBcm_W).norm());
+  }
+  return d;
+}
+
+// The break of racks of 3 to 15 balls against the event-driven engine (every collision at its
+// exact time, sphere_events.h) at the end of the run. Both engines resolve a binary frictionless
+// collision alike (Newton's law and the energetic law agree there), so the difference is the
+// scheme's: a collision is found at the step whose midpoint overlaps, up to v h deep, so its
+// normal is off by up to v h / R and the velocities after it by up to v² h / R; summed over
+// the collisions (an upper bound that ignores how later collisions spread an error) the
+// difference is first order in h, below N v² h / R for N collisions.
+TEST(TimeStepping, RacksAgreeWithTheEventDrivenBreakToFirstOrder) {
+  const double T = 0.3, v = 2.0, R = 0.028575;
+  for (const int n : {3, 6, 10, 15}) {
+    for (const unsigned seed : {1u, 2u}) {
+      const Rack rack = MakeRack(n, seed);
+      SphereEventOptions eo;
+      eo.t_end = T;
+      const SphereEventResult exact = SimulateSphereEvents(rack.model, rack.state, eo);
+      const auto collisions = static_cast<double>(exact.collisions.size());
+      ASSERT_GT(collisions, 0);
+      for (const double h : {1e-4, 2.5e-5}) {
+        TimeSteppingOptions o = Until(T, h);
+        o.error_estimate = false;
+        const TimeSteppingResult r = SimulateTimeStepping(rack.model, rack.state, o);
+        const double err = VelocityDifference(r.final_state, exact.final_state);
+        EXPECT_LE(err, collisions * v * v * h / R) << n << " balls, seed " << seed << ", h " << h;
+        EXPECT_TRUE(r.tolerance_met);
+      }
+    }
+  }
+}
+
+// examples/pool-head-on-events.yaml time stepped: a cue ball rolling at v meets an object ball at
+// rest head-on (frictionless between them, e), on cloth with mu_s, mu_k. Exact (event-driven):
+// the pair impulse P* = m v (1 + e)/2, then each ball slides until it rolls, keeping its angular
+// momentum about its contact line, m v R + I w (friction acts on that line): the cue ends at
+// (5 v_A + 2 v)/7, v_A = v (1 - e)/2, the object at 5/7 v_B, v_B = v (1 + e)/2. The scheme's
+// only error is the collision's step: there both cloth points' friction impulses (each at most
+// mu_s m g h, their normal impulses being m g h) act with the pair's, and Newton's law
+// v_B' - v_A' = e v gives P = P* - (F_object - F_cue)/2, so each final speed is off by
+// |P - P*| / (7/5 m) <= 5/7 mu_s g h: first order in h. The slips' ends are exact (the cone
+// holds the angular momentum about the contact line).
+TEST(TimeStepping, HeadOnCollisionConvergesAtFirstOrder) {
+  const reference::Ball ball{0.17, 0.028575, 0.25, 0.2};
+  const double v = 2.0, d = 0.5, e = 0.93, R = ball.radius;
+  Model model = reference::MakeBallsOnFloor(2, ball, kG);
+  ContactSpec pair;
+  pair.name = "knock";
+  pair.shape = ContactShape::kSphereSphere;
+  pair.body = 1;
+  pair.other_body = 0;
+  pair.radius = pair.other_radius = R;
+  pair.restitution = e;
+  model.AddContact(pair);
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Vec3(0, 0, R), Quat::Identity(), s);
+  SetBodyVelocity(model, 0, Vec3(v, 0, 0), Vec3(0, v / R, 0), s);
+  SetBodyPose(model, 1, Vec3(d, 0, R), Quat::Identity(), s);
+  SetBodyVelocity(model, 1, Vec3::Zero(), Vec3::Zero(), s);
+  const double cue = (5 * v * (1 - e) / 2 + 2 * v) / 7, object = 5.0 / 7.0 * v * (1 + e) / 2;
+  for (const double h : {1e-3, 1e-4, 1e-5}) {
+    TimeSteppingOptions o = Until(1.0, h);  // both roll from t = 0.50 s on
+    o.error_estimate = false;
+    const TimeSteppingResult r = SimulateTimeStepping(model, s, o);
+    const double bound = 5.0 / 7.0 * ball.mu_s * kG * h;
+    EXPECT_LE(std::abs(r.final_state.bodies[0].v_WBcm_W.x() - cue), bound + kRoundOff * v)
+        << "h = " << h;
+    EXPECT_LE(std::abs(r.final_state.bodies[1].v_WBcm_W.x() - object), bound + kRoundOff * v)
+        << "h = " << h;
+    // Rolling: v = R w_y at both.
+    for (size_t b = 0; b < 2; ++b) {
+      EXPECT_NEAR(r.final_state.bodies[b].w_WB_B.y() * R, r.final_state.bodies[b].v_WBcm_W.x(),
+                  kRoundOff * v);
+    }
+    EXPECT_TRUE(r.tolerance_met);
+  }
+}
+
+// Newton's cradle of three touching balls, the first arriving at v (no gravity, no friction).
+// Moreau's law resolves the two contacts at once: U_n⁺ + e U_n⁻ >= 0 ⟂ P_n >= 0 at both, with
+// U_n⁻ = v at the first and 0 at the second. Both press (P_12 > 0, P_23 > 0), so
+// v2 - v1 = e v and v3 = v2; with momentum m v = m (v1 + v2 + v3):
+// v1 = (1 - 2e) v / 3, v2 = v3 = (1 + e) v / 3 (e = 1: -v/3, 2v/3, 2v/3, the energy kept but the
+// motion not the sequential one, v1 = v2 = 0, v3 = v, that a cradle shows).
+TEST(TimeStepping, NewtonsCradleUnderMoreausSimultaneousLaw) {
+  const double R = 0.02, m = 0.1, v = 1.0;
+  for (const double e : {0.0, 0.5, 1.0}) {
+    Model model;
+    for (int i = 0; i < 3; ++i) {
+      const double I = 0.4 * m * R * R;
+      model.AddBody(fmt::format("ball{}", i),
+                    MassProperties(m, Vec3::Zero(), RotationalInertia(I, I, I)));
+    }
+    for (int i = 0; i < 3; ++i) {
+      for (int j = i + 1; j < 3; ++j) {
+        ContactSpec c;
+        c.name = fmt::format("pair{}{}", i, j);
+        c.shape = ContactShape::kSphereSphere;
+        c.body = i;
+        c.other_body = j;
+        c.radius = c.other_radius = R;
+        c.restitution = e;
+        model.AddContact(c);
+      }
+    }
+    State s = MakeRestState(model);
+    for (int i = 0; i < 3; ++i) {
+      SetBodyPose(model, i, Vec3(2 * R * i, 0, 0), Quat::Identity(), s);
+      SetBodyVelocity(model, i, Vec3(i == 0 ? v : 0.0, 0, 0), Vec3::Zero(), s);
+    }
+    const TimeSteppingResult r = SimulateTimeStepping(model, s, Until(0.01, 1e-3));
+    const auto vx = [&](int i) {
+      return r.final_state.bodies[static_cast<size_t>(i)].v_WBcm_W.x();
+    };
+    EXPECT_NEAR(vx(0), (1 - 2 * e) * v / 3, kRoundOff * v) << "e = " << e;
+    EXPECT_NEAR(vx(1), (1 + e) * v / 3, kRoundOff * v) << "e = " << e;
+    EXPECT_NEAR(vx(2), (1 + e) * v / 3, kRoundOff * v) << "e = " << e;
+  }
+}
+
+// Four balls in a pyramid on a floor (three touching in a triangle, one nested on them), with
+// friction: a pile at rest stays at rest (Coulomb's cone holds it exactly; no creep).
+TEST(TimeStepping, BallPileAtRestStaysAtRest) {
+  const reference::Ball ball{0.17, 0.028575, 0.5, 0.5};
+  Model model = reference::MakeBallsOnFloor(4, ball, kG);
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i + 1; j < 4; ++j) {
+      ContactSpec c;
+      c.name = fmt::format("pair{}{}", i, j);
+      c.shape = ContactShape::kSphereSphere;
+      c.body = i;
+      c.other_body = j;
+      c.radius = c.other_radius = ball.radius;
+      c.mu_s = c.mu_k = 0.5;
+      model.AddContact(c);
+    }
+  }
+  State s = MakeRestState(model);
+  const double R = ball.radius, d = 2 * R / std::sqrt(3.0);  // circumradius of the triangle
+  for (int i = 0; i < 3; ++i) {
+    const double a = 2 * M_PI * i / 3;
+    SetBodyPose(model, i, Vec3(d * std::cos(a), d * std::sin(a), R), Quat::Identity(), s);
+  }
+  // The top ball's centre is 2R from each bottom centre: height sqrt(4R² - d²) above them.
+  SetBodyPose(model, 3, Vec3(0, 0, R + std::sqrt(4 * R * R - d * d)), Quat::Identity(), s);
+  for (int i = 0; i < 4; ++i) SetBodyVelocity(model, i, Vec3::Zero(), Vec3::Zero(), s);
+  const TimeSteppingResult r = SimulateTimeStepping(model, s, Until(2.0, 1e-3));
+  double moved = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const auto k = static_cast<size_t>(i);
+    moved = std::max(moved, (r.final_state.bodies[k].p_WBcm - s.bodies[k].p_WBcm).norm());
+  }
+  EXPECT_LT(moved, 1e-12);
+  EXPECT_TRUE(r.tolerance_met);
+}
+
+}  // namespace
+}  // namespace chasles
