@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
+#include "chasles/integrate/parallel.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/expression.h"
 #include "chasles/scene/mass_report.h"
@@ -351,13 +352,8 @@ void RunParallel(std::int64_t count, int jobs, const std::function<void(std::int
       if (done) done(finished);
     }
   };
-  if (threads == 1) {
-    work();
-  } else {
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(work);
-    for (std::thread& t : pool) t.join();
-  }
+  // As many threads as the system starts (chasles/integrate/parallel.h); `work` catches its own.
+  RunOnThreads(threads, work);
   if (failure) std::rethrow_exception(failure);
 }
 
