@@ -11,7 +11,6 @@
 
 #include "certificate_report.h"
 #include "chasles/error.h"
-#include "chasles/io/atomic_file.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/output_set.h"
 #include "chasles/io/simulation_report.h"
@@ -600,9 +599,13 @@ int RunSimulateSweep(const SimulateArgs& args) {
         "--out writes one run's files; with --sweep use --keep-runs DIR for every run's CSV and "
         "JSON");
   }
+  // Every target is checked before the first run: the table (standard output), the page and
+  // the folder of kept runs.
+  OutputSet out;
+  out.Expect("-", "the table");
   if (!args.html.empty()) {
     RequireHtmlReport("--html");
-    CheckOutputTarget(args.html);
+    out.Expect(args.html, "--html");
   }
   if (!args.units.empty()) {
     throw InputError("--units sets the text report's units; a sweep's table is in SI");
@@ -622,7 +625,10 @@ int RunSimulateSweep(const SimulateArgs& args) {
   options.share = cluster.share();
   const std::string stem =
       args.scene.scene.empty() ? "demo" : std::filesystem::path(args.scene.scene).stem().string();
-  if (!args.keep_runs.empty()) CreateOutputFolder(args.keep_runs);
+  if (!args.keep_runs.empty()) {
+    CheckOutputFolder(args.keep_runs, "--keep-runs");
+    CreateOutputFolder(args.keep_runs);
+  }
   // Warnings of the runs (failed checks), by point, printed in grid order afterwards.
   std::mutex mutex;
   SweepWarnings warnings;
@@ -666,12 +672,14 @@ int RunSimulateSweep(const SimulateArgs& args) {
   for (const auto& [k, list] : warnings) {
     for (const std::string& w : list) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
-  const int failed =
-      EmitSweepTable(table, args.format,
-                     args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision));
+  const int failed = AddSweepTable(
+      out, table, args.format,
+      args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision), "-");
   if (!args.html.empty()) {
-    WriteHtmlReport(args.html, SweepReportData(LoadScene(args.scene), table, "simulate"));
+    out.Add(args.html, HtmlReport(SweepReportData(LoadScene(args.scene), table, "simulate")));
   }
+  out.Commit();
+  SayWroteHtmlReport(args.html);
   return args.strict && (failed > 0 || check_failed) ? kExitCheckFailed : 0;
 }
 
@@ -687,6 +695,20 @@ int RunSimulate(const SimulateArgs& args) {
   }
   if (args.scene.scene.empty()) {
     throw InputError("chasles simulate needs a scene file (chasles simulate --help)");
+  }
+  // Every target is checked before the run: the folder, the CSV, the JSON, the page.
+  const std::filesystem::path dir = args.out_dir.empty() ? "." : args.out_dir;
+  const std::string stem = std::filesystem::path(args.scene.scene).stem().string();
+  const std::string csv_path = (dir / (stem + ".csv")).string();
+  const std::string json_path = (dir / (stem + ".json")).string();
+  OutputSet files;
+  files.ExpectFolder(dir.string(), "--out");
+  files.Expect(csv_path, "--out");
+  files.Expect(json_path, "--out");
+  files.Expect("-", "the report");
+  if (!args.html.empty()) {
+    RequireHtmlReport("--html");
+    files.Expect(args.html, "--html");
   }
   Scene scene = LoadScene(args.scene);
   if (!args.columns.empty()) scene.dynamics.columns = SelectColumns(scene, args.columns);
@@ -704,7 +726,6 @@ int RunSimulate(const SimulateArgs& args) {
   if (!args.html.empty()) {
     // The replay needs every body's pose at every sample, the plots the ledger, reaction and
     // contact columns, and the arrows the forces at every sample.
-    RequireHtmlReport("--html");
     scene.dynamics.columns = ReportColumns(scene, scene.dynamics.columns);
     options.record_row_snapshots = true;
   }
@@ -717,11 +738,6 @@ int RunSimulate(const SimulateArgs& args) {
     r = RunStudy(scene, options);
   }
 
-  const std::filesystem::path dir = args.out_dir.empty() ? "." : args.out_dir;
-  CreateOutputFolder(dir.string());
-  const std::string stem = std::filesystem::path(args.scene.scene).stem().string();
-  const std::string csv_path = (dir / (stem + ".csv")).string();
-  const std::string json_path = (dir / (stem + ".json")).string();
   // Every output is made and checked (no non-finite number) before any file appears; then
   // the CSV and the JSON appear together or not at all (output_set.h).
   const std::string csv_text = SimulationCsv(
@@ -732,15 +748,14 @@ int RunSimulate(const SimulateArgs& args) {
       "the JSON summary");
   std::string report =
       args.format == "json" ? json_text : Text(scene, r, units, csv_path, json_path);
-  OutputSet files;
   files.Add(csv_path, csv_text);
   files.Add(json_path, json_text);
   if (!args.html.empty()) {
     files.Add(args.html, HtmlReport(SimulationReportData(scene, r)));
     if (args.format != "json") report += fmt::format("Wrote {} (the browser report)\n", args.html);
   }
+  files.Add("-", report);
   files.Commit();
-  Emit("", report);
   return args.strict && !r.certificate.passed() ? kExitCheckFailed : 0;
 }
 

@@ -392,7 +392,7 @@ TEST(Sweep, BadInputExitsTwoWithAClearMessage) {
        "unknown column 'nope'"},
       {sim + "--sweep 'L=1 m:2 m:2' --quantity t_end --out results", "--keep-runs"},
       {sim + "--sweep 'L=1 m:2 m:10' --sweep 'theta0=0:1:10' --quantity t_end --max-runs 50",
-       "more than the limit of 50"},
+       "more points than the limit of 50 runs; raise the limit with --max-runs N"},
       {"mass " + Quote(scene) + " --sweep 'L=1 m:2 m:2' --quantity Iqq", "unknown quantity 'Iqq'"},
       {"mass " + Quote(scene) + " --sweep 'L=1 m:2 m:2' --quantity nobody.Izz", "no body 'nobody'"},
   };
