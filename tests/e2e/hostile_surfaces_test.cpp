@@ -189,6 +189,55 @@ SpringFiles SpringRun(const std::string& tag) {
   return r;
 }
 
+TEST(FullDisk, EveryCommandThatWritesIsExit2AndLeavesNothing) {
+  // A 64 KiB tmpfs filled to the last byte (mounting needs root: skipped otherwise); standard
+  // output on /dev/full, which always answers ENOSPC.
+  const fs::path dir = OutDir("hostile_full");
+  const fs::path disk = dir / "disk";
+  fs::create_directories(disk);
+  if (std::system(
+          ("mount -t tmpfs -o size=64k tmpfs " + Quote(disk.string()) + " 2>/dev/null").c_str()) !=
+      0) {
+    GTEST_SKIP() << "no tmpfs can be mounted here (not root)";
+  }
+  {
+    std::ofstream filler(disk / "filler", std::ios::binary);
+    const std::string block(4096, 'x');
+    for (int k = 0; k < 64 && filler.write(block.data(), block.size()); ++k) {
+    }
+  }
+  const std::string scene = Quote(SourcePath(kSpring));
+  std::string v1 = ReadText(SourcePath(kSpring));
+  v1.replace(v1.find("chasles: 2"), 10, "chasles: 1");  // a scene upgrade rewrites
+  WriteText(dir / "v1.yaml", v1);
+  const auto in = [&](const std::string& name) { return Quote((disk / name).string()); };
+  const std::vector<std::string> commands = {
+      "simulate " + scene + " --quiet --until 2 --out " + Quote(disk.string()),
+      "mass " + scene + " -o " + in("mass.txt"),
+      "solve " + scene + " -o " + in("solve.txt"),
+      "mass " + scene + " --quiet --sweep 'm=1 kg:2 kg:50' --quantity mass -o " + in("t.csv"),
+      "upgrade " + Quote((dir / "v1.yaml").string()) + " -o " + in("up.yaml"),
+  };
+  for (const std::string& c : commands) {
+    const CliResult r = RunCli(c);
+    EXPECT_EQ(r.exit_code, 2) << c << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr("No space left on device")) << c;
+    EXPECT_EQ(Entries(disk), std::vector<std::string>{"filler"}) << c;
+  }
+#ifdef CHASLES_HAVE_PLOT
+  const SpringFiles run = SpringRun("hostile_full_plot");
+  const CliResult plot =
+      RunCli("plot " + Quote(run.json.string()) + " t block_x -o " + in("p.svg"));
+  EXPECT_EQ(plot.exit_code, 2) << plot.err;
+  EXPECT_EQ(Entries(disk), std::vector<std::string>{"filler"});
+#endif
+  const CliResult full = RunCli("mass " + scene + " >/dev/full");
+  EXPECT_EQ(full.exit_code, 2);
+  EXPECT_THAT(full.err, HasSubstr("cannot write to standard output: No space left on device"));
+  EXPECT_EQ(std::system(("umount " + Quote(disk.string())).c_str()), 0);
+  fs::remove_all(dir);
+}
+
 TEST(ReadBack, ReportRefusesEndlessDeepAndFailedInputNamingTheFile) {
   if (!HaveHtmlReport()) GTEST_SKIP() << "built without the browser report";
   const SpringFiles run = SpringRun("hostile_report");
