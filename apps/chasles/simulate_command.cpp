@@ -5,6 +5,7 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include <fmt/format.h>
@@ -588,6 +589,22 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
 
 namespace {
 
+/// Whether kept runs are named with every parameter value in full (the shortest text that
+/// reads back as the same double) rather than with 12 significant digits, as docs/sweeps.md
+/// names them: only when two points of the grid would have one name at 12 digits, so that no
+/// run's files replace another's.
+bool KeptRunNamesInFull(const Scene& base, const std::vector<SweepSpec>& specs,
+                        std::int64_t max_runs) {
+  const SweepGrid grid = MakeSweepGrid(base, specs, max_runs);
+  std::unordered_set<std::string> names;
+  for (std::int64_t k = 0; k < grid.size; ++k) {
+    std::string name;
+    for (const double v : grid.Values(k)) name += fmt::format("_{:.12g}", v);
+    if (!names.insert(name).second) return true;
+  }
+  return false;
+}
+
 /// The run at each point of a grid (simulate --sweep): a table of the quantities on standard
 /// output, each run's files in --keep-runs when asked.
 int RunSimulateSweep(const SimulateArgs& args) {
@@ -625,8 +642,11 @@ int RunSimulateSweep(const SimulateArgs& args) {
   options.share = cluster.share();
   const std::string stem =
       args.scene.scene.empty() ? "demo" : std::filesystem::path(args.scene.scene).stem().string();
+  const std::int64_t max_runs = args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns;
+  bool names_in_full = false;
   if (!args.keep_runs.empty()) {
     CheckOutputFolder(args.keep_runs, "--keep-runs");
+    names_in_full = KeptRunNamesInFull(LoadScene(args.scene), specs, max_runs);
     CreateOutputFolder(args.keep_runs);
   }
   // Warnings of the runs (failed checks), by point, printed in grid order afterwards.
@@ -637,7 +657,10 @@ int RunSimulateSweep(const SimulateArgs& args) {
     std::string name = stem;
     for (const SweepSpec& s : specs) {
       for (const auto& [n, q] : scene.parameters) {
-        if (n == s.name) name += fmt::format("_{}={:.12g}", n, q.value);
+        if (n == s.name) {
+          name += names_in_full ? fmt::format("_{}={}", n, q.value)
+                                : fmt::format("_{}={:.12g}", n, q.value);
+        }
       }
     }
     if (!args.keep_runs.empty()) {
@@ -666,7 +689,7 @@ int RunSimulateSweep(const SimulateArgs& args) {
       progress.Update(static_cast<double>(done), static_cast<double>(total));
     };
     table = SimulateSweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), specs, quantities,
-                          options, args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns);
+                          options, max_runs);
   }
   if (!GatherSweep(&table, &warnings, &check_failed)) return 0;
   for (const auto& [k, list] : warnings) {

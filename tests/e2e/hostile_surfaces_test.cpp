@@ -189,6 +189,31 @@ SpringFiles SpringRun(const std::string& tag) {
   return r;
 }
 
+TEST(Sweeps, KeptRunsOfPointsEqualToTwelveDigitsAreNamedInFullAndNoneIsReplaced) {
+  // Three stiffnesses within 1e-10 N/m of each other print alike at 12 digits: the names are
+  // then the values in full, three runs, six files. A grid whose 12-digit names differ keeps
+  // them (docs/sweeps.md).
+  const fs::path dir = OutDir("hostile_names");
+  const CliResult close = RunCli("simulate " + Quote(SourcePath(kSpring)) +
+                                 " --quiet --until 0.01 --sweep 'k=100 N/m:100.0000000002 N/m:3' "
+                                 "--quantity 'max(block_x)' --keep-runs " +
+                                 Quote((dir / "close").string()));
+  ASSERT_EQ(close.exit_code, 0) << close.err;
+  EXPECT_EQ(Entries(dir / "close"),
+            (std::vector<std::string>{
+                "spring-mass_k=100.0000000001.csv", "spring-mass_k=100.0000000001.json",
+                "spring-mass_k=100.0000000002.csv", "spring-mass_k=100.0000000002.json",
+                "spring-mass_k=100.csv", "spring-mass_k=100.json"}));
+  const CliResult apart = RunCli("simulate " + Quote(SourcePath(kSpring)) +
+                                 " --quiet --until 0.01 --sweep 'k=100 N/m:400 N/m:4' --quantity "
+                                 "'max(block_x)' --keep-runs " +
+                                 Quote((dir / "apart").string()));
+  ASSERT_EQ(apart.exit_code, 0) << apart.err;
+  EXPECT_EQ(Entries(dir / "apart").size(), 8u);
+  EXPECT_TRUE(fs::exists(dir / "apart" / "spring-mass_k=200.csv"));
+  fs::remove_all(dir);
+}
+
 TEST(FullDisk, EveryCommandThatWritesIsExit2AndLeavesNothing) {
   // A 64 KiB tmpfs filled to the last byte (mounting needs root: skipped otherwise); standard
   // output on /dev/full, which always answers ENOSPC.
