@@ -100,3 +100,13 @@ def test_an_event_function_returning_nan_is_refused_naming_the_event():
     event = chasles.EventSpec("floor", lambda t, s: float("nan"))
     with pytest.raises(chasles.InputError, match=r"event 'floor': g\(t, state\) returned nan"):
         chasles.simulate(model, chasles.make_rest_state(model), t_end=1.0, events=[event])
+
+
+def test_simulate_refuses_more_samples_than_max_rows_before_the_run():
+    # 1e-12 s over 1 s would be 1e12 samples (some 5.8 GB once): refused at once.
+    model = _ball_model()
+    with pytest.raises(chasles.InputError, match=r"output_interval: 1e-12 s over 1.0 s gives more "
+                                                 r"than the limit of 1000000 rows"):
+        chasles.simulate(model, chasles.make_rest_state(model), t_end=1.0, output_interval=1e-12)
+    r = chasles.simulate(model, chasles.make_rest_state(model), t_end=1.0, output_interval=0.25)
+    assert len(r.table(model)["t"]) == 5

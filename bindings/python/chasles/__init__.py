@@ -291,14 +291,15 @@ def mass_sweep(scene, sweeps, quantities, jobs=0, max_runs=100_000):
                              _whole("max_runs", max_runs, 1, _MAX_COUNT)))
 
 
-def simulate(model, initial, options=None, **kwargs):
+def simulate(model, initial, options=None, max_rows=1_000_000, **kwargs):
     """Runs ``model`` from the State ``initial`` and returns a SimulationResult.
 
     Pass a SimulationOptions, or its fields as keywords (``t_end``, ``output_interval``,
     ``integrator``, ``rtol``, ``atol``, ``fixed_step``, and ``events``: a list of EventSpec).
     ``result.table(model)`` gives the samples as a Table (t, then per body x, y, z, qw..qz,
     vx..vz, wbx..wbz). Python force, driver and event callables are called with the GIL
-    held; the integration itself releases it.
+    held; the integration itself releases it. An output interval that would give more than
+    ``max_rows`` samples (as ``--max-rows``) raises InputError before the run.
     """
     if options is None:
         events = kwargs.pop("events", None)
@@ -307,6 +308,12 @@ def simulate(model, initial, options=None, **kwargs):
             options.events = list(events)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
+    max_rows = _whole("max_rows", max_rows, 1, _MAX_COUNT)
+    span, interval = options.t_end, options.output_interval
+    if interval > 0 and _math.isfinite(span) and span / interval > max_rows:
+        raise InputError(f"output_interval: {interval} s over {span} s gives more than the limit "
+                         f"of {max_rows} rows; raise the limit with max_rows= or sample less "
+                         "often")
     return _simulate(model, initial, options)
 
 
