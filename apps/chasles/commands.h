@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "chasles/io/input_file.h"
 #include "chasles/scene/scene.h"
 
 namespace chasles::cli {
@@ -106,6 +107,7 @@ struct ReportArgs {
   std::string output;
   std::vector<std::string> set;                    // the run's --set overrides, if any
   size_t max_scene_bytes = kDefaultMaxSceneBytes;  // --max-scene-bytes
+  size_t max_input_bytes = kDefaultMaxInputBytes;  // --max-input-bytes (the JSON and the CSV)
 };
 CLI::App* AddReportCommand(CLI::App& app, ReportArgs& args);
 int RunReport(const ReportArgs& args);
@@ -148,6 +150,7 @@ struct PlotArgs {
   std::string title;
   std::string by;    // one line per value of this column (a grid sweep's other parameter)
   bool log = false;  // both axes logarithmic (base 10)
+  size_t max_input_bytes = kDefaultMaxInputBytes;  // --max-input-bytes
 };
 /// Built only with PLplot (CHASLES_HAVE_PLOT).
 CLI::App* AddPlotCommand(CLI::App& app, PlotArgs& args);

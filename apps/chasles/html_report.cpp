@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include "chasles/error.h"
-#include "chasles/io/atomic_file.h"
 #include "chasles/io/json_report.h"
 #include "report_bundle.h"
 
@@ -87,9 +86,8 @@ std::string HtmlReport(const nlohmann::json& data) {
   return out;
 }
 
-void WriteHtmlReport(const std::string& path, const nlohmann::json& data) {
-  WriteFileAtomically(path, HtmlReport(data));
-  std::fprintf(stderr, "Wrote %s (the browser report)\n", path.c_str());
+void SayWroteHtmlReport(const std::string& path) {
+  if (!path.empty()) std::fprintf(stderr, "Wrote %s (the browser report)\n", path.c_str());
 }
 
 }  // namespace chasles::cli

@@ -21,8 +21,8 @@ void RequireHtmlReport(const std::string& option);
 /// script. Checks the data (no non-finite number) first.
 std::string HtmlReport(const nlohmann::json& data);
 
-/// Writes HtmlReport(data) to `path` (whole or not at all) and says so on standard error
-/// ("Wrote PATH (the browser report)"): standard output may be the command's table or JSON.
-void WriteHtmlReport(const std::string& path, const nlohmann::json& data);
+/// Says on standard error that the page was written ("Wrote PATH (the browser report)"):
+/// standard output may be the command's table or JSON.
+void SayWroteHtmlReport(const std::string& path);
 
 }  // namespace chasles::cli

@@ -7,7 +7,6 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
-#include "chasles/io/atomic_file.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/output_set.h"
 #include "chasles/scene/mass_report.h"
@@ -391,9 +390,12 @@ int RunMassSweep(const MassArgs& args) {
         "--about, --frame and --units go with one report, not with --sweep (the table is in "
         "SI)");
   }
+  // Every target is checked before the first run.
+  OutputSet out;
+  out.Expect(ReportTarget(args.output), "-o");
   if (!args.html.empty()) {
     RequireHtmlReport("--html");
-    CheckOutputTarget(args.html);
+    out.Expect(args.html, "--html");
   }
   if (!(args.progress_interval > 0) || !std::isfinite(args.progress_interval)) {
     throw InputError(fmt::format("--progress-interval must be a positive time in seconds, got {}",
@@ -416,12 +418,14 @@ int RunMassSweep(const MassArgs& args) {
   SweepWarnings warnings;
   bool check_failed = false;
   if (!GatherSweep(&table, &warnings, &check_failed)) return 0;
-  EmitSweepTable(table, args.format,
-                 args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision),
-                 args.output);
+  AddSweepTable(out, table, args.format,
+                args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision),
+                ReportTarget(args.output));
   if (!args.html.empty()) {
-    WriteHtmlReport(args.html, SweepReportData(LoadScene(args.scene), table, "mass"));
+    out.Add(args.html, HtmlReport(SweepReportData(LoadScene(args.scene), table, "mass")));
   }
+  out.Commit();
+  SayWroteHtmlReport(args.html);
   return 0;
 }
 
@@ -433,6 +437,13 @@ int RunMass(const MassArgs& args) {
     throw InputError(fmt::format("{} goes with --sweep", !args.quantity.empty() ? "--quantity"
                                                          : args.jobs > 0        ? "--jobs"
                                                                                 : "--max-runs"));
+  }
+  // Every target is checked before the scene is read.
+  OutputSet out;
+  out.Expect(ReportTarget(args.output), "-o");
+  if (!args.html.empty()) {
+    RequireHtmlReport("--html");
+    out.Expect(args.html, "--html");
   }
   const Scene scene = LoadMassInput(args);
   const Presenter P(UnitSystem::Parse(args.units.empty() ? scene.units : args.units));
@@ -453,11 +464,10 @@ int RunMass(const MassArgs& args) {
   const std::string report = args.format == "json" ? DumpJson(j, "the mass report")
                                                    : (CheckFiniteJson(j, "the mass report"),
                                                       TextReport(scene, P, args, extra, frame));
-  if (!args.html.empty()) {
-    RequireHtmlReport("--html");
-    WriteHtmlReport(args.html, MassReportData(scene));
-  }
-  Emit(args.output, report);
+  if (!args.html.empty()) out.Add(args.html, HtmlReport(MassReportData(scene)));
+  out.Add(ReportTarget(args.output), report);
+  out.Commit();
+  SayWroteHtmlReport(args.html);
   return 0;
 }
 

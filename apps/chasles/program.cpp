@@ -1,6 +1,8 @@
 #include "program.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <new>
@@ -11,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
+#include "chasles/io/output_set.h"
 #include "cluster.h"
 
 namespace chasles::cli {
@@ -138,6 +141,8 @@ int RunParsed(Program& p) {
 }
 
 int Main(int argc, char** argv) {
+  // Before any thread starts: SIGINT, SIGTERM and SIGHUP remove the outputs' temporaries.
+  GuardOutputsAgainstSignals();
   Cluster& cluster = Cluster::Get();
   if (Cluster::LaunchedSize() > 1) {
     try {
@@ -157,6 +162,12 @@ int Main(int argc, char** argv) {
     code = cluster.rank() == 0 ? p->app.exit(e) : 0;  // --help, --version
   } catch (const CLI::ParseError& e) {
     if (cluster.rank() == 0) p->app.exit(e);
+    code = kExitBadInput;
+  }
+  // Whatever was printed must have reached standard output (a full disk, a closed pipe).
+  if ((std::fflush(stdout) != 0 || std::ferror(stdout)) && code == 0) {
+    std::fprintf(stderr, "chasles: error: cannot write to standard output: %s\n",
+                 std::strerror(errno));
     code = kExitBadInput;
   }
   code = cluster.AgreeExitCode(code);

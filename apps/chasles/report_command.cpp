@@ -4,10 +4,9 @@
 // forces at every sample, which only a run made with --html records: this report has the
 // replay, the plots and the events, without arrows.
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,8 +15,9 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
-#include "chasles/io/atomic_file.h"
 #include "chasles/io/csv_table.h"
+#include "chasles/io/input_file.h"
+#include "chasles/io/output_set.h"
 #include "chasles/scene/report_data.h"
 #include "chasles/scene/scene.h"
 #include "commands.h"
@@ -29,9 +29,18 @@ namespace chasles::cli {
 namespace {
 
 /// The run's table from its CSV (chasles/io/csv_table.h: columns by name, their units
-/// dropped). Errors name the file, line and column.
-void ReadCsv(const std::string& path, StudyResult& r) {
-  CsvTable t = ReadCsvTable(ReadTextFile(path, "the run's CSV"), path);
+/// dropped). Errors name the file, line and column. A run's CSV has no failed rows (those are
+/// a sweep's): one is refused with its line and reason rather than drawn as NaN.
+void ReadCsv(const std::string& path, size_t max_bytes, StudyResult& r) {
+  CsvTable t =
+      ReadCsvTable(ReadInputFile(path, "the run's CSV", max_bytes, "--max-input-bytes N"), path);
+  for (size_t k = 0; k < t.errors.size(); ++k) {
+    if (t.errors[k].empty()) continue;
+    throw InputError(fmt::format(
+        "{}:{}: the row has no values ({}); a run's CSV has none like it (is this a sweep's "
+        "table? chasles plot draws those)",
+        path, k + 2, t.errors[k]));
+  }
   r.columns = std::move(t.columns);
   r.units = std::move(t.units);
   r.rows = std::move(t.rows);
@@ -39,7 +48,7 @@ void ReadCsv(const std::string& path, StudyResult& r) {
 
 template <typename T>
 T Get(const nlohmann::json& j, const char* key, const std::string& where) {
-  if (!j.contains(key)) {
+  if (!j.is_object() || !j.contains(key)) {
     throw InputError(
         fmt::format("{}: key '{}' missing (expected a chasles simulate JSON)", where, key));
   }
@@ -47,6 +56,86 @@ T Get(const nlohmann::json& j, const char* key, const std::string& where) {
     return j.at(key).get<T>();
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: key '{}': {}", where, key, e.what()));
+  }
+}
+
+/// The array under `key` (`required`: it must be there), by reference: a summary's arrays are
+/// walked, never copied.
+const nlohmann::json& Array(const nlohmann::json& j, const char* key, bool required,
+                            const std::string& where) {
+  static const nlohmann::json empty = nlohmann::json::array();
+  if (!j.contains(key)) {
+    if (!required) return empty;
+    throw InputError(
+        fmt::format("{}: key '{}' missing (expected a chasles simulate JSON)", where, key));
+  }
+  const nlohmann::json& a = j.at(key);
+  if (!a.is_array()) {
+    throw InputError(
+        fmt::format("{}: key '{}': expected an array, got {}", where, key, a.type_name()));
+  }
+  return a;
+}
+
+/// The events, contact-mode changes, impacts and jumps of the summary.
+void ReadTimeline(const nlohmann::json& j, const std::string& json, StudyResult& r) {
+  for (const auto& e : Array(j, "events", true, json)) {
+    const std::string where = json + ": events";
+    StudyEvent ev;
+    ev.name = Get<std::string>(e, "name", where);
+    ev.t = Get<double>(e, "t", where);
+    ev.stopped = e.is_object() && e.contains("stopped") && e.at("stopped").is_boolean() &&
+                 e.at("stopped").get<bool>();
+    r.events.push_back(ev);
+  }
+  for (const auto& e : Array(j, "contact_events", false, json)) {
+    const std::string where = json + ": contact_events";
+    r.contact_events.push_back(
+        {Get<double>(e, "t", where), Get<std::string>(e, "point", where),
+         Get<std::string>(e, "contact", where), Get<std::string>(e, "from", where),
+         Get<std::string>(e, "to", where), Get<std::string>(e, "reason", where)});
+  }
+  for (const auto& e : Array(j, "impacts", false, json)) {
+    const std::string where = json + ": impacts";
+    StudyImpact x;
+    x.t = Get<double>(e, "t", where);
+    x.point = Get<std::string>(e, "point", where);
+    x.energy_lost = Get<double>(e, "energy_lost", where);
+    r.impacts.push_back(x);
+  }
+  for (const auto& e : Array(j, "jumps", false, json)) {
+    const std::string where = json + ": jumps";
+    StudyJump x;
+    x.t = Get<double>(e, "t", where);
+    x.kind = Get<std::string>(e, "kind", where);
+    x.description = Get<std::string>(e, "description", where);
+    r.jumps.push_back(x);
+  }
+}
+
+/// Every pose the replay draws is a rotation: each body's quaternion columns have norm 1 (to
+/// 1e-6, far looser than any written precision) in every row.
+void CheckQuaternions(const Scene& scene, const StudyResult& r, const std::string& csv) {
+  constexpr double kUnitTolerance = 1e-6;
+  const auto col = [&](const std::string& name) {
+    const auto it = std::find(r.columns.begin(), r.columns.end(), name);
+    return static_cast<size_t>(it - r.columns.begin());
+  };
+  for (const SceneBody& b : scene.bodies) {
+    const size_t w = col(b.name + "_qw"), x = col(b.name + "_qx"), y = col(b.name + "_qy"),
+                 z = col(b.name + "_qz");
+    if (std::max({w, x, y, z}) >= r.columns.size()) continue;
+    for (size_t k = 0; k < r.rows.size(); ++k) {
+      const auto& row = r.rows[k];
+      const double n =
+          std::sqrt(row[w] * row[w] + row[x] * row[x] + row[y] * row[y] + row[z] * row[z]);
+      if (!(std::abs(n - 1.0) <= kUnitTolerance)) {
+        throw InputError(fmt::format(
+            "{}:{}: body '{}': the quaternion [{}, {}, {}, {}] has norm {:.9g}, not 1; it is not a "
+            "rotation the report can draw",
+            csv, k + 2, b.name, row[w], row[x], row[y], row[z], n));
+      }
+    }
   }
 }
 
@@ -66,7 +155,11 @@ CLI::App* AddReportCommand(CLI::App& app, ReportArgs& args) {
       ->type_name("NAME=EXPR")
       ->allow_extra_args(false)
       ->delimiter('\0');  // an expression may contain commas and brackets: keep it whole
-  cmd->add_option("--max-scene-bytes", args.max_scene_bytes, "Largest scene file read (bytes)");
+  cmd->add_option("--max-scene-bytes", args.max_scene_bytes, "Largest scene file read (bytes)")
+      ->check(WholeNumber(kMaxWholeNumber));
+  cmd->add_option("--max-input-bytes", args.max_input_bytes,
+                  "Largest JSON summary or CSV read, in bytes (default 268435456, 256 MiB)")
+      ->check(WholeNumber(kMaxWholeNumber));
   cmd->footer(
       "Example:\n"
       "  chasles simulate examples/pendulum.yaml --out results\n"
@@ -81,68 +174,49 @@ CLI::App* AddReportCommand(CLI::App& app, ReportArgs& args) {
 
 int RunReport(const ReportArgs& args) {
   RequireHtmlReport("chasles report");
-  const std::string text = ReadTextFile(args.run_json, "the run's JSON summary");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: not JSON: {}", args.run_json, e.what()));
-  }
+  OutputSet out;
+  out.Expect(args.output, "-o");
+  const std::string& json = args.run_json;
+  const nlohmann::json j = ParseJsonText(
+      ReadInputFile(json, "the run's JSON summary", args.max_input_bytes, "--max-input-bytes N"),
+      json);
   if (!j.is_object()) {
-    throw InputError(
-        fmt::format("{}: expected a JSON object (a chasles simulate summary)", args.run_json));
+    throw InputError(fmt::format("{}: expected a JSON object (a chasles simulate summary)", json));
   }
   SceneArgs scene_args;
-  scene_args.scene = ResolveBesideJson(Get<std::string>(j, "scene", args.run_json), args.run_json);
+  scene_args.scene = ResolveBesideJson(Get<std::string>(j, "scene", json), json);
   scene_args.set = args.set;
   scene_args.max_scene_bytes = args.max_scene_bytes;
   if (scene_args.scene.empty()) {
-    throw InputError(fmt::format("{}: the run names no scene file", args.run_json));
+    throw InputError(fmt::format("{}: the run names no scene file", json));
   }
   const Scene scene = LoadScene(scene_args);
 
   StudyResult r;
-  ReadCsv(ResolveBesideJson(Get<std::string>(j, "csv", args.run_json), args.run_json), r);
-  for (const auto& e : Get<nlohmann::json>(j, "events", args.run_json)) {
-    StudyEvent ev;
-    ev.name = Get<std::string>(e, "name", args.run_json + ": events");
-    ev.t = Get<double>(e, "t", args.run_json + ": events");
-    ev.stopped = e.value("stopped", false);
-    r.events.push_back(ev);
-  }
-  for (const auto& e : j.value("contact_events", nlohmann::json::array())) {
-    const std::string where = args.run_json + ": contact_events";
-    r.contact_events.push_back(
-        {Get<double>(e, "t", where), Get<std::string>(e, "point", where),
-         Get<std::string>(e, "contact", where), Get<std::string>(e, "from", where),
-         Get<std::string>(e, "to", where), Get<std::string>(e, "reason", where)});
-  }
-  for (const auto& e : j.value("impacts", nlohmann::json::array())) {
-    const std::string where = args.run_json + ": impacts";
-    StudyImpact x;
-    x.t = Get<double>(e, "t", where);
-    x.point = Get<std::string>(e, "point", where);
-    x.energy_lost = Get<double>(e, "energy_lost", where);
-    r.impacts.push_back(x);
-  }
-  for (const auto& e : j.value("jumps", nlohmann::json::array())) {
-    const std::string where = args.run_json + ": jumps";
-    StudyJump x;
-    x.t = Get<double>(e, "t", where);
-    x.kind = Get<std::string>(e, "kind", where);
-    x.description = Get<std::string>(e, "description", where);
-    r.jumps.push_back(x);
-  }
+  const std::string csv = ResolveBesideJson(Get<std::string>(j, "csv", json), json);
+  ReadCsv(csv, args.max_input_bytes, r);
+  ReadTimeline(j, json, r);
   // The poses the replay draws, from the centre of mass and orientation columns when the run
   // has no origin columns (the default columns of a planar scene and of many 3-D ones).
-  const std::vector<std::string> derived = CompletePoseColumns(scene, r);
+  std::vector<std::string> derived;
+  std::string page;
+  try {
+    derived = CompletePoseColumns(scene, r);
+    CheckQuaternions(scene, r, csv);
+    page = HtmlReport(SimulationReportData(scene, r));
+  } catch (const InputError& e) {
+    // Which run: the summary and its table, then what is wrong with them.
+    throw InputError(fmt::format("the report of {} (table {}, scene {}): {}", json, csv,
+                                 scene_args.scene, e.what()));
+  }
   if (!derived.empty()) {
     std::printf("note: the poses of %s derived from the centre of mass and orientation columns\n",
                 fmt::format("{}", fmt::join(derived, ", ")).c_str());
   }
-  WriteFileAtomically(args.output, HtmlReport(SimulationReportData(scene, r)));
+  out.Add(args.output, std::move(page));
+  out.Commit();
   std::printf("Wrote %s (the browser report of %s, %zu samples)\n", args.output.c_str(),
-              args.run_json.c_str(), r.rows.size());
+              json.c_str(), r.rows.size());
   return 0;
 }
 

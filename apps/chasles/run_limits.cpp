@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "scene_args.h"
 
 namespace chasles::cli {
 
@@ -33,11 +34,11 @@ void AddRunLimitOptions(CLI::App& cmd, SimulateArgs& args) {
   cmd.add_option("--max-steps", args.max_steps,
                  "Most integration steps before the run stops with exit 2 (default: the scene's "
                  "simulation.max_steps, else 10000000)")
-      ->check(CLI::PositiveNumber);
+      ->check(WholeNumber(kMaxWholeNumber));
   cmd.add_option("--max-rows", args.max_rows,
                  "Most CSV rows; a run that would write more is refused before it starts "
                  "(default: the scene's simulation.max_rows, else 1000000)")
-      ->check(CLI::PositiveNumber);
+      ->check(WholeNumber(kMaxWholeNumber));
   cmd.add_option("--timeout", args.timeout,
                  "Wall-time limit [s] after which the run stops with exit 2; 0: none (default: "
                  "the scene's simulation.timeout, else none)")

@@ -1,16 +1,14 @@
 #include "scene_args.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <fmt/format.h>
 
 #include "chasles/error.h"
-#include "chasles/io/output_set.h"
 #include "chasles/scene/scene_error.h"
 
 namespace chasles::cli {
@@ -27,7 +25,7 @@ void AddSceneArgs(CLI::App& cmd, SceneArgs& args) {
   cmd.add_option("--max-scene-bytes", args.max_scene_bytes,
                  "Largest scene file read, in bytes (default 16777216, 16 MiB); a larger file, "
                  "or a pipe or device that gives more, is refused before it is parsed")
-      ->check(CLI::PositiveNumber);
+      ->check(WholeNumber(kMaxWholeNumber));
 }
 
 CLI::Validator PositiveFiniteNumber(const std::string& rule) {
@@ -41,6 +39,20 @@ CLI::Validator PositiveFiniteNumber(const std::string& rule) {
         return "";
       },
       "POSITIVE");
+}
+
+CLI::Validator WholeNumber(std::int64_t max) {
+  return CLI::Validator(
+      [max](std::string& text) -> std::string {
+        std::int64_t v = 0;
+        const char* end = text.data() + text.size();
+        const auto [ptr, ec] = std::from_chars(text.data(), end, v);
+        if (text.empty() || ptr != end || ec != std::errc() || v < 1 || v > max) {
+          return fmt::format("expected a whole number from 1 to {}, got '{}'", max, text);
+        }
+        return "";
+      },
+      "N");
 }
 
 SceneOptions SceneOptionsFrom(const SceneArgs& args) {
@@ -69,14 +81,6 @@ Scene LoadScene(const SceneArgs& args) {
   return SceneLoader(args)(SceneOptionsFrom(args));
 }
 
-std::string ReadTextFile(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string ResolveBesideJson(const std::string& path, const std::string& json_path) {
   if (path.empty() || std::filesystem::exists(path)) return path;
   const std::filesystem::path beside =
@@ -84,15 +88,8 @@ std::string ResolveBesideJson(const std::string& path, const std::string& json_p
   return std::filesystem::exists(beside) ? beside.string() : path;
 }
 
-void Emit(const std::string& output, const std::string& text) {
-  if (output.empty()) {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    std::fflush(stdout);
-  } else {
-    OutputSet file;
-    file.Add(output, text);
-    file.Commit();
-  }
+std::string ReportTarget(const std::string& output) {
+  return output.empty() ? std::string("-") : output;
 }
 
 }  // namespace chasles::cli

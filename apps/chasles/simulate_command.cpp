@@ -5,13 +5,13 @@
 #include <map>
 #include <mutex>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "certificate_report.h"
 #include "chasles/error.h"
-#include "chasles/io/atomic_file.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/output_set.h"
 #include "chasles/io/simulation_report.h"
@@ -645,6 +645,22 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
 
 namespace {
 
+/// Whether kept runs are named with every parameter value in full (the shortest text that
+/// reads back as the same double) rather than with 12 significant digits, as docs/sweeps.md
+/// names them: only when two points of the grid would have one name at 12 digits, so that no
+/// run's files replace another's.
+bool KeptRunNamesInFull(const Scene& base, const std::vector<SweepSpec>& specs,
+                        std::int64_t max_runs) {
+  const SweepGrid grid = MakeSweepGrid(base, specs, max_runs);
+  std::unordered_set<std::string> names;
+  for (std::int64_t k = 0; k < grid.size; ++k) {
+    std::string name;
+    for (const double v : grid.Values(k)) name += fmt::format("_{:.12g}", v);
+    if (!names.insert(name).second) return true;
+  }
+  return false;
+}
+
 /// The run at each point of a grid (simulate --sweep): a table of the quantities on standard
 /// output, each run's files in --keep-runs when asked.
 int RunSimulateSweep(const SimulateArgs& args) {
@@ -656,9 +672,13 @@ int RunSimulateSweep(const SimulateArgs& args) {
         "--out writes one run's files; with --sweep use --keep-runs DIR for every run's CSV and "
         "JSON");
   }
+  // Every target is checked before the first run: the table (standard output), the page and
+  // the folder of kept runs.
+  OutputSet out;
+  out.Expect("-", "the table");
   if (!args.html.empty()) {
     RequireHtmlReport("--html");
-    CheckOutputTarget(args.html);
+    out.Expect(args.html, "--html");
   }
   if (!args.units.empty()) {
     throw InputError("--units sets the text report's units; a sweep's table is in SI");
@@ -678,7 +698,13 @@ int RunSimulateSweep(const SimulateArgs& args) {
   options.share = cluster.share();
   const std::string stem =
       args.scene.scene.empty() ? "demo" : std::filesystem::path(args.scene.scene).stem().string();
-  if (!args.keep_runs.empty()) CreateOutputFolder(args.keep_runs);
+  const std::int64_t max_runs = args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns;
+  bool names_in_full = false;
+  if (!args.keep_runs.empty()) {
+    CheckOutputFolder(args.keep_runs, "--keep-runs");
+    names_in_full = KeptRunNamesInFull(LoadScene(args.scene), specs, max_runs);
+    CreateOutputFolder(args.keep_runs);
+  }
   // Warnings of the runs (failed checks), by point, printed in grid order afterwards.
   std::mutex mutex;
   SweepWarnings warnings;
@@ -687,7 +713,10 @@ int RunSimulateSweep(const SimulateArgs& args) {
     std::string name = stem;
     for (const SweepSpec& s : specs) {
       for (const auto& [n, q] : scene.parameters) {
-        if (n == s.name) name += fmt::format("_{}={:.12g}", n, q.value);
+        if (n == s.name) {
+          name += names_in_full ? fmt::format("_{}={}", n, q.value)
+                                : fmt::format("_{}={:.12g}", n, q.value);
+        }
       }
     }
     if (!args.keep_runs.empty()) {
@@ -716,18 +745,20 @@ int RunSimulateSweep(const SimulateArgs& args) {
       progress.Update(static_cast<double>(done), static_cast<double>(total));
     };
     table = SimulateSweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), specs, quantities,
-                          options, args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns);
+                          options, max_runs);
   }
   if (!GatherSweep(&table, &warnings, &check_failed)) return 0;
   for (const auto& [k, list] : warnings) {
     for (const std::string& w : list) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
-  const int failed =
-      EmitSweepTable(table, args.format,
-                     args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision));
+  const int failed = AddSweepTable(
+      out, table, args.format,
+      args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision), "-");
   if (!args.html.empty()) {
-    WriteHtmlReport(args.html, SweepReportData(LoadScene(args.scene), table, "simulate"));
+    out.Add(args.html, HtmlReport(SweepReportData(LoadScene(args.scene), table, "simulate")));
   }
+  out.Commit();
+  SayWroteHtmlReport(args.html);
   return args.strict && (failed > 0 || check_failed) ? kExitCheckFailed : 0;
 }
 
@@ -743,6 +774,20 @@ int RunSimulate(const SimulateArgs& args) {
   }
   if (args.scene.scene.empty()) {
     throw InputError("chasles simulate needs a scene file (chasles simulate --help)");
+  }
+  // Every target is checked before the run: the folder, the CSV, the JSON, the page.
+  const std::filesystem::path dir = args.out_dir.empty() ? "." : args.out_dir;
+  const std::string stem = std::filesystem::path(args.scene.scene).stem().string();
+  const std::string csv_path = (dir / (stem + ".csv")).string();
+  const std::string json_path = (dir / (stem + ".json")).string();
+  OutputSet files;
+  files.ExpectFolder(dir.string(), "--out");
+  files.Expect(csv_path, "--out");
+  files.Expect(json_path, "--out");
+  files.Expect("-", "the report");
+  if (!args.html.empty()) {
+    RequireHtmlReport("--html");
+    files.Expect(args.html, "--html");
   }
   Scene scene = LoadScene(args.scene);
   if (!args.columns.empty()) scene.dynamics.columns = SelectColumns(scene, args.columns);
@@ -760,7 +805,6 @@ int RunSimulate(const SimulateArgs& args) {
   if (!args.html.empty()) {
     // The replay needs every body's pose at every sample, the plots the ledger, reaction and
     // contact columns, and the arrows the forces at every sample.
-    RequireHtmlReport("--html");
     scene.dynamics.columns = ReportColumns(scene, scene.dynamics.columns);
     options.record_row_snapshots = true;
   }
@@ -773,11 +817,6 @@ int RunSimulate(const SimulateArgs& args) {
     r = RunStudy(scene, options);
   }
 
-  const std::filesystem::path dir = args.out_dir.empty() ? "." : args.out_dir;
-  CreateOutputFolder(dir.string());
-  const std::string stem = std::filesystem::path(args.scene.scene).stem().string();
-  const std::string csv_path = (dir / (stem + ".csv")).string();
-  const std::string json_path = (dir / (stem + ".json")).string();
   // Every output is made and checked (no non-finite number) before any file appears; then
   // the CSV and the JSON appear together or not at all (output_set.h).
   const std::string csv_text = SimulationCsv(
@@ -788,15 +827,14 @@ int RunSimulate(const SimulateArgs& args) {
       "the JSON summary");
   std::string report =
       args.format == "json" ? json_text : Text(scene, r, units, csv_path, json_path);
-  OutputSet files;
   files.Add(csv_path, csv_text);
   files.Add(json_path, json_text);
   if (!args.html.empty()) {
     files.Add(args.html, HtmlReport(SimulationReportData(scene, r)));
     if (args.format != "json") report += fmt::format("Wrote {} (the browser report)\n", args.html);
   }
+  files.Add("-", report);
   files.Commit();
-  Emit("", report);
   return args.strict && !r.certificate.passed() ? kExitCheckFailed : 0;
 }
 

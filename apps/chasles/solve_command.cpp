@@ -18,7 +18,6 @@
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/error.h"
-#include "chasles/io/atomic_file.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/output_set.h"
 #include "chasles/io/solve_json.h"
@@ -364,7 +363,7 @@ CLI::App* AddSolveCommand(CLI::App& app, SolveArgs& args) {
                 "otherwise a failed check is only a warning)");
   cmd->add_option("--max-rows", args.max_rows,
                   "Most values of a sweep (its rows; default 1000000); a larger COUNT is refused")
-      ->check(CLI::PositiveNumber);
+      ->check(WholeNumber(kMaxWholeNumber));
   cmd->add_flag("--quiet", args.quiet,
                 "No progress of a sweep on standard error (otherwise: redrawn on a terminal, one "
                 "line every 10 s off it)");
@@ -389,9 +388,13 @@ int RunSolve(const SolveArgs& args) {
   }
   const CsvPrecision precision =
       args.full_precision ? CsvPrecision::kFull : ParseCsvPrecision(args.precision);
-  // The output file's folder is checked before the solve, so a mistyped path does not waste a
-  // long sweep.
-  if (!args.output.empty()) CheckOutputTarget(args.output);
+  // Every target is checked before the solve, so a mistyped path does not waste a long sweep.
+  OutputSet out;
+  out.Expect(ReportTarget(args.output), "-o");
+  if (!args.html.empty()) {
+    RequireHtmlReport("--html");
+    out.Expect(args.html, "--html");
+  }
   if (args.sweep.empty()) {
     const Scene scene = LoadScene(args.scene);
     // Checked before the solve: a mistyped unit is bad input (exit 2).
@@ -408,23 +411,14 @@ int RunSolve(const SolveArgs& args) {
       CheckFiniteJson(j, "the solve report");
       report = Text(scene, s, units);
     }
-    if (!args.html.empty()) {
-      RequireHtmlReport("--html");
-      WriteHtmlReport(args.html, SolveReportData(scene, s));
-    }
-    if (args.output.empty()) {
-      Emit("", report);
-    } else {
-      WriteFileAtomically(args.output, report);
-    }
+    if (!args.html.empty()) out.Add(args.html, HtmlReport(SolveReportData(scene, s)));
+    out.Add(ReportTarget(args.output), report);
+    out.Commit();
+    SayWroteHtmlReport(args.html);
     return args.strict && !s.certificate.passed() ? kExitCheckFailed : 0;
   }
   if (!args.units.empty()) {
     throw InputError("--units sets the units of the text report; a sweep's table is SI");
-  }
-  if (!args.html.empty()) {
-    RequireHtmlReport("--html");
-    CheckOutputTarget(args.html);
   }
   const SweepSpec sweep = ParseSweep(args.sweep, "command line", "--sweep");
   const std::int64_t max_rows = args.max_rows > 0 ? args.max_rows : kDefaultMaxRows;
@@ -469,14 +463,12 @@ int RunSolve(const SolveArgs& args) {
   CheckFiniteTable(table.columns, table.rows, "the sweep table");
   const std::string text = args.format == "json" ? DumpJson(SweepJson(table), "the sweep table")
                                                  : SweepCsv(table, precision);
-  if (args.output.empty()) {
-    Emit("", text);
-  } else {
-    WriteFileAtomically(args.output, text);
-  }
+  out.Add(ReportTarget(args.output), text);
   if (!args.html.empty()) {
-    WriteHtmlReport(args.html, SweepReportData(LoadScene(args.scene), table, "solve"));
+    out.Add(args.html, HtmlReport(SweepReportData(LoadScene(args.scene), table, "solve")));
   }
+  out.Commit();
+  SayWroteHtmlReport(args.html);
   return args.strict && table.failed ? kExitCheckFailed : 0;
 }
 

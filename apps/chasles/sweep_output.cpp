@@ -23,13 +23,13 @@ void AddSweepOptions(CLI::App& cmd, std::vector<std::string>& sweep,
       ->allow_extra_args(false)
       ->delimiter('\0');  // keep "event(a, 2)" whole
   cmd.add_option("--jobs", jobs,
-                 "With --sweep, the runs done at once (default: the number of cores); the table "
-                 "is the same for any number")
-      ->check(CLI::PositiveNumber);
+                 "With --sweep, the runs done at once (default: the number of cores; fewer when "
+                 "the system cannot start more threads); the table is the same for any number")
+      ->check(WholeNumber(kMaxJobs));
   cmd.add_option("--max-runs", max_runs,
                  fmt::format("Most points of a sweep (default {}); a larger grid is refused",
                              kDefaultMaxRuns))
-      ->check(CLI::PositiveNumber);
+      ->check(WholeNumber(kMaxWholeNumber));
 }
 
 std::vector<SweepSpec> ParseSweeps(const std::vector<std::string>& texts) {
@@ -38,8 +38,8 @@ std::vector<SweepSpec> ParseSweeps(const std::vector<std::string>& texts) {
   return specs;
 }
 
-int EmitSweepTable(const SweepTable& table, const std::string& format, CsvPrecision precision,
-                   const std::string& output) {
+int AddSweepTable(OutputSet& out, const SweepTable& table, const std::string& format,
+                  CsvPrecision precision, const std::string& target) {
   const std::string text =
       format == "json" ? DumpJson(SweepJson(table), "the sweep table") : SweepCsv(table, precision);
   int failed = 0;
@@ -52,7 +52,7 @@ int EmitSweepTable(const SweepTable& table, const std::string& format, CsvPrecis
     }
     std::fprintf(stderr, "warning: %s: %s\n", where.c_str(), table.errors[r].c_str());
   }
-  Emit(output, text);
+  out.Add(target, text);
   return failed;
 }
 

@@ -12,6 +12,7 @@
 
 #include "chasles/analysis/solve_report.h"
 #include "chasles/io/csv_table.h"
+#include "chasles/io/output_set.h"
 #include "chasles/scene/solve.h"
 
 namespace chasles::cli {
@@ -27,10 +28,10 @@ void AddSweepOptions(CLI::App& cmd, std::vector<std::string>& sweep,
 /// Each --sweep read (ParseSweep at "command line", "--sweep").
 std::vector<SweepSpec> ParseSweeps(const std::vector<std::string>& texts);
 
-/// Writes the table (CSV with `precision`, or JSON for `format` "json") to `output` (standard
-/// output when empty) and one warning per failed row on standard error ("warning: L = 2,
+/// Adds the table (CSV with `precision`, or JSON for `format` "json") to `out` for `target`
+/// (a file or "-") and writes one warning per failed row on standard error ("warning: L = 2,
 /// theta0 = 0.5: why"). Returns the number of failed rows.
-int EmitSweepTable(const SweepTable& table, const std::string& format, CsvPrecision precision,
-                   const std::string& output = "");
+int AddSweepTable(OutputSet& out, const SweepTable& table, const std::string& format,
+                  CsvPrecision precision, const std::string& target);
 
 }  // namespace chasles::cli

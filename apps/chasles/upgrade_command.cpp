@@ -35,7 +35,7 @@ CLI::App* AddUpgradeCommand(CLI::App& app, UpgradeArgs& args) {
       ->excludes(in_place);
   cmd->add_option("--max-scene-bytes", args.max_scene_bytes,
                   "Largest scene file read, in bytes (default 16777216, 16 MiB)")
-      ->check(CLI::PositiveNumber);
+      ->check(WholeNumber(kMaxWholeNumber));
   cmd->footer(
       "Without -o or --in-place nothing is written: the diff shows what would change.\n"
       "Examples:\n"
@@ -53,7 +53,7 @@ CLI::App* AddUpgradeCommand(CLI::App& app, UpgradeArgs& args) {
 int RunUpgrade(const UpgradeArgs& args) {
   SceneOptions options;
   options.max_scene_bytes = args.max_scene_bytes;
-  if (!args.output.empty()) CheckOutputTarget(args.output);
+  if (!args.output.empty()) CheckOutputTarget(args.output, "-o");
   const SceneUpgrade u = UpgradeSceneFile(args.scene, options);
   if (!u.changed()) {
     std::fprintf(stderr, "chasles upgrade: %s is format version %d already; nothing to change\n",

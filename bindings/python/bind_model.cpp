@@ -2,6 +2,7 @@
 // and the State.
 
 #include <memory>
+#include <string>
 
 #include "bindings.h"
 #include "chasles/dynamics/newton_euler.h"
@@ -23,7 +24,7 @@ namespace {
 VectorFunction PythonVectorFunction(py::function fn) {
   return GilSafe<Vec3, const Model&, const State&>(
       std::move(fn), [](const py::function& f, const Model& /*model*/, const State& state) {
-        return f(state.t, state).cast<Vec3>();
+        return CallbackResult<Vec3>(f, f(state.t, state), "3 numbers [x, y, z]");
       });
 }
 
@@ -31,7 +32,7 @@ VectorFunction PythonVectorFunction(py::function fn) {
 ScalarFunction PythonScalarFunction(py::function fn) {
   return GilSafe<double, const Model&, const State&>(
       std::move(fn), [](const py::function& f, const Model& /*model*/, const State& state) {
-        return f(state.t, state).cast<double>();
+        return CallbackResult<double>(f, f(state.t, state), "a number");
       });
 }
 
@@ -48,8 +49,9 @@ int SenseFrom(const std::string& sense) {
 
 /// A Python callable fn(t) -> float as one function of a TimeFunction.
 std::function<double(double)> PythonTimeFunction(py::function fn) {
-  return GilSafe<double, double>(
-      std::move(fn), [](const py::function& f, double t) { return f(t).cast<double>(); });
+  return GilSafe<double, double>(std::move(fn), [](const py::function& f, double t) {
+    return CallbackResult<double>(f, f(t), "a number");
+  });
 }
 
 VectorFrame FrameFrom(const std::string& frame) {
@@ -450,6 +452,16 @@ void BindState(py::module_& m) {
         "Raises InputError when the state does not fit the model or is not finite.");
 }
 
+/// Raises IndexError naming the argument unless 0 <= index < count (a negative index is not
+/// counted from the end: a body index is a handle, not a position in a list).
+void CheckIndex(int index, int count, const char* argument, const char* count_name) {
+  if (index < 0 || index >= count) {
+    throw py::index_error(std::string(argument) + " index " + std::to_string(index) +
+                          " is out of range: the model has " + count_name + " = " +
+                          std::to_string(count) + " (0 to " + std::to_string(count - 1) + ")");
+  }
+}
+
 void BindModelClass(py::module_& m) {
   m.attr("WORLD") = kWorld;
   py::class_<Body>(m, "Body", "A free rigid body of a Model.")
@@ -478,9 +490,22 @@ void BindModelClass(py::module_& m) {
       .def_property_readonly("num_constraints", &Model::num_constraints)
       .def_property_readonly("num_contacts", &Model::num_contacts)
       .def_property_readonly("num_contact_points", &Model::num_contact_points)
-      .def("body", &Model::body, py::arg("index"), py::return_value_policy::reference_internal)
+      .def(
+          "body",
+          [](const Model& model, int index) -> const Body& {
+            CheckIndex(index, model.num_bodies(), "body", "num_bodies");
+            return model.body(index);
+          },
+          py::arg("index"), py::return_value_policy::reference_internal,
+          "The body at `index` (0 to num_bodies - 1); IndexError otherwise.")
       .def("find_body", &Model::FindBody, py::arg("name"))
-      .def("contact_point_name", &Model::contact_point_name, py::arg("point"));
+      .def(
+          "contact_point_name",
+          [](const Model& model, int point) {
+            CheckIndex(point, model.num_contact_points(), "point", "num_contact_points");
+            return model.contact_point_name(point);
+          },
+          py::arg("point"), "The name of contact point `point`; IndexError when out of range.");
 }
 
 }  // namespace

@@ -295,7 +295,8 @@ void BindSolve(py::module_& m) {
   m.def(
       "_simulate_sweep",
       [](const PyScene& s, const std::vector<std::string>& sweeps,
-         const std::vector<std::string>& quantities, double until, int jobs) {
+         const std::vector<std::string>& quantities, double until, int jobs,
+         std::int64_t max_runs) {
         std::vector<SweepSpec> specs;
         for (const std::string& t : sweeps) specs.push_back(ParseSweep(t));
         std::vector<SweepQuantity> qs;
@@ -306,21 +307,22 @@ void BindSolve(py::module_& m) {
         options.jobs = jobs;
         py::gil_scoped_release release;
         return SimulateSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, specs,
-                             qs, options, 100'000);
+                             qs, options, max_runs);
       },
-      py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("until"),
-      py::arg("jobs"));
+      py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("until"), py::arg("jobs"),
+      py::arg("max_runs"));
   m.def(
       "_mass_sweep",
       [](const PyScene& s, const std::vector<std::string>& sweeps,
-         const std::vector<std::string>& quantities, int jobs) {
+         const std::vector<std::string>& quantities, int jobs, std::int64_t max_runs) {
         std::vector<SweepSpec> specs;
         for (const std::string& t : sweeps) specs.push_back(ParseSweep(t));
         py::gil_scoped_release release;
         return MassSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, specs,
-                         quantities, jobs, {}, 100'000);
+                         quantities, jobs, {}, max_runs);
       },
-      py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("jobs"));
+      py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("jobs"),
+      py::arg("max_runs"));
   m.def(
       "parse_sweep",
       [](const std::string& text) {

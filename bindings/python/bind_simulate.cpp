@@ -1,7 +1,11 @@
 // The model-level analyses: the instantaneous solve and Simulate.
 
+#include <cmath>
+#include <string>
+
 #include "bindings.h"
 #include "chasles/analysis/instantaneous.h"
+#include "chasles/error.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/model/model.h"
 
@@ -83,17 +87,28 @@ void BindOptions(py::module_& m) {
   py::class_<EventSpec>(m, "EventSpec",
                         "An event: a zero crossing of g(t, state) located on the dense output "
                         "(Dormand-Prince only) to SimulationOptions.event_time_tolerance.")
-      .def(py::init([](std::string name, py::function g, EventDirection direction,
-                       EventAction action) {
-             EventSpec e;
-             e.name = std::move(name);
-             e.g = GilSafe<double, const Model&, const State&>(
-                 std::move(g), [](const py::function& f, const Model& /*model*/,
-                                  const State& state) { return f(state.t, state).cast<double>(); });
-             e.direction = direction;
-             e.action = action;
-             return e;
-           }),
+      .def(py::init(
+               [](std::string name, py::function g, EventDirection direction, EventAction action) {
+                 EventSpec e;
+                 e.name = std::move(name);
+                 // A NaN or an infinity cannot be located as a zero crossing: refused at once,
+                 // as the scene's events refuse one.
+                 e.g = GilSafe<double, const Model&, const State&>(
+                     std::move(g), [name = e.name](const py::function& f, const Model& /*model*/,
+                                                   const State& state) {
+                       const double v = CallbackResult<double>(f, f(state.t, state), "a number");
+                       if (!std::isfinite(v)) {
+                         throw InputError("event '" + name + "': g(t, state) returned " +
+                                          std::string(py::str(py::float_(v))) +
+                                          " at t = " + std::string(py::str(py::float_(state.t))) +
+                                          " s; an event function must return a finite number");
+                       }
+                       return v;
+                     });
+                 e.direction = direction;
+                 e.action = action;
+                 return e;
+               }),
            py::arg("name"), py::arg("g"), py::arg("direction") = EventDirection::kEither,
            py::arg("action") = EventAction::kStop)
       .def_readonly("name", &EventSpec::name)

@@ -51,4 +51,19 @@ std::function<R(Args...)> GilSafe(py::function fn, Convert convert) {
   };
 }
 
+/// What the Python `callable` returned, as T. A value of another type or shape (None, a string,
+/// 2 numbers where 3 are needed) raises TypeError naming the callable (its __qualname__) and
+/// what it must return (`expected`: "3 numbers [x, y, z]"), instead of pybind11's internal
+/// "Unable to cast". Called with the GIL held.
+template <typename T>
+T CallbackResult(const py::function& callable, const py::object& value, const char* expected) {
+  try {
+    return value.cast<T>();
+  } catch (const py::cast_error&) {
+    const py::object name = py::getattr(callable, "__qualname__", py::repr(callable));
+    throw py::type_error("the callable " + std::string(py::str(name)) + " must return " + expected +
+                         ", got " + std::string(py::repr(value)));
+  }
+}
+
 }  // namespace chasles::python

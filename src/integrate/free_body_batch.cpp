@@ -1,14 +1,15 @@
 #include "chasles/integrate/free_body_batch.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 
 #include "chasles/error.h"
+#include "chasles/integrate/parallel.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
@@ -313,13 +314,12 @@ void FreeBodyBatch::Advance(FreeBodyStepper stepper, double h, long long steps, 
   if (nt == 1) {
     run(0, n_);
   } else {
-    std::vector<std::thread> pool;
+    // nt blocks, taken by as many threads as the system starts (parallel.h).
     const int per = (n_ + nt - 1) / nt;
-    for (int k = 1; k < nt; ++k) {
-      pool.emplace_back(run, std::min(n_, k * per), std::min(n_, (k + 1) * per));
-    }
-    run(0, std::min(n_, per));
-    for (std::thread& th : pool) th.join();
+    std::atomic<int> next{0};
+    RunOnThreads(nt, [&] {
+      for (int k; (k = next++) < nt;) run(std::min(n_, k * per), std::min(n_, (k + 1) * per));
+    });
   }
   // The time as a fixed grid would count it: t₀ + k h, one rounding per step.
   for (long long k = 0; k < steps; ++k) t_ += h;

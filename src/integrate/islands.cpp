@@ -6,11 +6,11 @@
 #include <mutex>
 #include <numeric>
 #include <stdexcept>
-#include <thread>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "chasles/integrate/parallel.h"
 #include "chasles/model/string_constraint.h"
 #include "integrate/internal/hybrid.h"
 #include "integrate/internal/islands.h"
@@ -174,13 +174,8 @@ class IslandRun {
       }
     };
     const auto threads = static_cast<size_t>(std::max(1, o_.threads));
-    if (threads == 1 || n == 1) {
-      work();
-    } else {
-      std::vector<std::thread> pool;
-      for (size_t t = 0; t < std::min(threads, n); ++t) pool.emplace_back(work);
-      for (std::thread& t : pool) t.join();
-    }
+    // As many threads as the system starts (parallel.h); `work` catches its own exceptions.
+    RunOnThreads(static_cast<int>(std::min(threads, n)), work);
     for (const std::exception_ptr& e : errors) {
       if (e) std::rethrow_exception(e);
     }

@@ -380,6 +380,14 @@ class Runner {
   // The ball's (r, v, ω) at t from its chain.
   const Segment& SegAt(int i, double t) const { return chain_[static_cast<size_t>(i)].At(t); }
   // Broadphase.
+  /// The grid column or row of a coordinate: floor(v / cell), clamped to ±2^30 so that it is
+  /// an int for any finite coordinate (a ball 1e12 m out is 1e13 cells away). The cells at the
+  /// clamp hold every ball beyond it: more pair tests there, never a pair missed, as the pair
+  /// tests are exact and neighbouring cells are searched.
+  int Cell(double v) const {
+    constexpr double kMaxCell = 1 << 30;
+    return static_cast<int>(std::clamp(std::floor(v / cell_), -kMaxCell, kMaxCell));
+  }
   std::int64_t CellKey(int x, int y) const {
     return (static_cast<std::int64_t>(x) << 32) ^ static_cast<std::uint32_t>(y);
   }
@@ -673,9 +681,7 @@ void Runner::RenewBox(int i, double t) {
   // Move the ball's cell entries.
   RemoveFromGrid(i);
   std::array<int, 4>& cells = cells_of_[iu];
-  cells = {
-      static_cast<int>(std::floor(box.lo1 / cell_)), static_cast<int>(std::floor(box.hi1 / cell_)),
-      static_cast<int>(std::floor(box.lo2 / cell_)), static_cast<int>(std::floor(box.hi2 / cell_))};
+  cells = {Cell(box.lo1), Cell(box.hi1), Cell(box.lo2), Cell(box.hi2)};
   box_[iu] = box;
   horizon_[iu] = h;
   ++res_.stats.box_renewals;
@@ -837,10 +843,10 @@ void Runner::FindCluster(double t, std::vector<int>& cluster,
     const int a = cluster[k];
     const Vec3 ra = pos(a);
     const double reach = balls_[static_cast<size_t>(a)].R + R_max_ + w_.tol.gap;
-    const int x0 = static_cast<int>(std::floor((w_.e1.dot(ra) - reach) / cell_));
-    const int x1 = static_cast<int>(std::floor((w_.e1.dot(ra) + reach) / cell_));
-    const int y0 = static_cast<int>(std::floor((w_.e2.dot(ra) - reach) / cell_));
-    const int y1 = static_cast<int>(std::floor((w_.e2.dot(ra) + reach) / cell_));
+    const int x0 = Cell(w_.e1.dot(ra) - reach);
+    const int x1 = Cell(w_.e1.dot(ra) + reach);
+    const int y0 = Cell(w_.e2.dot(ra) - reach);
+    const int y1 = Cell(w_.e2.dot(ra) + reach);
     for (int x = x0; x <= x1; ++x) {
       for (int y = y0; y <= y1; ++y) {
         const auto it = grid_.find(CellKey(x, y));
@@ -1056,14 +1062,12 @@ void Runner::CheckNoOverlap(const State& initial) const {
   std::unordered_map<std::int64_t, std::vector<int>> cells;
   for (size_t i = 0; i < n; ++i) {
     const Vec3& r = initial.bodies[i].p_WBcm;
-    cells[CellKey(static_cast<int>(std::floor(w_.e1.dot(r) / cell_)),
-                  static_cast<int>(std::floor(w_.e2.dot(r) / cell_)))]
-        .push_back(static_cast<int>(i));
+    cells[CellKey(Cell(w_.e1.dot(r)), Cell(w_.e2.dot(r)))].push_back(static_cast<int>(i));
   }
   for (size_t i = 0; i < n; ++i) {
     const Vec3& r = initial.bodies[i].p_WBcm;
-    const int cx = static_cast<int>(std::floor(w_.e1.dot(r) / cell_));
-    const int cy = static_cast<int>(std::floor(w_.e2.dot(r) / cell_));
+    const int cx = Cell(w_.e1.dot(r));
+    const int cy = Cell(w_.e2.dot(r));
     for (int x = cx - 1; x <= cx + 1; ++x) {
       for (int y = cy - 1; y <= cy + 1; ++y) {
         const auto it = cells.find(CellKey(x, y));
@@ -1366,10 +1370,8 @@ Box Runner::GroupBox(const Group& g, double t) const {
 // The outside balls whose boxes overlap `box`, in index order.
 std::vector<int> Runner::BallsIn(const Box& box) const {
   std::vector<int> near;
-  for (int x = static_cast<int>(std::floor(box.lo1 / cell_));
-       x <= static_cast<int>(std::floor(box.hi1 / cell_)); ++x) {
-    for (int y = static_cast<int>(std::floor(box.lo2 / cell_));
-         y <= static_cast<int>(std::floor(box.hi2 / cell_)); ++y) {
+  for (int x = Cell(box.lo1); x <= Cell(box.hi1); ++x) {
+    for (int y = Cell(box.lo2); y <= Cell(box.hi2); ++y) {
       const auto it = grid_.find(CellKey(x, y));
       if (it == grid_.end()) continue;
       for (const int o : it->second) {

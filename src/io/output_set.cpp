@@ -1,122 +1,35 @@
+// Every file the program writes, all or nothing (chasles/io/output_set.h).
+
 #include "chasles/io/output_set.h"
 
 #include <fcntl.h>
-#include <pthread.h>
-#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
+#include <algorithm>
 #include <cerrno>
-#include <csignal>
+#include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <thread>
 
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "io/internal/output_target.h"
+#include "io/internal/temporaries.h"
 
 namespace chasles {
 
 namespace {
 
 namespace fs = std::filesystem;
+using io_internal::CannotWrite;
+using io_internal::Temporaries;
 
-// The temporaries that exist right now, for the signal handler. Changed only with the signals
-// held (SignalsHeld), so the handler never sees a half-written entry; it only reads them and
-// calls unlink, sigaction and raise, which are async-signal-safe (POSIX.1-2017, 2.4.3).
-constexpr int kSlots = 32;
-constexpr size_t kPathBytes = 4096;
-char g_temp[kSlots][kPathBytes];
-volatile sig_atomic_t g_used[kSlots];
-constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
-constexpr int kSignalCount = 3;
-struct sigaction g_previous[kSignalCount];
-bool g_installed = false;
-
-extern "C" void RemoveTemporariesAndReraise(int sig) {
-  const int saved = errno;
-  for (int i = 0; i < kSlots; ++i) {
-    if (g_used[i]) ::unlink(g_temp[i]);
-  }
-  // The disposition the program had before (normally the default: terminate), then the same
-  // signal again; it is delivered once this handler returns.
-  for (int k = 0; k < kSignalCount; ++k) {
-    if (kSignals[k] == sig) ::sigaction(sig, &g_previous[k], nullptr);
-  }
-  errno = saved;
-  ::raise(sig);
-}
-
-/// Holds SIGINT, SIGTERM and SIGHUP back for its lifetime; a signal that arrives meanwhile is
-/// delivered when it ends.
-class SignalsHeld {
- public:
-  SignalsHeld() {
-    sigset_t set;
-    sigemptyset(&set);
-    for (int s : kSignals) sigaddset(&set, s);
-    pthread_sigmask(SIG_BLOCK, &set, &old_);
-  }
-  ~SignalsHeld() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
-  SignalsHeld(const SignalsHeld&) = delete;
-  SignalsHeld& operator=(const SignalsHeld&) = delete;
-
- private:
-  sigset_t old_;
-};
-
-// With the signals held. A signal the program ignores (nohup) stays ignored.
-void InstallHandlersOnce() {
-  if (g_installed) return;
-  g_installed = true;
-  for (int k = 0; k < kSignalCount; ++k) {
-    struct sigaction now {};
-    ::sigaction(kSignals[k], nullptr, &now);
-    g_previous[k] = now;
-    if (!(now.sa_flags & SA_SIGINFO) && now.sa_handler == SIG_IGN) continue;
-    struct sigaction sa {};
-    sa.sa_handler = RemoveTemporariesAndReraise;
-    sigemptyset(&sa.sa_mask);
-    for (int s : kSignals) sigaddset(&sa.sa_mask, s);
-    ::sigaction(kSignals[k], &sa, nullptr);
-  }
-}
-
-// With the signals held.
-int Register(const std::string& temp) {
-  if (temp.size() >= kPathBytes) {
-    throw InputError(fmt::format("cannot write '{}': the path is too long", temp));
-  }
-  for (int i = 0; i < kSlots; ++i) {
-    if (!g_used[i]) {
-      std::memcpy(g_temp[i], temp.c_str(), temp.size() + 1);
-      g_used[i] = 1;
-      return i;
-    }
-  }
-  throw InputError(fmt::format("cannot write '{}': too many output files at once", temp));
-}
-
-void Unregister(int slot) {
-  if (slot >= 0) g_used[slot] = 0;
-}
-
-[[noreturn]] void CannotWrite(const std::string& path, const std::string& reason) {
-  throw InputError(fmt::format("cannot write '{}': {}", path, reason));
-}
-
-/// The nearest existing ancestor of `dir`, to say why a folder is missing.
-void ExplainMissingFolder(const std::string& path, const fs::path& dir) {
-  std::error_code ec;
-  for (fs::path q = dir.parent_path(); !q.empty() && q != q.root_path(); q = q.parent_path()) {
-    const fs::file_status s = fs::status(q, ec);
-    if (fs::exists(s)) {
-      if (!fs::is_directory(s)) {
-        CannotWrite(path, fmt::format("'{}' is a file, not a folder", q.string()));
-      }
-      break;
-    }
-  }
-  CannotWrite(path, fmt::format("the folder '{}' does not exist (create it first)", dir.string()));
-}
+/// How long a commit waits for another process to finish renaming into the same folder.
+constexpr std::chrono::seconds kFolderLockWait{10};
 
 void WriteAll(int fd, const std::string& path, const std::string& content) {
   size_t done = 0;
@@ -124,119 +37,214 @@ void WriteAll(int fd, const std::string& path, const std::string& content) {
     const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
     if (n < 0) {
       if (errno == EINTR) continue;
-      CannotWrite(path, std::strerror(errno));
+      CannotWrite(path, "", std::strerror(errno));
     }
     done += static_cast<size_t>(n);
   }
-  if (::fsync(fd) != 0 && errno != EINVAL) CannotWrite(path, std::strerror(errno));
+  if (::fsync(fd) != 0 && errno != EINVAL) CannotWrite(path, "", std::strerror(errno));
+}
+
+/// The folder of `path` ("." for a bare name).
+std::string FolderOf(const std::string& path) {
+  const fs::path dir = fs::path(path).parent_path();
+  return dir.empty() ? std::string(".") : dir.string();
+}
+
+/// Exclusive flock()s on folders for a batch of renames: another process renaming into one of
+/// them waits (two runs on one --out folder never leave the CSV of one and the JSON of the
+/// other). Taken in the order of the folders' real paths, so two processes cannot deadlock; a
+/// folder that cannot be opened for reading is not locked.
+class FolderLocks {
+ public:
+  explicit FolderLocks(const std::vector<std::string>& folders) {
+    std::vector<std::string> keys;
+    for (const std::string& f : folders) keys.push_back(io_internal::TargetKey(f + "/."));
+    std::vector<size_t> order(folders.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return keys[a] < keys[b]; });
+    for (size_t k = 0; k < order.size(); ++k) {
+      const size_t i = order[k];
+      if (k > 0 && keys[i] == keys[order[k - 1]]) continue;
+      Lock(folders[i]);
+    }
+  }
+  ~FolderLocks() {
+    for (const int fd : fds_) ::close(fd);  // closing releases the lock
+  }
+  FolderLocks(const FolderLocks&) = delete;
+  FolderLocks& operator=(const FolderLocks&) = delete;
+
+ private:
+  void Lock(const std::string& folder) {
+    const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    fds_.push_back(fd);
+    const auto give_up = std::chrono::steady_clock::now() + kFolderLockWait;
+    while (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      if (errno != EWOULDBLOCK && errno != EINTR) return;  // a file system without locks
+      if (std::chrono::steady_clock::now() > give_up) {
+        throw InputError(fmt::format(
+            "cannot write into the folder '{}': another process kept it locked for {} s while "
+            "renaming its outputs there",
+            folder, kFolderLockWait.count()));
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+  std::vector<int> fds_;
+};
+
+void WriteStandardOutput(const std::string& text) {
+  std::fwrite(text.data(), 1, text.size(), stdout);
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    throw InputError(fmt::format("cannot write to standard output: {}", std::strerror(errno)));
+  }
 }
 
 }  // namespace
 
-void CheckOutputTarget(const std::string& path) {
-  if (path.empty()) CannotWrite(path, "no file name was given");
-  const fs::path p(path);
-  std::error_code ec;
-  if (fs::is_directory(fs::status(p, ec))) {
-    CannotWrite(path, "it is a folder; give a file name");
-  }
-  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  const fs::file_status ds = fs::status(dir, ec);
-  if (!fs::exists(ds)) ExplainMissingFolder(path, dir);
-  if (!fs::is_directory(ds)) {
-    CannotWrite(path, fmt::format("'{}' is a file, not a folder", dir.string()));
-  }
-}
+struct OutputSet::Target {
+  std::string path, option, key;
+};
 
-void CreateOutputFolder(const std::string& dir) {
-  std::error_code ec;
-  for (fs::path q = dir; !q.empty() && q != q.root_path(); q = q.parent_path()) {
-    const fs::file_status s = fs::status(q, ec);
-    if (fs::exists(s)) {
-      if (!fs::is_directory(s)) {
-        throw InputError(
-            fmt::format("cannot create the output folder '{}': '{}' is a file, not "
-                        "a folder",
-                        dir, q.string()));
-      }
-      break;
-    }
-  }
-  fs::create_directories(dir, ec);
-  if (ec) {
-    throw InputError(fmt::format("cannot create the output folder '{}': {}", dir, ec.message()));
-  }
-}
+struct OutputSet::File {
+  std::string path, content, temp;
+  Temporaries::Handle handle;
+  bool has_temp = false;
+};
+
+OutputSet::OutputSet() = default;
 
 OutputSet::~OutputSet() {
   if (!committed_) Discard();
 }
 
-void OutputSet::Add(std::string path, std::string content) {
-  files_.push_back({std::move(path), std::move(content), "", -1});
+const OutputSet::Target* OutputSet::Find(const std::string& path) const {
+  for (const auto& t : targets_) {
+    if (t->path == path) return t.get();
+  }
+  return nullptr;
+}
+
+void OutputSet::Expect(const std::string& path, const std::string& option) {
+  const auto same = [&](const Target& t) {
+    const auto named = [](const std::string& opt, const std::string& p) {
+      return opt.empty() ? fmt::format("'{}'", p) : fmt::format("{} '{}'", opt, p);
+    };
+    throw InputError(fmt::format("{} and {} name the same {}; give each output its own name",
+                                 named(t.option, t.path), named(option, path),
+                                 t.key == "-" ? "output, standard output" : "file"));
+  };
+  std::string key = "-";
+  if (!IsStandardOutput(path)) {
+    // A target in a folder this set makes at Commit is checked with the folder.
+    const std::string folder = FolderOf(path);
+    const bool made_later = std::find(folders_.begin(), folders_.end(), folder) != folders_.end() &&
+                            !fs::exists(folder);
+    if (!made_later) CheckOutputTarget(path, option);
+    key = io_internal::TargetKey(path);
+  }
+  for (const auto& t : targets_) {
+    if (t->key == key) same(*t);
+  }
+  targets_.push_back(std::make_unique<Target>(Target{path, option, key}));
+}
+
+void OutputSet::ExpectFolder(const std::string& dir, const std::string& option) {
+  CheckOutputFolder(dir, option);
+  const std::string normal = FolderOf((fs::path(dir) / "x").string());
+  if (!fs::exists(normal)) folders_.push_back(normal);
+}
+
+void OutputSet::Add(const std::string& path, std::string content) {
+  if (Find(path) == nullptr) Expect(path, "");
+  if (IsStandardOutput(path)) {
+    standard_output_ += content;
+    has_standard_output_ = true;
+    return;
+  }
+  auto f = std::make_unique<File>();
+  f->path = path;
+  f->content = std::move(content);
+  files_.push_back(std::move(f));
 }
 
 void OutputSet::Discard() {
-  SignalsHeld held;
-  for (File& f : files_) {
-    if (!f.temp.empty()) ::unlink(f.temp.c_str());
-    Unregister(f.slot);
-    f.slot = -1;
-    f.temp.clear();
+  Temporaries& temps = Temporaries::Get();
+  for (auto& f : files_) {
+    if (f->has_temp) temps.Remove(f->handle);
+    f->has_temp = false;
+  }
+  for (auto it = created_.rbegin(); it != created_.rend(); ++it) ::rmdir(it->c_str());
+  created_.clear();
+}
+
+void OutputSet::WriteTemporaries() {
+  for (const std::string& dir : folders_) {
+    // Made one part at a time, so that a failed commit removes exactly what it made.
+    std::vector<fs::path> missing;
+    for (fs::path q = dir; !q.empty() && !fs::exists(q); q = q.parent_path()) missing.push_back(q);
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+      if (::mkdir(it->c_str(), 0777) == 0) {
+        created_.push_back(it->string());
+      } else if (errno != EEXIST) {
+        throw InputError(
+            fmt::format("cannot create the output folder '{}': {}", dir, std::strerror(errno)));
+      }
+    }
+  }
+  Temporaries& temps = Temporaries::Get();
+  for (auto& f : files_) {
+    // Checked again: the target may have changed during the run (a FIFO, a link put there).
+    struct stat st {};
+    if (::lstat(f->path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) CheckOutputTarget(f->path);
+    f->temp = io_internal::TemporaryPathFor(f->path);
+    const int fd = temps.Create(f->temp, &f->handle);
+    if (fd < 0) CannotWrite(f->path, "", std::strerror(errno));
+    f->has_temp = true;
+    try {
+      WriteAll(fd, f->path, f->content);
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
+    if (::close(fd) != 0) CannotWrite(f->path, "", std::strerror(errno));
+  }
+}
+
+void OutputSet::RenameAll() {
+  Temporaries& temps = Temporaries::Get();
+  std::vector<std::string> folders;
+  for (const auto& f : files_) folders.push_back(FolderOf(f->path));
+  const std::unique_lock<std::mutex> held = temps.Hold();  // the signal guard waits for us
+  const FolderLocks locks(folders);
+  for (size_t i = 0; i < files_.size(); ++i) {
+    File& f = *files_[i];
+    if (::rename(f.temp.c_str(), f.path.c_str()) != 0) {
+      const int error = errno;
+      // Take back the files of this set already in place: none of the set stays.
+      for (size_t k = 0; k < i; ++k) ::unlink(files_[k]->path.c_str());
+      for (size_t k = i; k < files_.size(); ++k) {
+        temps.RemoveHeld(files_[k]->handle);
+        files_[k]->has_temp = false;
+      }
+      CannotWrite(f.path, "", std::strerror(error));
+    }
+    temps.ForgetHeld(f.handle);
+    f.has_temp = false;
   }
 }
 
 void OutputSet::Commit() {
   try {
-    for (const File& f : files_) CheckOutputTarget(f.path);
-    static int counter = 0;
-    for (File& f : files_) {
-      const fs::path target(f.path);
-      const fs::path temp =
-          target.parent_path() /
-          fmt::format(".{}.{}-{}.tmp", target.filename().string(), ::getpid(), counter++);
-      int fd = -1;
-      {
-        // Registered before it exists, so a signal never leaves an unknown temporary.
-        SignalsHeld held;
-        InstallHandlersOnce();
-        f.slot = Register(temp.string());
-        f.temp = temp.string();
-        fd = ::open(f.temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (fd < 0) {
-          const int error = errno;
-          Unregister(f.slot);
-          f.slot = -1;
-          f.temp.clear();
-          CannotWrite(f.path, std::strerror(error));
-        }
-      }
-      try {
-        WriteAll(fd, f.path, f.content);
-      } catch (...) {
-        ::close(fd);
-        throw;
-      }
-      if (::close(fd) != 0) CannotWrite(f.path, std::strerror(errno));
-    }
-    SignalsHeld held;
-    for (size_t i = 0; i < files_.size(); ++i) {
-      File& f = files_[i];
-      if (::rename(f.temp.c_str(), f.path.c_str()) != 0) {
-        const int error = errno;
-        // Take back the files of this set already in place: none of the set stays.
-        for (size_t k = 0; k < i; ++k) ::unlink(files_[k].path.c_str());
-        CannotWrite(f.path, std::strerror(error));
-      }
-      Unregister(f.slot);
-      f.slot = -1;
-      f.temp.clear();
-    }
+    WriteTemporaries();
+    RenameAll();
     committed_ = true;
   } catch (...) {
     Discard();
     throw;
   }
+  if (has_standard_output_) WriteStandardOutput(standard_output_);
 }
 
 }  // namespace chasles

@@ -1,24 +1,26 @@
-// Units of a run's columns (chasles/scene/column_units.h). The names follow AllColumns
-// (src/scene/study_columns.cpp): per body "<body>_<suffix>", ledger columns, "W_<element>",
-// per constraint "<name>_<component>", per contact point "<label>_<quantity>".
+// Units of a run's columns (chasles/scene/column_units.h), from the columns' groups and
+// quantities (scene/internal/study_columns.h): per body "<body>_<suffix>", ledger columns,
+// "W_<element>", per constraint "<name>_<component>", per contact point "<label>_<quantity>".
 
 #include "chasles/scene/column_units.h"
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "scene/internal/study_columns.h"
 
 namespace chasles {
 
 namespace {
 
-/// Every column name of the scene's run with its unit.
-std::map<std::string, std::string> ColumnUnitTable(const Scene& scene) {
-  static const std::map<std::string, std::string> body_suffix = {
+/// The unit of a column from its group and quantity.
+std::string UnitOf(const scene_internal::ColumnInfo& c) {
+  static const std::map<std::string, std::string> body_quantity = {
       {"x", "m"},          {"y", "m"},          {"z", "m"},          {"ox", "m"},
       {"oy", "m"},         {"oz", "m"},         {"qw", ""},          {"qx", ""},
       {"qy", ""},          {"qz", ""},          {"yaw", "rad"},      {"pitch", "rad"},
@@ -27,45 +29,22 @@ std::map<std::string, std::string> ColumnUnitTable(const Scene& scene) {
       {"wy", "rad/s"},     {"wz", "rad/s"},     {"wbx", "rad/s"},    {"wby", "rad/s"},
       {"wbz", "rad/s"},    {"omega", "rad/s"},  {"ax", "m/s^2"},     {"ay", "m/s^2"},
       {"az", "m/s^2"},     {"alx", "rad/s^2"},  {"aly", "rad/s^2"},  {"alz", "rad/s^2"},
-      {"albx", "rad/s^2"}, {"alby", "rad/s^2"}, {"albz", "rad/s^2"}, {"alpha", "rad/s^2"}};
-  std::map<std::string, std::string> units = {{"t", "s"}};
-  for (const SceneBody& b : scene.bodies) {
-    for (const auto& [suffix, unit] : body_suffix) units[b.name + "_" + suffix] = unit;
-    for (const char* s : {"T_trans", "T_rot", "T"}) units[b.name + "_" + s] = "J";
-    for (const char* s : {"Px", "Py", "Pz"}) units[b.name + "_" + s] = "kg*m/s";
-    for (const char* s : {"Hx", "Hy", "Hz", "HOx", "HOy", "HOz"}) {
-      units[b.name + "_" + s] = "kg*m^2/s";
-    }
-    for (const char* s : {"dHx", "dHy", "dHz", "dHOx", "dHOy", "dHOz"}) {
-      units[b.name + "_" + s] = "N*m";
-    }
-    for (const ScenePoint& p : b.points) {
-      for (const char* s : {"vx", "vy", "vz"}) units[b.name + "_" + p.name + "_" + s] = "m/s";
-      for (const char* s : {"ax", "ay", "az"}) units[b.name + "_" + p.name + "_" + s] = "m/s^2";
-    }
-  }
-  for (const char* s : {"T_trans", "T_rot", "T", "V", "E", "W_nc", "W_friction", "W_rolling",
-                        "W_impacts", "dissipated", "jumps", "residual"}) {
-    units[s] = "J";
-  }
-  for (const SceneForce& f : scene.dynamics.forces) units["W_" + f.name] = "J";
-  for (const char* s : {"Px", "Py", "Pz"}) units[s] = "kg*m/s";
-  for (const char* s : {"Hx", "Hy", "Hz", "HOx", "HOy", "HOz"}) units[s] = "kg*m^2/s";
-  for (const std::string& n : scene.dynamics.constraints.names()) {
-    units["W_" + n] = "J";
-    for (const char* frame : {"", "_B", "_P"}) {
-      for (const char* s : {"Fx", "Fy", "Fz"}) units[n + "_" + s + frame] = "N";
-      for (const char* s : {"Mx", "My", "Mz"}) units[n + "_" + s + frame] = "N*m";
-    }
-  }
-  for (const std::string& p : scene.dynamics.contacts.point_labels()) {
-    units[p + "_mode"] = "";
-    units[p + "_N"] = "N";
-    units[p + "_f"] = "N";
-    units[p + "_slip"] = "m/s";
-    units[p + "_gap"] = "m";
-  }
-  return units;
+      {"albx", "rad/s^2"}, {"alby", "rad/s^2"}, {"albz", "rad/s^2"}, {"alpha", "rad/s^2"},
+      {"T_trans", "J"},    {"T_rot", "J"},      {"T", "J"},          {"Px", "kg*m/s"},
+      {"Py", "kg*m/s"},    {"Pz", "kg*m/s"},    {"Hx", "kg*m^2/s"},  {"Hy", "kg*m^2/s"},
+      {"Hz", "kg*m^2/s"},  {"HOx", "kg*m^2/s"}, {"HOy", "kg*m^2/s"}, {"HOz", "kg*m^2/s"},
+      {"dHx", "N*m"},      {"dHy", "N*m"},      {"dHz", "N*m"},      {"dHOx", "N*m"},
+      {"dHOy", "N*m"},     {"dHOz", "N*m"},     {"pvx", "m/s"},      {"pvy", "m/s"},
+      {"pvz", "m/s"},      {"pax", "m/s^2"},    {"pay", "m/s^2"},    {"paz", "m/s^2"}};
+  static const std::map<std::string, std::string> contact_quantity = {
+      {"mode", ""}, {"N", "N"}, {"f", "N"}, {"slip", "m/s"}, {"gap", "m"}};
+  if (c.name == "t") return "s";
+  if (c.body >= 0) return body_quantity.at(c.quantity);
+  const std::string& g = c.group;
+  if (g == "energy" || g == "work" || g == "residual") return "J";
+  if (g == "contacts") return contact_quantity.at(c.quantity);
+  if (g == "reactions" || g == "reactions_3d") return c.quantity[0] == 'F' ? "N" : "N*m";
+  return c.quantity[0] == 'P' ? "kg*m/s" : "kg*m^2/s";  // the momenta
 }
 
 }  // namespace
@@ -76,14 +55,14 @@ std::string StudyColumnUnit(const Scene& scene, const std::string& column) {
 
 std::vector<std::string> StudyColumnUnits(const Scene& scene,
                                           const std::vector<std::string>& columns) {
-  const std::map<std::string, std::string> table = ColumnUnitTable(scene);
+  const scene_internal::ColumnIndex index(scene);
   std::vector<std::string> out;
   for (const std::string& c : columns) {
-    const auto it = table.find(c);
-    if (it == table.end()) {
+    const std::optional<scene_internal::ColumnInfo> info = index.Find(c);
+    if (!info) {
       throw InputError(fmt::format("'{}' is not a column of the run of scene '{}'", c, scene.file));
     }
-    out.push_back(it->second);
+    out.push_back(UnitOf(*info));
   }
   return out;
 }

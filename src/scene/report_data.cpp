@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <string_view>
 #include <tuple>
+#include <unordered_set>
 
 #include <fmt/format.h>
 
@@ -202,9 +204,11 @@ std::vector<std::string> ReportColumns(const Scene& scene,
                                        const std::vector<std::string>& columns) {
   std::vector<std::string> out = columns;
   if (out.empty() || out.front() != "t") out.insert(out.begin(), "t");
+  const scene_internal::ColumnIndex index(scene);
+  std::unordered_set<std::string> seen(out.begin(), out.end());
   const auto add = [&](const std::string& name) {
-    for (const std::string& c : scene_internal::ExpandColumn(scene, name, nullptr)) {
-      if (std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
+    for (const std::string& c : index.Expand(name)) {
+      if (seen.insert(c).second) out.push_back(c);
     }
   };
   for (const SceneBody& b : scene.bodies) {
@@ -272,8 +276,7 @@ nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r) {
   const size_t n = r.rows.size();
   // Every column of the run, column-major. t and the poses exactly (the replay and the test
   // of the page compare them with the CSV); the rest for plotting.
-  std::map<std::string, std::string> group;
-  for (const auto& c : scene_internal::AllColumns(scene)) group.emplace(c.name, c.group);
+  const scene_internal::ColumnIndex index(scene);
   std::vector<bool> exact(r.columns.size(), false);
   if (!r.columns.empty()) exact[0] = true;
   for (const SceneBody& b : scene.bodies) {
@@ -294,10 +297,10 @@ nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r) {
   std::vector<double> values(n);
   for (size_t c = 0; c < r.columns.size(); ++c) {
     for (size_t i = 0; i < n; ++i) values[i] = r.rows[i][c];
-    const auto g = group.find(r.columns[c]);
+    const std::optional<scene_internal::ColumnInfo> info = index.Find(r.columns[c]);
     columns.push_back({{"name", r.columns[c]},
                        {"unit", units[c]},
-                       {"group", g == group.end() ? "" : g->second},
+                       {"group", info ? info->group : std::string()},
                        {"type", exact[c] ? "f8" : "f4"},
                        {"data", exact[c] ? F8(values) : F4(values)}});
   }

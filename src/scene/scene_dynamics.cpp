@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <regex>
+#include <unordered_set>
 
 #include <fmt/format.h>
 
@@ -642,15 +643,16 @@ void SceneReader::ReadOutput(const At& at, Scene& scene) {
   report_.CheckMap(at, {"columns"}, "the output settings");
   const At cols = report_.Require(at, "columns", "the output settings");
   report_.CheckSequence(cols, "a list of columns");
+  const ColumnIndex index(scene);
   std::vector<std::string> columns;
+  std::unordered_set<std::string> seen;
   for (size_t i = 0; i < cols.node.size(); ++i) {
     const At c = cols.Item(i);
     const std::string name = report_.Text(c, "a column or a group of columns");
-    std::string why;
-    const std::vector<std::string> expanded = ExpandColumn(scene, name, &why);
-    if (expanded.empty()) report_.Fail(c, why);
+    const std::vector<std::string> expanded = index.Expand(name);
+    if (expanded.empty()) report_.Fail(c, index.Unknown(name));
     for (const auto& e : expanded) {
-      if (std::find(columns.begin(), columns.end(), e) == columns.end()) columns.push_back(e);
+      if (seen.insert(e).second) columns.push_back(e);
     }
   }
   if (columns.empty() || columns.front() != "t") columns.insert(columns.begin(), "t");

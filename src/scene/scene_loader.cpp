@@ -7,6 +7,7 @@
 #include <optional>
 #include <regex>
 #include <sstream>
+#include <unordered_set>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -287,14 +288,13 @@ Scene SceneReader::Read(const YAML::Node& document) {
   const At bodies = report_.Require(root, "bodies", "a scene");
   report_.CheckSequence(bodies, "a list of bodies");
   if (bodies.node.size() == 0) report_.Fail(bodies, "the scene has no bodies; add at least one");
+  std::unordered_set<std::string> names;  // a set: a scene may have 100 000 bodies
   for (size_t i = 0; i < bodies.node.size(); ++i) {
     scene.bodies.push_back(ReadBody(bodies.Item(i), i));
-    for (size_t j = 0; j < i; ++j) {
-      if (scene.bodies[j].name == scene.bodies[i].name) {
-        report_.Fail(
-            bodies.Item(i).Child("name"),
-            fmt::format("two bodies are named '{}'; names must be unique", scene.bodies[i].name));
-      }
+    if (!names.insert(scene.bodies[i].name).second) {
+      report_.Fail(
+          bodies.Item(i).Child("name"),
+          fmt::format("two bodies are named '{}'; names must be unique", scene.bodies[i].name));
     }
   }
   ReadConstraints(root, scene);

@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -36,7 +37,6 @@ namespace chasles {
 
 namespace {
 
-using scene_internal::AllColumns;
 using scene_internal::ColumnInfo;
 
 /// Euler ZYX angles (yaw, pitch, roll) of R = Rz(yaw) Ry(pitch) Rx(roll) [rad].
@@ -971,12 +971,11 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
     return BuildModel(*shared, bodies, map);
   };
   def.events = [shared](const BodyMap& map) { return BuildEvents(*shared, map); };
-  const std::vector<scene_internal::ColumnInfo> all = scene_internal::AllColumns(scene);
+  const scene_internal::ColumnIndex columns(scene);
   for (const std::string& name : d.columns) {
-    const auto it = std::find_if(all.begin(), all.end(), [&](const scene_internal::ColumnInfo& c) {
-      return c.name == name;
-    });
-    if (it != all.end()) def.columns.push_back(*it);
+    if (std::optional<scene_internal::ColumnInfo> c = columns.Find(name)) {
+      def.columns.push_back(std::move(*c));
+    }
   }
   for (const SceneImpulse& i : d.impulses) {
     def.impulses.push_back({i.t, i.body, i.p_BoP_B, i.J, i.frame});

@@ -1,4 +1,6 @@
 #include <algorithm>
+#include <tuple>
+#include <unordered_set>
 #include <utility>
 
 #include <fmt/format.h>
@@ -45,6 +47,15 @@ const std::vector<BodyGroup>& BodyGroups() {
   return groups;
 }
 
+// A planar scene's per-body columns (group "planar"): x, y of the centre of mass, θ
+// (continuous), vx, vy, ω and α about z (chapter eqs. 8.41-8.43). x, y, vx, vy are the same
+// columns as in the 3-D groups.
+const std::vector<const char*>& PlanarSuffixes() {
+  static const std::vector<const char*> suffixes = {"x",  "y",     "theta", "vx",
+                                                    "vy", "omega", "alpha"};
+  return suffixes;
+}
+
 struct PointGroup {
   const char* group;
   /// Column suffixes and the quantities they read.
@@ -77,37 +88,13 @@ std::vector<std::string> ColumnGroups() {
   return g;
 }
 
-std::vector<ColumnInfo> AllColumns(const Scene& scene) {
+namespace {
+
+/// The columns that are not a body's, in the order after the bodies': the ledger, each
+/// force's and constraint's work, the momenta, the reactions and the contacts. Some tens per
+/// force, constraint and contact point: few enough to list.
+std::vector<ColumnInfo> SceneColumns(const Scene& scene) {
   std::vector<ColumnInfo> cols;
-  cols.push_back({"t", "t", -1, "t", ""});
-  if (scene.planar) {
-    // Planar scenes: x, y of the centre of mass, θ (continuous), vx, vy, ω and α about z
-    // (chapter eqs. 8.41-8.43). x, y, vx, vy are the same columns as in the 3-D groups.
-    for (size_t b = 0; b < scene.bodies.size(); ++b) {
-      for (const char* s : {"x", "y", "theta", "vx", "vy", "omega", "alpha"}) {
-        cols.push_back({scene.bodies[b].name + "_" + s, "planar", static_cast<int>(b), s, ""});
-      }
-    }
-  }
-  for (const auto& g : BodyGroups()) {
-    for (size_t b = 0; b < scene.bodies.size(); ++b) {
-      for (const char* s : g.suffixes) {
-        cols.push_back({scene.bodies[b].name + "_" + s, g.group, static_cast<int>(b), s, ""});
-      }
-    }
-  }
-  for (const auto& g : PointGroups()) {
-    for (size_t b = 0; b < scene.bodies.size(); ++b) {
-      for (const ScenePoint& p : scene.bodies[b].points) {
-        for (const auto& [suffix, quantity] : g.columns) {
-          ColumnInfo c{scene.bodies[b].name + "_" + p.name + "_" + suffix, g.group,
-                       static_cast<int>(b), quantity, ""};
-          c.p_BoP_B = p.p_BoP_B;
-          cols.push_back(c);
-        }
-      }
-    }
-  }
   for (const char* s : {"T_trans", "T_rot", "T", "V", "E"})
     cols.push_back({s, "energy", -1, s, ""});
   cols.push_back({"W_nc", "work", -1, "W_nc", ""});
@@ -173,40 +160,167 @@ std::vector<ColumnInfo> AllColumns(const Scene& scene) {
   return cols;
 }
 
-std::vector<std::string> ExpandColumn(const Scene& scene, const std::string& name,
-                                      std::string* why) {
-  const std::vector<ColumnInfo> all = AllColumns(scene);
-  std::vector<std::string> out;
+}  // namespace
+
+ColumnIndex::ColumnIndex(const Scene& scene) : scene_(scene), others_(SceneColumns(scene)) {
+  // The first of equal names wins, as in the order of the columns.
+  for (size_t i = 0; i < scene.bodies.size(); ++i) body_.emplace(scene.bodies[i].name, i);
+  for (size_t i = 0; i < others_.size(); ++i) other_.emplace(others_[i].name, i);
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    const auto& points = scene.bodies[b].points;
+    for (size_t p = 0; p < points.size(); ++p) {
+      point_.emplace(scene.bodies[b].name + "_" + points[p].name, std::make_pair(b, p));
+    }
+  }
+}
+
+ColumnInfo ColumnIndex::BodyColumn(size_t b, const char* group, const char* suffix) const {
+  return {scene_.bodies[b].name + "_" + suffix, group, static_cast<int>(b), suffix, ""};
+}
+
+ColumnInfo ColumnIndex::PointColumn(size_t b, size_t p, size_t group, size_t k) const {
+  const ScenePoint& point = scene_.bodies[b].points[p];
+  const auto& [suffix, quantity] = PointGroups()[group].columns[k];
+  ColumnInfo c{scene_.bodies[b].name + "_" + point.name + "_" + suffix, PointGroups()[group].group,
+               static_cast<int>(b), quantity, ""};
+  c.p_BoP_B = point.p_BoP_B;
+  return c;
+}
+
+std::optional<ColumnInfo> ColumnIndex::Find(const std::string& name) const {
+  if (name == "t") return ColumnInfo{"t", "t", -1, "t", ""};
+  // A body's column is "<body>_<suffix>": every split at an underscore whose head is a body
+  // and whose tail a suffix is a candidate; the first in the columns' order (the planar ones,
+  // then group by group, body by body) wins, as the first of equal names would.
+  std::optional<ColumnInfo> best;
+  std::tuple<int, size_t, size_t, size_t> best_key{3, 0, 0, 0};
+  for (size_t at = name.find('_'); at != std::string::npos; at = name.find('_', at + 1)) {
+    const auto body = body_.find(name.substr(0, at));
+    if (body == body_.end()) continue;
+    const std::string suffix = name.substr(at + 1);
+    const size_t b = body->second;
+    if (scene_.planar) {
+      const auto& planar = PlanarSuffixes();
+      for (size_t k = 0; k < planar.size(); ++k) {
+        if (suffix != planar[k]) continue;
+        const std::tuple<int, size_t, size_t, size_t> key{0, b, k, 0};
+        if (key < best_key) best_key = key, best = BodyColumn(b, "planar", planar[k]);
+      }
+    }
+    const auto& groups = BodyGroups();
+    for (size_t g = 0; g < groups.size(); ++g) {
+      for (size_t k = 0; k < groups[g].suffixes.size(); ++k) {
+        if (suffix != groups[g].suffixes[k]) continue;
+        const std::tuple<int, size_t, size_t, size_t> key{1, g, b, k};
+        if (key < best_key)
+          best_key = key, best = BodyColumn(b, groups[g].group, groups[g].suffixes[k]);
+      }
+    }
+  }
+  if (best) return best;
+  // A named point's column is "<body>_<point>_<suffix>".
+  const size_t last = name.rfind('_');
+  if (last != std::string::npos) {
+    const auto point = point_.find(name.substr(0, last));
+    const std::string suffix = name.substr(last + 1);
+    if (point != point_.end()) {
+      for (size_t g = 0; g < PointGroups().size(); ++g) {
+        for (size_t k = 0; k < PointGroups()[g].columns.size(); ++k) {
+          if (suffix == PointGroups()[g].columns[k].first) {
+            return PointColumn(point->second.first, point->second.second, g, k);
+          }
+        }
+      }
+    }
+  }
+  const auto other = other_.find(name);
+  if (other != other_.end()) return others_[other->second];
+  return std::nullopt;
+}
+
+bool ColumnIndex::IsGroup(const std::string& name) {
+  const std::vector<std::string> groups = ColumnGroups();
+  return std::find(groups.begin(), groups.end(), name) != groups.end();
+}
+
+void ColumnIndex::AddGroup(const std::string& name, std::vector<std::string>& out) const {
+  const size_t n = scene_.bodies.size();
+  if (name == "planar" && scene_.planar) {
+    for (size_t b = 0; b < n; ++b) {
+      for (const char* s : PlanarSuffixes()) out.push_back(scene_.bodies[b].name + "_" + s);
+    }
+  }
+  for (const BodyGroup& g : BodyGroups()) {
+    if (name != g.group) continue;
+    for (size_t b = 0; b < n; ++b) {
+      for (const char* s : g.suffixes) out.push_back(scene_.bodies[b].name + "_" + s);
+    }
+  }
+  for (size_t g = 0; g < PointGroups().size(); ++g) {
+    if (name != PointGroups()[g].group) continue;
+    for (size_t b = 0; b < n; ++b) {
+      for (size_t p = 0; p < scene_.bodies[b].points.size(); ++p) {
+        for (size_t k = 0; k < PointGroups()[g].columns.size(); ++k) {
+          out.push_back(PointColumn(b, p, g, k).name);
+        }
+      }
+    }
+  }
   static const std::vector<std::string> ledger = {
       "energy", "work", "residual", "momentum", "angular_momentum", "angular_momentum_origin"};
-  for (const auto& c : all) {
+  for (const ColumnInfo& c : others_) {
     const bool in_ledger =
         name == "ledger" && std::find(ledger.begin(), ledger.end(), c.group) != ledger.end();
     const bool all_reactions = name == "reactions_3d" && c.group == "reactions";
-    const bool match = c.group == name || c.name == name || in_ledger || all_reactions;
-    if (match && std::find(out.begin(), out.end(), c.name) == out.end()) out.push_back(c.name);
+    if (c.group == name || in_ledger || all_reactions) out.push_back(c.name);
   }
-  if (out.empty() && why) {
-    std::vector<std::string> known = ColumnGroups();
-    for (const auto& c : all) known.push_back(c.name);
-    *why = fmt::format("unknown column '{}'{}; groups: {}; or a single column such as '{}'", name,
-                       DidYouMean(name, known), fmt::join(ColumnGroups(), ", "),
-                       all.size() > 1 ? all[1].name : "t");
+}
+
+std::vector<std::string> ColumnIndex::Expand(const std::string& name) const {
+  std::vector<std::string> out;
+  if (IsGroup(name)) AddGroup(name, out);
+  const std::optional<ColumnInfo> one = Find(name);
+  if (one && std::find(out.begin(), out.end(), one->name) == out.end()) out.push_back(one->name);
+  return out;
+}
+
+std::string ColumnIndex::Unknown(const std::string& name) const {
+  // Suggestions from the groups, the scene's own columns and the columns of the bodies whose
+  // names start the unknown one (not every column of every body: there may be millions).
+  std::vector<std::string> known = ColumnGroups();
+  for (const ColumnInfo& c : others_) known.push_back(c.name);
+  for (size_t at = name.find('_'); at != std::string::npos; at = name.find('_', at + 1)) {
+    const auto body = body_.find(name.substr(0, at));
+    if (body == body_.end()) continue;
+    for (const BodyGroup& g : BodyGroups()) {
+      for (const char* s : g.suffixes) known.push_back(body->first + "_" + s);
+    }
   }
+  const std::string example =
+      scene_.bodies.empty() ? std::string("t") : scene_.bodies.front().name + "_x";
+  return fmt::format("unknown column '{}'{}; groups: {}; or a single column such as '{}'", name,
+                     DidYouMean(name, known), fmt::join(ColumnGroups(), ", "), example);
+}
+
+std::vector<std::string> ExpandColumn(const Scene& scene, const std::string& name,
+                                      std::string* why) {
+  const ColumnIndex index(scene);
+  std::vector<std::string> out = index.Expand(name);
+  if (out.empty() && why) *why = index.Unknown(name);
   return out;
 }
 
 std::vector<std::string> DefaultColumns(const Scene& scene) {
+  const ColumnIndex index(scene);
   std::vector<std::string> cols;
-  if (scene.planar) {
-    for (const char* g : {"t", "planar", "reactions", "energy", "W_nc", "residual"}) {
-      for (auto& c : ExpandColumn(scene, g, nullptr)) cols.push_back(std::move(c));
-    }
-    return cols;
-  }
-  for (const char* g : {"t", "position", "quaternion", "velocity", "angular_velocity", "energy",
-                        "W_nc", "residual"}) {
-    for (auto& c : ExpandColumn(scene, g, nullptr)) cols.push_back(std::move(c));
+  const std::vector<const char*> groups =
+      scene.planar
+          ? std::vector<const char*>{"t", "planar", "reactions", "energy", "W_nc", "residual"}
+          : std::vector<const char*>{"t",        "position",         "quaternion",
+                                     "velocity", "angular_velocity", "energy",
+                                     "W_nc",     "residual"};
+  for (const char* g : groups) {
+    for (auto& c : index.Expand(g)) cols.push_back(std::move(c));
   }
   return cols;
 }
@@ -216,13 +330,14 @@ std::vector<std::string> DefaultColumns(const Scene& scene) {
 namespace chasles {
 
 std::vector<std::string> SelectColumns(const Scene& scene, const std::vector<std::string>& names) {
+  const scene_internal::ColumnIndex index(scene);
   std::vector<std::string> columns = {"t"};
+  std::unordered_set<std::string> seen = {"t"};
   for (const std::string& name : names) {
-    std::string why;
-    const std::vector<std::string> expanded = scene_internal::ExpandColumn(scene, name, &why);
-    if (expanded.empty()) throw SceneError("command line", 0, 0, "--columns", why);
+    const std::vector<std::string> expanded = index.Expand(name);
+    if (expanded.empty()) throw SceneError("command line", 0, 0, "--columns", index.Unknown(name));
     for (const auto& e : expanded) {
-      if (std::find(columns.begin(), columns.end(), e) == columns.end()) columns.push_back(e);
+      if (seen.insert(e).second) columns.push_back(e);
     }
   }
   return columns;

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
+#include "chasles/integrate/parallel.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/expression.h"
 #include "chasles/scene/mass_report.h"
@@ -188,7 +189,7 @@ SceneOptions SweepGrid::PointOptions(const SceneOptions& base, std::int64_t k) c
 }
 
 SweepGrid MakeSweepGrid(const Scene& scene, const std::vector<SweepSpec>& specs,
-                        std::int64_t max_rows) {
+                        std::int64_t max_points) {
   const std::vector<std::string> known = ParameterNames(scene);
   const SymbolResolver resolver = [&scene](std::string_view name) -> std::optional<Symbol> {
     for (const auto& [n, q] : scene.parameters) {
@@ -228,11 +229,11 @@ SweepGrid MakeSweepGrid(const Scene& scene, const std::vector<SweepSpec>& specs,
       }
       ends[e] = v.value;
     }
-    if (grid.size > max_rows / s.count) {
+    if (grid.size > max_points / s.count) {
       fail(
-          fmt::format("the grid has more than the limit of {} rows; raise the limit with "
-                      "--max-rows",
-                      max_rows));
+          fmt::format("the grid has more points than the limit of {} runs; raise the limit with "
+                      "--max-runs N (max_runs= from Python)",
+                      max_points));
     }
     grid.size *= s.count;
     grid.specs.push_back(s);
@@ -240,11 +241,11 @@ SweepGrid MakeSweepGrid(const Scene& scene, const std::vector<SweepSpec>& specs,
     grid.stop.push_back(ends[1]);
     grid.units.push_back(SweepParameterUnit(s, q.dim));
   }
-  if (grid.size > max_rows) {
+  if (grid.size > max_points) {
     throw SceneError(specs.front().source, 0, 0, specs.front().key,
-                     fmt::format("the grid's {} rows are more than the limit of {}; raise the "
-                                 "limit with --max-rows",
-                                 grid.size, max_rows));
+                     fmt::format("the grid's {} points are more than the limit of {} runs; raise "
+                                 "the limit with --max-runs N (max_runs= from Python)",
+                                 grid.size, max_points));
   }
   return grid;
 }
@@ -351,20 +352,15 @@ void RunParallel(std::int64_t count, int jobs, const std::function<void(std::int
       if (done) done(finished);
     }
   };
-  if (threads == 1) {
-    work();
-  } else {
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(work);
-    for (std::thread& t : pool) t.join();
-  }
+  // As many threads as the system starts (chasles/integrate/parallel.h); `work` catches its own.
+  RunOnThreads(threads, work);
   if (failure) std::rethrow_exception(failure);
 }
 
 SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
                          const SceneOptions& options, const std::vector<SweepSpec>& specs,
                          const std::vector<SweepQuantity>& quantities,
-                         const SimulateSweepOptions& sweep_options, std::int64_t max_rows) {
+                         const SimulateSweepOptions& sweep_options, std::int64_t max_points) {
   if (specs.empty()) throw InputError("a sweep needs at least one --sweep");
   if (quantities.empty()) {
     throw SceneError(specs.front().source, 0, 0, "--quantity",
@@ -374,7 +370,7 @@ SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
   // Everything a point cannot change is checked once, on the scene as written: the grid, the
   // columns and the events the quantities name.
   const Scene base = load(options);
-  const SweepGrid grid = MakeSweepGrid(base, specs, max_rows);
+  const SweepGrid grid = MakeSweepGrid(base, specs, max_points);
   std::vector<std::string> columns =
       sweep_options.columns.empty() ? base.dynamics.columns : sweep_options.columns;
   std::vector<std::string> event_names;
@@ -501,7 +497,7 @@ SweepTable MassSweep(const std::function<Scene(const SceneOptions&)>& load,
                      const SceneOptions& options, const std::vector<SweepSpec>& specs,
                      const std::vector<std::string>& quantities, int jobs,
                      const std::function<void(std::int64_t, std::int64_t)>& progress,
-                     std::int64_t max_rows, const SweepShare& share) {
+                     std::int64_t max_points, const SweepShare& share) {
   if (specs.empty()) throw InputError("a sweep needs at least one --sweep");
   const auto fail = [&](const std::string& why) {
     throw SceneError(specs.front().source, 0, 0, "--quantity", why);
@@ -511,7 +507,7 @@ SweepTable MassSweep(const std::function<Scene(const SceneOptions&)>& load,
                      fmt::join(MassSweepQuantityNames(), ", ")));
   }
   const Scene base = load(options);
-  const SweepGrid grid = MakeSweepGrid(base, specs, max_rows);
+  const SweepGrid grid = MakeSweepGrid(base, specs, max_points);
   std::vector<std::string> bodies;
   for (const SceneBody& b : base.bodies) bodies.push_back(b.name);
   const std::vector<std::string> known = MassSweepQuantityNames();

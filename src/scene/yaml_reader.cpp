@@ -9,8 +9,13 @@
 namespace chasles::scene_internal {
 
 At At::Child(std::string_view key) const {
-  return At{node[std::string(key)],
-            path.empty() ? std::string(key) : path + "." + std::string(key)};
+  At child{node[std::string(key)], path.empty() ? std::string(key) : path + "." + std::string(key)};
+  if (child.node.IsDefined() && child.node.IsNull() && node.IsMap()) {
+    for (const auto& kv : node) {
+      if (kv.first.IsScalar() && kv.first.Scalar() == key) child.key_mark = kv.first.Mark();
+    }
+  }
+  return child;
 }
 
 At At::Item(size_t index) const {
@@ -38,7 +43,8 @@ void Reporter::Fail(const At& at, const std::string& message, size_t offset) con
   int line = 0;
   int column = 0;
   if (at.node.IsDefined()) {
-    const YAML::Mark mark = at.node.Mark();
+    const bool empty = at.node.IsNull() && at.key_mark.line >= 0;
+    const YAML::Mark mark = empty ? at.key_mark : at.node.Mark();
     if (mark.line >= 0) {
       line = mark.line + 1;
       column = mark.column + 1;

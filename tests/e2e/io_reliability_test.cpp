@@ -40,11 +40,11 @@ TEST(OutputPaths, MassOutputIntoAMissingFolderOntoAFolderOrUnderAFileIsExit2) {
   const CliResult missing = RunCli("mass " + scene + " -o " + Quote((dir / "nope/r.txt").string()));
   EXPECT_EQ(missing.exit_code, 2) << missing.err;
   EXPECT_THAT(missing.err,
-              HasSubstr("cannot write '" + (dir / "nope/r.txt").string() + "': the folder '" +
+              HasSubstr("cannot write '" + (dir / "nope/r.txt").string() + "' (-o): the folder '" +
                         (dir / "nope").string() + "' does not exist"));
   const CliResult folder = RunCli("mass " + scene + " -o " + Quote(dir.string()));
   EXPECT_EQ(folder.exit_code, 2) << folder.err;
-  EXPECT_THAT(folder.err, HasSubstr("cannot write '" + dir.string() + "': it is a folder"));
+  EXPECT_THAT(folder.err, HasSubstr("cannot write '" + dir.string() + "' (-o): it is a folder"));
   WriteText(dir / "plain", "x");
   const CliResult under = RunCli("mass " + scene + " -o " + Quote((dir / "plain/r.txt").string()));
   EXPECT_EQ(under.exit_code, 2) << under.err;
@@ -68,8 +68,9 @@ TEST(OutputPaths, SimulateOutUnderAFileIsExit2) {
   const CliResult onto =
       RunCli("simulate " + scene + " --until 0.01 --out " + Quote((dir / "plain").string()));
   EXPECT_EQ(onto.exit_code, 2) << onto.err;
-  EXPECT_THAT(onto.err, HasSubstr("cannot create the output folder '" + (dir / "plain").string() +
-                                  "': '" + (dir / "plain").string() + "' is a file, not a folder"));
+  EXPECT_THAT(onto.err,
+              HasSubstr("cannot create the output folder '" + (dir / "plain").string() +
+                        "' (--out): '" + (dir / "plain").string() + "' is a file, not a folder"));
   const CliResult under =
       RunCli("simulate " + scene + " --until 0.01 --out " + Quote((dir / "plain/sub").string()));
   EXPECT_EQ(under.exit_code, 2) << under.err;
@@ -354,7 +355,7 @@ TEST(AllOrNothing, AJsonThatCannotBeWrittenLeavesNoCsv) {
                              " --until 0.1 --out " + Quote(dir.string()));
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_THAT(r.err, HasSubstr("cannot write '" + (dir / "spring-mass.json").string() +
-                               "': it is a folder"));
+                               "' (--out): it is a folder"));
   EXPECT_EQ(Entries(dir), std::vector<std::string>{"spring-mass.json"});  // no CSV, no .tmp
   EXPECT_TRUE(fs::is_empty(dir / "spring-mass.json"));
   fs::remove_all(dir);

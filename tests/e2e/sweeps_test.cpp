@@ -2,7 +2,10 @@
 // run against closed forms derived here, failed points as rows with their reason, the same
 // bytes for any number of threads, each run's own files, and bad input refused with exit 2.
 
+#include <sys/wait.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -389,7 +392,7 @@ TEST(Sweep, BadInputExitsTwoWithAClearMessage) {
        "unknown column 'nope'"},
       {sim + "--sweep 'L=1 m:2 m:2' --quantity t_end --out results", "--keep-runs"},
       {sim + "--sweep 'L=1 m:2 m:10' --sweep 'theta0=0:1:10' --quantity t_end --max-runs 50",
-       "more than the limit of 50"},
+       "more points than the limit of 50 runs; raise the limit with --max-runs N"},
       {"mass " + Quote(scene) + " --sweep 'L=1 m:2 m:2' --quantity Iqq", "unknown quantity 'Iqq'"},
       {"mass " + Quote(scene) + " --sweep 'L=1 m:2 m:2' --quantity nobody.Izz", "no body 'nobody'"},
   };
@@ -398,6 +401,30 @@ TEST(Sweep, BadInputExitsTwoWithAClearMessage) {
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
     EXPECT_THAT(r.err, ::testing::HasSubstr(message)) << args;
   }
+}
+
+TEST(Sweep, AThousandJobsUnderAnAddressSpaceLimitRunOnTheThreadsThatStart) {
+  // 1000 thread stacks (8 MiB each) do not fit in 1 GB of address space: the threads that
+  // cannot start are not an error, the others share the work.
+  const std::filesystem::path dir = OutDir("sweeps_limit");
+  const std::string command = "ulimit -v 1000000 && '" + std::string(CHASLES_CLI) + "' simulate " +
+                              Quote(SourcePath("examples/spring-mass.yaml")) +
+                              " --until 0.05 --quiet --sweep 'k=100 N/m:1000 N/m:50' --quantity "
+                              "'max(block_x)' --jobs ";
+  const std::filesystem::path limited = dir / "limited.csv", reference = dir / "reference.csv";
+  const int status =
+      std::system((command + "1000 > '" + limited.string() + "' 2>/dev/null").c_str());
+  ASSERT_EQ(std::system((command + "1 > '" + reference.string() + "'").c_str()), 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  const auto read = [](const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  EXPECT_EQ(read(limited), read(reference));
+  EXPECT_THAT(read(reference), ::testing::HasSubstr("k [N/m]"));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

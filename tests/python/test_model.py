@@ -257,6 +257,22 @@ def test_bad_model_input():
         chasles.simulate(model, chasles.make_rest_state(model), t_end=-1.0)
 
 
+
+def test_indices_out_of_range_raise_index_error():
+    # A one-body model: body(1), body(10) and body(-1) name no body (a negative index is not
+    # counted from the end), and neither does a contact point of a model without contacts.
+    model = chasles.Model()
+    ball(model)
+    assert model.body(0).name == "ball"
+    for bad in (1, 10, -1):
+        with pytest.raises(IndexError, match=f"body index {bad} is out of range: the model has "
+                                             "num_bodies = 1"):
+            model.body(bad)
+    with pytest.raises(IndexError, match="point index 0 is out of range"):
+        model.contact_point_name(0)
+    with pytest.raises(TypeError):
+        model.body("ball")
+
 def test_central_gravity_and_fixed_step_integrators():
     # Inverse-square gravity mu m / r^2 towards the centre: a = -mu / r^2 along r.
     mu = 3.986e14

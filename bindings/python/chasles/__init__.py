@@ -192,36 +192,76 @@ Solution.contact = lambda self, point: _find(self.contacts, point, "point", "con
 Solution.contact.__doc__ = "The contact point called ``point``."
 
 
+def _number(name, value):
+    """``value`` as a float; TypeError naming the argument for anything but a real number."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, _np.integer, _np.floating)):
+        raise TypeError(f"{name} must be a number, got {type(value).__name__} {value!r}")
+    return float(value)
+
+
+def _seconds(name, value, positive=True):
+    """A time in seconds as the program's options take it: finite and > 0 (``positive``) or
+    >= 0; None (the scene's) is NaN for the bindings."""
+    if value is None:
+        return _math.nan
+    v = _number(name, value)
+    if not _math.isfinite(v) or v < 0 or (positive and v == 0):
+        raise InputError(f"{name} must be a finite time in seconds {'>' if positive else '>='} 0, "
+                         f"got {value!r}")
+    return v
+
+
+def _whole(name, value, low, high):
+    """A whole number from ``low`` to ``high``, as the program's count options take it."""
+    if isinstance(value, bool) or not isinstance(value, (int, _np.integer)):
+        raise TypeError(f"{name} must be a whole number, got {type(value).__name__} {value!r}")
+    if not low <= value <= high:
+        raise InputError(f"{name} must be a whole number from {low} to {high}, got {value}")
+    return int(value)
+
+
+_MAX_COUNT = 2**63 - 1   # the range of the program's counts (std::int64_t)
+_MAX_JOBS = 65536        # --jobs
+
+
 def run(scene, until=None, max_steps=0, max_rows=0, timeout=None, min_step=None):
     """Runs the scene's study (``chasles simulate``) and returns a Run.
 
     ``until`` [s] overrides the scene's end time; ``max_steps``, ``max_rows`` (0: the
-    scene's), ``timeout`` [s] and ``min_step`` [s] (None: the scene's) limit the work
-    (LimitError when reached).
+    scene's), ``timeout`` [s] (0: none) and ``min_step`` [s] (None: the scene's) limit the work
+    (LimitError when reached). Each is checked as the program's option of that name: a time
+    that is not finite and positive, or a count that is negative, raises InputError; a value
+    of another type TypeError.
     """
-    nan = _math.nan
-    result = _run_study(scene, nan if until is None else float(until), int(max_steps),
-                        int(max_rows), nan if timeout is None else float(timeout),
-                        nan if min_step is None else float(min_step))
+    result = _run_study(scene, _seconds("until", until),
+                        _whole("max_steps", max_steps, 0, _MAX_COUNT),
+                        _whole("max_rows", max_rows, 0, _MAX_COUNT),
+                        _seconds("timeout", timeout, positive=False),
+                        _seconds("min_step", min_step))
     return Run(scene, result)
 
 
-def sweep(scene, parameter, start=None, stop=None, count=None):
+def sweep(scene, parameter, start=None, stop=None, count=None, max_rows=1_000_000):
     """Solves ``scene`` over ``count`` values of ``parameter`` from ``start`` to ``stop``.
 
     Like ``chasles solve --sweep``: ``sweep(scene, "theta", "10 deg", "50 deg", 5)`` or
     ``sweep(scene, "theta=10 deg:50 deg:5")``. Bounds are expressions with units as in the
     scene file (a bare number is a plain number, e.g. an angle in radians). The scene is read again for each
-    value with its own overrides plus this one. Returns a Sweep table.
+    value with its own overrides plus this one. Returns a Sweep table. A ``count`` above
+    ``max_rows`` (``--max-rows``) raises InputError before any value is solved.
     """
     if start is None and stop is None and count is None:
         parameter, start, stop, count = parse_sweep(parameter)
     if start is None or stop is None or count is None:
         raise TypeError("sweep needs start, stop and count (or one 'NAME=START:STOP:COUNT')")
-    return Sweep(_sweep(scene, parameter, _quantity(start), _quantity(stop), int(count)))
+    count = _whole("count", count, 1, _MAX_COUNT)
+    if count > _whole("max_rows", max_rows, 1, _MAX_COUNT):
+        raise InputError(f"count: {count} values are more than the limit of {max_rows} rows; "
+                         "raise the limit with max_rows=")
+    return Sweep(_sweep(scene, parameter, _quantity(start), _quantity(stop), count))
 
 
-def simulate_sweep(scene, sweeps, quantities, until=None, jobs=0):
+def simulate_sweep(scene, sweeps, quantities, until=None, jobs=0, max_runs=100_000):
     """Runs ``scene`` at every point of a grid and tabulates quantities (``chasles simulate
     --sweep``, docs/sweeps.md).
 
@@ -230,32 +270,36 @@ def simulate_sweep(scene, sweeps, quantities, until=None, jobs=0):
     ``event(NAME)``, ``event(NAME, k)``, ``event(A) - event(B)``, ``t_end``. ``until`` [s]
     overrides the end time; ``jobs`` threads (0: every core; the table is the same for any).
     Returns a Sweep: the parameters, then the quantities; a failed point has NaN values and
-    its reason in ``errors``.
+    its reason in ``errors``. A grid of more than ``max_runs`` points (``--max-runs``) raises
+    InputError before any run.
     """
     sweeps = [sweeps] if isinstance(sweeps, str) else list(sweeps)
     quantities = [quantities] if isinstance(quantities, str) else list(quantities)
-    return Sweep(_simulate_sweep(scene, sweeps, quantities,
-                                 _math.nan if until is None else float(until), int(jobs)))
+    return Sweep(_simulate_sweep(scene, sweeps, quantities, _seconds("until", until),
+                                 _whole("jobs", jobs, 0, _MAX_JOBS),
+                                 _whole("max_runs", max_runs, 1, _MAX_COUNT)))
 
 
-def mass_sweep(scene, sweeps, quantities, jobs=0):
+def mass_sweep(scene, sweeps, quantities, jobs=0, max_runs=100_000):
     """The mass properties of ``scene`` over a grid (``chasles mass --sweep``): quantities
     named as in the mass JSON report (``mass``, ``Izz``, ``center_of_mass_z``, ``I1``, ``k1``,
     ...; ``BODY.NAME`` for a scene of several bodies). Returns a Sweep as ``simulate_sweep``.
     """
     sweeps = [sweeps] if isinstance(sweeps, str) else list(sweeps)
     quantities = [quantities] if isinstance(quantities, str) else list(quantities)
-    return Sweep(_mass_sweep(scene, sweeps, quantities, int(jobs)))
+    return Sweep(_mass_sweep(scene, sweeps, quantities, _whole("jobs", jobs, 0, _MAX_JOBS),
+                             _whole("max_runs", max_runs, 1, _MAX_COUNT)))
 
 
-def simulate(model, initial, options=None, **kwargs):
+def simulate(model, initial, options=None, max_rows=1_000_000, **kwargs):
     """Runs ``model`` from the State ``initial`` and returns a SimulationResult.
 
     Pass a SimulationOptions, or its fields as keywords (``t_end``, ``output_interval``,
     ``integrator``, ``rtol``, ``atol``, ``fixed_step``, and ``events``: a list of EventSpec).
     ``result.table(model)`` gives the samples as a Table (t, then per body x, y, z, qw..qz,
     vx..vz, wbx..wbz). Python force, driver and event callables are called with the GIL
-    held; the integration itself releases it.
+    held; the integration itself releases it. An output interval that would give more than
+    ``max_rows`` samples (as ``--max-rows``) raises InputError before the run.
     """
     if options is None:
         events = kwargs.pop("events", None)
@@ -264,6 +308,12 @@ def simulate(model, initial, options=None, **kwargs):
             options.events = list(events)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
+    max_rows = _whole("max_rows", max_rows, 1, _MAX_COUNT)
+    span, interval = options.t_end, options.output_interval
+    if interval > 0 and _math.isfinite(span) and span / interval > max_rows:
+        raise InputError(f"output_interval: {interval} s over {span} s gives more than the limit "
+                         f"of {max_rows} rows; raise the limit with max_rows= or sample less "
+                         "often")
     return _simulate(model, initial, options)
 
 
@@ -291,18 +341,51 @@ def _csv_header_name(field):
     return field, ""
 
 
-def read_csv(path):
+def read_csv(path, max_bytes=256 << 20):
     """A CSV file the program wrote (``chasles simulate``'s time series, ``chasles solve
     --sweep``'s table) as a ``Table``: each header field is the column's name, then, when it
-    has one, one space and its SI unit in brackets (``t [s]``)."""
+    has one, one space and its SI unit in brackets (``t [s]``). Read as ``chasles plot`` reads
+    it: at most ``max_bytes`` (``--max-input-bytes``; a device such as /dev/zero is refused, not
+    read until memory runs out), UTF-8, every cell a finite number. InputError names the file,
+    the line and the column otherwise."""
     import csv
+    import io
 
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
+    max_bytes = _whole("max_bytes", max_bytes, 1, _MAX_COUNT)
+    try:
+        with open(path, "rb") as f:
+            data = f.read(max_bytes + 1)
+    except OSError as e:
+        raise InputError(f"{path}: cannot read the table: {e.strerror}") from None
+    if len(data) > max_bytes:
+        raise InputError(f"{path}: the table is longer than the limit of {max_bytes} bytes; raise "
+                         "it with max_bytes= if it is meant to be read")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise InputError(f"{path}: the byte at offset {e.start} is not UTF-8") from None
+    rows = list(csv.reader(io.StringIO(text, newline="")))
     if not rows:
         raise InputError(f"{path}: empty CSV")
     names, units = zip(*(_csv_header_name(h) for h in rows[0])) if rows[0] else ((), ())
-    data = [[float(x) for x in r] for r in rows[1:] if r]
+    data = []
+    for line, row in enumerate(rows[1:], start=2):
+        if not row:
+            continue
+        values = []
+        for name, cell in zip(names, row):
+            try:
+                v = float(cell)
+            except ValueError:
+                raise InputError(f"{path}:{line}: column '{name}': '{cell[:40]}' is not a "
+                                 "number") from None
+            if not _math.isfinite(v):
+                raise InputError(f"{path}:{line}: column '{name}': {cell} is not a finite number")
+            values.append(v)
+        if len(row) != len(names):
+            raise InputError(f"{path}:{line}: {len(row)} fields where the header has "
+                             f"{len(names)}")
+        data.append(values)
     return Table(names, units, data)
 
 

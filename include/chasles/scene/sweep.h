@@ -38,10 +38,10 @@ struct SweepGrid {
 };
 
 /// Checks the specs against `scene` (each names one of its parameters, once; START and STOP
-/// are expressions of its parameters with the parameter's dimension) and the grid's size
-/// against `max_rows`. Throws SceneError at each spec's source and key.
+/// are expressions of its parameters with the parameter's dimension) and the grid's number of
+/// points against `max_points` (--max-runs). Throws SceneError at each spec's source and key.
 SweepGrid MakeSweepGrid(const Scene& scene, const std::vector<SweepSpec>& specs,
-                        std::int64_t max_rows);
+                        std::int64_t max_points);
 
 /// What a simulate sweep tabulates of each run (`--quantity`).
 struct SweepQuantity {
@@ -103,7 +103,7 @@ struct SimulateSweepOptions {
 SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
                          const SceneOptions& options, const std::vector<SweepSpec>& specs,
                          const std::vector<SweepQuantity>& quantities,
-                         const SimulateSweepOptions& sweep_options, std::int64_t max_rows);
+                         const SimulateSweepOptions& sweep_options, std::int64_t max_points);
 
 /// The quantities a mass sweep can tabulate per body, named as in the mass JSON report:
 /// mass, volume, surface_area, center_of_mass_x/y/z, Ixx Iyy Izz Ixy Ixz Iyz (the central
@@ -117,6 +117,6 @@ SweepTable MassSweep(const std::function<Scene(const SceneOptions&)>& load,
                      const SceneOptions& options, const std::vector<SweepSpec>& specs,
                      const std::vector<std::string>& quantities, int jobs,
                      const std::function<void(std::int64_t done, std::int64_t total)>& progress,
-                     std::int64_t max_rows, const SweepShare& share = {});
+                     std::int64_t max_points, const SweepShare& share = {});
 
 }  // namespace chasles

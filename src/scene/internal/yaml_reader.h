@@ -18,6 +18,10 @@ namespace chasles::scene_internal {
 struct At {
   YAML::Node node;
   std::string path;
+  /// Where the key of a child with an empty value is ("bodies:" with nothing after it): such a
+  /// value has no place of its own (yaml-cpp marks it where the next token starts, which may be
+  /// lines later or past the end of the file), so errors point at its key.
+  YAML::Mark key_mark = YAML::Mark::null_mark();
 
   At Child(std::string_view key) const;
   At Item(size_t index) const;
