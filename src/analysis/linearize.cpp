@@ -13,9 +13,13 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
 #include "chasles/model/constraints.h"
+#include "chasles/model/forces.h"
 
 namespace chasles {
 namespace {
+
+/// Name of the whole system's centre of mass among the coordinates.
+constexpr const char* kSystem = "system";
 
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
@@ -118,6 +122,20 @@ struct Readout {
   Eigen::RowVectorXd row;
 };
 
+/// Whether nothing ties the system to a place: no constraint or spring to the world (then its
+/// centre of mass moves freely, and in a turning frame its drift is a frame's artefact).
+bool TranslationInvariant(const Model& model) {
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    if (model.constraint(c).parent() == kWorld) return false;
+  }
+  for (int i = 0; i < model.num_force_elements(); ++i) {
+    if (const auto* s = dynamic_cast<const SpringDamper*>(&model.force_element(i))) {
+      if (s->body_b() == kWorld) return false;
+    }
+  }
+  return true;
+}
+
 std::vector<Readout> Readouts(const Model& model, const State& state) {
   const int n = model.num_bodies(), N = 6 * n;
   Data data = MakeData(model);
@@ -158,6 +176,16 @@ std::vector<Readout> Readouts(const Model& model, const State& state) {
     }
   }
   static const char* kAxes[3] = {"x", "y", "z"};
+  if (TranslationInvariant(model)) {
+    // The whole system's centre of mass: free, and apart from everything else.
+    double mass = 0.0;
+    for (int b = 0; b < n; ++b) mass += model.body(b).mass();
+    for (int i = 0; i < 3; ++i) {
+      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(N);
+      for (int b = 0; b < n; ++b) row[6 * b + i] = model.body(b).mass() / mass;
+      out.insert(out.begin() + i, Readout{std::string(kSystem) + "." + kAxes[i], "m", row});
+    }
+  }
   for (int b = 0; b < n; ++b) {
     for (int i = 0; i < 3; ++i) {
       rel(model.body(b).name() + ".r" + kAxes[i], "rad", kWorld, b, 3, Eigen::RowVector3d::Unit(i));
@@ -172,10 +200,11 @@ std::vector<Readout> Readouts(const Model& model, const State& state) {
 }
 
 /// Greedy choice of independent readouts on the reduced space: positions on V_q, then speeds
-/// on V_u, each accepted when independent of those before it. Returns S (d × d) and fills
-/// the names.
-MatrixXd ChooseCoordinates(const std::vector<Readout>& ro, const MatrixXd& V, int N,
-                           Linearization& lin) {
+/// — the rates of the same readouts, on δq̇ = K V_q + V_u, so that a coordinate's rate is its
+/// speed exactly and an ignorable coordinate's column of A is zero — each accepted when
+/// independent of those before it. Returns S (d × d) and fills the names.
+MatrixXd ChooseCoordinates(const std::vector<Readout>& ro, const MatrixXd& V, const MatrixXd& K,
+                           int N, Linearization& lin) {
   const int d = static_cast<int>(V.cols());
   MatrixXd S(d, d), Q(d, d);
   int k = 0;
@@ -190,7 +219,7 @@ MatrixXd ChooseCoordinates(const std::vector<Readout>& ro, const MatrixXd& V, in
     S.row(k++) = y;
     return true;
   };
-  const MatrixXd Vq = V.topRows(N), Vu = V.bottomRows(N);
+  const MatrixXd Vq = V.topRows(N), Vu = K * V.topRows(N) + V.bottomRows(N);
   for (const Readout& r : ro) {
     if (try_add(r.row * Vq)) lin.coordinates.push_back({r.name, r.unit});
   }
@@ -205,12 +234,13 @@ MatrixXd ChooseCoordinates(const std::vector<Readout>& ro, const MatrixXd& V, in
 }
 
 /// Central differences of the engine's co-moving rates along each basis column, against
-/// basis · A: the largest difference relative to the column's size.
+/// basis · A: the largest difference relative to the largest column (a column that is nearly
+/// zero is a difference of large rates, whose round-off is relative to them, not to it).
 double FiniteDifferenceCheck(const Model& model, const OperatingPoint& op,
                              const Linearization& lin) {
   Data data = MakeData(model);
   const double h = 1e-6;
-  double worst = 0.0;
+  double worst = 0.0, largest = 1e-300;
   for (int j = 0; j < lin.basis.cols(); ++j) {
     const VectorXd z = lin.basis.col(j) / lin.basis.col(j).norm();
     const VectorXd plus = internal::CalcComovingRates(
@@ -219,10 +249,10 @@ double FiniteDifferenceCheck(const Model& model, const OperatingPoint& op,
         model, internal::PerturbState(model, op.state, z, -h), op.generator, data);
     const VectorXd fd = (plus - minus) / (2.0 * h);
     const VectorXd exact = lin.basis * lin.A.col(j) / lin.basis.col(j).norm();
-    const double scale = std::max({exact.norm(), fd.norm(), 1e-300});
-    worst = std::max(worst, (fd - exact).norm() / scale);
+    largest = std::max(largest, exact.norm());
+    worst = std::max(worst, (fd - exact).norm());
   }
-  return worst;
+  return worst / largest;
 }
 
 }  // namespace
@@ -276,7 +306,7 @@ Linearization Linearize(const Model& model, const OperatingPoint& op,
   Linearization lin;
   lin.consistency = (L * X - rhs).norm() / std::max(rhs.norm(), 1e-300);
   const MatrixXd Aw = X.topRows(d);
-  const MatrixXd S = ChooseCoordinates(Readouts(model, op.state), V, N, lin);
+  const MatrixXd S = ChooseCoordinates(Readouts(model, op.state), V, K, N, lin);
   const Eigen::PartialPivLU<MatrixXd> Slu(S);
   lin.A = S * Aw * Slu.inverse();
   lin.basis = V * Slu.inverse();

@@ -6,25 +6,48 @@
 #include <numbers>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <Eigen/SVD>
 
 namespace chasles {
 namespace {
 
 using Eigen::MatrixXd;
 
-/// A coordinate taken out as rigid: by its zero column (nothing depends on it) or its zero
-/// row (its rate is identically zero).
-struct Removed {
-  int index = 0;
-  bool by_column = true;
-};
-
-/// Takes out rigid coordinates until none is left; returns them in order and the kept ones.
-std::vector<Removed> SplitRigid(const MatrixXd& A, std::vector<int>& kept) {
+/// Takes out rigid coordinates — a zero column (nothing depends on it), a zero row (its rate
+/// is identically zero), the system's free centre of mass — until none is left; returns them
+/// in order and the kept ones.
+std::vector<int> SplitRigid(const Linearization& lin, std::vector<int>& kept) {
+  const MatrixXd& A = lin.A;
+  const int m = static_cast<int>(lin.coordinates.size());
   const double tol = 1e-11 * std::max(A.norm(), 1e-300);
-  std::vector<Removed> removed;
+  std::vector<int> removed;
   kept.resize(static_cast<size_t>(A.rows()));
   for (int i = 0; i < A.rows(); ++i) kept[static_cast<size_t>(i)] = i;
+  // The system's free centre of mass (linearize.h): in a turning frame its drift couples
+  // its own coordinates (Coriolis) but nothing else; taken out whole.
+  std::vector<int> group;
+  const auto named = [&](int i) {
+    const std::string& s = i < m ? lin.coordinates[static_cast<size_t>(i)].name
+                                 : lin.speeds[static_cast<size_t>(i - m)].name;
+    return s.rfind("system.", 0) == 0 || s.rfind("d(system.", 0) == 0;
+  };
+  for (int i = 0; i < A.rows(); ++i) {
+    if (named(i)) group.push_back(i);
+  }
+  bool apart = !group.empty();
+  for (int i : group) {
+    for (int j = 0; j < A.rows(); ++j) {
+      const bool in = std::find(group.begin(), group.end(), j) != group.end();
+      if (!in && (std::abs(A(j, i)) > tol || std::abs(A(i, j)) > tol)) apart = false;
+    }
+  }
+  if (apart) {
+    for (int i : group) {
+      removed.push_back(i);
+      kept.erase(std::find(kept.begin(), kept.end(), i));
+    }
+  }
   for (bool again = true; again;) {
     again = false;
     for (size_t k = 0; k < kept.size(); ++k) {
@@ -33,7 +56,7 @@ std::vector<Removed> SplitRigid(const MatrixXd& A, std::vector<int>& kept) {
       for (int j : kept)
         col = std::max(col, std::abs(A(j, i))), row = std::max(row, std::abs(A(i, j)));
       if (col <= tol || row <= tol) {
-        removed.push_back({i, col <= tol});
+        removed.push_back(i);
         kept.erase(kept.begin() + static_cast<long>(k));
         again = true;
         break;
@@ -41,6 +64,35 @@ std::vector<Removed> SplitRigid(const MatrixXd& A, std::vector<int>& kept) {
     }
   }
   return removed;
+}
+
+/// Takes out of `Ak` the zero eigenvalues left by conserved quantities (a precessing top's
+/// momenta, a rolling disk's): while its smallest singular value is round-off (1e-13 of
+/// |A|), turns its null vector into the first coordinate by a Householder reflection Q (then
+/// Qᵀ Ak Q has a zero first column) and keeps the rest. Returns how many it took out.
+int DeflateConserved(MatrixXd& Ak, double scale) {
+  int count = 0;
+  while (Ak.rows() > 0) {
+    Eigen::JacobiSVD<MatrixXd> svd(Ak, Eigen::ComputeFullV);
+    const Eigen::Index k = Ak.rows();
+    if (svd.singularValues()[k - 1] > 1e-13 * scale) break;
+    const Eigen::VectorXd v = svd.matrixV().col(k - 1);
+    Eigen::HouseholderQR<MatrixXd> qr(v);
+    const MatrixXd Q = qr.householderQ();
+    const MatrixXd B = Q.transpose() * Ak * Q;
+    Ak = B.bottomRightCorner(k - 1, k - 1);
+    ++count;
+  }
+  return count;
+}
+
+/// The eigenvector of A for λ: the right singular vector of A - λ E for its smallest
+/// singular value.
+Eigen::VectorXcd ShapeOf(const MatrixXd& A, std::complex<double> lambda) {
+  const Eigen::MatrixXcd M =
+      A.cast<std::complex<double>>() - lambda * Eigen::MatrixXcd::Identity(A.rows(), A.cols());
+  Eigen::JacobiSVD<Eigen::MatrixXcd> svd(M, Eigen::ComputeFullV);
+  return svd.matrixV().col(A.cols() - 1);
 }
 
 Mode MakeMode(std::complex<double> lambda, Eigen::VectorXcd shape, int m, double scale) {
@@ -73,7 +125,7 @@ ModalAnalysis CalcModes(const Linearization& lin) {
   const int d = static_cast<int>(A.rows());
   const int m = static_cast<int>(lin.coordinates.size());
   std::vector<int> kept;
-  const std::vector<Removed> removed = SplitRigid(A, kept);
+  const std::vector<int> removed = SplitRigid(lin, kept);
   const int k = static_cast<int>(kept.size());
   MatrixXd Ak(k, k);
   for (int i = 0; i < k; ++i) {
@@ -81,40 +133,39 @@ ModalAnalysis CalcModes(const Linearization& lin) {
       Ak(i, j) = A(kept[static_cast<size_t>(i)], kept[static_cast<size_t>(j)]);
   }
   std::vector<Mode> modes;
-  if (k > 0) {
-    Eigen::EigenSolver<MatrixXd> es(Ak);
-    const double scale = std::max(es.eigenvalues().cwiseAbs().maxCoeff(), 1e-300);
-    for (int e = 0; e < k; ++e) {
+  const double scale = std::max(A.norm(), 1e-300);
+  const int conserved = DeflateConserved(Ak, scale);
+  if (Ak.rows() > 0) {
+    Eigen::EigenSolver<MatrixXd> es(Ak, false);
+    for (int e = 0; e < Ak.rows(); ++e) {
       const std::complex<double> lambda = es.eigenvalues()[e];
       if (lambda.imag() < 0.0) continue;
-      Eigen::VectorXcd v = Eigen::VectorXcd::Zero(d);
-      for (int i = 0; i < k; ++i) v[kept[static_cast<size_t>(i)]] = es.eigenvectors()(i, e);
-      // Complete the shape over the rigid coordinates, last taken out first: a zero-column
-      // coordinate follows λ x_i = Σ_j A_ij x_j; a zero-row one stays 0.
-      for (auto it = removed.rbegin(); it != removed.rend(); ++it) {
-        if (!it->by_column || std::abs(lambda) == 0.0) continue;
-        std::complex<double> s = 0.0;
-        for (int j = 0; j < d; ++j) s += A(it->index, j) * v[j];
-        v[it->index] = s / lambda;
-      }
-      modes.push_back(MakeMode(lambda, v, m, scale));
+      modes.push_back(MakeMode(lambda, ShapeOf(A, lambda), m, scale));
     }
     std::sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) {
       return std::abs(a.eigenvalue) < std::abs(b.eigenvalue);
     });
   }
-  out.max_real_part = modes.empty() ? 0.0 : -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < conserved; ++c) {
+    Mode mode = MakeMode(0.0, ShapeOf(A, 0.0), m, 1.0);
+    mode.rigid = true;
+    mode.rigid_coordinate = "conserved quantity";
+    modes.push_back(mode);
+  }
+  out.max_real_part = -std::numeric_limits<double>::infinity();
   for (const Mode& mode : modes) {
+    if (mode.rigid) continue;
     out.stable = out.stable && mode.stable;
     out.max_real_part = std::max(out.max_real_part, mode.eigenvalue.real());
   }
-  for (const Removed& r : removed) {
+  if (!std::isfinite(out.max_real_part)) out.max_real_part = 0.0;
+  for (const int r : removed) {
     Eigen::VectorXcd v = Eigen::VectorXcd::Zero(d);
-    v[r.index] = 1.0;
+    v[r] = 1.0;
     Mode mode = MakeMode(0.0, v, m, 1.0);
     mode.rigid = true;
-    mode.rigid_coordinate = r.index < m ? lin.coordinates[static_cast<size_t>(r.index)].name
-                                        : lin.speeds[static_cast<size_t>(r.index - m)].name;
+    mode.rigid_coordinate = r < m ? lin.coordinates[static_cast<size_t>(r)].name
+                                  : lin.speeds[static_cast<size_t>(r - m)].name;
     modes.push_back(mode);
   }
   out.modes = std::move(modes);

@@ -223,7 +223,15 @@ OperatingPoint MakeSteadyMotion(const Model& model, const State& start) {
     X.block<3, 1>(6 * b + 3, static_cast<int>(turns.size() + 3 + s)) =
         data.R_WB[static_cast<size_t>(b)] * a;
   }
-  const VectorXd c = X.completeOrthogonalDecomposition().solve(target);
+  // Spins and translations first: a body spinning about a vertical axis of symmetry (a
+  // sleeping top) is then seen as spinning, not as the world turning, so that the modes'
+  // frequencies are the inertial ones; the turns only when they are needed (a precession).
+  MatrixXd X0 = X;
+  X0.leftCols(static_cast<int>(turns.size())).setZero();
+  VectorXd c = X0.completeOrthogonalDecomposition().solve(target);
+  if ((X0 * c - target).norm() > 1e-10 * target.norm()) {
+    c = X.completeOrthogonalDecomposition().solve(target);
+  }
   for (size_t t = 0; t < turns.size(); ++t) op.generator.w_W += c[static_cast<int>(t)] * turns[t];
   op.generator.v_W = c.segment<3>(static_cast<int>(turns.size()));
   for (size_t s = 0; s < spins.size(); ++s) {

@@ -30,7 +30,9 @@ namespace chasles {
 /// A named coordinate of the reduced state.
 struct LinearCoordinate {
   /// "steer" (a joint's angle or slide), "frame.rx" (a body's small rotation about W's x),
-  /// "frame.x" (its centre of mass's position); a speed is named "d(steer)/dt".
+  /// "frame.x" (its centre of mass's position), "system.x" (the whole system's centre of mass,
+  /// first when nothing ties it to the world); a speed is named "d(steer)/dt", the rate of its
+  /// coordinate.
   std::string name;
   /// "rad", "m", "rad/s" or "m/s".
   std::string unit;
@@ -49,7 +51,7 @@ struct Linearization {
   double consistency = 0.0;
   /// With LinearizeOptions::finite_difference_check: the largest difference between A's
   /// columns and central differences (step 1e-6) of the engine's own accelerations
-  /// (CalcAccelerations, not the kernels), relative to the column; NaN when not asked.
+  /// (CalcAccelerations, not the kernels), relative to the largest column; NaN when not asked.
   double finite_difference_check = std::numeric_limits<double>::quiet_NaN();
 };
 

@@ -35,15 +35,20 @@ struct Mode {
   bool stable = true;
   /// A rigid mode (λ = 0 by a symmetry).
   bool rigid = false;
-  /// For a rigid mode, the coordinate or speed it frees.
+  /// For a rigid mode, the coordinate or speed it frees ("conserved quantity" for one that
+  /// none does).
   std::string rigid_coordinate;
   /// The shape over Linearization::coordinates then ::speeds (complex; the largest
   /// coordinate entry is 1, or the largest speed entry when no coordinate moves).
   Eigen::VectorXcd shape;
 };
 
-/// Relative size of Re λ below which a mode counts as neutral, not growing.
-inline constexpr double kNeutral = 1e-9;
+/// Relative size (to the largest |λ|) of Re λ below which a mode counts as neutral, not
+/// growing: the round-off of a simple eigenvalue.
+inline constexpr double kNeutral = 1e-12;
+/// Relative size of |λ| below which a mode that no coordinate frees is rigid all the same (a
+/// conserved quantity's zero eigenvalue: a steady precession's momenta).
+inline constexpr double kConservedZero = 1e-11;
 
 struct ModalAnalysis {
   Linearization linearization;

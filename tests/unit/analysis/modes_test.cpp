@@ -35,6 +35,16 @@ std::vector<double> Frequencies(const ModalAnalysis& a) {
   return w;
 }
 
+/// The modes, for failure messages.
+std::string Describe(const ModalAnalysis& a) {
+  std::string out;
+  for (const Mode& m : a.modes) {
+    out += fmt::format("  {:.12g} {:+.12g}i {}{}\n", m.eigenvalue.real(), m.eigenvalue.imag(),
+                       m.rigid ? "rigid " : "", m.rigid_coordinate);
+  }
+  return out;
+}
+
 int CountRigid(const ModalAnalysis& a) {
   return static_cast<int>(
       std::count_if(a.modes.begin(), a.modes.end(), [](const Mode& m) { return m.rigid; }));
@@ -231,7 +241,7 @@ TEST(Modes, TorqueFreeRotationMajorMinorIntermediate) {
     const Study s = Build(SpinningBox(a, b, c, fmt::format("[{}, 0, 0]", W)));
     const ModalAnalysis modes = AnalyseModes(*s.model, MakeSteadyMotion(*s.model, s.initial));
     const double wn = W * std::sqrt((I2 - I1) * (I3 - I1) / (I2 * I3));
-    EXPECT_TRUE(modes.stable);
+    EXPECT_TRUE(modes.stable) << Describe(modes);
     const std::vector<double> w = Frequencies(modes);
     EXPECT_TRUE(
         std::any_of(w.begin(), w.end(), [&](double x) { return std::abs(x - wn) < kTol * wn; }))
@@ -244,6 +254,147 @@ TEST(Modes, TorqueFreeRotationMajorMinorIntermediate) {
     EXPECT_FALSE(modes.stable);
     EXPECT_NEAR(modes.max_real_part, sigma, kTol * sigma);
   }
+}
+
+// A sleeping top: a solid cylinder (radius ρ, length h, mass m) on a spherical joint at its
+// lower end, its centre of mass l = h/2 above, spinning at Ω about the vertical. With
+// I₁ = m (3ρ² + h²)/12 + m l² about the pivot and I₃ = m ρ²/2, the tilt obeys
+//   I₁ λ² - i I₃ Ω λ... : λ = i (I₃ Ω ± √(I₃² Ω² - 4 I₁ m g l)) / (2 I₁),
+// neutral exactly when Ω² >= 4 m g l I₁ / I₃² (the sleeping top's threshold).
+std::string SleepingTop(double rho, double h, double m, double W) {
+  return fmt::format(R"(
+chasles: 1
+bodies:
+  - name: top
+    parts: [{{shape: cylinder, radius: {rho}, length: {h}, mass: {m}, position: [0, 0, {l}]}}]
+    initial: {{angular_velocity: [0, 0, {W}]}}
+gravity: standard
+joints:
+  - {{name: tip, type: spherical, parent: world, child: top, at: [0, 0, 0]}}
+)",
+                     fmt::arg("rho", rho), fmt::arg("h", h), fmt::arg("m", m), fmt::arg("l", h / 2),
+                     fmt::arg("W", W));
+}
+
+TEST(Modes, SleepingTopThresholdAndFrequencies) {
+  const double rho = 0.04, h = 0.06, m = 0.7, l = h / 2;
+  const double I1 = m * (3 * rho * rho + h * h) / 12 + m * l * l, I3 = m * rho * rho / 2;
+  const double Wc = std::sqrt(4 * m * kG * l * I1 / (I3 * I3));
+  const auto analyse = [&](double W) {
+    const Study s = Build(SleepingTop(rho, h, m, W));
+    return AnalyseModes(*s.model, MakeSteadyMotion(*s.model, s.initial));
+  };
+  {
+    const double W = 1.5 * Wc;
+    const ModalAnalysis modes = analyse(W);
+    EXPECT_TRUE(modes.stable);
+    const double root = std::sqrt(I3 * I3 * W * W - 4 * I1 * m * kG * l);
+    const double slow = (I3 * W - root) / (2 * I1), fast = (I3 * W + root) / (2 * I1);
+    const std::vector<double> w = Frequencies(modes);
+    ASSERT_EQ(w.size(), 2u);
+    EXPECT_NEAR(w[0], slow, kTol * slow);
+    EXPECT_NEAR(w[1], fast, kTol * fast);
+  }
+  EXPECT_FALSE(analyse(0.9 * Wc).stable);
+  std::vector<double> grid;
+  for (int i = 0; i <= 6; ++i) grid.push_back(Wc * (0.5 + 0.25 * i));
+  const std::vector<StabilityChange> changes = FindStabilityChanges(analyse, grid);
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_NEAR(changes[0].value, Wc, kTol * Wc);
+  EXPECT_TRUE(changes[0].stable_after);
+}
+
+// A heavy symmetric top in steady precession (examples/heavy-top.yaml): tilt θ₀, precession
+// rate Ω_p, spin ω₃ along the axis, A and C about the tip. With p_φ = C ω₃ and
+// p_ψ = A Ω_p sin²θ₀ + C ω₃ cos θ₀ conserved, Routh's reduced potential
+//   U(θ) = N² / (2 A sin²θ) + m g l cos θ,  N = p_ψ - p_φ cos θ,
+// has U'(θ₀) = 0 and the nutation frequency is ω² = U''(θ₀)/A. With s = sin θ, c = cos θ,
+// N' = p_φ s, P = p_φ s² - N c, P' = p_φ s c + N s, the first term's derivative is
+// g/A with g = N P / s³ and g' = N' P / s³ + N P' / s³ - 3 N P c / s⁴, so
+//   ω² = (g'(θ₀)/A - m g l c) / A.
+TEST(Modes, HeavyTopNutationFrequency) {
+  const double m = 0.5, R = 0.03, hh = 0.08, l = 0.75 * hh, th = 0.5, w3 = 600.0;
+  const double A = 3.0 / 20 * m * R * R + 3.0 / 80 * m * hh * hh + m * l * l, C = 0.3 * m * R * R;
+  const double Op = (C * w3 - std::sqrt(C * C * w3 * w3 - 4 * A * std::cos(th) * m * kG * l)) /
+                    (2 * A * std::cos(th));
+  const std::string scene = fmt::format(
+      R"(
+chasles: 1
+bodies:
+  - name: top
+    points: {{tip: [0, 0, 0]}}
+    parts: [{{shape: custom, mass: {m}, center_of_mass: [0, 0, {l}], inertia: {{Ixx: {Acm}, Iyy: {Acm}, Izz: {C}}}}}]
+    initial:
+      velocity_point: tip
+      velocity: [0, 0, 0]
+      rotation: {{axis: [0, 1, 0], angle: {th}}}
+      angular_velocity: [{wx}, 0, {wz}]
+gravity: standard
+joints:
+  - {{name: tip, type: spherical, parent: world, child: top, at: [0, 0, 0]}}
+)",
+      fmt::arg("m", m), fmt::arg("l", l), fmt::arg("Acm", A - m * l * l), fmt::arg("C", C),
+      fmt::arg("th", th), fmt::arg("wx", (w3 - Op * std::cos(th)) * std::sin(th)),
+      fmt::arg("wz", Op + (w3 - Op * std::cos(th)) * std::cos(th)));
+  const Study s = Build(scene);
+  const OperatingPoint op = MakeSteadyMotion(*s.model, s.initial);
+  EXPECT_LT(op.residual, 1e-12);
+  EXPECT_NEAR(op.generator.w_W.z(), Op, 1e-12 * Op);
+  LinearizeOptions opts;
+  opts.finite_difference_check = true;
+  const ModalAnalysis modes = AnalyseModes(*s.model, op, opts);
+  const double sn = std::sin(th), cs = std::cos(th);
+  const double pphi = C * w3, N = A * Op * sn * sn;
+  const double P = pphi * sn * sn - N * cs, Pd = pphi * sn * cs + N * sn, Nd = pphi * sn;
+  const double gd =
+      Nd * P / std::pow(sn, 3) + N * Pd / std::pow(sn, 3) - 3 * N * P * cs / std::pow(sn, 4);
+  const double wnut = std::sqrt((gd / A - m * kG * l * cs) / A);
+  const std::vector<double> w = Frequencies(modes);
+  EXPECT_TRUE(
+      std::any_of(w.begin(), w.end(), [&](double x) { return std::abs(x - wnut) < kTol * wnut; }))
+      << "no mode at " << wnut << "; first " << (w.empty() ? 0.0 : w.back());
+  EXPECT_TRUE(modes.stable) << Describe(modes);
+  EXPECT_LT(modes.linearization.finite_difference_check, 1e-6);
+}
+
+// A thin uniform disk (mass m, radius r) rolling upright at speed v on a plane: with
+// I₁ = m r²/4 about a diameter and I₃ = m r²/2 about the axle, the lean is neutral exactly when
+//   ω² = (v/r)² >= m g r I₁ / (I₃ (I₃ + m r²)) = g / (3 r)
+// (Routh; the rolling disk's linearised lean and steer equations).
+std::string RollingDisk(double r, double m, double v) {
+  return fmt::format(R"(
+chasles: 1
+bodies:
+  - name: disk
+    parts: [{{shape: disk, radius: {r}, mass: {m}}}]
+    initial:
+      position: [0, 0, {r}]
+      rotation: {{axis: [1, 0, 0], angle: 90 deg}}
+      velocity: [{v}, 0, 0]
+      angular_velocity: [0, {w}, 0]
+gravity: standard
+rolling:
+  - {{name: floor, body: disk, shape: disk, radius: {r}, axis: [0, 0, 1],
+     plane: {{point: [0, 0, 0], normal: [0, 0, 1]}}}}
+)",
+                     fmt::arg("r", r), fmt::arg("m", m), fmt::arg("v", v), fmt::arg("w", v / r));
+}
+
+TEST(Modes, RollingDiskStableAboveTheClosedFormSpeed) {
+  const double r = 0.3, m = 2.0;
+  const double vc = r * std::sqrt(kG / (3 * r));
+  const auto analyse = [&](double v) {
+    const Study s = Build(RollingDisk(r, m, v));
+    return AnalyseModes(*s.model, MakeSteadyMotion(*s.model, s.initial));
+  };
+  EXPECT_TRUE(analyse(1.3 * vc).stable) << Describe(analyse(1.3 * vc));
+  EXPECT_FALSE(analyse(0.7 * vc).stable) << Describe(analyse(0.7 * vc));
+  std::vector<double> grid;
+  for (int i = 0; i <= 4; ++i) grid.push_back(vc * (0.6 + 0.2 * i));
+  const std::vector<StabilityChange> changes = FindStabilityChanges(analyse, grid);
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_NEAR(changes[0].value, vc, kTol * vc);
+  EXPECT_TRUE(changes[0].stable_after);
 }
 
 }  // namespace
