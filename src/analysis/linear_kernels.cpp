@@ -2,10 +2,11 @@
 
 #include <fmt/format.h>
 
-#include "analysis/internal/dual.h"
 #include "chasles/error.h"
+#include "chasles/math/dual.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/forces.h"
+#include "chasles/model/surface_rolling.h"
 
 namespace chasles::internal {
 namespace {
@@ -158,6 +159,22 @@ void RollingRows(const Model& model, const RollingContact& rc, const LinearBase&
   if (rc.shape() == RollingShape::kCylinder) w.Angular(k0 + 3, pb, cb, V3<T>(e.cross(n)));
 }
 
+// Rolling on a curved surface (model/surface_rolling.h): its own geometry, written once.
+template <class T>
+void SurfaceRows(const Model& model, const SurfaceRolling& sr, const LinearBase& base,
+                 const VecX<T>& x, int k0, RowWriter<T>& w) {
+  const BodyIndex cb = sr.child();
+  const Side<T> P = GetSide(base, x, kWorld), C = GetSide(base, x, cb);
+  const V3<T> c = BodyPoint(model, C, cb, sr.p_BoC_B()).p;
+  const SurfaceContactGeometry<T> g = sr.CalcGeometry<T>(c, C.R);
+  const V3<T> dirs[3] = {g.n, g.t1, g.t2};
+  for (int k = 0; k < 3; ++k) w.RelativePoint(k0 + k, kWorld, P, cb, C, g.p_C, dirs[k]);
+  if (sr.body_shape() == SurfaceShape::kCylinder) {
+    w.Angular(k0 + 3, kWorld, cb, V3<T>(g.e.cross(sr.b1().cast<T>())));
+    w.Angular(k0 + 4, kWorld, cb, V3<T>(g.e.cross(sr.b2().cast<T>())));
+  }
+}
+
 template <class T>
 void AddForceAtPoint(VecX<T>& f, BodyIndex b, const V3<T>& r, const V3<T>& F) {
   if (b == kWorld) return;
@@ -225,7 +242,8 @@ void CheckLinearisable(const Model& model) {
   for (int c = 0; c < model.num_constraints(); ++c) {
     const Constraint& k = model.constraint(c);
     if (dynamic_cast<const Joint*>(&k) == nullptr &&
-        dynamic_cast<const RollingContact*>(&k) == nullptr) {
+        dynamic_cast<const RollingContact*>(&k) == nullptr &&
+        dynamic_cast<const SurfaceRolling*>(&k) == nullptr) {
       throw InputError(fmt::format(
           "constraint '{}': a linearisation handles joints and rolling; a {} is not linearised",
           k.name(), k.kind()));
@@ -253,6 +271,9 @@ void EvaluateKernels(const Model& model, const LinearBase& base, const VecX<T>& 
     if (const auto* j = dynamic_cast<const Joint*>(&k)) JointRows(model, *j, base, x, k0, w);
     if (const auto* r = dynamic_cast<const RollingContact*>(&k)) {
       RollingRows(model, *r, base, x, k0, w);
+    }
+    if (const auto* r = dynamic_cast<const SurfaceRolling*>(&k)) {
+      SurfaceRows(model, *r, base, x, k0, w);
     }
   }
   ForceElementForces(model, base, x, out.f);

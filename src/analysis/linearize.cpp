@@ -7,11 +7,11 @@
 #include <Eigen/Dense>
 
 #include "analysis/internal/comoving.h"
-#include "analysis/internal/dual.h"
 #include "analysis/internal/linear_kernels.h"
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
+#include "chasles/math/dual.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/forces.h"
 
@@ -23,7 +23,6 @@ constexpr const char* kSystem = "system";
 
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
-using internal::Dual;
 
 Mat3 Skew(const Vec3& a) {
   Mat3 S;

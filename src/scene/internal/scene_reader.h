@@ -124,6 +124,8 @@ class SceneReader {
   void ReadInitial(const At& at, const SceneBody& body, SceneInitialState& initial);
   void ReadCable(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
   void ReadStringPull(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
+  /// A rolling contact's `surface` (scene_surface_rolling.cpp).
+  void ReadRollingSurface(const At& at, const std::string& what, SceneRolling& r);
   void ReadJointTorque(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
   SceneForce ReadForce(const At& at, const Scene& scene, size_t index);
   SceneEvent ReadEvent(const At& at, size_t index, const Scene& scene);

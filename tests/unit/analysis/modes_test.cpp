@@ -397,5 +397,61 @@ TEST(Modes, RollingDiskStableAboveTheClosedFormSpeed) {
   EXPECT_TRUE(changes[0].stable_after);
 }
 
+// A solid cylinder (radius r, mass m) rolling without slipping inside a fixed trough of radius
+// R (a circular cylinder, axes parallel): with θ the angle of its centre from the bottom,
+// the rolling gives its spin (R - r) θ̇ / r, so T = ½ m (R - r)² θ̇² + ½ (½ m r²)((R - r) θ̇/r)²
+// = ¾ m (R - r)² θ̇², V = m g (R - r)(1 - cos θ), and ω² = 2 g / (3 (R - r)).
+TEST(Modes, CylinderInATrough) {
+  const double r = 0.05, R = 0.4, m = 1.2, len = 0.1;
+  const std::string scene =
+      fmt::format(R"(
+chasles: 1
+bodies:
+  - name: roller
+    parts: [{{shape: cylinder, radius: {r}, length: {len}, mass: {m}, position: [0, 0, {r}],
+              rotation: {{axis: [1, 0, 0], angle: 90 deg}}}}]
+gravity: standard
+rolling:
+  - {{name: trough, body: roller, shape: cylinder, radius: {r}, axis: [0, 1, 0],
+     surface: {{shape: cylinder, center: [0, 0, {R}], axis: [0, 1, 0], radius: {R}, side: inside}}}}
+)",
+                  fmt::arg("r", r), fmt::arg("len", len), fmt::arg("m", m), fmt::arg("R", R));
+  const Study s = Build(scene);
+  LinearizeOptions opts;
+  opts.finite_difference_check = true;
+  const ModalAnalysis modes = AnalyseModes(*s.model, FindEquilibrium(*s.model, s.initial), opts);
+  const double w = std::sqrt(2 * kG / (3 * (R - r)));
+  const std::vector<double> f = Frequencies(modes);
+  ASSERT_EQ(f.size(), 1u) << Describe(modes);
+  EXPECT_NEAR(f[0], w, kTol * w);
+  EXPECT_LT(modes.linearization.finite_difference_check, 1e-6);
+}
+
+// A solid ball (radius r) rolling in a spherical bowl (radius R): T = ½ (7/5) m (R - r)² θ̇²,
+// so ω² = 5 g / (7 (R - r)) in both directions across the bottom.
+TEST(Modes, BallInABowl) {
+  const double r = 0.03, R = 0.5, m = 0.4;
+  const std::string scene = fmt::format(R"(
+chasles: 1
+bodies:
+  - name: ball
+    parts: [{{shape: sphere, radius: {r}, mass: {m}, position: [0, 0, {r}]}}]
+gravity: standard
+rolling:
+  - {{name: bowl, body: ball, shape: sphere, radius: {r},
+     surface: {{shape: sphere, center: [0, 0, {R}], radius: {R}, side: inside}}}}
+)",
+                                        fmt::arg("r", r), fmt::arg("m", m), fmt::arg("R", R));
+  const Study s = Build(scene);
+  LinearizeOptions opts;
+  opts.finite_difference_check = true;
+  const ModalAnalysis modes = AnalyseModes(*s.model, FindEquilibrium(*s.model, s.initial), opts);
+  const double w = std::sqrt(5 * kG / (7 * (R - r)));
+  const std::vector<double> f = Frequencies(modes);
+  ASSERT_EQ(f.size(), 2u) << Describe(modes);
+  for (double x : f) EXPECT_NEAR(x, w, kTol * w);
+  EXPECT_LT(modes.linearization.finite_difference_check, 1e-6);
+}
+
 }  // namespace
 }  // namespace chasles

@@ -1,16 +1,17 @@
 #pragma once
 /// @file
 /// Forward-mode dual numbers a + b ε (ε² = 0) for the exact first derivatives of the
-/// linearisation (analysis/linearize.h): a function f evaluated at x + ε d returns
-/// f(x) + ε f'(x) d, to round-off and with no step size. One direction per evaluation; Eigen
-/// matrices of Dual work through the NumTraits below (no mixing with double inside
-/// expressions: constants are cast with .cast<Dual>()).
+/// linearisation (analysis/linearize.h) and of the velocity-product terms of rows written once over
+/// the scalar type (model/surface_rolling.h): a function f evaluated at x + ε d returns f(x) + ε
+/// f'(x) d, to round-off and with no step size. One direction per evaluation; Eigen matrices of
+/// Dual work through the NumTraits below (no mixing with double inside expressions: constants are
+/// cast with .cast<Dual>()).
 
 #include <cmath>
 
 #include <Eigen/Core>
 
-namespace chasles::internal {
+namespace chasles {
 
 struct Dual {
   double v = 0.0;  ///< value
@@ -100,15 +101,15 @@ inline double Value(const Dual& x) {
   return x.v;
 }
 
-}  // namespace chasles::internal
+}  // namespace chasles
 
 namespace Eigen {
 template <>
-struct NumTraits<chasles::internal::Dual> : NumTraits<double> {
-  using Real = chasles::internal::Dual;
-  using NonInteger = chasles::internal::Dual;
-  using Nested = chasles::internal::Dual;
-  using Literal = chasles::internal::Dual;
+struct NumTraits<chasles::Dual> : NumTraits<double> {
+  using Real = chasles::Dual;
+  using NonInteger = chasles::Dual;
+  using Nested = chasles::Dual;
+  using Literal = chasles::Dual;
   enum {
     IsComplex = 0,
     IsInteger = 0,
