@@ -4,6 +4,7 @@
 
 #include "chasles/error.h"
 #include "chasles/math/dual.h"
+#include "chasles/model/bearing.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/surface_rolling.h"
@@ -199,6 +200,22 @@ void SpringForces(const Model& model, const SpringDamper& s, const LinearBase& b
   AddForceAtPoint<T>(f, s.body_b(), Q.r, V3<T>(-tension * u));
 }
 
+// Bearing (model/bearing.h): F = -K x - C ẋ across the axis, at the journal.
+template <class T>
+void BearingForces(const Model& model, const Bearing& br, const LinearBase& base, const VecX<T>& x,
+                   VecX<T>& f) {
+  const Side<T> S = GetSide(base, x, br.body());
+  const Point<T> P = BodyPoint(model, S, br.body(), br.p_BoP_B());
+  const V3<T> d = P.p - br.p_WO().cast<T>(), v = S.v + S.w.cross(P.r);
+  const V3<T> e1 = br.R_WA().col(0).cast<T>(), e2 = br.R_WA().col(1).cast<T>();
+  const T x1 = e1.dot(d), x2 = e2.dot(d), v1 = e1.dot(v), v2 = e2.dot(v);
+  const Eigen::Matrix2d& K = br.K();
+  const Eigen::Matrix2d& C = br.C();
+  const T F1 = -(T(K(0, 0)) * x1 + T(K(0, 1)) * x2 + T(C(0, 0)) * v1 + T(C(0, 1)) * v2);
+  const T F2 = -(T(K(1, 0)) * x1 + T(K(1, 1)) * x2 + T(C(1, 0)) * v1 + T(C(1, 1)) * v2);
+  AddForceAtPoint<T>(f, br.body(), P.r, V3<T>(F1 * e1 + F2 * e2));
+}
+
 template <class T>
 void ForceElementForces(const Model& model, const LinearBase& base, const VecX<T>& x, VecX<T>& f) {
   for (int i = 0; i < model.num_force_elements(); ++i) {
@@ -209,6 +226,8 @@ void ForceElementForces(const Model& model, const LinearBase& base, const VecX<T
       }
     } else if (const auto* s = dynamic_cast<const SpringDamper*>(&e)) {
       SpringForces(model, *s, base, x, f);
+    } else if (const auto* br = dynamic_cast<const Bearing*>(&e)) {
+      BearingForces(model, *br, base, x, f);
     } else if (const auto* d = dynamic_cast<const LinearDrag*>(&e)) {
       const Side<T> S = GetSide(base, x, d->body());
       f.template segment<3>(6 * d->body()) -= T(d->linear()) * S.v;
@@ -232,9 +251,11 @@ void CheckLinearisable(const Model& model) {
     const ForceElement& e = model.force_element(i);
     if (dynamic_cast<const UniformGravity*>(&e) == nullptr &&
         dynamic_cast<const SpringDamper*>(&e) == nullptr &&
+        dynamic_cast<const Bearing*>(&e) == nullptr &&
         dynamic_cast<const LinearDrag*>(&e) == nullptr) {
       throw InputError(fmt::format(
-          "force '{}': a linearisation handles uniform gravity, springs, dampers and drag; "
+          "force '{}': a linearisation handles uniform gravity, springs, dampers, bearings and "
+          "drag; "
           "this force is a function of time and state whose derivatives are not known",
           e.name()));
     }

@@ -12,6 +12,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
 #include "chasles/math/dual.h"
+#include "chasles/model/bearing.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/forces.h"
 
@@ -121,16 +122,18 @@ struct Readout {
   Eigen::RowVectorXd row;
 };
 
-/// Whether nothing ties the system to a place: no constraint or spring to the world (then its
-/// centre of mass moves freely, and in a turning frame its drift is a frame's artefact).
+/// Whether nothing ties the system to a place: no constraint, spring or bearing to the world (then
+/// its centre of mass moves freely, and in a turning frame its drift is a frame's artefact).
 bool TranslationInvariant(const Model& model) {
   for (int c = 0; c < model.num_constraints(); ++c) {
     if (model.constraint(c).parent() == kWorld) return false;
   }
   for (int i = 0; i < model.num_force_elements(); ++i) {
-    if (const auto* s = dynamic_cast<const SpringDamper*>(&model.force_element(i))) {
+    const ForceElement& e = model.force_element(i);
+    if (const auto* s = dynamic_cast<const SpringDamper*>(&e)) {
       if (s->body_b() == kWorld) return false;
     }
+    if (dynamic_cast<const Bearing*>(&e) != nullptr) return false;
   }
   return true;
 }

@@ -213,3 +213,47 @@ std::vector<StabilityChange> FindStabilityChanges(
 }
 
 }  // namespace chasles
+
+namespace chasles {
+namespace {
+
+/// |Im λ| of the non-rigid modes, by |λ|.
+std::vector<double> WhirlFrequencies(const ModalAnalysis& a) {
+  std::vector<double> w;
+  for (const Mode& m : a.modes) {
+    if (!m.rigid) w.push_back(std::abs(m.eigenvalue.imag()));
+  }
+  return w;
+}
+
+}  // namespace
+
+std::vector<CriticalSpeed> FindCriticalSpeeds(const std::function<ModalAnalysis(double)>& analyse,
+                                              const std::vector<double>& grid, double tolerance) {
+  std::vector<CriticalSpeed> out;
+  if (grid.size() < 2) return out;
+  const double span = std::abs(grid.back() - grid.front());
+  std::vector<double> before = WhirlFrequencies(analyse(grid[0]));
+  for (size_t i = 1; i < grid.size(); ++i) {
+    const std::vector<double> after = WhirlFrequencies(analyse(grid[i]));
+    const size_t n = std::min(before.size(), after.size());
+    for (size_t k = 0; k < n; ++k) {
+      const double ga = before[k] - grid[i - 1], gb = after[k] - grid[i];
+      if ((ga > 0.0) == (gb > 0.0) || ga == 0.0) continue;
+      double a = grid[i - 1], b = grid[i];
+      while (std::abs(b - a) > tolerance * span) {
+        const double mid = 0.5 * (a + b);
+        const std::vector<double> w = WhirlFrequencies(analyse(mid));
+        const double g = k < w.size() ? w[k] - mid : gb;
+        ((g > 0.0) == (ga > 0.0) ? a : b) = mid;
+      }
+      out.push_back({0.5 * (a + b), static_cast<int>(k)});
+    }
+    before = after;
+  }
+  std::sort(out.begin(), out.end(),
+            [](const CriticalSpeed& x, const CriticalSpeed& y) { return x.speed < y.speed; });
+  return out;
+}
+
+}  // namespace chasles

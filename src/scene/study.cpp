@@ -23,6 +23,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/model/bearing.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
@@ -506,6 +507,17 @@ Model BuildModel(const Scene& scene, const std::vector<NamedBody>& bodies,
       case SceneForce::Type::kCentralGravity:
         model.AddForceElement(std::make_shared<CentralGravity>(f.name, f.mu, f.centre_W));
         break;
+      case SceneForce::Type::kBearing: {
+        // The journal is the body's material point at `at` at the initial configuration.
+        const State s0 = InitialState(scene, model);
+        const BodyState& bs = s0.bodies[static_cast<size_t>(pl->model_body)];
+        const Vec3 p_Bo = CalcBodyOriginPosition(model, s0, pl->model_body);
+        const Vec3 p_BoP_B = bs.q_WB.normalized().conjugate() * (f.bearing_at_W - p_Bo);
+        model.AddForceElement(std::make_shared<Bearing>(f.name, pl->model_body, p_BoP_B,
+                                                        f.bearing_at_W, f.bearing_axis_W,
+                                                        f.bearing_K, f.bearing_C));
+        break;
+      }
     }
   }
   AddSceneConstraints(scene, body_map, model);

@@ -90,3 +90,22 @@ std::vector<StabilityChange> FindStabilityChanges(
     double tolerance = 1e-12);
 
 }  // namespace chasles
+
+namespace chasles {
+
+/// A critical speed of a spinning system: where the k-th whirl frequency (the k-th non-rigid
+/// mode by |λ|, its |Im λ| in rad/s) equals the spin Ω, the parameter of `analyse` [rad/s].
+struct CriticalSpeed {
+  double speed = 0.0;
+  /// Which mode (0-based, by |λ|) crosses.
+  int mode = 0;
+};
+
+/// The critical speeds of `analyse` over the sorted `grid` of spins [rad/s]: each sign change
+/// of |Im λ_k| - Ω between neighbouring values, narrowed by bisection to `tolerance` relative
+/// to the span.
+std::vector<CriticalSpeed> FindCriticalSpeeds(const std::function<ModalAnalysis(double)>& analyse,
+                                              const std::vector<double>& grid,
+                                              double tolerance = 1e-12);
+
+}  // namespace chasles
