@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -181,33 +182,85 @@ ModalAnalysis AnalyseModes(const Model& model, const OperatingPoint& op,
 
 namespace chasles {
 
+namespace {
+
+/// Whether the largest real part `f` of an analysis is clearly on its verdict's side: clearly
+/// negative on a stable side (decaying, not neutral), positive on an unstable one.
+bool Transversal(const ModalAnalysis& a) {
+  double scale = 0.0;
+  for (const Mode& m : a.modes) scale = std::max(scale, std::abs(m.eigenvalue));
+  return a.stable ? a.max_real_part < -kNeutral * scale : a.max_real_part > 0.0;
+}
+
+/// The value in [a, b] where the verdict changes, `sa` the analysis at a and `sb` at b. When
+/// both sides are transversal the boundary is the zero of the largest real part, a continuous
+/// function of the parameter: regula falsi with the Illinois modification (superlinear), the
+/// bracket kept by its sign. Otherwise (a neutral side, whose real parts are round-off) it is
+/// the verdict's change, by bisection. Either to `width`. Returns the value and the end of the
+/// final bracket on the unstable side.
+std::pair<double, double> LocateChange(const std::function<ModalAnalysis(double)>& analyse,
+                                       double a, double b, const ModalAnalysis& sa,
+                                       const ModalAnalysis& sb, double width) {
+  const bool before = sa.stable;
+  if (!Transversal(sa) || !Transversal(sb)) {
+    while (std::abs(b - a) > width) {
+      const double mid = 0.5 * (a + b);
+      (analyse(mid).stable == before ? a : b) = mid;
+    }
+    return {0.5 * (a + b), before ? b : a};
+  }
+  double fa = sa.max_real_part, fb = sb.max_real_part;
+  int side = 0;  // which end stayed last time (Illinois: halve its value when it stays twice)
+  for (int it = 0; it < 200 && std::abs(b - a) > width; ++it) {
+    double x = (a * fb - b * fa) / (fb - fa);
+    if (!(x > a && x < b)) x = 0.5 * (a + b);
+    const double fx = analyse(x).max_real_part;
+    if (fx == 0.0) return {x, x};
+    if ((fx < 0.0) == (fa < 0.0)) {
+      a = x, fa = fx;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    } else {
+      b = x, fb = fx;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    }
+  }
+  return {std::abs(fa) < std::abs(fb) ? a : b, fa > 0.0 ? a : b};
+}
+
+}  // namespace
+
 std::vector<StabilityChange> FindStabilityChanges(
     const std::function<ModalAnalysis(double)>& analyse, const std::vector<double>& grid,
     double tolerance) {
   std::vector<StabilityChange> out;
   if (grid.size() < 2) return out;
   const double span = std::abs(grid.back() - grid.front());
-  bool before = analyse(grid[0]).stable;
+  ModalAnalysis before = analyse(grid[0]);
   for (size_t i = 1; i < grid.size(); ++i) {
-    const bool after = analyse(grid[i]).stable;
-    if (after == before) continue;
-    double a = grid[i - 1], b = grid[i];
-    while (std::abs(b - a) > tolerance * span) {
-      const double mid = 0.5 * (a + b);
-      (analyse(mid).stable == before ? a : b) = mid;
+    ModalAnalysis after = analyse(grid[i]);
+    if (after.stable != before.stable) {
+      StabilityChange c;
+      const auto [value, unstable_end] =
+          LocateChange(analyse, grid[i - 1], grid[i], before, after, tolerance * span);
+      c.value = value;
+      c.stable_after = after.stable;
+      // The kind: that of the mode with the largest real part on the unstable side, next to
+      // the boundary (where it may be within the neutral band: its verdict is not asked).
+      const ModalAnalysis near = analyse(unstable_end);
+      const Mode* crossing = nullptr;
+      for (const Mode& m : near.modes) {
+        if (!m.rigid && (!crossing || m.eigenvalue.real() > crossing->eigenvalue.real())) {
+          crossing = &m;
+        }
+      }
+      const bool oscillatory =
+          crossing && crossing->eigenvalue.imag() > kNeutral * std::abs(crossing->eigenvalue);
+      c.kind = oscillatory ? "oscillatory" : "divergent";
+      out.push_back(c);
     }
-    // The kind: the mode that is unstable on the unstable side.
-    const ModalAnalysis bad = analyse(after ? a : b);
-    StabilityChange c;
-    c.value = 0.5 * (a + b);
-    c.stable_after = after;
-    c.kind = "divergent";
-    for (const Mode& m : bad.modes) {
-      if (!m.stable && m.eigenvalue.imag() > kNeutral * std::abs(m.eigenvalue))
-        c.kind = "oscillatory";
-    }
-    out.push_back(c);
-    before = after;
+    before = std::move(after);
   }
   return out;
 }

@@ -113,7 +113,9 @@ TEST(WhippleBicycle, WeaveAndCapsizeSpeedsByRootFinding) {
   EXPECT_EQ(changes[1].kind, "divergent");
   EXPECT_FALSE(changes[1].stable_after);
   // The sanitizer build runs several times slower; the second is the optimised build's.
-  if (!test::kAddressSanitizer) EXPECT_LT(seconds, 1.0);
+  if (!test::kAddressSanitizer) {
+    EXPECT_LT(seconds, 1.0);
+  }
 }
 
 }  // namespace

@@ -82,9 +82,12 @@ struct StabilityChange {
   bool stable_after = false;
 };
 
-/// The stability changes of `analyse` over the sorted `grid`: each sign change of the
-/// stability between neighbouring values is narrowed by bisection to `tolerance` relative to
-/// the grid's span (the verdict at each side is Mode::stable's: neutral counts as stable).
+/// The stability changes of `analyse` over the sorted `grid`: each change of the verdict
+/// between neighbouring values (Mode::stable's: neutral counts as stable) is located to
+/// `tolerance` relative to the grid's span. Where a mode crosses Re λ = 0 from clearly decaying
+/// to growing, the value is the zero of the largest real part (ModalAnalysis::max_real_part),
+/// by regula falsi with the Illinois modification; where one side is neutral (a sleeping top,
+/// whose real parts are round-off above its threshold), the verdict's change by bisection.
 std::vector<StabilityChange> FindStabilityChanges(
     const std::function<ModalAnalysis(double)>& analyse, const std::vector<double>& grid,
     double tolerance = 1e-12);
