@@ -27,6 +27,8 @@ struct Program {
   SolveArgs solve_args;
   ReportArgs report_args;
   PlotArgs plot_args;
+  ModesArgs modes_args;
+  BalanceArgs balance_args;
   CLI::App* mass = nullptr;
   CLI::App* check = nullptr;
   CLI::App* simulate = nullptr;
@@ -34,6 +36,8 @@ struct Program {
   CLI::App* materials = nullptr;
   CLI::App* report = nullptr;
   CLI::App* plot = nullptr;  // null in a build without PLplot
+  CLI::App* modes = nullptr;
+  CLI::App* balance = nullptr;
 };
 
 /// A fresh parser (CLI11 apps are not reusable across parses).

@@ -147,7 +147,7 @@ OperatingPoint FindEquilibrium(const Model& model, const State& guess,
   while (op.residual > options.tolerance) {
     if (op.iterations == options.max_iterations) {
       throw InputError(fmt::format(
-          "no static equilibrium found in {} Newton steps from the scene's state (residual "
+          "no static equilibrium found in {} Newton steps from the initial state (residual "
           "{:.3g}): {}",
           options.max_iterations, op.residual, WorstBody(model, op.state)));
     }
@@ -176,7 +176,7 @@ OperatingPoint FindEquilibrium(const Model& model, const State& guess,
     }
     if (step <= 1e-6) {
       throw InputError(fmt::format(
-          "no static equilibrium near the scene's state (no Newton step lowers the residual "
+          "no static equilibrium near the initial state (no Newton step lowers the residual "
           "{:.3g}): {}",
           op.residual, WorstBody(model, op.state)));
     }
