@@ -160,6 +160,16 @@ OperatingPoint FindEquilibrium(const Model& model, const State& guess,
     // coordinates is A's lower-left block: solve A₂₁ δc = -(rates now).
     Data data = MakeData(model);
     const VectorXd rates = internal::CalcComovingRates(model, op.state, op.generator, data);
+    // A Newton step needs coordinates and speeds to solve for; without (the named
+    // coordinates of the reduced state came out as no speed at all, or it is not finite) the
+    // answer is an error, not a solve of an empty system.
+    if (m == 0 || p == 0 || !lin.A.allFinite() || !lin.basis.allFinite() || !rates.allFinite()) {
+      throw InputError(fmt::format(
+          "no static equilibrium found from the initial state: after {} Newton steps (residual "
+          "{:.3g}) the reduced state has {} coordinates and {} speeds to solve for; start the "
+          "scene nearer its equilibrium",
+          op.iterations - 1, op.residual, m, p));
+    }
     const MatrixXd Bu = lin.basis.bottomRows(N).rightCols(p);
     const VectorXd now = Bu.completeOrthogonalDecomposition().solve(rates.tail(N));
     const VectorXd dc = lin.A.bottomLeftCorner(p, m).completeOrthogonalDecomposition().solve(-now);

@@ -46,6 +46,25 @@ std::vector<const nlohmann::json*> Oscillating(const nlohmann::json& modes) {
   return out;
 }
 
+// Hostile input: every example, whatever it holds (contacts, events, time-dependent forces,
+// motions that are no operating point), gives the modes or a clear error with exit code 2;
+// never a crash, never NaN.
+TEST(Modes, EveryExampleAnswersOrRefuses) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(SourcePath("examples"))) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++count;
+    const CliResult r = RunCli("modes " + Quote(entry.path().string()) + " --format json");
+    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 2) << entry.path() << ": " << r.err;
+    if (r.exit_code == 2) {
+      EXPECT_THAT(r.err, ::testing::HasSubstr("chasles: error: ")) << entry.path();
+      EXPECT_TRUE(r.out.empty()) << entry.path();
+    }
+    EXPECT_EQ(r.out.find("nan"), std::string::npos) << entry.path();
+  }
+  EXPECT_GE(count, 8);
+}
+
 // examples/cylinder-in-trough.yaml: from rest 10° up the side, the equilibrium at the bottom
 // (Newton) and the one mode ω² = 2 g / (3 (R - r)), R = 0.4 m, r = 0.05 m (its comment derives
 // it); the cylinder's spin about its axis and its slide along the trough are rigid.
