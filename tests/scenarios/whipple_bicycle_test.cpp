@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <complex>
 #include <string>
 #include <vector>
@@ -97,14 +96,12 @@ TEST(WhippleBicycle, EigenvaluesAtThePublishedSpeeds) {
 
 // Table 2 (a): the weave speed 4.29238253634111 m/s (the weave pair crosses Re λ = 0,
 // Im λ = 3.43503384866144 there) and the capsize speed 6.02426201538837 m/s (the capsize
-// eigenvalue crosses 0), found by bisection on the stability verdict, in under a second.
+// eigenvalue crosses 0), found by root-finding on the stability verdict. Its cost (about
+// 0.1 s) is measured by bench/modes_bench.cpp, not here.
 TEST(WhippleBicycle, WeaveAndCapsizeSpeedsByRootFinding) {
-  const auto start = std::chrono::steady_clock::now();
   std::vector<double> grid;
   for (int i = 0; i <= 10; ++i) grid.push_back(i);
   const std::vector<StabilityChange> changes = FindStabilityChanges(AtSpeed, grid, 1e-13);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(changes.size(), 2u);
   EXPECT_NEAR(changes[0].value, 4.29238253634111, 1e-10 * 4.29238253634111);
   EXPECT_EQ(changes[0].kind, "oscillatory");
@@ -112,10 +109,6 @@ TEST(WhippleBicycle, WeaveAndCapsizeSpeedsByRootFinding) {
   EXPECT_NEAR(changes[1].value, 6.02426201538837, 1e-10 * 6.02426201538837);
   EXPECT_EQ(changes[1].kind, "divergent");
   EXPECT_FALSE(changes[1].stable_after);
-  // The sanitizer build runs several times slower; the second is the optimised build's.
-  if (!test::kAddressSanitizer) {
-    EXPECT_LT(seconds, 1.0);
-  }
 }
 
 }  // namespace
