@@ -18,7 +18,6 @@
 #include "chasles/analysis/modes.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
-#include "test_support.h"
 
 namespace chasles {
 namespace {
