@@ -156,6 +156,33 @@ struct PlotArgs {
 CLI::App* AddPlotCommand(CLI::App& app, PlotArgs& args);
 int RunPlot(const PlotArgs& args);
 
+/// `chasles modes SCENE`: small motions about the operating point (docs/modes.md).
+struct ModesArgs {
+  SceneArgs scene;
+  std::string sweep;            // NAME=START:STOP:COUNT, or "" for one operating point
+  std::string format = "text";  // text | json | csv (a sweep's table)
+  std::string output;           // -o/--out, "" = standard output
+};
+CLI::App* AddModesCommand(CLI::App& app, ModesArgs& args);
+int RunModes(const ModesArgs& args);
+
+/// `chasles balance SCENE --body NAME ...`: a rotor's unbalance and its two-plane correction
+/// (docs/modes.md, "Rotors").
+struct BalanceArgs {
+  SceneArgs scene;
+  std::string body;                   // the rotor (a body of the scene)
+  std::string axis = "[0, 0, 1]";     // spin axis in W, as in a scene
+  std::string through = "[0, 0, 0]";  // a point of the axis in W
+  std::string planes;                 // 'A, B': the two correction planes' positions along the axis
+  std::string radius;                 // the correction radius (a length with its unit)
+  std::string speed;            // the spin for the bearing reactions and the grade (rad/s, rpm)
+  double grade = 0.0;           // ISO 21940-11 balance grade G [mm/s]; 0: none
+  std::string format = "text";  // text | json
+  std::string output;           // -o/--out
+};
+CLI::App* AddBalanceCommand(CLI::App& app, BalanceArgs& args);
+int RunBalance(const BalanceArgs& args);
+
 /// The built-in demonstration scene (the chapter's disk-and-axle assembly, Section 8.3).
 extern const char* const kDemoScene;
 

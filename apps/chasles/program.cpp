@@ -38,6 +38,7 @@ std::unique_ptr<Program> MakeProgram() {
       "  chasles upgrade old-scene.yaml --in-place\n"
       "  chasles simulate examples/dzhanibekov.yaml --out results\n"
       "  chasles solve examples/example-8.3-cylinder-incline.yaml\n"
+      "  chasles modes examples/whipple-bicycle.yaml\n"
       "  chasles simulate examples/dzhanibekov.yaml --html dzhanibekov.html\n"
       "  chasles audit robot.urdf --fix --out fixed\n"
       "Scene format: docs/scene-format.md. Exit codes: 0 ok, 2 bad input, 3 a failed check "
@@ -47,6 +48,8 @@ std::unique_ptr<Program> MakeProgram() {
   p->check = AddCheckCommand(app, p->check_args);
   p->simulate = AddSimulateCommand(app, p->simulate_args);
   p->solve = AddSolveCommand(app, p->solve_args);
+  p->modes = AddModesCommand(app, p->modes_args);
+  p->balance = AddBalanceCommand(app, p->balance_args);
   p->materials = AddMaterialsCommand(app);
   p->report = AddReportCommand(app, p->report_args);
   p->upgrade = AddUpgradeCommand(app, p->upgrade_args);
@@ -96,6 +99,8 @@ int RunCommand(Program& p) {
   if (p.check->parsed()) return RunCheck(p.check_args);
   if (p.simulate->parsed()) return RunSimulate(p.simulate_args);
   if (p.solve->parsed()) return RunSolve(p.solve_args);
+  if (p.modes->parsed()) return RunModes(p.modes_args);
+  if (p.balance->parsed()) return RunBalance(p.balance_args);
   if (p.materials->parsed()) return RunMaterials();
   if (p.report->parsed()) return RunReport(p.report_args);
   if (p.upgrade->parsed()) return RunUpgrade(p.upgrade_args);

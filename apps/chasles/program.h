@@ -29,6 +29,8 @@ struct Program {
   PlotArgs plot_args;
   UpgradeArgs upgrade_args;
   AuditArgs audit_args;
+  ModesArgs modes_args;
+  BalanceArgs balance_args;
   CLI::App* mass = nullptr;
   CLI::App* audit = nullptr;
   CLI::App* check = nullptr;
@@ -38,6 +40,8 @@ struct Program {
   CLI::App* report = nullptr;
   CLI::App* upgrade = nullptr;
   CLI::App* plot = nullptr;  // null in a build without PLplot
+  CLI::App* modes = nullptr;
+  CLI::App* balance = nullptr;
 };
 
 /// A fresh parser (CLI11 apps are not reusable across parses).

@@ -24,20 +24,6 @@ namespace chasles::python {
 
 namespace {
 
-/// A loaded scene and where it came from, so that a sweep can load it again with one more
-/// override.
-struct PyScene {
-  Scene scene;
-  std::string path;  // "" when loaded from text
-  std::string text;
-  std::string name;
-  SceneOptions options;
-
-  Scene Load(const SceneOptions& o) const {
-    return path.empty() ? LoadSceneText(text, name, o) : LoadSceneFile(path, o);
-  }
-};
-
 SceneOptions OptionsFrom(const py::object& set, size_t max_scene_bytes) {
   SceneOptions o;
   o.max_scene_bytes = max_scene_bytes;

@@ -16,6 +16,7 @@
 #include <pybind11/stl.h>
 
 #include "chasles/math/types.h"
+#include "chasles/scene/scene.h"
 
 namespace chasles::python {
 
@@ -26,6 +27,21 @@ void BindMass(py::module_& m);
 void BindModel(py::module_& m);
 void BindSimulate(py::module_& m);
 void BindScene(py::module_& m);
+void BindModes(py::module_& m);
+
+/// A loaded scene and where it came from, so that a sweep can load it again with one more
+/// override (the Python class Scene).
+struct PyScene {
+  Scene scene;
+  std::string path;  // "" when loaded from text
+  std::string text;
+  std::string name;
+  SceneOptions options;
+
+  Scene Load(const SceneOptions& o) const {
+    return path.empty() ? LoadSceneText(text, name, o) : LoadSceneFile(path, o);
+  }
+};
 
 /// A quaternion as the numpy array [w, x, y, z].
 py::array_t<double> QuatArray(const Quat& q);

@@ -110,4 +110,5 @@ PYBIND11_MODULE(_chasles, m) {
   chasles::python::BindModel(m);
   chasles::python::BindSimulate(m);
   chasles::python::BindScene(m);
+  chasles::python::BindModes(m);
 }

@@ -156,8 +156,9 @@ SceneJoint SceneReader::ReadJoint(const At& at, size_t i, const Scene& scene,
 
 SceneRolling SceneReader::ReadRolling(const At& at, size_t i, const Scene& scene,
                                       std::vector<std::string>& taken) {
-  report_.CheckMap(at, {"name", "body", "on", "shape", "radius", "axis", "center", "plane", "mu_s"},
-                   "a rolling contact");
+  report_.CheckMap(
+      at, {"name", "body", "on", "shape", "radius", "axis", "center", "plane", "surface", "mu_s"},
+      "a rolling contact");
   SceneRolling r;
   r.name = ConstraintName(at, "rolling", i, taken);
   r.where = Spot(at);
@@ -195,6 +196,10 @@ SceneRolling SceneReader::ReadRolling(const At& at, size_t i, const Scene& scene
   }
   r.p_BoC_B =
       at.Has("center") ? BodyPointAt(at.Child("center"), body) : body.mass_properties.p_BoBcm_B();
+  if (at.Has("surface")) {
+    ReadRollingSurface(at, what, r);
+    return r;
+  }
   const At plane = report_.Require(at, "plane", what);
   report_.CheckMap(plane, {"point", "normal"}, "a plane ({point, normal})");
   if (plane.Has("point")) {

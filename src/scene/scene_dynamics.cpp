@@ -271,11 +271,11 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
   f.where = SpotAt(at);
   const std::string type =
       report_.Text(report_.Require(at, "type", "a force element"),
-                   "force, moment, spring, drag, central_gravity, cable, string_pull or "
-                   "joint_torque");
+                   "force, moment, spring, drag, central_gravity, cable, string_pull, "
+                   "joint_torque or bearing");
   const std::vector<std::string> types = {"force",       "moment",          "spring",
                                           "drag",        "central_gravity", "cable",
-                                          "string_pull", "joint_torque"};
+                                          "string_pull", "joint_torque",    "bearing"};
   f.name = at.Has("name") ? report_.Text(at.Child("name"), "a name")
                           : fmt::format("{} {}", type, index + 1);
   const std::string what = fmt::format("{} '{}'", type, f.name);
@@ -309,6 +309,8 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
     ReadStringPull(at, scene, what, f);
   } else if (type == "joint_torque") {
     ReadJointTorque(at, scene, what, f);
+  } else if (type == "bearing") {
+    ReadBearing(at, scene, what, f);
   } else if (type == "spring") {
     report_.CheckMap(at, {"type", "name", "from", "to", "rest_length", "stiffness", "damping"},
                      "a spring element");

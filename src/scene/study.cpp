@@ -24,10 +24,12 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/model/bearing.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/string_constraint.h"
+#include "chasles/model/surface_rolling.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/scene_error.h"
 #include "internal/initial_state.h"
@@ -269,6 +271,33 @@ void AddSceneString(const SceneString& st, bool planar, const BodyMap& map, cons
   model.AddConstraint(string);
 }
 
+/// A rolling contact on a curved surface. The contact point lies on the line from the surface's
+/// centre (or its axis) through the body's centre: with the body's centre there at the initial
+/// configuration it is undefined, an input error rather than a NaN.
+std::shared_ptr<SurfaceRolling> MakeSurfaceRolling(const SceneRolling& r, BodyIndex body,
+                                                   const Model& model, const State& s0) {
+  const BodyState& bs = s0.bodies[static_cast<size_t>(body)];
+  const Vec3 c = bs.p_WBcm + bs.q_WB.normalized().toRotationMatrix() *
+                                 model.body(body).PointFromCenterOfMass(r.p_BoC_B);
+  Vec3 d = c - r.surface_center_W;
+  if (r.surface_shape == SurfaceShape::kCylinder) {
+    const Vec3 a = r.surface_axis_W.normalized();
+    d -= a * a.dot(d);
+  }
+  const double reach = r.inside ? r.surface_radius - r.radius : r.surface_radius + r.radius;
+  if (!(d.norm() > 1e-9 * reach)) {
+    throw InputError(fmt::format(
+        "rolling contact '{}': the body's centre is on the surface's {} at the start, where the "
+        "contact point is undefined; place it {:.6g} m from it",
+        r.name, r.surface_shape == SurfaceShape::kSphere ? "centre" : "axis", reach));
+  }
+  const SurfaceShape body_shape =
+      r.shape == RollingShape::kSphere ? SurfaceShape::kSphere : SurfaceShape::kCylinder;
+  return std::make_shared<SurfaceRolling>(r.name, body, body_shape, r.p_BoC_B, r.axis_B, r.radius,
+                                          r.surface_shape, r.surface_center_W, r.surface_axis_W,
+                                          r.surface_radius, r.inside);
+}
+
 /// Adds the scene's joints, rolling contacts, drivers and gear meshes to `model` (bodies already
 /// added, one per scene body). A scene gives joint points and axes in W at the initial
 /// configuration; each side's attachment frame is the one that coincides with that world pose
@@ -303,6 +332,10 @@ void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
                                                 frame(j.child, j.p_WJ, R_WJ)));
   }
   for (const SceneRolling& r : c.rolling) {
+    if (r.on_surface) {
+      model.AddConstraint(MakeSurfaceRolling(r, model_body(r.body), model, s0));
+      continue;
+    }
     // The plane is given in W at the initial configuration; on a body it is fixed in that
     // body's frame from there on.
     const AttachmentFrame X = frame(r.on, r.plane_point_W, FrameWithZAxis(r.plane_normal_W));
@@ -492,6 +525,17 @@ Model BuildModel(const Scene& scene, const std::vector<NamedBody>& bodies,
       case SceneForce::Type::kCentralGravity:
         model.AddForceElement(std::make_shared<CentralGravity>(f.name, f.mu, f.centre_W));
         break;
+      case SceneForce::Type::kBearing: {
+        // The journal is the body's material point at `at` at the initial configuration.
+        const State s0 = InitialState(scene, model);
+        const BodyState& bs = s0.bodies[static_cast<size_t>(pl->model_body)];
+        const Vec3 p_Bo = CalcBodyOriginPosition(model, s0, pl->model_body);
+        const Vec3 p_BoP_B = bs.q_WB.normalized().conjugate() * (f.bearing_at_W - p_Bo);
+        model.AddForceElement(std::make_shared<Bearing>(f.name, pl->model_body, p_BoP_B,
+                                                        f.bearing_at_W, f.bearing_axis_W,
+                                                        f.bearing_K, f.bearing_C));
+        break;
+      }
     }
   }
   AddSceneConstraints(scene, body_map, model);

@@ -102,6 +102,14 @@ class RollingContact final : public Constraint {
   /// upward normal; constant for a world plane, turning with the parent otherwise). For
   /// kWheelInPlane t1 = z × n (the rolling direction) and t2 = z.
   Mat3 CalcPlaneFrame(const Data& data) const;
+  /// The round body's shape, centre from Bo in B [m], unit axis in B and radius [m].
+  RollingShape shape() const { return shape_; }
+  const Vec3& p_BoC_B() const { return p_BoC_B_; }
+  const Vec3& axis_B() const { return axis_B_; }
+  double radius() const { return radius_; }
+  /// The plane's point (from Po, in P; in W for the world) [m] and axes [t1 t2 n] in P.
+  const Vec3& p_PoO_P() const { return p_PoO_P_; }
+  const Mat3& R_PT() const { return R_PT_; }
 
  private:
   RollingShape shape_;

@@ -186,6 +186,15 @@ class SpringDamper final : public ForceElement {
   std::vector<BodyIndex> bodies() const override;
   std::shared_ptr<const ForceElement> Renumbered(
       const std::vector<BodyIndex>& new_index) const override;
+  /// The two ends: body A (never kWorld) and body B (or kWorld), and their points as given.
+  BodyIndex body_a() const { return a_; }
+  BodyIndex body_b() const { return b_; }
+  const Vec3& p_AoP_A() const { return p_AoP_A_; }
+  const Vec3& p_BoQ_B() const { return p_BoQ_B_; }
+  /// L0 [m], k [N/m], c [N·s/m].
+  double rest_length() const { return rest_length_; }
+  double stiffness() const { return stiffness_; }
+  double damping() const { return damping_; }
 
  private:
   BodyIndex a_, b_;
@@ -203,6 +212,10 @@ class LinearDrag final : public ForceElement {
   std::vector<BodyIndex> bodies() const override { return {body_}; }
   std::shared_ptr<const ForceElement> Renumbered(
       const std::vector<BodyIndex>& new_index) const override;
+  /// The body, c [N·s/m] and c_w [N·m·s].
+  BodyIndex body() const { return body_; }
+  double linear() const { return linear_; }
+  double angular() const { return angular_; }
 
  private:
   BodyIndex body_;

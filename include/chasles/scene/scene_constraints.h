@@ -13,6 +13,7 @@
 #include "chasles/math/types.h"
 #include "chasles/model/body.h"
 #include "chasles/model/constraints.h"
+#include "chasles/model/surface_rolling.h"
 
 namespace chasles {
 
@@ -63,6 +64,15 @@ struct SceneRolling {
   /// Coefficient of static friction (key `mu_s`), for `chasles solve` to compare the friction
   /// rolling needs with; NaN when not given (the simulation does not use it).
   double mu_s = std::numeric_limits<double>::quiet_NaN();
+  /// Key `surface` instead of `plane`: rolling on a fixed sphere or circular cylinder of the
+  /// world (model/surface_rolling.h): its shape, centre (a point of a cylinder's axis) and
+  /// axis in W, radius [m], and whether the body is inside it.
+  bool on_surface = false;
+  SurfaceShape surface_shape = SurfaceShape::kSphere;
+  Vec3 surface_center_W = Vec3::Zero();
+  Vec3 surface_axis_W = Vec3::UnitZ();
+  double surface_radius = 0.0;
+  bool inside = true;
 };
 
 /// One entry of `drivers`: a prescribed translation or rotation f(t) = f0 + f1 t + ½ f2 t².

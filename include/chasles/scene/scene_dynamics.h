@@ -104,7 +104,8 @@ struct SceneForce {
     kCentralGravity,
     kCable,
     kJointTorque,
-    kStringPull
+    kStringPull,
+    kBearing
   };
   Type type = Type::kForce;
   /// Unique name (reports, ledger columns "W_<name>").
@@ -146,6 +147,12 @@ struct SceneForce {
   /// Central gravity: mu = G M [m³/s²] and the attracting point in W [m].
   double mu = 0.0;
   Vec3 centre_W = Vec3::Zero();
+  /// Bearing (model/bearing.h): its centre in W at the initial configuration (`at`, also the
+  /// journal's place on the body then) [m], its axis in W, stiffness [N/m] and damping
+  /// [N·s/m] matrices in its axes e1, e2.
+  Vec3 bearing_at_W = Vec3::Zero();
+  Vec3 bearing_axis_W = Vec3::UnitZ();
+  Eigen::Matrix2d bearing_K = Eigen::Matrix2d::Zero(), bearing_C = Eigen::Matrix2d::Zero();
 };
 
 /// The contact-mode change a contact-mode event watches (docs/scene-format.md, `events`).

@@ -128,6 +128,12 @@ class SceneReader {
   void ReadInitial(const At& at, const SceneBody& body, SceneInitialState& initial);
   void ReadCable(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
   void ReadStringPull(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
+  /// A rolling contact's `surface` (scene_surface_rolling.cpp).
+  void ReadRollingSurface(const At& at, const std::string& what, SceneRolling& r);
+  /// A radial bearing (scene_bearing.cpp).
+  void ReadBearing(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
+  /// One value, or two ([along e1, along e2]), of a bearing's stiffness or damping.
+  Eigen::Vector2d PairAt(const At& at, const Dimension& expected, std::string_view what);
   void ReadJointTorque(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
   SceneForce ReadForce(const At& at, const Scene& scene, size_t index);
   SceneEvent ReadEvent(const At& at, size_t index, const Scene& scene);

@@ -1,0 +1,114 @@
+#pragma once
+/// @file
+/// Natural frequencies, damping and stability of small motions about an operating point
+/// (docs/modes.md): the eigenvalues λ of the linearisation ẋ = A x (linearize.h).
+///
+/// Rigid modes — the exact zero eigenvalues a symmetry leaves (a free body's drift, a rolling
+/// body's position and heading, a wheel's angle, a steady speed) — are split off before the
+/// eigenvalue solve, not read off tiny computed eigenvalues (a zero of multiplicity two, a free
+/// body's drift, comes out of an eigenvalue solver as ±1e-8): a coordinate on which no rate
+/// depends (its column of A is zero) or a rate that is identically zero (its row is zero) is
+/// one rigid mode, and is taken out; this repeats until none is left. The others are the
+/// eigenvalues of what remains, their shapes completed over the coordinates taken out.
+
+#include <complex>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "chasles/analysis/linearize.h"
+
+namespace chasles {
+
+struct Mode {
+  /// λ [1/s]: a complex pair is listed once, with Im λ > 0.
+  std::complex<double> eigenvalue;
+  /// |Im λ| / 2π [Hz].
+  double frequency_hz = 0.0;
+  /// ζ = -Re λ / |λ| (1 for a real negative λ, -1 for a real positive one; 0 for λ = 0).
+  double damping_ratio = 0.0;
+  /// Re λ when it is positive (the mode grows as e^{Re λ t}) [1/s], else 0.
+  double growth_rate = 0.0;
+  /// Re λ <= kNeutral · (the largest |λ|): decaying or neutral.
+  bool stable = true;
+  /// A rigid mode (λ = 0 by a symmetry).
+  bool rigid = false;
+  /// For a rigid mode, the coordinate or speed it frees ("conserved quantity" for one that
+  /// none does).
+  std::string rigid_coordinate;
+  /// The shape over Linearization::coordinates then ::speeds (complex; the largest
+  /// coordinate entry is 1, or the largest speed entry when no coordinate moves).
+  Eigen::VectorXcd shape;
+};
+
+/// Relative size (to the largest |λ|) of Re λ below which a mode counts as neutral, not
+/// growing: the round-off of a simple eigenvalue.
+inline constexpr double kNeutral = 1e-12;
+/// Relative size of |λ| below which a mode that no coordinate frees is rigid all the same (a
+/// conserved quantity's zero eigenvalue: a steady precession's momenta).
+inline constexpr double kConservedZero = 1e-11;
+
+struct ModalAnalysis {
+  Linearization linearization;
+  /// Non-rigid modes by increasing |λ| (frequency), then the rigid ones.
+  std::vector<Mode> modes;
+  /// Every mode is stable (decaying or neutral).
+  bool stable = true;
+  /// max Re λ over the non-rigid modes [1/s] (what a stability boundary is a zero of).
+  double max_real_part = 0.0;
+};
+
+/// The modes of a linearisation.
+ModalAnalysis CalcModes(const Linearization& lin);
+
+/// Linearise about `op` and find the modes.
+ModalAnalysis AnalyseModes(const Model& model, const OperatingPoint& op,
+                           const LinearizeOptions& options = {});
+
+}  // namespace chasles
+
+namespace chasles {
+
+/// A parameter value where the stability of a family of operating points changes.
+struct StabilityChange {
+  /// The parameter's value [its SI unit].
+  double value = 0.0;
+  /// "oscillatory" (a complex pair crosses Re λ = 0: a flutter or Hopf boundary) or
+  /// "divergent" (a real eigenvalue crosses 0).
+  std::string kind;
+  /// Whether the family is stable above the value (towards the grid's end).
+  bool stable_after = false;
+};
+
+/// The stability changes of `analyse` over the sorted `grid`: each change of the verdict
+/// between neighbouring values (Mode::stable's: neutral counts as stable) is located to
+/// `tolerance` relative to the grid's span. Where a mode crosses Re λ = 0 from clearly decaying
+/// to growing, the value is the zero of the largest real part (ModalAnalysis::max_real_part),
+/// by regula falsi with the Illinois modification; where one side is neutral (a sleeping top,
+/// whose real parts are round-off above its threshold), the verdict's change by bisection.
+std::vector<StabilityChange> FindStabilityChanges(
+    const std::function<ModalAnalysis(double)>& analyse, const std::vector<double>& grid,
+    double tolerance = 1e-12);
+
+}  // namespace chasles
+
+namespace chasles {
+
+/// A critical speed of a spinning system: where the k-th whirl frequency (the k-th non-rigid
+/// mode by |λ|, its |Im λ| in rad/s) equals the spin Ω, the parameter of `analyse` [rad/s].
+struct CriticalSpeed {
+  double speed = 0.0;
+  /// Which mode (0-based, by |λ|) crosses.
+  int mode = 0;
+};
+
+/// The critical speeds of `analyse` over the sorted `grid` of spins [rad/s]: each sign change
+/// of |Im λ_k| - Ω between neighbouring values, narrowed by bisection to `tolerance` relative
+/// to the span.
+std::vector<CriticalSpeed> FindCriticalSpeeds(const std::function<ModalAnalysis(double)>& analyse,
+                                              const std::vector<double>& grid,
+                                              double tolerance = 1e-12);
+
+}  // namespace chasles
