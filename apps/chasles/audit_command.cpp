@@ -1,8 +1,8 @@
 // chasles audit: robot descriptions checked against their own geometry (docs/audit.md).
 
-#include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -20,6 +20,7 @@
 #include "chasles/scene/robot_file.h"
 #include "commands.h"
 #include "html_report.h"
+#include "scene_args.h"
 
 namespace chasles::cli {
 
@@ -79,14 +80,11 @@ std::vector<InertialRewrite> Rewrites(const RobotAudit& audit) {
   return out;
 }
 
-/// --fix: the corrected files (all or none written) and their diffs.
-nlohmann::json WriteFixes(const AuditArgs& args, const std::vector<RobotModel>& models,
-                          const std::vector<RobotAudit>& audits, std::string* diffs) {
-  if (args.out_dir.empty()) {
-    throw InputError("--fix needs --out DIR: corrected files are never written over the input");
-  }
-  CreateOutputFolder(args.out_dir);
-  OutputSet outputs;
+/// --fix: the corrected files, queued in `outputs` (written with the reports, all or none),
+/// and their diffs.
+nlohmann::json AddFixes(const AuditArgs& args, const std::vector<RobotModel>& models,
+                        const std::vector<RobotAudit>& audits, OutputSet& outputs,
+                        std::string* diffs) {
   nlohmann::json fixed = nlohmann::json::array();
   for (std::size_t i = 0; i < models.size(); ++i) {
     const std::vector<InertialRewrite> rewrites = Rewrites(audits[i]);
@@ -107,7 +105,6 @@ nlohmann::json WriteFixes(const AuditArgs& args, const std::vector<RobotModel>& 
                      {"diff", diff},
                      {"links", rewrites.size()}});
   }
-  outputs.Commit();
   return fixed;
 }
 
@@ -119,10 +116,18 @@ int RunAudit(const AuditArgs& args) {
   AuditOptions options;
   options.cache = MakeAuditMeshCache(LoadMeshTriangles);  // a mesh shared by files is read once
   options.joints = ParseJointOptions(args.joints);
-  if (!args.output.empty()) CheckOutputTarget(args.output);
+  // Every target is checked before a file is read.
+  OutputSet out;
+  out.Expect(ReportTarget(args.output), "-o");
   if (!args.html.empty()) {
     RequireHtmlReport("--html");
-    CheckOutputTarget(args.html);
+    out.Expect(args.html, "--html");
+  }
+  if (args.fix) {
+    if (args.out_dir.empty()) {
+      throw InputError("--fix needs --out DIR: corrected files are never written over the input");
+    }
+    out.ExpectFolder(args.out_dir, "--out");
   }
   std::vector<RobotModel> models;
   std::vector<RobotAudit> audits;
@@ -132,18 +137,15 @@ int RunAudit(const AuditArgs& args) {
   }
   nlohmann::json j = AuditJson(audits);
   std::string diffs;
-  if (args.fix) j["fixed"] = WriteFixes(args, models, audits, &diffs);
+  if (args.fix) j["fixed"] = AddFixes(args, models, audits, out, &diffs);
   std::string report =
       args.format == "json" ? DumpJson(j, "the audit report") : AuditText(audits) + diffs;
-  if (args.output.empty()) {
-    std::fwrite(report.data(), 1, report.size(), stdout);
-  } else {
-    OutputSet out;
-    out.Add(args.output, report);
-    out.Commit();
+  if (!args.html.empty()) {
+    out.Add(args.html, HtmlReport(AuditReportData(models, audits, options.joints)));
   }
-  if (!args.html.empty())
-    WriteHtmlReport(args.html, AuditReportData(models, audits, options.joints));
+  out.Add(ReportTarget(args.output), std::move(report));
+  out.Commit();
+  SayWroteHtmlReport(args.html);
   std::size_t errors = 0;
   for (const RobotAudit& a : audits) errors += a.Count(Severity::kError);
   return errors > 0 ? 3 : 0;
