@@ -8,6 +8,7 @@
 #include <Eigen/QR>
 
 #include "chasles/dynamics/constraint_solve.h"
+#include "chasles/dynamics/contact_frame.h"
 #include "chasles/dynamics/lcp.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
@@ -329,6 +330,24 @@ bool SolveSquare(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, bool sym
 }
 
 }  // namespace internal
+
+ContactFrame CalcContactFrame(const Model& model, const State& state, const Data& data, int point) {
+  const internal::ContactPointGeometry g =
+      internal::CalcContactPointGeometry(model, state, data, point);
+  ContactFrame f;
+  f.body = g.body;
+  f.other = g.other;
+  f.gap = g.gap;
+  f.p_WC = g.p_WC;
+  f.n = g.n;
+  f.t1 = g.t1;
+  f.t2 = g.t2;
+  f.r_BcmC_W = g.r;
+  f.r_OcmC_W = g.r_other;
+  f.v_rel_W = g.v_rel;
+  f.v_t_W = g.v_t;
+  return f;
+}
 
 using Eigen::MatrixXd;
 using Eigen::VectorXd;

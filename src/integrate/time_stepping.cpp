@@ -6,11 +6,11 @@
 
 #include <fmt/format.h>
 
+#include "chasles/dynamics/contact_frame.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/model/data.h"
-#include "dynamics/internal/contact_geometry.h"
 
 // Moreau–Jean time stepping (J. J. Moreau, "Unilateral contact and dry friction in finite
 // freedom dynamics", CISM 302, 1988; M. Jean, Comput. Methods Appl. Mech. Eng. 177, 1999) with
@@ -190,8 +190,7 @@ void Stepper::FreeVelocities(const State& s, double h, std::vector<Vec6>& u_k,
 std::vector<ActivePoint> Stepper::FindActive(const State& mid) const {
   std::vector<ActivePoint> active;
   for (int p = 0; p < model_.num_contact_points(); ++p) {
-    const internal::ContactPointGeometry g =
-        internal::CalcContactPointGeometry(model_, mid, data_, p);
+    const ContactFrame g = CalcContactFrame(model_, mid, data_, p);
     if (g.gap > o_.tolerances.gap) continue;
     ActivePoint a;
     a.point = p;
@@ -200,15 +199,15 @@ std::vector<ActivePoint> Stepper::FindActive(const State& mid) const {
     a.n = g.n;
     a.t1 = g.t1;
     a.t2 = g.t2;
-    a.r = g.r;
-    a.r_other = g.r_other;
+    a.r = g.r_BcmC_W;
+    a.r_other = g.r_OcmC_W;
     const Vec3 k[3] = {g.n, g.t1, g.t2};
     for (int r = 0; r < 3; ++r) {
-      a.A_body.row(r) << k[r].transpose(), g.r.cross(k[r]).transpose();
-      a.A_other.row(r) << -k[r].transpose(), -g.r_other.cross(k[r]).transpose();
+      a.A_body.row(r) << k[r].transpose(), a.r.cross(k[r]).transpose();
+      a.A_other.row(r) << -k[r].transpose(), -a.r_other.cross(k[r]).transpose();
     }
     const Contact& c = model_.contact(model_.contact_of_point(p));
-    const double slip = g.v_t.norm();
+    const double slip = g.v_t_W.norm();
     a.mu = slip <= o_.tolerances.stick_speed ? c.mu_s() : c.mu_k();
     a.restitution = c.restitution();
     active.push_back(std::move(a));
@@ -413,7 +412,7 @@ std::vector<double> Stepper::Gaps(const State& s) {
   CalcKinematics(model_, s, data_);
   std::vector<double> gaps(static_cast<size_t>(model_.num_contact_points()));
   for (int p = 0; p < model_.num_contact_points(); ++p) {
-    gaps[static_cast<size_t>(p)] = internal::CalcContactPointGeometry(model_, s, data_, p).gap;
+    gaps[static_cast<size_t>(p)] = CalcContactFrame(model_, s, data_, p).gap;
   }
   return gaps;
 }

@@ -78,7 +78,9 @@ TEST(ContactProblem, RandomCoupledProblemsMeetCoulombsLaw) {
     p.q = J * v;
     for (int i = 0; i < m; ++i) p.mu.push_back(0.1 + 0.9 * std::abs(U(rng)));
     const auto sol = SolveFrictionalContact(p, {});
-    ASSERT_TRUE(sol.converged) << "trial " << trial << " residual " << sol.residual_impulse << " scale " << sol.scale << " newton " << sol.newton_iterations << " sweeps " << sol.sweeps;
+    ASSERT_TRUE(sol.converged) << "trial " << trial << " residual " << sol.residual_impulse
+                               << " scale " << sol.scale << " newton " << sol.newton_iterations
+                               << " sweeps " << sol.sweeps;
     const double Ps = std::max(sol.scale, 1e-300), Us = p.q.cwiseAbs().maxCoeff() + W.norm() * Ps;
     const Eigen::VectorXd Uc = W * sol.P + p.q;
     for (int i = 0; i < m; ++i) {
