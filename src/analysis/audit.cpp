@@ -159,8 +159,21 @@ LinkAudit AuditLink(const RobotModel& model, const RobotLink& link, internal::Me
   a.has_inertial = link.has_inertial;
   if (link.has_inertial) a.given = GivenMassProperties(link.inertial);
   a.estimates = internal::EstimateGeometry(link, meshes, model.file);
+  // A geometry set enclosing less than 1e-30 m³ (a cube of 1e-10 m, an atom's size) is no
+  // body's: its implied density (mass / volume) and the moments scaled from it would leave the
+  // range of a double for any mass a file may hold (up to 1e18 kg). It is named, not used.
+  constexpr double kMinGeometryVolume = 1e-30;  // [m³]
   for (std::size_t i = 0; i < a.estimates.size(); ++i) {
-    if (a.estimates[i].volume > 0.0 && !a.computed) a.computed = i;
+    GeometryEstimate& e = a.estimates[i];
+    if (e.volume > 0.0 && e.volume < kMinGeometryVolume) {
+      e.notes.push_back(
+          fmt::format("{} geometry (line {}) not used: it encloses {:.3g} m³, less "
+                      "than {:g} m³",
+                      GeometrySetName(e.set), e.lines.empty() ? link.line : e.lines.front(),
+                      e.volume, kMinGeometryVolume));
+      continue;
+    }
+    if (e.volume > 0.0 && !a.computed) a.computed = i;
   }
   for (const GeometryEstimate& e : a.estimates) {
     for (const std::string& n : e.notes) {

@@ -394,7 +394,10 @@ void StudyRun::RecordStepping(const TimeSteppingResult& r) {
   CheckFinite(m, r.final_state);
   result_.warnings.insert(result_.warnings.end(), r.warnings.begin(), r.warnings.end());
   result_.stats = r.stats;
-  StudyResult::TimeStepped& ts = result_.time_stepping.emplace();
+  // Assigned, not emplaced: clang 14 takes a nested struct with member initialisers for not
+  // default-constructible inside std::optional's constraints.
+  result_.time_stepping = StudyResult::TimeStepped();
+  StudyResult::TimeStepped& ts = *result_.time_stepping;
   ts.step = def_.time_stepping->step;
   ts.summary = r.summary;
   ts.tolerance_met = r.tolerance_met;
