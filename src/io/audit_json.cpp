@@ -26,8 +26,10 @@ nlohmann::json Described(const MassProperties& mp) {
   const PrincipalAxes pa = mp.I_BBcm_B().CalcPrincipalAxes();
   j["principal_moments"] = VecJson(pa.moments);
   j["principal_axes"] = MatJson(pa.axes.transpose());
-  j["radii_of_gyration"] =
-      VecJson(pa.moments.cwiseMax(0.0).cwiseQuotient(Vec3::Constant(mp.mass())).cwiseSqrt());
+  // sqrt(I_i / m): beyond a double's range for a mass at round-off beside its moments (1e-320
+  // kg under 0.1 kg·m²), which no body has: null then, as for an invalid tensor.
+  const Vec3 k = pa.moments.cwiseMax(0.0).cwiseQuotient(Vec3::Constant(mp.mass())).cwiseSqrt();
+  if (k.allFinite()) j["radii_of_gyration"] = VecJson(k);
   return j;
 }
 
