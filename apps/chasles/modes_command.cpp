@@ -232,7 +232,8 @@ std::string SweepText(const ModesSweep& w) {
   std::string out =
       fmt::format("Modes against {}{}\n", w.parameter, w.unit.empty() ? "" : " [" + w.unit + "]");
   for (size_t k = 0; k < w.values.size(); ++k) {
-    out += fmt::format("{} = {:.9g}: {}\n", w.parameter, w.values[k],
+    out += fmt::format("{} = {:.9g}{}: {}\n", w.parameter, w.values[k],
+                       w.unit.empty() ? "" : " " + w.unit,
                        w.points[k].modes.stable ? "stable" : "UNSTABLE");
     for (const Mode& m : w.points[k].modes.modes) {
       if (!m.rigid) out += ModeLine(m);
