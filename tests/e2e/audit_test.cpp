@@ -209,7 +209,7 @@ TEST(AuditCli, JsonGivesPrincipalMomentsAndRadiiOfGyration) {
 }
 
 // Every robot of the shared folder in URDF, and its MJCF and SDF versions (tests/robots), read
-// and audited without an input error, the whole folder in under 3 s.
+// and audited without an input error (its time recorded as a property).
 TEST(AuditCli, EveryRobotInEveryFormat) {
   const std::string shared = Shared();
   if (shared.empty()) GTEST_SKIP() << "../shared/robots is absent: the robots are not audited";
@@ -227,16 +227,15 @@ TEST(AuditCli, EveryRobotInEveryFormat) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_EQ(r.exit_code, 3) << r.err;  // the published defects
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["files"].size(), 10u + 9u + 10u);
+  EXPECT_EQ(j["files"].size(), 10u + 10u + 10u);
   std::map<std::string, int> formats;
   for (const nlohmann::json& f : j["files"]) ++formats[f["format"].get<std::string>()];
   EXPECT_EQ(formats["URDF"], 10);
-  EXPECT_EQ(formats["MJCF"], 9);
+  EXPECT_EQ(formats["MJCF"], 10);
   EXPECT_EQ(formats["SDF"], 10);
+  // Recorded, not asserted: the speed is bench/audit_bench.cpp's (docs/audit.md), and a loaded
+  // machine must not fail a test of correctness.
   RecordProperty("seconds", std::to_string(seconds));
-  if (!kAddressSanitizer) {
-    EXPECT_LT(seconds, 3.0);
-  }
   // The UR5's wrists in its SDF version, where the meshes resolve through --package.
   for (const nlohmann::json& f : j["files"]) {
     if (f["path"].get<std::string>().find("sdf/ur5.sdf") == std::string::npos) continue;

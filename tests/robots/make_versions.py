@@ -14,7 +14,10 @@ two of the robots as published: the ABB IRB 4600 (its tensors break the triangle
 and have negative moments) and the Staubli TX2-60L (no link has a mass). The ABB's MJCF is made
 from the URDF as `chasles audit --fix` writes it, with the published inertials then put back
 into each body as `fullinertia` (so that the MJCF carries the published defects, as the URDF
-does); the Staubli has no MJCF.
+does). The Staubli's is compiled with MuJoCo's own URDF extension
+`<mujoco><compiler boundmass=... boundinertia=.../></mujoco>`, which lets it compile massless
+bodies; the MJCF it saves keeps the bodies without inertials, as published (MuJoCo refuses that
+file, as it refuses the URDF).
 """
 
 import os
@@ -80,6 +83,12 @@ def restore_inertials(mjcf, inertials):
     return re.sub(r'<body name="([^"]+)"[^>]*>\s*<inertial [^>]*/>', body, mjcf)
 
 
+def bound_massless(urdf):
+    """MuJoCo's URDF extension: bodies without mass are compiled with a floor mass and inertia."""
+    return urdf.replace('</robot>', '  <mujoco><compiler boundmass="1e-6" boundinertia="1e-12"/>'
+                        '</mujoco>\n</robot>')
+
+
 def main():
     os.makedirs(os.path.join(HERE, 'mjcf'), exist_ok=True)
     os.makedirs(os.path.join(HERE, 'sdf'), exist_ok=True)
@@ -92,6 +101,8 @@ def main():
         with tempfile.TemporaryDirectory() as tmp:
             stripped = os.path.join(tmp, name + '.urdf')
             open(stripped, 'w').write(strip_meshes(urdf))
+            if name == 'staubli_tx2_60l':
+                open(stripped, 'w').write(bound_massless(strip_meshes(urdf)))
             if name == 'abb_irb4600':
                 subprocess.run([CHASLES, 'audit', stripped, '--fix', '--out',
                                 os.path.join(tmp, 'fixed')], capture_output=True)
