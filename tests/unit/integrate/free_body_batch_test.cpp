@@ -166,9 +166,13 @@ TEST(FreeBodyBatch, SplittingKeepsAngularMomentumAndQuaternionNormAndEnergyDoesN
     }
   }
   for (int b = 0; b < 4; ++b) {
-    // Bounded oscillation: the last tenth of the run strays no further than the first tenth did
-    // (a drift would have grown tenfold), and both are O((hω)²).
-    EXPECT_LE(last[static_cast<size_t>(b)], 1.5 * first[static_cast<size_t>(b)]) << b;
+    // Bounded oscillation: the last tenth of the run strays little further than the first tenth
+    // did, and both are O((hω)²). A drift linear in t would have grown at least ninefold between
+    // the two windows (t ≤ 20 s against t ≥ 180 s); the oscillation of the modified energy is
+    // quasi-periodic, so each window's largest value depends on the phases it happens to
+    // sample, and on the rounding: 1.72 times the first window's for body 1 as clang compiles
+    // the batch, under 1.5 as GCC does. Three times separates the two cases with room.
+    EXPECT_LE(last[static_cast<size_t>(b)], 3.0 * first[static_cast<size_t>(b)]) << b;
     EXPECT_LT(first[static_cast<size_t>(b)], 1e-3) << b;
   }
 }
