@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (AddressSanitizer + UndefinedBehaviorSanitizer) into
-# ${FUZZ_BUILD_DIR:-build-fuzz} and runs each one on its corpus for a bounded time.
+# ${FUZZ_BUILD_DIR:-build-asan}, the sanitizer build the tests share (scripts/common.sh), and
+# runs each one on its corpus for a bounded time.
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET ...]     (default 60 s; targets: scene
 #                                                          expression mesh cli robot)
 # A target that finds a crash, a leak, a timeout (20 s per input), an out-of-memory (2 GiB) or a
 # broken promise (fuzz/fuzz_support.h) stops the script with exit 1; the input is kept under
-# build-fuzz/artifacts/ and its report is printed. Copy it into fuzz/regressions/<target>/ once
-# fixed, so the ordinary test runs replay it. New corpus entries stay in build-fuzz/corpus/.
+# build-asan/artifacts/ and its report is printed. Copy it into fuzz/regressions/<target>/ once
+# fixed, so the ordinary test runs replay it. New corpus entries stay in build-asan/corpus/.
 # Without clang and libFuzzer the script says so and exits 0.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,21 +15,18 @@ seconds=${1:-60}
 shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(scene expression mesh cli robot)
-build=${FUZZ_BUILD_DIR:-build-fuzz}
+build=${FUZZ_BUILD_DIR:-build-asan}
+# shellcheck source=scripts/common.sh
+source scripts/common.sh
 
-if ! command -v clang++ >/dev/null ||
-  ! echo 'extern "C" int LLVMFuzzerTestOneInput(const char*, long) { return 0; }' |
-  clang++ -x c++ -fsanitize=fuzzer - -o /dev/null 2>/dev/null; then
+if ! have_libfuzzer; then
   echo "fuzz: skipped (clang++ with libFuzzer is not installed; scripts/setup.sh installs it)"
   exit 0
 fi
 
-# -O1 with line tables only: fuzzing speed is dominated by the sanitizers, and this keeps the
-# build (every source compiled with ASan, UBSan and coverage) short enough for CI while crash
-# reports still name file and line.
-CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Fuzz -DCMAKE_CXX_FLAGS_FUZZ="-O1 -gline-tables-only" \
-  -DCHASLES_FUZZ=ON -DCHASLES_BUILD_TESTS=OFF -DCHASLES_BUILD_BENCH=OFF -DCHASLES_WERROR=OFF \
-  >/dev/null
+# The sanitizer build of scripts/test.sh --sanitize (scripts/common.sh): after that, nothing is
+# compiled again here.
+configure_sanitize "$build"
 cmake --build "$build" -j "${JOBS:-2}" --target $(printf '%s_fuzz ' "${targets[@]}")
 
 seeds() {

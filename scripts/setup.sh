@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
+  ccache               # compiler cache: a rebuild of what was compiled before costs seconds
   libeigen3-dev        # linear algebra
   libyaml-cpp-dev      # scene files, with line/column marks
   libcli11-dev         # command line

@@ -514,7 +514,7 @@ TimeSteppingStep Combine(const TimeSteppingStep& a, const TimeSteppingStep& b) {
 class Run {
  public:
   Run(const Model& model, const State& initial, const TimeSteppingOptions& o)
-      : model_(model), o_(o), stepper_(model, o), s_(initial) {
+      : o_(o), stepper_(model, o), s_(initial) {
     if (s_.contacts.empty()) s_.contacts.resize(static_cast<size_t>(model.num_contact_points()));
     s_.force_integrals.resize(static_cast<size_t>(model.num_force_elements()));
     gaps_ = stepper_.Gaps(s_);
@@ -530,7 +530,6 @@ class Run {
   void Record(const TimeSteppingStep& c, const std::vector<ContactMode>& before);
   void Sample();
 
-  const Model& model_;
   const TimeSteppingOptions& o_;
   Stepper stepper_;
   State s_;

@@ -30,7 +30,6 @@ struct UnitEntry {
   Dimension dim;
 };
 
-constexpr Dimension kArea{2, 0, 0};
 constexpr Dimension kVolume{3, 0, 0};
 constexpr Dimension kForce{1, 1, -2};
 constexpr Dimension kEnergy{2, 1, -2};

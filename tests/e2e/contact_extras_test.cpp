@@ -192,6 +192,7 @@ TEST(ContactExtras, CoinDroppedFlatStopsAtOnce) {
     EXPECT_TRUE(Near(x.at("approach_speed").get<double>(), std::sqrt(2 * kG * h), kEvent));
     lost += x.at("energy_lost").get<double>();
   }
+  EXPECT_TRUE(Near(lost, m * kG * h, kEvent));  // the impacts' losses add up to the ledger's
   EXPECT_TRUE(Near(run.json.at("ledger").at("impact_work").get<double>(), -m * kG * h, kEvent));
   const auto& coin = Body(run.json.at("final"), "coin");
   EXPECT_NEAR(ToVec(coin.at("center_of_mass")).z(), T / 2, kEvent * h);

@@ -29,7 +29,7 @@ TEST(Examples, EveryExampleRuns) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(SourcePath("examples"))) {
     if (entry.path().extension() != ".yaml") continue;
-    ++count;
+    if (!Sampled(count++)) continue;
     for (const char* format : {"text", "json"}) {
       const CliResult r = RunCli("mass '" + entry.path().string() + "' --format " + format);
       EXPECT_EQ(r.exit_code, 0) << entry.path() << ": " << r.err;
@@ -52,7 +52,7 @@ TEST(Examples, EveryDynamicsExampleSimulates) {
     std::stringstream text;
     text << in.rdbuf();
     if (text.str().find("\nsimulation:") == std::string::npos) continue;
-    ++count;
+    if (!Sampled(count++)) continue;
     for (const char* format : {"text", "json"}) {
       const CliResult r = RunCli("simulate '" + entry.path().string() + "' --format " + format +
                                  " --out '" + out.string() + "' --strict");
@@ -366,7 +366,7 @@ TEST(Cli, OutputFileIsWritten) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.out.empty());
   std::ifstream in(path);
-  EXPECT_NO_THROW(nlohmann::json::parse(in));
+  EXPECT_TRUE(nlohmann::json::parse(in).is_object());
   std::filesystem::remove(path);
 }
 

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.h"
+#include "test_support.h"
 
 namespace chasles::test {
 namespace {
@@ -255,10 +256,11 @@ int Wait(pid_t pid) {
 
 TEST(AllOrNothing, SigtermAtTwentyOffsetsLeavesAllTheFilesOrNone) {
   // spring-mass to 100 s at 10 ms output: 10 000 CSV rows (1.6 MB) and 318 events in the JSON,
-  // about 0.2 s of work (ten times more under a sanitizer, more under load: the offsets follow
-  // the measured time, and 21 runs must stay well inside the test's time limit).
+  // about 0.2 s of work (more under load: the offsets follow the measured time, and 21 runs must
+  // stay well inside the test's time limit). Under the sanitizers, ten times slower, to 20 s.
   const std::string scene = SourcePath("examples/spring-mass.yaml");
-  const std::vector<std::string> base = {"simulate", scene, "--until", "100", "--format", "json"};
+  const std::string until = kAddressSanitizer ? "20" : "100";
+  const std::vector<std::string> base = {"simulate", scene, "--until", until, "--format", "json"};
   const fs::path dir = OutDir("io_sigterm");
   // A full run first: how long it takes and what it writes.
   const fs::path full = dir / "full";
@@ -306,7 +308,7 @@ TEST(AllOrNothing, SigtermAtTwentyOffsetsLeavesAllTheFilesOrNone) {
     EXPECT_EQ(ReadCsv((out / "spring-mass.csv").string()).at("t").size(), rows) << k;
     std::ifstream in(out / "spring-mass.json");
     const nlohmann::json j = nlohmann::json::parse(in);  // throws (fails) if cut short
-    EXPECT_EQ(j["t_end"].get<double>(), 100.0) << k;
+    EXPECT_EQ(j["t_end"].get<double>(), std::stod(until)) << k;
   }
   EXPECT_EQ(complete + none, 20);
   std::printf("SIGTERM at 20 offsets of a %.2f s run: %d left both files, %d left none\n", duration,
@@ -324,8 +326,10 @@ TEST(AllOrNothing, SigtermWhileATemporaryExistsRemovesIt) {
   for (int attempt = 0; attempt < 3; ++attempt) {
     const fs::path out = dir / ("run" + std::to_string(attempt));
     fs::create_directories(out);
-    const pid_t pid = Start({"simulate", SourcePath("examples/spring-mass.yaml"), "--until", "400",
-                             "--out", out.string()});
+    // A long run, so that the look for a temporary starts well before the files are written
+    // (a fifth of it under the sanitizers, which are ten times slower).
+    const pid_t pid = Start({"simulate", SourcePath("examples/spring-mass.yaml"), "--until",
+                             kAddressSanitizer ? "80" : "400", "--out", out.string()});
     bool seen = false;
     int status = 0;
     while (!seen && ::waitpid(pid, &status, WNOHANG) == 0) {
