@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
+#include "test_paths.h"
 #include "test_support.h"
 
 namespace chasles::test {
@@ -35,7 +36,7 @@ fs::path ScratchDir(const std::string& name) {
 }
 
 std::string Shared() {
-  const fs::path p = fs::path(CHASLES_SOURCE_DIR) / ".." / "shared" / "robots";
+  const fs::path p = fs::path(chasles::test::SourceDir()) / ".." / "shared" / "robots";
   return fs::is_directory(p) ? fs::canonical(p).string() : "";
 }
 

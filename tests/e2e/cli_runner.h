@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
+#include "test_paths.h"
 
 namespace chasles::test {
 
@@ -30,7 +31,7 @@ struct CliResult {
 };
 
 inline std::string SourcePath(const std::string& relative) {
-  return std::string(CHASLES_SOURCE_DIR) + "/" + relative;
+  return std::string(chasles::test::SourceDir()) + "/" + relative;
 }
 
 /// `text` in single quotes for the shell (paths here have no quotes of their own).
@@ -48,7 +49,7 @@ inline CliResult RunCli(const std::string& args) {
   const std::filesystem::path err_file = std::filesystem::temp_directory_path() /
                                          ("chasles_e2e_err_" + std::to_string(::getpid()) + ".txt");
   const std::string command =
-      std::string("'") + CHASLES_CLI + "' " + args + " 2>'" + err_file.string() + "'";
+      std::string("'") + chasles::test::CliPath() + "' " + args + " 2>'" + err_file.string() + "'";
   CliResult r;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return r;

@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.h"
+#include "test_paths.h"
 
 namespace chasles::test {
 namespace {
@@ -158,7 +159,7 @@ TEST(OutputTargets, TwoRunsIntoOneOutFolderAtOnceNeverLeaveAMixedPair) {
   // lock makes each pair of renames whole, so the CSV and the JSON left are of one run (the
   // JSON's final position is the CSV's last x, bit for bit).
   const fs::path dir = OutDir("hostile_pair");
-  const std::string run = "'" + std::string(CHASLES_CLI) + "' simulate " +
+  const std::string run = "'" + std::string(chasles::test::CliPath()) + "' simulate " +
                           Quote(SourcePath(kSpring)) + " --quiet --until 0.5 --out " +
                           Quote(dir.string()) + " --set ";
   for (int round = 0; round < 20; ++round) {

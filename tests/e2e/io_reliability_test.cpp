@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.h"
+#include "test_paths.h"
 #include "test_support.h"
 
 namespace chasles::test {
@@ -237,12 +238,12 @@ pid_t Start(const std::vector<std::string>& args) {
   const pid_t pid = ::fork();
   if (pid == 0) {
     std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(CHASLES_CLI));
+    argv.push_back(const_cast<char*>(chasles::test::CliPath()));
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
     std::freopen("/dev/null", "w", stdout);
     std::freopen("/dev/null", "w", stderr);
-    ::execv(CHASLES_CLI, argv.data());
+    ::execv(chasles::test::CliPath(), argv.data());
     ::_exit(127);
   }
   return pid;

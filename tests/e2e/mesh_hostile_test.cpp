@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.h"
+#include "test_paths.h"
 #include "test_support.h"
 
 namespace chasles::test {
@@ -34,8 +35,8 @@ BoundedResult RunBounded(const std::string& args) {
   const std::string limit = kAddressSanitizer
                                 ? "ASAN_OPTIONS=\"${ASAN_OPTIONS}:max_allocation_size_mb=1024\" "
                                 : "ulimit -v 1048576 && ";
-  const std::string command =
-      limit + "timeout -s KILL 20 '" + CHASLES_CLI + "' " + args + " 2>'" + err_file.string() + "'";
+  const std::string command = limit + "timeout -s KILL 20 '" + chasles::test::CliPath() + "' " +
+                              args + " 2>'" + err_file.string() + "'";
   BoundedResult r;
   const auto t0 = std::chrono::steady_clock::now();
   FILE* pipe = ::popen(command.c_str(), "r");

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
+#include "test_paths.h"
 #include "test_support.h"
 
 namespace chasles::test {
@@ -411,8 +412,8 @@ TEST(Sweep, AThousandJobsUnderAnAddressSpaceLimitRunOnTheThreadsThatStart) {
                     "leaves it room to start";
   }
   const std::filesystem::path dir = OutDir("sweeps_limit");
-  const std::string command = "ulimit -v 1000000 && '" + std::string(CHASLES_CLI) + "' simulate " +
-                              Quote(SourcePath("examples/spring-mass.yaml")) +
+  const std::string command = "ulimit -v 1000000 && '" + std::string(chasles::test::CliPath()) +
+                              "' simulate " + Quote(SourcePath("examples/spring-mass.yaml")) +
                               " --until 0.05 --quiet --sweep 'k=100 N/m:1000 N/m:50' --quantity "
                               "'max(block_x)' --jobs ";
   const std::filesystem::path limited = dir / "limited.csv", reference = dir / "reference.csv";

@@ -18,11 +18,13 @@
 #include "chasles/analysis/modes.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
+#include "test_paths.h"
 
 namespace chasles {
 namespace {
 
-const std::string kScene = std::string(CHASLES_SOURCE_DIR) + "/examples/whipple-bicycle.yaml";
+const std::string kScene =
+    std::string(chasles::test::SourceDir()) + "/examples/whipple-bicycle.yaml";
 
 ModalAnalysis AtSpeed(double v) {
   SceneOptions options;

@@ -19,6 +19,7 @@
 #include "chasles/files/robot_reader.h"
 #include "chasles/files/robot_writer.h"
 #include "chasles/scene/robot_file.h"
+#include "test_paths.h"
 #include "test_support.h"
 
 namespace chasles {
@@ -240,7 +241,7 @@ bool AtLinkOrInertial(const RobotModel& m, std::size_t i, int line) {
 
 TEST(AuditInjection, EveryDefectFoundAtItsLinkAndFixed) {
   const std::filesystem::path root =
-      std::filesystem::path(CHASLES_SOURCE_DIR) / ".." / "shared" / "robots";
+      std::filesystem::path(chasles::test::SourceDir()) / ".." / "shared" / "robots";
   if (!std::filesystem::is_directory(root)) {
     GTEST_SKIP() << "../shared/robots is absent: no defects injected";
   }
@@ -255,7 +256,8 @@ TEST(AuditInjection, EveryDefectFoundAtItsLinkAndFixed) {
   // And their MJCF and SDF versions (tests/robots; the SDF's meshes as model:// URIs).
   std::vector<std::string> paths;
   for (const std::string& f : files) paths.push_back((root / f).string());
-  const std::filesystem::path versions = std::filesystem::path(CHASLES_SOURCE_DIR) / "tests/robots";
+  const std::filesystem::path versions =
+      std::filesystem::path(chasles::test::SourceDir()) / "tests/robots";
   for (const char* f :
        {"mjcf/ur5.xml", "mjcf/panda.xml", "mjcf/panda_collision.xml",
         "mjcf/double_pendulum_simple.xml", "mjcf/solo12.xml", "sdf/ur5.sdf", "sdf/panda.sdf",

@@ -14,6 +14,7 @@
 #include "chasles/io/mesh_reader.h"
 #include "chasles/mass/mesh_mass.h"
 #include "chasles/scene/robot_file.h"
+#include "test_paths.h"
 #include "test_support.h"
 
 namespace chasles {
@@ -200,7 +201,7 @@ TEST(Audit, ColladaAndStlOfOneMeshAgree) {
 /// The shared robots (../shared/robots beside the repository), or "" with a message.
 std::string SharedRobots() {
   const std::filesystem::path p =
-      std::filesystem::path(CHASLES_SOURCE_DIR) / ".." / "shared" / "robots";
+      std::filesystem::path(chasles::test::SourceDir()) / ".." / "shared" / "robots";
   return std::filesystem::is_directory(p) ? p.string() : "";
 }
 
