@@ -145,8 +145,9 @@ std::string ReportText(const std::string& body, const BalanceReport& r, const Ro
   }
   if (std::isfinite(r.permissible)) {
     out += fmt::format(
-        "ISO 21940-11 grade G {:.6g}: permissible residual unbalance {:.9g} g*mm ({:.9g} in A, "
-        "{:.9g} in B); the static unbalance is {}\n",
+        "ISO 21940-11 grade G {:.6g}: permissible residual unbalance {:.9g} g*mm ({:.9g} g*mm in "
+        "plane A, "
+        "{:.9g} g*mm in plane B); the static unbalance is {}\n",
         r.grade, r.permissible * 1e6, r.permissible_per_plane[0] * 1e6,
         r.permissible_per_plane[1] * 1e6,
         r.static_unbalance_W.norm() <= r.permissible ? "within it" : "beyond it");
