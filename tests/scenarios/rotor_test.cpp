@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,10 @@ TEST(Rotor, TiltedEccentricDiskClosedForms) {
   EXPECT_NEAR(r.corrections[1].mass, std::abs(uB) / d.r, kTol * std::abs(uB) / d.r);
   EXPECT_NEAR(std::cos(r.corrections[0].angle), uA > 0 ? 1.0 : -1.0, 1e-15);
   EXPECT_NEAR(std::cos(r.corrections[1].angle), uB > 0 ? 1.0 : -1.0, 1e-15);
+  for (const BalanceCorrection& c : r.corrections) {  // in (-pi, pi]: -0 along e2 is +pi, not -pi
+    EXPECT_GT(c.angle, -std::numbers::pi);
+    EXPECT_LE(c.angle, std::numbers::pi);
+  }
   // Round-off of the corrections' sums: relative to the largest term, z u.
   const double moments = std::abs(d.zA * uA) + std::abs(d.zB * uB) + std::abs(D);
   EXPECT_LT(r.residual_static, kRoundOff * U);
