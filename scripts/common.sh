@@ -17,10 +17,10 @@ ccache_args() {
   fi
 }
 
-#
 # With clang and libFuzzer (scripts/setup.sh installs both) the tests and the fuzz targets share
-# one build, build-asan/: every object carries AddressSanitizer, UndefinedBehaviorSanitizer and
-# libFuzzer's coverage, compiled once at -O1 with line tables. CI runs the tests there and then
+# one build, build-asan/: every object carries AddressSanitizer and UndefinedBehaviorSanitizer,
+# the readers and commands also libFuzzer's coverage (CHASLES_FUZZ_COVERAGE in CMakeLists.txt),
+# compiled once at -O1 with line tables. CI runs the tests there and then
 # fuzzes with the same objects, so the library is compiled twice per CI run (ordinary, sanitized)
 # and not three times. Without libFuzzer it falls back to GCC's sanitizers (CHASLES_SANITIZE),
 # and scripts/fuzz.sh says it is skipped.
