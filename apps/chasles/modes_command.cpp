@@ -5,6 +5,7 @@
 // one parameter (a root locus, a Campbell diagram) and the values where the stability changes,
 // found by bisection.
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -44,6 +45,7 @@ nlohmann::json ModeJson(const Mode& m) {
                       {"damping_ratio", m.damping_ratio},
                       {"growth_rate", m.growth_rate},
                       {"stable", m.stable},
+                      {"neutral", m.neutral},
                       {"rigid", m.rigid},
                       {"shape", shape}};
   if (m.rigid) j["frees"] = m.rigid_coordinate;
@@ -109,13 +111,18 @@ nlohmann::json SceneModesJson(const SceneModes& s) {
 
 std::string ModeLine(const Mode& m) {
   if (m.rigid) return fmt::format("  rigid     frees {}\n", m.rigid_coordinate);
-  const double re = m.eigenvalue.real(), im = m.eigenvalue.imag();
+  // A neutral mode's Re λ and damping ratio are round-off (1e-16 of |λ|): printed as 0.
+  const double re = m.neutral ? 0.0 : m.eigenvalue.real(), im = m.eigenvalue.imag();
   std::string what;
   if (!m.stable) {
     what = fmt::format("grows at {:.9g} 1/s{}", m.growth_rate,
                        im > 0.0 ? fmt::format(", oscillating at {:.9g} Hz", m.frequency_hz) : "");
+  } else if (im > 0.0 && m.neutral) {
+    what = fmt::format("{:.9g} Hz, undamped", m.frequency_hz);
   } else if (im > 0.0) {
     what = fmt::format("{:.9g} Hz, damping ratio {:.6g}", m.frequency_hz, m.damping_ratio);
+  } else if (m.neutral) {
+    what = "neutral";
   } else {
     what = fmt::format("decays at {:.9g} 1/s", -re);
   }
@@ -144,9 +151,16 @@ std::string Text(const Scene& scene, const SceneModes& s) {
       "Operating point: {} (residual {:.3g}{})\n",
       op.kind == OperatingPointKind::kEquilibrium ? "static equilibrium" : "steady motion",
       op.residual, op.iterations > 0 ? fmt::format(", {} Newton steps", op.iterations) : "");
+  // Components below 1e-12 of the largest reaction are the solve's round-off: printed as 0
+  // (and + 0.0 turns a -0 into 0).
+  double largest = 0.0;
   for (const ReactionReport& r : s.solution.reactions) {
-    out += fmt::format("  reaction {:<16} F = [{:.9g}, {:.9g}, {:.9g}] N\n", r.name, r.F_Jc_W.x(),
-                       r.F_Jc_W.y(), r.F_Jc_W.z());
+    largest = std::max(largest, r.F_Jc_W.cwiseAbs().maxCoeff());
+  }
+  const auto shown = [&](double x) { return std::abs(x) <= 1e-12 * largest ? 0.0 : x + 0.0; };
+  for (const ReactionReport& r : s.solution.reactions) {
+    out += fmt::format("  reaction {:<16} F = [{:.9g}, {:.9g}, {:.9g}] N\n", r.name,
+                       shown(r.F_Jc_W.x()), shown(r.F_Jc_W.y()), shown(r.F_Jc_W.z()));
   }
   out += "Coordinates:";
   for (const LinearCoordinate& c : lin.coordinates) out += fmt::format(" {} [{}]", c.name, c.unit);

@@ -210,11 +210,15 @@ MatrixXd ChooseCoordinates(const std::vector<Readout>& ro, const MatrixXd& V, co
   const int d = static_cast<int>(V.cols());
   MatrixXd S(d, d), Q(d, d);
   int k = 0;
-  const auto try_add = [&](const Eigen::RowVectorXd& y) {
+  // A readout is a candidate where it sees more than 1e-8 of itself on the reduced space (V's
+  // columns are orthonormal, so |row V| <= |row|): below that its projection is the constraints'
+  // own residual (a joint axis tilted by the projection's 1e-10), not a direction of motion.
+  const auto try_add = [&](const Eigen::RowVectorXd& row, const MatrixXd& Vpart) {
     if (k == d) return false;
+    const Eigen::RowVectorXd y = row * Vpart;
     VectorXd r = y.transpose();
     const double norm = r.norm();
-    if (!(norm > 1e-12)) return false;
+    if (!(norm > 1e-8 * row.norm())) return false;
     for (int pass = 0; pass < 2; ++pass) r -= Q.leftCols(k) * (Q.leftCols(k).transpose() * r);
     if (r.norm() <= 1e-7 * norm) return false;
     Q.col(k) = r / r.norm();
@@ -223,10 +227,10 @@ MatrixXd ChooseCoordinates(const std::vector<Readout>& ro, const MatrixXd& V, co
   };
   const MatrixXd Vq = V.topRows(N), Vu = K * V.topRows(N) + V.bottomRows(N);
   for (const Readout& r : ro) {
-    if (try_add(r.row * Vq)) lin.coordinates.push_back({r.name, r.unit});
+    if (try_add(r.row, Vq)) lin.coordinates.push_back({r.name, r.unit});
   }
   for (const Readout& r : ro) {
-    if (try_add(r.row * Vu)) lin.speeds.push_back({"d(" + r.name + ")/dt", r.unit + "/s"});
+    if (try_add(r.row, Vu)) lin.speeds.push_back({"d(" + r.name + ")/dt", r.unit + "/s"});
   }
   if (k < d) {
     throw InputError(

@@ -103,6 +103,7 @@ Mode MakeMode(std::complex<double> lambda, Eigen::VectorXcd shape, int m, double
   const double mag = std::abs(lambda);
   mode.damping_ratio = mag > 0.0 ? -lambda.real() / mag : 0.0;
   mode.stable = lambda.real() <= kNeutral * scale;
+  mode.neutral = std::abs(lambda.real()) <= kNeutral * scale;
   mode.growth_rate = mode.stable ? 0.0 : lambda.real();
   // Normalise: the largest coordinate entry (else speed entry) becomes 1.
   Eigen::Index at = 0;

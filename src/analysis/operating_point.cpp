@@ -175,16 +175,32 @@ OperatingPoint FindEquilibrium(const Model& model, const State& guess,
     const VectorXd dc = lin.A.bottomLeftCorner(p, m).completeOrthogonalDecomposition().solve(-now);
     VectorXd z = VectorXd::Zero(2 * N);
     z.head(N) = lin.basis.topRows(N).leftCols(m) * dc;
-    double step = 1.0;
-    for (; step > 1e-6; step *= 0.5) {
-      State trial = AtRest(model, internal::PerturbState(model, op.state, z, step));
+    // A trust region: no body turns by more than half a radian or moves by more than half
+    // the length scale in one step. Where the linearisation is nearly singular (a pendulum
+    // held level: the restoring stiffness m g L cos θ is 0) the full step is unbounded and
+    // would carry the joints beyond what their projection can restore.
+    const double length = internal::CalcRateScales(model, op.state, data).length;
+    double largest = 0.0;
+    for (int b = 0; b < model.num_bodies(); ++b) {
+      largest =
+          std::max({largest, z.segment<3>(6 * b).norm() / length, z.segment<3>(6 * b + 3).norm()});
+    }
+    const double first = largest > 0.5 ? 0.5 / largest : 1.0;
+    double step = first;
+    for (; step > 1e-6 * first; step *= 0.5) {
+      State trial;
+      try {
+        trial = AtRest(model, internal::PerturbState(model, op.state, z, step));
+      } catch (const InputError&) {
+        continue;  // the constraints cannot be restored from this far: a shorter step
+      }
       const double r = Residual(model, trial, op.generator);
       if (r < op.residual) {
         op.state = trial, op.residual = r;
         break;
       }
     }
-    if (step <= 1e-6) {
+    if (step <= 1e-6 * first) {
       throw InputError(fmt::format(
           "no static equilibrium near the initial state (no Newton step lowers the residual "
           "{:.3g}): {}",

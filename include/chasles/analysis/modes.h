@@ -33,6 +33,9 @@ struct Mode {
   double growth_rate = 0.0;
   /// Re λ <= kNeutral · (the largest |λ|): decaying or neutral.
   bool stable = true;
+  /// |Re λ| <= kNeutral · (the largest |λ|): neither growing nor decaying; its Re λ and
+  /// damping ratio are round-off and print as 0.
+  bool neutral = false;
   /// A rigid mode (λ = 0 by a symmetry).
   bool rigid = false;
   /// For a rigid mode, the coordinate or speed it frees ("conserved quantity" for one that

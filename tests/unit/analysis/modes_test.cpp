@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <string>
 
@@ -84,6 +85,63 @@ joints:
   EXPECT_TRUE(modes.stable);
   EXPECT_LT(modes.linearization.consistency, 1e-12);
   EXPECT_LT(modes.linearization.finite_difference_check, 1e-6);
+}
+
+// The same search from any starting angle, in a planar scene (a ball of radius r on a light arm
+// L, I_O = (2/5) m r² + m L², ω² = m g L / I_O, eq. 8.39): Newton ends at the hanging
+// equilibrium (stable, frequency ω) or the inverted one (growth rate ω), never in an error —
+// also at 90°, where the restoring stiffness m g L cos θ is 0 and the first Newton step is
+// unbounded (the search's trust region), and from angles whose reduced state once came out as
+// two coordinates and no speed (a readout seeing 1e-10 of the reduced space, counted as a
+// coordinate). Seeded angles in (-175°, 175°), and 29°, 30°, 90° by name.
+TEST(Modes, PlanarPendulumEquilibriumFromAnyAngle) {
+  const double m = 1.5, L = 1.0, r = 0.05;
+  const double w = std::sqrt(m * kG * L / (0.4 * m * r * r + m * L * L));
+  std::vector<double> angles = {29.0, 30.0, 90.0, -90.0};
+  std::uint64_t x = 0x9e3779b97f4a7c15ULL;  // splitmix64, seeded
+  for (int i = 0; i < 24; ++i) {
+    x += 0x9e3779b97f4a7c15ULL;
+    std::uint64_t z = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    angles.push_back(-175.0 + 350.0 * static_cast<double>(z >> 11) * 0x1.0p-53);
+  }
+  for (const double deg : angles) {
+    SCOPED_TRACE(fmt::format("theta0 = {} deg", deg));
+    const double th = deg * std::numbers::pi / 180.0;
+    const Study s =
+        Build(fmt::format(R"(
+chasles: 2
+planar: true
+bodies:
+  - name: ball
+    parts: [{{shape: sphere, radius: {r}, mass: {m}, position: [{x}, {y}]}}]
+gravity: standard
+joints:
+  - {{name: pin, type: revolute, parent: world, child: ball, at: [0, 0]}}
+)",
+                          fmt::arg("r", r), fmt::arg("m", m), fmt::arg("x", L * std::sin(th)),
+                          fmt::arg("y", -L * std::cos(th))));
+    const OperatingPoint op = FindEquilibrium(*s.model, s.initial);
+    EXPECT_LT(op.residual, 1e-12);
+    const Vec3 p = op.state.bodies[0].p_WBcm;
+    EXPECT_NEAR(std::abs(p.y()), L, 1e-12);
+    EXPECT_NEAR(p.x(), 0.0, 1e-12);
+    const ModalAnalysis modes = AnalyseModes(*s.model, op, LinearizeOptions{});
+    ASSERT_EQ(modes.linearization.coordinates.size(), 1u) << Describe(modes);
+    ASSERT_EQ(modes.linearization.speeds.size(), 1u) << Describe(modes);
+    ASSERT_EQ(modes.modes.size(), p.y() < 0.0 ? 1u : 2u) << Describe(modes);
+    if (p.y() < 0.0) {  // hanging: one neutral pair ±iω
+      EXPECT_TRUE(modes.stable);
+      EXPECT_TRUE(modes.modes[0].neutral);
+      EXPECT_NEAR(modes.modes[0].eigenvalue.imag(), w, kTol * w);
+    } else {  // inverted: λ = ±ω, real
+      EXPECT_FALSE(modes.stable);
+      double growth = 0.0;
+      for (const Mode& mode : modes.modes) growth = std::max(growth, mode.growth_rate);
+      EXPECT_NEAR(growth, w, kTol * w);
+    }
+  }
 }
 
 // A double pendulum of two bodies on hinges about y: link 1 (mass m1, centre c1 below pin 1,
