@@ -15,9 +15,11 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/analysis/balance.h"
+#include "chasles/analysis/whirl.h"
 #include "chasles/error.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/output_set.h"
+#include "chasles/model/bearing.h"
 #include "chasles/scene/expression.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
@@ -25,6 +27,7 @@
 #include "chasles/suggest.h"
 #include "commands.h"
 #include "scene_args.h"
+#include "whirl_report.h"
 
 namespace chasles::cli {
 namespace {
@@ -68,6 +71,73 @@ std::pair<double, double> ReadPlanes(const Scene& scene, const std::string& text
   }
   return {ReadQuantity(scene, text.substr(0, comma), "--planes", kLength, "a length"),
           ReadQuantity(scene, text.substr(comma + 1), "--planes", kLength, "a length")};
+}
+
+/// 'A:B:N': N spins (2 to 1,000) from A to B, 0 <= A < B (angular speeds, e.g. '0 rpm:6000
+/// rpm:31').
+std::vector<double> ReadWhirlSpeeds(const Scene& scene, const std::string& text) {
+  const size_t c1 = text.find(':'), c2 = c1 == std::string::npos ? c1 : text.find(':', c1 + 1);
+  const auto bad = [&](const std::string& why) {
+    return SceneError("command line", 0, 0, "--whirl",
+                      fmt::format("'{}' {}: give 'A:B:N', N spins from A to B (e.g. "
+                                  "'0 rpm:6000 rpm:31')",
+                                  text, why));
+  };
+  if (c2 == std::string::npos || text.find(':', c2 + 1) != std::string::npos) {
+    throw bad("is not three fields");
+  }
+  const double a = ReadQuantity(scene, text.substr(0, c1), "--whirl", kRate, "an angular speed");
+  const double b =
+      ReadQuantity(scene, text.substr(c1 + 1, c2 - c1 - 1), "--whirl", kRate, "an angular speed");
+  const std::string count = text.substr(c2 + 1);
+  const auto first = count.find_first_not_of(' '), last = count.find_last_not_of(' ');
+  const std::string digits =
+      first == std::string::npos ? "" : count.substr(first, last - first + 1);
+  if (digits.empty() || digits.size() > 4 ||
+      digits.find_first_not_of("0123456789") != std::string::npos) {
+    throw bad("has no whole number of points N");
+  }
+  const int n = std::stoi(digits);
+  if (n < 2 || n > 1000) throw bad("needs 2 to 1,000 points");
+  if (!(a >= 0.0) || !(b > a)) throw bad("needs 0 <= A < B");
+  std::vector<double> out;
+  for (int i = 0; i < n; ++i) out.push_back(i + 1 == n ? b : a + (b - a) * i / (n - 1));
+  return out;
+}
+
+/// The whirl rows when the scene holds the rotor on elastic bearings (else none): over --whirl,
+/// else 0 to twice --speed, else 0 to twice the highest whirl frequency at rest (21 spins).
+std::optional<WhirlMap> CalcRotorWhirl(const Scene& scene, const Study& study, BodyIndex rotor,
+                                       const Vec3& a_W, const BalanceArgs& args, double speed) {
+  bool held = false;
+  for (int i = 0; i < study.model->num_force_elements(); ++i) {
+    const auto* bearing = dynamic_cast<const Bearing*>(&study.model->force_element(i));
+    held = held || (bearing != nullptr && bearing->body() == rotor);
+  }
+  if (!held) {
+    if (!args.whirl.empty()) {
+      throw SceneError("command line", 0, 0, "--whirl",
+                       fmt::format("no bearing element holds '{}': whirl needs the rotor on "
+                                   "elastic bearings (forces, type bearing)",
+                                   args.body));
+    }
+    return std::nullopt;
+  }
+  std::vector<double> speeds;
+  if (!args.whirl.empty()) {
+    speeds = ReadWhirlSpeeds(scene, args.whirl);
+  } else {
+    double top = std::isfinite(speed) ? speed : 0.0;
+    if (!(top > 0.0)) {
+      for (const WhirlMode& m :
+           CalcWhirl(*study.model, study.initial, rotor, a_W, {0.0}).points[0].modes) {
+        top = std::max(top, std::abs(m.eigenvalue.imag()));
+      }
+    }
+    if (!(top > 0.0)) return std::nullopt;  // nothing whirls: no rows
+    for (int i = 0; i <= 20; ++i) speeds.push_back(2.0 * top * i / 20.0);
+  }
+  return CalcWhirl(*study.model, study.initial, rotor, a_W, speeds);
 }
 
 nlohmann::json Vec(const Vec3& v) {
@@ -129,6 +199,10 @@ std::string ReportText(const std::string& body, const BalanceReport& r, const Ro
       r.e1_W.x(), r.e1_W.y(), r.e1_W.z(), r.e2_W.x(), r.e2_W.y(), r.e2_W.z());
   for (int k = 0; k < 2; ++k) {
     const BalanceCorrection& c = r.corrections[static_cast<size_t>(k)];
+    if (c.mass == 0.0) {
+      out += fmt::format("  plane {} at {:.9g} m: none needed\n", names[k], z[k]);
+      continue;
+    }
     out += fmt::format("  plane {} at {:.9g} m: {:.9g} kg at radius {:.9g} m, angle {:.6f} deg\n",
                        names[k], z[k], c.mass, c.radius, c.angle * 180.0 / std::numbers::pi);
   }
@@ -176,6 +250,9 @@ CLI::App* AddBalanceCommand(CLI::App& app, BalanceArgs& args) {
   cmd->add_option("--speed", args.speed,
                   "Spin for the bearing forces and the grade, e.g. '3000 rpm'");
   cmd->add_option("--grade", args.grade, "ISO 21940-11 balance grade G in mm/s (e.g. 6.3)");
+  cmd->add_option("--whirl", args.whirl,
+                  "With the rotor on elastic bearings: the spins of the whirl rows, 'A:B:N' "
+                  "(default: 0 to twice --speed, 21 spins)");
   cmd->add_option("--format", args.format, "text or json")->check(CLI::IsMember({"text", "json"}));
   cmd->add_option("-o,--out", args.output, "Write the report here (default: standard output)");
   cmd->footer(
@@ -217,6 +294,7 @@ int RunBalance(const BalanceArgs& args) {
                                  DidYouMean(args.body, names), fmt::join(names, ", ")));
   }
   BalanceReport r;
+  std::optional<WhirlMap> whirl;
   try {
     const Study study = BuildStudy(scene, 1.0);
     const Model& model = *study.model;
@@ -225,18 +303,20 @@ int RunBalance(const BalanceArgs& args) {
     const Mat3 R = s.q_WB.normalized().toRotationMatrix();
     r = CalcBalance(model.body(b).mass(), s.p_WBcm, R * model.body(b).I_BBcm_B() * R.transpose(),
                     axis, speed, args.grade > 0.0 ? args.grade : std::nan(""));
+    whirl = CalcRotorWhirl(scene, study, b, axis.a_W, args, speed);
   } catch (const SceneError&) {
     throw;
   } catch (const InputError& e) {
     ThrowAtSceneEntry(scene, e);
   }
-  const nlohmann::json j = ReportJson(args.body, r, axis);
+  nlohmann::json j = ReportJson(args.body, r, axis);
+  j["whirl"] = whirl ? WhirlJson(*whirl) : nlohmann::json(nullptr);
   std::string report;
   if (args.format == "json") {
     report = DumpJson(j, "the balance report");
   } else {
     CheckFiniteJson(j, "the balance report");
-    report = ReportText(args.body, r, axis);
+    report = ReportText(args.body, r, axis) + (whirl ? WhirlText(*whirl) : "");
   }
   out.Add(ReportTarget(args.output), std::move(report));
   out.Commit();

@@ -177,6 +177,7 @@ struct BalanceArgs {
   std::string radius;                 // the correction radius (a length with its unit)
   std::string speed;            // the spin for the bearing reactions and the grade (rad/s, rpm)
   double grade = 0.0;           // ISO 21940-11 balance grade G [mm/s]; 0: none
+  std::string whirl;            // 'A:B:N': the spins of the whirl rows (with elastic bearings)
   std::string format = "text";  // text | json
   std::string output;           // -o/--out
 };

@@ -47,6 +47,7 @@ BalanceReport CalcBalance(double mass, const Vec3& p_WBcm, const Mat3& I_cm_W,
     c.angle = std::atan2(u[k].dot(r.e2_W), u[k].dot(r.e1_W));
     // In (-pi, pi]: a component of -0 along e2 gives atan2's -pi, the same place as +pi.
     if (c.angle <= -std::numbers::pi) c.angle = std::numbers::pi;
+    if (c.mass == 0.0) c.angle = 0.0;  // a balanced plane: no direction (atan2 of ±0 is ±pi)
     const Vec3 dir = std::cos(c.angle) * r.e1_W + std::sin(c.angle) * r.e2_W;
     c.p_W = axis.p_WO + z[k] * a + axis.radius * dir;
   }

@@ -216,6 +216,48 @@ TEST(Modes, RotorCriticalSpeeds) {
   }
 }
 
+// `chasles balance` on a rotor held by bearings gives whirl rows: the critical speeds of
+// examples/rotor-on-bearings.yaml (undamped), forward where ω = Ω solves
+// (K0 - m ω²)(K2 - I_t ω² + I_p Ω ω) = K1², i.e. (K0 - m Ω²)(K2 - (I_t - I_p) Ω²) = K1², and
+// backward where ω = -Ω does, (K0 - m Ω²)(K2 - (I_t + I_p) Ω²) = K1²: quadratics in Ω².
+TEST(Balance, WhirlRowsAndCriticalSpeedsFromTheCli) {
+  const double ms = 8, rho = 0.05, L = 0.6, md = 5, Rd = 0.2, zd = 0.28;
+  const double m = ms + md, zc = md * zd / m;
+  const double It = ms * (3 * rho * rho + L * L) / 12 + ms * zc * zc + md * Rd * Rd / 4 +
+                    md * (zd - zc) * (zd - zc);
+  const double Ip = ms * rho * rho / 2 + md * Rd * Rd / 2;
+  const double kA = 3e5, kB = 1e5, zA = -0.28 - zc, zB = 0.1 - zc;
+  const double K0 = kA + kB, K1 = kA * zA + kB * zB, K2 = kA * zA * zA + kB * zB * zB;
+  // The two roots Ω of m J x² - (m K2 + K0 J) x + K0 K2 - K1² = 0 (x = Ω²), J = I_t ∓ I_p.
+  const auto roots = [&](double J) {
+    const double a = m * J, b = -(m * K2 + K0 * J), c = K0 * K2 - K1 * K1;
+    const double d = std::sqrt(b * b - 4 * a * c);
+    return std::pair{std::sqrt((-b - d) / (2 * a)), std::sqrt((-b + d) / (2 * a))};
+  };
+  const auto [f1, f2] = roots(It - Ip);
+  const auto [b1, b2] = roots(It + Ip);
+  const nlohmann::json j =
+      RunJson("balance " + Quote(SourcePath("examples/rotor-on-bearings.yaml")) +
+              " --set 'damping=0 N*s/m' --body rotor --planes '-28 cm, 10 cm' --radius '10 cm' "
+              "--whirl '0 rad/s:400 rad/s:21'");
+  const auto& w = j.at("whirl");
+  ASSERT_EQ(w.at("points").size(), 21u);
+  EXPECT_EQ(w.at("speeds").at(20).get<double>(), 400.0);
+  const std::vector<std::pair<double, std::string>> want = {
+      {b1, "backward"}, {f1, "forward"}, {b2, "backward"}, {f2, "forward"}};
+  const auto& cs = w.at("critical_speeds");
+  ASSERT_EQ(cs.size(), want.size()) << cs.dump();
+  for (size_t i = 0; i < want.size(); ++i) {
+    EXPECT_NEAR(cs[i].at("speed").get<double>(), want[i].first, kTol * want[i].first);
+    EXPECT_EQ(cs[i].at("directions"), nlohmann::json::array({want[i].second})) << cs.dump();
+  }
+  // A rotor on no bearings has no whirl rows.
+  const nlohmann::json none =
+      RunJson("balance " + Quote(SourcePath("examples/unbalanced-disk-rotor.yaml")) +
+              " --body rotor --planes '-25 cm, 25 cm' --radius '15 cm'");
+  EXPECT_TRUE(none.at("whirl").is_null());
+}
+
 // examples/unbalanced-disk-rotor.yaml (its comment): U = m_d e for the disk 0.2 mm off the
 // axis (the shaft is on it), its own couple -sin τ cos τ (I_p - I_d) about x, so about O
 // D = C_d + z_d U and about the rotor's centre of mass (z_cm = m_d z_d / m) C = D - z_cm U;
@@ -293,8 +335,24 @@ TEST(Balance, BadOptionsAreInputErrors) {
            {"--body rotor --planes '-1 cm, 1 cm' --radius '5 kg'", "is not a length"},
            {"--body rotor --planes '-1 cm, 1 cm' --radius '5 cm' --grade 6.3", "--speed"},
            {"--body wheel --planes '-1 cm, 1 cm' --radius '5 cm'", "wheel"},
+           {"--body rotor --planes '-1 cm, 1 cm' --radius '5 cm' --whirl '0 rpm:1 rpm:3'",
+            "no bearing element holds 'rotor'"},
        }) {
     const CliResult r = RunCli("balance " + scene + " " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_THAT(r.err, ::testing::HasSubstr(expect)) << args;
+    EXPECT_TRUE(r.out.empty()) << args;
+  }
+  const std::string held = Quote(SourcePath("examples/rotor-on-bearings.yaml")) +
+                           " --body rotor --planes '-28 cm, 10 cm' --radius '10 cm' ";
+  for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
+           {"--whirl '0 rpm:100 rpm'", "is not three fields"},
+           {"--whirl '0 rpm:100 rpm:1'", "needs 2 to 1,000 points"},
+           {"--whirl '0 rpm:100 rpm:x'", "has no whole number of points"},
+           {"--whirl '100 rpm:0 rpm:5'", "needs 0 <= A < B"},
+           {"--whirl '0 m:1 m:5'", "is not an angular speed"},
+       }) {
+    const CliResult r = RunCli("balance " + held + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_THAT(r.err, ::testing::HasSubstr(expect)) << args;
     EXPECT_TRUE(r.out.empty()) << args;

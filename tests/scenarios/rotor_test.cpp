@@ -17,6 +17,7 @@
 #include "chasles/analysis/balance.h"
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/analysis/modes.h"
+#include "chasles/analysis/whirl.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
 
@@ -240,6 +241,88 @@ TEST(Rotor, OverhungGyroscopicDiskWhirl) {
   r.zA = -0.28, r.zB = 0.1, r.kA = 3e5, r.kB = 1e5;
   r.disk_m = 5.0, r.disk_R = 0.2, r.disk_z = 0.28;
   for (double W : {0.0, 150.0, 600.0}) ExpectWhirl(r, W);
+}
+
+// The same quartic's real roots, signed: ω > 0 whirls forward (with the spin), ω < 0 backward.
+std::vector<double> SignedWhirl(const RotorOnBearings& r, double W) {
+  const double m = r.Mass(), It = r.It(), Ip = r.Ip(), K0 = r.K(0), K1 = r.K(1), K2 = r.K(2);
+  const double a4 = m * It;
+  const double c[4] = {(K0 * K2 - K1 * K1) / a4, K0 * Ip * W / a4, -(m * K2 + K0 * It) / a4,
+                       -m * Ip * W / a4};
+  Eigen::Matrix4d companion = Eigen::Matrix4d::Zero();
+  for (int i = 1; i < 4; ++i) companion(i, i - 1) = 1.0;
+  for (int i = 0; i < 4; ++i) companion(i, 3) = -c[i];
+  const Eigen::Vector4cd roots = companion.eigenvalues();
+  std::vector<double> w;
+  for (int i = 0; i < 4; ++i) w.push_back(roots[i].real());
+  return w;
+}
+
+/// CalcWhirl's frequencies [rad/s] in direction `d` at the point `p`, ascending.
+std::vector<double> Whirling(const WhirlPoint& p, WhirlDirection d) {
+  std::vector<double> out;
+  for (const WhirlMode& m : p.modes) {
+    if (m.direction == d) out.push_back(std::abs(m.eigenvalue.imag()));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void ExpectDirections(const RotorOnBearings& r, const std::vector<double>& spins) {
+  const Study s = BuildStudy(LoadSceneText(r.Scene(0.0), "rotor.yaml"), 1.0);
+  const WhirlMap map = CalcWhirl(*s.model, s.initial, 0, Vec3::UnitZ(), spins);
+  ASSERT_EQ(map.points.size(), spins.size());
+  for (size_t k = 0; k < spins.size(); ++k) {
+    SCOPED_TRACE(fmt::format("spin {} rad/s", spins[k]));
+    std::vector<double> fwd, bwd;
+    for (const double w : SignedWhirl(r, spins[k])) (w > 0.0 ? fwd : bwd).push_back(std::abs(w));
+    std::sort(fwd.begin(), fwd.end()), std::sort(bwd.begin(), bwd.end());
+    const WhirlPoint& p = map.points[k];
+    EXPECT_DOUBLE_EQ(p.speed, spins[k]);
+    if (spins[k] == 0.0) {  // at rest forward and backward are one: no direction
+      EXPECT_EQ(Whirling(p, WhirlDirection::kNone).size(), 4u);
+      continue;
+    }
+    const std::vector<double> got_f = Whirling(p, WhirlDirection::kForward),
+                              got_b = Whirling(p, WhirlDirection::kBackward);
+    ASSERT_EQ(got_f.size(), fwd.size());
+    ASSERT_EQ(got_b.size(), bwd.size());
+    for (size_t i = 0; i < fwd.size(); ++i) EXPECT_NEAR(got_f[i], fwd[i], kTol * fwd[i]);
+    for (size_t i = 0; i < bwd.size(); ++i) EXPECT_NEAR(got_b[i], bwd[i], kTol * bwd[i]);
+  }
+}
+
+// Forward and backward whirl told apart by the modes' shapes (analysis/whirl.h) against the
+// signs of the quartic's roots. The symmetric rotor's translation (K1 = 0) whirls at
+// √(K0/m) both ways at every spin: a repeated eigenvalue whose eigenspace the whirl form splits.
+TEST(Rotor, WhirlDirectionsAgainstTheQuarticsSigns) {
+  ExpectDirections(RotorOnBearings{}, {0.0, 100.0, 400.0, 1000.0});
+  RotorOnBearings overhung;
+  overhung.zA = -0.28, overhung.zB = 0.1, overhung.kA = 3e5, overhung.kB = 1e5;
+  overhung.disk_m = 5.0, overhung.disk_R = 0.2, overhung.disk_z = 0.28;
+  ExpectDirections(overhung, {0.0, 150.0, 600.0});
+}
+
+// The critical speeds with their directions: translation Ω² = K0/m both ways (K1 = 0), the
+// tilt forward where I_t Ω² - I_p Ω² = K2 and backward where I_t Ω² + I_p Ω² = K2 (ω = ±Ω
+// in K2 - I_t ω² + I_p Ω ω = 0).
+TEST(Rotor, CriticalSpeedsWithTheirDirections) {
+  const RotorOnBearings r;
+  const Study s = BuildStudy(LoadSceneText(r.Scene(0.0), "rotor.yaml"), 1.0);
+  std::vector<double> grid;
+  for (int i = 0; i <= 20; ++i) grid.push_back(20.0 * i);
+  const WhirlMap map = CalcWhirl(*s.model, s.initial, 0, Vec3::UnitZ(), grid);
+  const double both = std::sqrt(r.K(0) / r.Mass());
+  const double fwd = std::sqrt(r.K(2) / (r.It() - r.Ip()));
+  const double bwd = std::sqrt(r.K(2) / (r.It() + r.Ip()));
+  ASSERT_EQ(map.critical_speeds.size(), 3u);
+  using D = WhirlDirection;
+  const std::vector<std::pair<double, std::vector<D>>> want = {
+      {both, {D::kForward, D::kBackward}}, {bwd, {D::kBackward}}, {fwd, {D::kForward}}};
+  for (size_t i = 0; i < want.size(); ++i) {
+    EXPECT_NEAR(map.critical_speeds[i].speed, want[i].first, kTol * want[i].first);
+    EXPECT_EQ(map.critical_speeds[i].directions, want[i].second) << "at " << want[i].first;
+  }
 }
 
 }  // namespace
