@@ -21,7 +21,7 @@ function motionAt(d, lambda, t) {
  * time t: Bcm = Bcm0 + δp, R = exp(δθ) R0 (δθ about W's axes, as the linearisation perturbs),
  * and the frame origin Bo = Bcm − R p_BoBcm_B. No mode, or a body it does not move: `base`.
  */
-export function modePose(body, base, mode, t) {
+function modePose(body, base, mode, t) {
   const m = mode && mode.animated ? mode.bodies.find((b) => b.name === body.name) : null;
   if (!m) return { position: base.origin.slice(), quaternion: base.quaternion.slice() };
   const dp = motionAt(m.dp, mode.eigenvalue, t);
@@ -36,7 +36,7 @@ export function modePose(body, base, mode, t) {
 }
 
 /** The selector's text of a mode: frequency and damping, or the rate, and the verdict. */
-export function modeLabel(mode, k, fmt) {
+function modeLabel(mode, k, fmt) {
   if (mode.rigid) return `${k + 1}: rigid, frees ${mode.frees} (not animated)`;
   const [re, im] = mode.eigenvalue;
   let what;

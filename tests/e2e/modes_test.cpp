@@ -1,6 +1,7 @@
 // chasles modes and chasles balance (docs/modes.md) on the examples: the operating point, the
 // modes and the stability changes against closed forms derived here, rigid modes named, a
-// sweep through a double eigenvalue without NaN, and bad input refused with exit code 2.
+// sweep through a double eigenvalue without NaN, the browser report's mode motions, and bad
+// input refused with exit code 2 and nothing written.
 
 #include <algorithm>
 #include <cmath>
