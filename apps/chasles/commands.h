@@ -162,6 +162,7 @@ struct ModesArgs {
   std::string sweep;            // NAME=START:STOP:COUNT, or "" for one operating point
   std::string format = "text";  // text | json | csv (a sweep's table)
   std::string output;           // -o/--out, "" = standard output
+  std::string html;             // --html: also write the browser report here (the modes animated)
 };
 CLI::App* AddModesCommand(CLI::App& app, ModesArgs& args);
 int RunModes(const ModesArgs& args);

@@ -21,9 +21,11 @@
 #include "chasles/io/output_set.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/scene/modes.h"
+#include "chasles/scene/report_data.h"
 #include "chasles/scene/scene_dynamics.h"
 #include "chasles/scene/scene_error.h"
 #include "commands.h"
+#include "html_report.h"
 #include "scene_args.h"
 
 namespace chasles::cli {
@@ -284,9 +286,13 @@ CLI::App* AddModesCommand(CLI::App& app, ModesArgs& args) {
   cmd->add_option("--format", args.format, "text, json, or csv (a sweep's table, for plot)")
       ->check(CLI::IsMember({"text", "json", "csv"}));
   cmd->add_option("-o,--out", args.output, "Write the report here (default: standard output)");
+  cmd->add_option("--html", args.html,
+                  "Also write the browser report here: the bodies at the operating point, each "
+                  "mode's motion animated (one HTML file; not with --sweep)");
   cmd->footer(
       "Examples:\n"
       "  chasles modes examples/whipple-bicycle.yaml\n"
+      "  chasles modes examples/whipple-bicycle.yaml --html bicycle-modes.html\n"
       "  chasles modes examples/whipple-bicycle.yaml --sweep 'v=0 m/s:10 m/s:21' --format json\n"
       "  chasles modes examples/sleeping-top.yaml --sweep 'spin=20 rad/s:80 rad/s:7'\n"
       "Theory and output: docs/modes.md. Exit codes: 0 success, 2 bad input, 1 internal error.");
@@ -297,8 +303,15 @@ int RunModes(const ModesArgs& args) {
   if (args.scene.scene.empty()) {
     throw InputError("chasles modes needs a scene file (chasles modes --help)");
   }
-  OutputSet out;  // the target is checked before the scene is read
+  OutputSet out;  // the targets are checked before the scene is read
   out.Expect(ReportTarget(args.output), "-o");
+  if (!args.html.empty()) {
+    if (!args.sweep.empty()) {
+      throw InputError("--html draws the modes of one operating point: leave out --sweep");
+    }
+    RequireHtmlReport("--html");
+    out.Expect(args.html, "--html");
+  }
   std::string report;
   if (args.sweep.empty()) {
     if (args.format == "csv") throw InputError("--format csv is a sweep's table: give --sweep");
@@ -307,6 +320,7 @@ int RunModes(const ModesArgs& args) {
     const nlohmann::json j = SceneModesJson(s);
     report = args.format == "json" ? DumpJson(j, "the modes report")
                                    : (CheckFiniteJson(j, "the modes report"), Text(scene, s));
+    if (!args.html.empty()) out.Add(args.html, HtmlReport(ModesReportData(scene, s)));
   } else {
     const SweepSpec spec = ParseSweep(args.sweep, "command line", "--sweep");
     const ModesSweep w = SweepSceneModes(SceneLoader(args.scene), SceneOptionsFrom(args.scene),
@@ -321,6 +335,7 @@ int RunModes(const ModesArgs& args) {
   }
   out.Add(ReportTarget(args.output), std::move(report));
   out.Commit();
+  SayWroteHtmlReport(args.html);
   return 0;
 }
 

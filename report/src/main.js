@@ -5,6 +5,7 @@ import { readData, eventMarks, sampleAt } from './data.js';
 import { View, makeBody, partSize, quat, ForceArrow, FORCE_COLORS, THREE } from './scene3d.js';
 import { Plot, MODE_COLORS, MODE_NAMES } from './plots.js';
 import { sweepPlots } from './sweep.js';
+import { modesReport } from './modes.js';
 
 const api = {
   ready: false,
@@ -38,7 +39,7 @@ function vec(v, digits = 6) {
 
 /** The layout: header, the 3-D view and its controls, the side panel. */
 function layout(data) {
-  const kinds = { simulate: 'simulation', mass: 'mass properties', solve: 'instantaneous solve', sweep: 'sweep' };
+  const kinds = { simulate: 'simulation', mass: 'mass properties', solve: 'instantaneous solve', sweep: 'sweep', modes: 'modes' };
   const header = el(
     'header',
     {},
@@ -560,6 +561,7 @@ function start() {
     else if (data.kind === 'mass') massReport(data, parts);
     else if (data.kind === 'solve') solveReport(data, parts);
     else if (data.kind === 'sweep') sweepReport(data, parts);
+    else if (data.kind === 'modes') modesReport(data, parts, api, { el, fmt, table, extent, addPlanes });
     else throw new Error(`unknown report kind '${data.kind}'`);
     api.ready = true;
   } catch (e) {

@@ -6,9 +6,12 @@
 #include <numbers>
 #include <utility>
 
+#include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <Eigen/SVD>
+
+#include "chasles/error.h"
 
 namespace chasles {
 namespace {
@@ -171,6 +174,31 @@ ModalAnalysis CalcModes(const Linearization& lin) {
     modes.push_back(mode);
   }
   out.modes = std::move(modes);
+  return out;
+}
+
+std::vector<BodyModeShape> CalcBodyModeShapes(const Linearization& lin, const Mode& mode) {
+  // x = [coordinates; speeds] and ẋ = A x (linearize.h); Mode::shape is x̂ with A x̂ = λ x̂,
+  // its entries in the same order (ShapeOf: the null vector of A - λE over all of x). The
+  // linearisation keeps w (the reduced state, z = V w) and x = S w, and stores
+  // basis = V S⁻¹: column j is the maximal perturbation z of a unit x_j. So the mode's
+  // maximal perturbation is ẑ = basis · x̂, and since basis is real, x(t) = Re(x̂ e^{λt})
+  // moves the bodies by z(t) = Re(ẑ e^{λt}). z is [δq; δu], δq = [δp_0, δθ_0, δp_1, δθ_1, ...]
+  // over the n bodies (6 each) followed by δu = [δv_0, δω_0, ...] (PerturbState's order), so
+  // body b's δp and δθ are ẑ's entries 6b..6b+2 and 6b+3..6b+5 of its first 6n rows.
+  if (mode.shape.size() != lin.basis.cols() || lin.basis.rows() % 12 != 0) {
+    throw UsageError(fmt::format(
+        "CalcBodyModeShapes: a shape of {} entries for a linearisation of {} coordinates and "
+        "speeds",
+        mode.shape.size(), lin.basis.cols()));
+  }
+  const Eigen::Index n = lin.basis.rows() / 12;
+  const Eigen::VectorXcd z = lin.basis.topRows(6 * n).cast<std::complex<double>>() * mode.shape;
+  std::vector<BodyModeShape> out(static_cast<size_t>(n));
+  for (Eigen::Index b = 0; b < n; ++b) {
+    out[static_cast<size_t>(b)].dp = z.segment<3>(6 * b);
+    out[static_cast<size_t>(b)].dtheta = z.segment<3>(6 * b + 3);
+  }
   return out;
 }
 

@@ -521,3 +521,149 @@ test('sweep report: a solve sweep plots the forces and regimes that vary, not ro
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+/** Hamilton product of quaternions [w, x, y, z]. */
+function qmul(a, b) {
+  return [
+    a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+    a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+    a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+    a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
+  ];
+}
+
+/** v turned by the unit quaternion q: q v q*. */
+function rotate(q, v) {
+  const r = qmul(qmul(q, [0, ...v]), [q[0], -q[1], -q[2], -q[3]]);
+  return r.slice(1);
+}
+
+/**
+ * The pose a mode moves a body to at time t, worked out here from the data alone (docs/report.md,
+ * "Modes"): Bcm = Bcm0 + Re(dp e^{λt}), R = exp(δθ) R0 with δθ = Re(dθ e^{λt}) about W's axes,
+ * and the frame origin Bo = Bcm − R p_BoBcm_B.
+ */
+function expectedModePose(base, p_BoBcm_B, motion, lambda, t) {
+  const re = (d) => [0, 1, 2].map((i) => Math.exp(lambda[0] * t) * (d.re[i] * Math.cos(lambda[1] * t) - d.im[i] * Math.sin(lambda[1] * t)));
+  const dp = re(motion.dp);
+  const dtheta = re(motion.dtheta);
+  const a = Math.hypot(...dtheta);
+  const s = a > 0 ? Math.sin(a / 2) / a : 0.5;
+  const q = qmul([Math.cos(a / 2), dtheta[0] * s, dtheta[1] * s, dtheta[2] * s], base.quaternion);
+  const offset = rotate(q, p_BoBcm_B);
+  return { position: base.center_of_mass.map((x, i) => x + dp[i] - offset[i]), quaternion: q };
+}
+
+/** |a − b| of two poses: positions, and quaternions up to their sign. */
+function poseGap(a, b) {
+  const dp = Math.hypot(...a.position.map((x, i) => x - b.position[i]));
+  const plus = Math.hypot(...a.quaternion.map((x, i) => x - b.quaternion[i]));
+  const minus = Math.hypot(...a.quaternion.map((x, i) => x + b.quaternion[i]));
+  return { position: dp, quaternion: Math.min(plus, minus) };
+}
+
+test('modes report: the pendulum swings about its pin at the closed-form frequency', async () => {
+  const html = join(work, 'pendulum-modes.html');
+  chaslesRun(['modes', example('pendulum.yaml'), '--set', 'theta0=0 deg', '--html', html]);
+  const { page, problems } = await openReport(html);
+  // The example's ball: m = 1.5 kg, radius r = 0.05 m, its centre L = 1 m below the pin at Wo.
+  // I_O = (2/5) m r² + m L² (eq. 8.39), ω² = m g L / I_O.
+  const m = 1.5;
+  const r = 0.05;
+  const L = 1;
+  const w = Math.sqrt((m * 9.80665 * L) / (0.4 * m * r * r + m * L * L));
+  const data = await page.evaluate(() => ({ modes: window.chasles.data.modes, amplitude: window.chasles.data.amplitude }));
+  assert.equal(data.modes.length, 1);
+  const mode = data.modes[0];
+  assert.ok(mode.animated && !mode.rigid && mode.stable);
+  assert.ok(Math.abs(mode.eigenvalue[1] - w) <= 1e-10 * w);
+  // The shape's unit entry is the pin angle φ: the ball turns by φ z about the pin and its
+  // centre moves by φ z × (0, -L, 0) = φ (L, 0, 0): tangent to its circle, |δp| = L |δθ|.
+  const eps = mode.scale;
+  const dp = mode.bodies[0].dp;
+  const dtheta = mode.bodies[0].dtheta;
+  [eps * L, 0, 0].forEach((x, i) => assert.ok(Math.abs(dp.re[i] - x) <= 1e-9 * eps * L && Math.abs(dp.im[i]) <= 1e-9 * eps * L, `dp ${i}`));
+  [0, 0, eps].forEach((x, i) => assert.ok(Math.abs(dtheta.re[i] - x) <= 1e-9 * eps && Math.abs(dtheta.im[i]) <= 1e-9 * eps, `dtheta ${i}`));
+  // The largest excursion |δp| + ρ|δθ| (ρ² = tr(I)/(2m) = (3/5) r² for a solid ball) is 10 %
+  // of the scene's size: the pin to the ball's centre, L, plus 2ρ.
+  const rho = Math.sqrt(0.6) * r;
+  assert.ok(Math.abs(data.amplitude.scene_size - (L + 2 * rho)) <= 1e-12);
+  assert.ok(Math.abs(eps * (L + rho) - 0.1 * data.amplitude.scene_size) <= 1e-12);
+  // One period at constant amplitude.
+  assert.equal(mode.shown, 'oscillation');
+  assert.deepEqual(mode.loop[0], 0);
+  assert.ok(Math.abs(mode.loop[1] - (2 * Math.PI) / w) <= 1e-9);
+  // The selector: one option, its label the frequency.
+  const options = await page.$$eval('#mode option', (o) => o.map((x) => ({ text: x.textContent, disabled: x.disabled })));
+  assert.equal(options.length, 1);
+  assert.ok(options[0].text.includes(`${Number((w / (2 * Math.PI)).toPrecision(6))} Hz`), options[0].text);
+  assert.equal(options[0].disabled, false);
+  // The ball at φ(t) = ε cos ωt: q = [cos φ/2, 0, 0, sin φ/2], and its frame origin (at the pin
+  // when it hangs) at Bcm − R p_BoBcm_B = (Lφ, −L, 0) − R (0, −L, 0) = (L (φ − sin φ), L (cos φ − 1), 0).
+  const random = lcg(11);
+  for (let k = 0; k < 6; k++) {
+    const t = random() * mode.loop[1];
+    const pose = await page.evaluate((x) => {
+      window.chasles.seek(x);
+      return window.chasles.bodyPose('ball');
+    }, t);
+    const phi = eps * Math.exp(mode.eigenvalue[0] * t) * Math.cos(w * t);
+    const want = { position: [L * (phi - Math.sin(phi)), L * (Math.cos(phi) - 1), 0], quaternion: [Math.cos(phi / 2), 0, 0, Math.sin(phi / 2)] };
+    const gap = poseGap(pose, want);
+    assert.ok(gap.position <= 1e-9 && gap.quaternion <= 1e-9, `t = ${t}: ${JSON.stringify(pose)} vs ${JSON.stringify(want)}`);
+  }
+  await checkNotBlank(page);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('modes report: the bicycle at 2 m/s, every mode in the selector, growing and decaying loops', async () => {
+  const html = join(work, 'bicycle-modes.html');
+  chaslesRun(['modes', example('whipple-bicycle.yaml'), '--set', 'v=2 m/s', '--html', html]);
+  const { page, problems } = await openReport(html);
+  const data = await page.evaluate(() => ({ modes: window.chasles.data.modes, bodies: window.chasles.data.bodies, poses: window.chasles.data.poses }));
+  const options = await page.$$eval('#mode option', (o) => o.map((x) => ({ value: x.value, text: x.textContent, disabled: x.disabled })));
+  assert.equal(options.length, data.modes.length);
+  const labels = await page.evaluate(() => window.chasles.modes());
+  data.modes.forEach((m, k) => {
+    assert.equal(options[k].disabled, !m.animated, `mode ${k + 1}`);
+    assert.equal(options[k].text, labels[k].label);
+    assert.equal(m.animated, !m.rigid, `mode ${k + 1}: every non-rigid mode moves a body`);
+    assert.ok(options[k].text.includes(m.rigid ? `frees ${m.frees}` : m.stable ? 'stable' : 'UNSTABLE'), options[k].text);
+  });
+  // Table 2 of Meijaard et al. (2007) at 2 m/s: the capsize and castering modes decay, the
+  // weave pair grows (Re λ = 2.68 1/s): each looped until its amplitude has changed tenfold,
+  // ending at full size for the growing one (and less than one period of the weave).
+  const animated = data.modes.map((m, k) => [m, k]).filter(([m]) => m.animated);
+  assert.equal(animated.length, 3);
+  for (const [m, k] of animated) {
+    const [sigma, omega] = m.eigenvalue;
+    const fade = Math.log(10) / Math.abs(sigma);
+    if (sigma > 0) assert.deepEqual([Math.abs(m.loop[0] + fade) <= 1e-12 * fade, m.loop[1]], [true, 0]);
+    else assert.deepEqual([m.loop[0], Math.abs(m.loop[1] - fade) <= 1e-12 * fade], [0, true]);
+    assert.equal(m.shown, omega > 0 ? (sigma > 0 ? 'growing oscillation' : 'decaying oscillation') : sigma > 0 ? 'growth' : 'decay');
+    if (omega > 0) assert.ok(fade < (2 * Math.PI) / omega);
+    // Chosen in the selector as a reader would; every body's pose as worked out from the data.
+    await page.select('#mode', String(k));
+    assert.equal(await page.evaluate(() => window.chasles.mode), k);
+    for (const f of [0, 0.37, 1]) {
+      const t = m.loop[0] + f * (m.loop[1] - m.loop[0]);
+      await page.evaluate((x) => window.chasles.seek(x), t);
+      for (const b of data.bodies) {
+        const pose = await page.evaluate((name) => window.chasles.bodyPose(name), b.name);
+        const base = data.poses.find((p) => p.name === b.name);
+        const motion = m.bodies.find((x) => x.name === b.name);
+        const gap = poseGap(pose, expectedModePose(base, b.center_of_mass, motion, m.eigenvalue, t));
+        assert.ok(gap.position <= 1e-9 && gap.quaternion <= 1e-9, `mode ${k + 1}, ${b.name}, t = ${t}`);
+      }
+    }
+  }
+  // A rigid mode cannot be chosen.
+  const rigid = data.modes.findIndex((m) => m.rigid);
+  assert.equal(await page.evaluate((k) => { try { window.chasles.selectMode(k); return 'chosen'; } catch (e) { return 'refused'; } }, rigid), 'refused');
+  const note = await page.$eval('#amplitude', (e) => e.textContent);
+  assert.ok(note.includes("10 % of the scene's size"), note);
+  await checkNotBlank(page);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

@@ -1,11 +1,13 @@
 // chasles modes and chasles balance (docs/modes.md) on the examples: the operating point, the
 // modes and the stability changes against closed forms derived here, rigid modes named, a
-// sweep through a double eigenvalue without NaN, and bad input refused with exit code 2.
+// sweep through a double eigenvalue without NaN, the browser report's mode motions, and bad
+// input refused with exit code 2 and nothing written.
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -356,6 +358,108 @@ TEST(Balance, BadOptionsAreInputErrors) {
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_THAT(r.err, ::testing::HasSubstr(expect)) << args;
     EXPECT_TRUE(r.out.empty()) << args;
+  }
+}
+
+/// The report data a page embeds (<script type="application/json" id="chasles-data">).
+nlohmann::json PageData(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string page = text.str();
+  const std::string open = "<script type=\"application/json\" id=\"chasles-data\">";
+  const size_t from = page.find(open);
+  if (from == std::string::npos) return nullptr;
+  const size_t to = page.find("</script>", from);
+  std::string json = page.substr(from + open.size(), to - from - open.size());
+  for (size_t at = json.find("<\\/"); at != std::string::npos; at = json.find("<\\/", at)) {
+    json.erase(at + 1, 1);  // the page writes "</" as "<\/" inside a script
+  }
+  return nlohmann::json::parse(json);
+}
+
+/// The files in `dir` (to show that nothing, not even a temporary, was left).
+std::vector<std::string> FilesIn(const std::filesystem::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) out.push_back(e.path().string());
+  return out;
+}
+
+// --html on examples/cylinder-in-trough.yaml: the page's data carries the one oscillation with
+// the rolling kinematics of the closed form (δp = r δθ_y x, the test of CalcBodyModeShapes in
+// tests/unit/analysis), scaled so that the largest excursion |δp| + ρ|δθ| is 10 % of the
+// scene's size, with ρ² = tr(I_cm)/(2m) = (r²/2 + 2 (r²/4 + len²/12))/2 for the solid cylinder
+// (m r²/2 about its axis, m (3r² + len²)/12 across), over one period 2π/ω of the neutral
+// oscillation; the rigid modes are listed and not animated.
+TEST(Modes, HtmlReportAnimatesTheRollingMode) {
+  const double r = 0.05, len = 0.1, R = 0.4;
+  const auto dir = OutDir("modes_html");
+  const std::string html = (dir / "trough.html").string();
+  const CliResult run = RunCli("modes " + Quote(SourcePath("examples/cylinder-in-trough.yaml")) +
+                               " --html " + Quote(html));
+  if (run.exit_code == 2) {  // built without the report
+    EXPECT_THAT(run.err, ::testing::HasSubstr("has no browser report"));
+    return;
+  }
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.err, ::testing::HasSubstr("Wrote " + html + " (the browser report)"));
+  EXPECT_THAT(run.out, ::testing::HasSubstr("Verdict: stable"));  // standard output unchanged
+  const nlohmann::json data = PageData(html);
+  ASSERT_TRUE(data.is_object());
+  EXPECT_EQ(data.at("kind"), "modes");
+  const auto moving = Oscillating(data.at("modes"));
+  ASSERT_EQ(moving.size(), 1u);
+  const nlohmann::json& mode = *moving[0];
+  ASSERT_TRUE(mode.at("animated").get<bool>());
+  const auto vec = [](const nlohmann::json& v) {
+    return Eigen::Vector3d(v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>());
+  };
+  const nlohmann::json& body = mode.at("bodies").at(0);
+  const Eigen::Vector3d dp = vec(body.at("dp").at("re")), dtheta = vec(body.at("dtheta").at("re"));
+  EXPECT_LT(vec(body.at("dp").at("im")).norm() + vec(body.at("dtheta").at("im")).norm(),
+            kTol * dp.norm());
+  EXPECT_NEAR(dp.x() / dtheta.y(), r, kTol * r);
+  const double rho = std::sqrt((r * r / 2 + 2 * (r * r / 4 + len * len / 12)) / 2);
+  const double size = data.at("amplitude").at("scene_size").get<double>();
+  EXPECT_NEAR(dp.norm() + rho * dtheta.norm(), 0.1 * size, kTol * size);
+  // The scene's size: the centre of mass and the contact point r below it, plus 2ρ.
+  EXPECT_NEAR(size, r + 2 * rho, kTol * size);
+  const double w = std::sqrt(2 * kG / (3 * (R - r)));
+  EXPECT_EQ(mode.at("shown"), "oscillation");
+  EXPECT_EQ(mode.at("loop").at(0).get<double>(), 0.0);
+  EXPECT_NEAR(mode.at("loop").at(1).get<double>(), 2 * kPi / w, kTol * 2 * kPi / w);
+  int rigid = 0;
+  for (const auto& m : data.at("modes")) {
+    if (!m.at("rigid").get<bool>()) continue;
+    ++rigid;
+    EXPECT_FALSE(m.at("animated").get<bool>());
+    EXPECT_FALSE(m.contains("bodies"));
+  }
+  EXPECT_EQ(rigid, 2);
+}
+
+// --html to a place no file can be made, with a sweep, or for a scene that has no operating
+// point: exit code 2, the reason named, and nothing written, neither the page nor the -o report.
+TEST(Modes, HtmlReportBadInputLeavesNothing) {
+  const auto dir = OutDir("modes_html_bad");
+  const std::string report = Quote((dir / "modes.txt").string());
+  const std::string trough = Quote(SourcePath("examples/cylinder-in-trough.yaml"));
+  const std::string pendulum = Quote(SourcePath("examples/pendulum.yaml"));
+  const std::string page = Quote((dir / "modes.html").string());
+  for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
+           {trough + " --html " + Quote((dir / "no-such-folder" / "m.html").string()),
+            "no-such-folder"},
+           {trough + " --html " + Quote(dir.string()), "--html"},
+           {trough + " --sweep 'R=30 cm:50 cm:3' --html " + page, "leave out --sweep"},
+           {pendulum + " --html " + page, "no static equilibrium"},
+       }) {
+    const CliResult r = RunCli("modes " + args + " -o " + report);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    if (r.exit_code == 2 && r.err.find("has no browser report") != std::string::npos) continue;
+    EXPECT_THAT(r.err, ::testing::HasSubstr(expect)) << args;
+    EXPECT_TRUE(r.out.empty()) << args;
+    const std::vector<std::string> left = FilesIn(dir);
+    EXPECT_TRUE(left.empty()) << args << ": left " << (left.empty() ? "" : left[0]);
   }
 }
 

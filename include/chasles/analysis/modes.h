@@ -66,6 +66,22 @@ struct ModalAnalysis {
 /// The modes of a linearisation.
 ModalAnalysis CalcModes(const Linearization& lin);
 
+/// One body's motion in a mode: the complex amplitudes of its centre of mass's displacement
+/// and of its small rotation about W's axes per unit of Mode::shape, so that the mode's motion
+/// is δp(t) = Re(dp e^{λt}), δθ(t) = Re(dtheta e^{λt}) (R = exp(δθ) R₀), in the frame that
+/// moves with the operating point's generator (a still frame at an equilibrium).
+struct BodyModeShape {
+  /// δp: displacement of Bcm in W [m per unit of the shape].
+  Eigen::Vector3cd dp;
+  /// δθ: small rotation of B about W's axes [rad per unit of the shape].
+  Eigen::Vector3cd dtheta;
+};
+
+/// Each body's motion (Model order) in `mode`, a mode of `lin`: the maximal perturbation
+/// Linearization::basis · Mode::shape read per body. Throws UsageError when the shape is not
+/// over lin's coordinates and speeds.
+std::vector<BodyModeShape> CalcBodyModeShapes(const Linearization& lin, const Mode& mode);
+
 /// Linearise about `op` and find the modes.
 ModalAnalysis AnalyseModes(const Model& model, const OperatingPoint& op,
                            const LinearizeOptions& options = {});

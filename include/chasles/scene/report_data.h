@@ -14,6 +14,7 @@
 
 #include "chasles/analysis/solve_report.h"
 #include "chasles/analysis/study.h"
+#include "chasles/scene/modes.h"
 #include "chasles/scene/scene.h"
 
 namespace chasles {
@@ -57,6 +58,15 @@ nlohmann::json SolveReportData(const Scene& scene, const SolveReport& report);
 /// values, errors).
 nlohmann::json SweepReportData(const Scene& scene, const SweepTable& table,
                                const std::string& command);
+
+/// The report of a scene's modes (`chasles modes --html`): ReportSceneJson(scene, "modes") plus
+/// the operating point ("kind", "residual"), the bodies there ("poses": origin, quaternion and
+/// centre of mass in W), the coordinates and speeds, "amplitude" (the fraction of the scene's
+/// size the largest excursion is drawn as, and that size) and per mode its eigenvalue,
+/// frequency, damping, stability, shape and, when the page animates it (not a rigid mode), the
+/// stretch of time it loops over, the scale ε of the shape and each body's complex
+/// displacement and rotation times ε (CalcBodyModeShapes; docs/report.md, "Modes").
+nlohmann::json ModesReportData(const Scene& scene, const SceneModes& modes);
 
 /// `bytes` as base64 (RFC 4648, with padding).
 std::string Base64(const void* bytes, size_t size);

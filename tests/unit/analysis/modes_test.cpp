@@ -15,6 +15,7 @@
 #include "chasles/error.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
+#include "test_paths.h"
 
 namespace chasles {
 namespace {
@@ -509,6 +510,122 @@ rolling:
   ASSERT_EQ(f.size(), 2u) << Describe(modes);
   for (double x : f) EXPECT_NEAR(x, w, kTol * w);
   EXPECT_LT(modes.linearization.finite_difference_check, 1e-6);
+}
+
+// Each body's motion in a mode (CalcBodyModeShapes) against the rigid kinematics of the
+// closed forms: relative to the mode's largest displacement or rotation.
+constexpr double kShapeTol = 1e-9;
+
+/// The non-rigid modes.
+std::vector<const Mode*> Moving(const ModalAnalysis& a) {
+  std::vector<const Mode*> out;
+  for (const Mode& m : a.modes) {
+    if (!m.rigid) out.push_back(&m);
+  }
+  return out;
+}
+
+// examples/pendulum.yaml hanging at rest (theta0 = 0): a ball (m, radius r) whose centre is at
+// (0, -L) from the pin at Wo, axis z. One mode, ω² = m g L / I_O, I_O = (2/5) m r² + m L² (eq.
+// 8.39), shaped by the pin angle φ alone (its entry 1): the ball turns by δθ = φ z about the pin,
+// so δθ = [0, 0, 1] and its centre moves by δp = δθ × p_WBcm = [L, 0, 0]: tangent to its
+// circle about the pin, |δp| = L |δθ|.
+TEST(Modes, PendulumBodyMotionTurnsAboutThePin) {
+  const double m = 1.5, L = 0.8, r = 0.05;
+  SceneOptions options;
+  options.parameter_overrides = {
+      {"theta0", "0 deg"}, {"L", "0.8 m"}, {"m", "1.5 kg"}, {"r", "5 cm"}};
+  const Study s = BuildStudy(
+      LoadSceneFile(std::string(test::SourceDir()) + "/examples/pendulum.yaml", options), 1.0);
+  const OperatingPoint op = FindEquilibrium(*s.model, s.initial);
+  const ModalAnalysis modes = AnalyseModes(*s.model, op);
+  const std::vector<const Mode*> moving = Moving(modes);
+  ASSERT_EQ(moving.size(), 1u) << Describe(modes);
+  const double w = std::sqrt(m * kG * L / (0.4 * m * r * r + m * L * L));
+  EXPECT_NEAR(moving[0]->eigenvalue.imag(), w, kTol * w);
+  const std::vector<BodyModeShape> body = CalcBodyModeShapes(modes.linearization, *moving[0]);
+  ASSERT_EQ(body.size(), 1u);
+  const Eigen::Vector3cd dtheta(0.0, 0.0, 1.0), dp(L, 0.0, 0.0);
+  EXPECT_LT((body[0].dtheta - dtheta).norm(), kShapeTol) << body[0].dtheta.transpose();
+  EXPECT_LT((body[0].dp - dp).norm(), kShapeTol * L) << body[0].dp.transpose();
+  // Tangent to the circle and |δp| = L |δθ|, read off the answer itself.
+  const Vec3 radius = op.state.bodies[0].p_WBcm;
+  EXPECT_NEAR(radius.norm(), L, kShapeTol * L);
+  EXPECT_LT(std::abs(body[0].dp.dot(radius.cast<std::complex<double>>())),
+            kShapeTol * L * body[0].dp.norm());
+  EXPECT_NEAR(body[0].dp.norm(), L * body[0].dtheta.norm(), kShapeTol * L);
+}
+
+// The double pendulum of DoublePendulumBothFrequencies: with the bodies' absolute angles θ1, θ2
+// about y, (K - ω² M) φ = 0 gives the shape's ratio φ2 / φ1 = (K1 - ω² M11) / (ω² M12). Each
+// body turns by its angle, δθ = θ_i y, and with y × z = x its centre of mass moves by
+// δp_upper = -c1 θ1 x and δp_lower = -(L1 θ1 + c2 θ2) x.
+TEST(Modes, DoublePendulumBodyMotionAgainstTheEigenvector) {
+  const double m1 = 1.5, c1 = 0.3, J1 = 0.02, L1 = 0.6, m2 = 0.9, c2 = 0.25, J2 = 0.01;
+  const std::string scene =
+      fmt::format(R"(
+chasles: 1
+bodies:
+  - name: upper
+    parts: [{{shape: custom, mass: {m1}, center_of_mass: [0, 0, {z1}], inertia: {{Ixx: {J1}, Iyy: {J1}, Izz: {J1}}}}}]
+  - name: lower
+    parts: [{{shape: custom, mass: {m2}, center_of_mass: [0, 0, {z2}], inertia: {{Ixx: {J2}, Iyy: {J2}, Izz: {J2}}}}}]
+gravity: standard
+joints:
+  - {{name: shoulder, type: revolute, parent: world, child: upper, at: [0, 0, 0], axis: [0, 1, 0]}}
+  - {{name: elbow, type: revolute, parent: upper, child: lower, at: [0, 0, {zp}], axis: [0, 1, 0]}}
+)",
+                  fmt::arg("m1", m1), fmt::arg("z1", -c1), fmt::arg("J1", J1), fmt::arg("m2", m2),
+                  fmt::arg("z2", -L1 - c2), fmt::arg("J2", J2), fmt::arg("zp", -L1));
+  const Study s = Build(scene);
+  const ModalAnalysis modes = AnalyseModes(*s.model, FindEquilibrium(*s.model, s.initial));
+  const double M11 = J1 + m1 * c1 * c1 + m2 * L1 * L1, M12 = m2 * L1 * c2;
+  const double K1 = kG * (m1 * c1 + m2 * L1);
+  const std::vector<const Mode*> moving = Moving(modes);
+  ASSERT_EQ(moving.size(), 2u) << Describe(modes);
+  for (const Mode* mode : moving) {
+    const double w2 = std::norm(mode->eigenvalue);
+    const double ratio = (K1 - w2 * M11) / (w2 * M12);
+    const std::vector<BodyModeShape> b = CalcBodyModeShapes(modes.linearization, *mode);
+    ASSERT_EQ(b.size(), 2u);
+    const std::complex<double> theta1 = b[0].dtheta.y(), theta2 = b[1].dtheta.y();
+    EXPECT_NEAR(std::abs(theta2 / theta1 - ratio), 0.0, kShapeTol * std::abs(ratio));
+    const double scale = std::max(std::abs(theta1), std::abs(theta2));
+    EXPECT_LT(std::abs(b[0].dtheta.x()) + std::abs(b[0].dtheta.z()), kShapeTol * scale);
+    EXPECT_LT(std::abs(b[1].dtheta.x()) + std::abs(b[1].dtheta.z()), kShapeTol * scale);
+    const Eigen::Vector3cd dp_upper(-c1 * theta1, 0.0, 0.0);
+    const Eigen::Vector3cd dp_lower(-(L1 * theta1 + c2 * theta2), 0.0, 0.0);
+    EXPECT_LT((b[0].dp - dp_upper).norm(), kShapeTol * L1 * scale);
+    EXPECT_LT((b[1].dp - dp_lower).norm(), kShapeTol * L1 * scale);
+  }
+}
+
+// examples/cylinder-in-trough.yaml: with φ the angle of the centre from the trough's bottom,
+// the centre moves by δp = (R - r) δφ x and rolling turns the cylinder by δθ = (R - r) δφ / r
+// about y (the contact point p + r n, n = [sin φ, 0, -cos φ], has v - ω_y r [cos φ, 0, sin φ]
+// = 0), so δp = r δθ_y x exactly, and nothing else moves.
+TEST(Modes, CylinderInATroughBodyMotionRolls) {
+  const double r = 0.05;  // the example's
+  const Study s = BuildStudy(
+      LoadSceneFile(std::string(test::SourceDir()) + "/examples/cylinder-in-trough.yaml"), 1.0);
+  const ModalAnalysis modes = AnalyseModes(*s.model, FindEquilibrium(*s.model, s.initial));
+  const std::vector<const Mode*> moving = Moving(modes);
+  ASSERT_EQ(moving.size(), 1u) << Describe(modes);
+  const std::vector<BodyModeShape> b = CalcBodyModeShapes(modes.linearization, *moving[0]);
+  ASSERT_EQ(b.size(), 1u);
+  const std::complex<double> spin = b[0].dtheta.y();
+  ASSERT_GT(std::abs(spin), 0.0);
+  EXPECT_NEAR(std::abs(b[0].dp.x() / spin - r), 0.0, kShapeTol * r);
+  EXPECT_LT(std::abs(b[0].dp.y()) + std::abs(b[0].dp.z()), kShapeTol * r * std::abs(spin));
+  EXPECT_LT(std::abs(b[0].dtheta.x()) + std::abs(b[0].dtheta.z()), kShapeTol * std::abs(spin));
+}
+
+TEST(Modes, BodyMotionOfAShapeOfAnotherSizeIsAUsageError) {
+  Linearization lin;
+  lin.basis = Eigen::MatrixXd::Identity(12, 2);
+  Mode mode;
+  mode.shape = Eigen::VectorXcd::Ones(3);
+  EXPECT_THROW(CalcBodyModeShapes(lin, mode), UsageError);
 }
 
 }  // namespace

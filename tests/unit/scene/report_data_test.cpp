@@ -1,15 +1,19 @@
 // The browser report's data (chasles/scene/report_data.h): base64, the parts as drawn, the
-// equivalent ellipsoids, and a run's columns, exact where the page compares them.
+// equivalent ellipsoids, a run's columns, exact where the page compares them, and the loops of
+// the modes report.
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 // Before gtest: <signal.h> (via gtest) defines a macro si_value, a parameter name in units.h.
 #include "chasles/error.h"
 #include "chasles/scene/report_data.h"
 #include "chasles/scene/study.h"
+#include "test_paths.h"
 // clang-format off
 #include <gtest/gtest.h>
 // clang-format on
@@ -220,6 +224,34 @@ simulation: {until: 1 s, tolerance: 1e-12, output_interval: 0.05 s}
     }
     // Nothing to add a second time; a body without orientation columns stays without.
     EXPECT_TRUE(CompletePoseColumns(scene, r).empty());
+  }
+}
+
+// The loop of a decaying oscillation (ModesReportData; docs/report.md, "Modes"): the weave of
+// examples/whipple-bicycle.yaml, λ = σ + iω with σ < 0, runs from t = 0 until the amplitude
+// e^{σt} has fallen to a tenth, T = ln 10 / |σ|, cut down to whole periods P = 2π/ω and to at
+// most five: at 5 m/s (σ = -0.775 1/s, ω = 4.46 1/s, Table 2 of Meijaard et al. 2007) two
+// periods; at 4.4 m/s, just above the weave speed 4.29 m/s, σ is small and the loop five periods.
+TEST(ReportData, ModesLoopADecayingOscillationOverWholePeriods) {
+  for (const auto& [speed, periods] : {std::pair{"5 m/s", 2.0}, std::pair{"4.4 m/s", 5.0}}) {
+    SceneOptions options;
+    options.parameter_overrides = {{"v", speed}};
+    const Scene scene =
+        LoadSceneFile(std::string(test::SourceDir()) + "/examples/whipple-bicycle.yaml", options);
+    const nlohmann::json data = ModesReportData(scene, AnalyseSceneModes(scene));
+    const nlohmann::json* weave = nullptr;
+    for (const nlohmann::json& m : data.at("modes")) {
+      if (m.at("eigenvalue").at(1).get<double>() > 0.0) weave = &m;
+    }
+    ASSERT_NE(weave, nullptr) << speed;
+    const double sigma = weave->at("eigenvalue").at(0).get<double>();
+    const double period = 2.0 * std::acos(-1.0) / weave->at("eigenvalue").at(1).get<double>();
+    EXPECT_LT(sigma, 0.0);
+    EXPECT_EQ(weave->at("shown"), "decaying oscillation");
+    EXPECT_EQ(weave->at("periods").get<double>(), periods) << speed;
+    EXPECT_EQ(std::min(std::floor(std::log(10.0) / -sigma / period), 5.0), periods) << speed;
+    EXPECT_EQ(weave->at("loop").at(0).get<double>(), 0.0);
+    EXPECT_NEAR(weave->at("loop").at(1).get<double>(), periods * period, 1e-12 * period);
   }
 }
 
