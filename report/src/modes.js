@@ -40,7 +40,9 @@ function modeLabel(mode, k, fmt) {
   if (mode.rigid) return `${k + 1}: rigid, frees ${mode.frees} (not animated)`;
   const [re, im] = mode.eigenvalue;
   let what;
-  if (im > 0) {
+  if (im > 0 && mode.neutral) {
+    what = `${fmt(mode.frequency_hz, 6)} Hz, undamped`;
+  } else if (im > 0) {
     what = `${fmt(mode.frequency_hz, 6)} Hz, damping ratio ${fmt(mode.damping_ratio, 3)}`;
     if (!mode.stable) what += `, grows at ${fmt(mode.growth_rate, 6)} 1/s`;
   } else {
@@ -74,11 +76,12 @@ function loopText(mode, fmt) {
 function modePanel(data, mode, k, h) {
   const { el, fmt, table } = h;
   const names = [...data.coordinates, ...data.speeds];
-  const [re, im] = mode.eigenvalue;
+  // A neutral mode's Re λ and damping ratio are round-off: shown as 0, as in the text report.
+  const [re, im] = [mode.neutral ? 0 : mode.eigenvalue[0], mode.eigenvalue[1]];
   const rows = [
     ['eigenvalue λ', `${fmt(re, 12)} ${im < 0 ? '−' : '+'} ${fmt(Math.abs(im), 12)}i 1/s`],
     ['frequency', `${fmt(mode.frequency_hz, 9)} Hz`],
-    ['damping ratio', fmt(mode.damping_ratio, 6)],
+    ['damping ratio', mode.neutral ? '0 (undamped)' : fmt(mode.damping_ratio, 6)],
     ['growth rate', `${fmt(mode.growth_rate, 9)} 1/s`],
     ['verdict', mode.rigid ? `rigid: frees ${mode.frees}` : mode.stable ? 'stable' : 'UNSTABLE'],
   ];

@@ -109,6 +109,7 @@ nlohmann::json ModeJson(const Mode& m, const Linearization& lin,
                       {"damping_ratio", m.damping_ratio},
                       {"growth_rate", m.growth_rate},
                       {"stable", m.stable},
+                      {"neutral", m.neutral},
                       {"rigid", m.rigid},
                       {"shape", shape},
                       {"animated", false}};

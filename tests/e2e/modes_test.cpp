@@ -444,14 +444,18 @@ TEST(Modes, HtmlReportBadInputLeavesNothing) {
   const auto dir = OutDir("modes_html_bad");
   const std::string report = Quote((dir / "modes.txt").string());
   const std::string trough = Quote(SourcePath("examples/cylinder-in-trough.yaml"));
-  const std::string pendulum = Quote(SourcePath("examples/pendulum.yaml"));
+  // A block falling freely: no static equilibrium anywhere.
+  const std::string falling = Quote(WriteSceneFile(
+      "falling_block.yaml",
+      "chasles: 2\nbodies:\n  - name: block\n    parts: [{shape: box, size: [0.1, 0.2, 0.3], "
+      "mass: 2}]\ngravity: standard\n"));
   const std::string page = Quote((dir / "modes.html").string());
   for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
            {trough + " --html " + Quote((dir / "no-such-folder" / "m.html").string()),
             "no-such-folder"},
            {trough + " --html " + Quote(dir.string()), "--html"},
            {trough + " --sweep 'R=30 cm:50 cm:3' --html " + page, "leave out --sweep"},
-           {pendulum + " --html " + page, "no static equilibrium"},
+           {falling + " --html " + page, "no static equilibrium"},
        }) {
     const CliResult r = RunCli("modes " + args + " -o " + report);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
