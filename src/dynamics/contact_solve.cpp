@@ -395,7 +395,7 @@ bool RollsWithResistance(const ContactPointState& ps) {
 // slides (friction -mu_k N s), minus mu_r R ŵ_r in the angular part when a round feature rolls
 // (sticks) with rolling resistance (moment -mu_r N R ŵ_r). A sliding point has no rolling
 // resistance: its friction is mu_k N alone, as in the closed-form sliding of
-// integrate/sphere_events.cpp (and a rolling direction fixed for a whole sliding stretch
+// integrate/sphere_motion.cpp (and a rolling direction fixed for a whole sliding stretch
 // would push the wrong way once the rolling velocity passes through zero, with no event).
 void NormalForceBlocks(const Contact& con, const ContactPointGeometry& g, ContactMode mode,
                        const ContactPointState& ps, internal::Vec6& on_body,
