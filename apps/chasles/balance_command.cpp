@@ -32,9 +32,6 @@
 namespace chasles::cli {
 namespace {
 
-constexpr Dimension kLength{1, 0, 0};
-constexpr Dimension kRate{0, 0, -1};
-
 /// A command-line quantity written as in the scene (its parameters and units known), checked
 /// against `dim`; SceneError at the option otherwise.
 double ReadQuantity(const Scene& scene, const std::string& text, const std::string& option,

@@ -28,11 +28,6 @@ namespace chasles::cli {
 
 namespace {
 
-constexpr Dimension kDensityDim{-3, 1, 0};
-constexpr Dimension kInertiaDim{2, 1, 0};
-constexpr Dimension kAreaDim{2, 0, 0};
-constexpr Dimension kVolumeDim{3, 0, 0};
-
 /// What the report shows, in the units asked for.
 struct Presenter {
   UnitSystem units;
@@ -42,12 +37,12 @@ struct Presenter {
       : units(u),
         L(u.FormatUnit(kLength)),
         M(u.FormatUnit(kMass)),
-        I(u.FormatUnit(kInertiaDim)),
-        rho(u.FormatUnit(kDensityDim)) {}
+        I(u.FormatUnit(kInertia)),
+        rho(u.FormatUnit(kDensity)) {}
 
   double Length(double v) const { return units.FromSI(v, kLength); }
   double Mass(double v) const { return units.FromSI(v, kMass); }
-  double Inertia(double v) const { return units.FromSI(v, kInertiaDim); }
+  double Inertia(double v) const { return units.FromSI(v, kInertia); }
   Vec3 Lengths(const Vec3& v) const { return Vec3(Length(v.x()), Length(v.y()), Length(v.z())); }
   Mat3 InertiaMatrix(const Mat3& m) const {
     return m.unaryExpr([this](double v) { return Inertia(v); });
@@ -156,8 +151,7 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
                            VecText(P.Lengths(q.p_BoBcm_B()), P.Length(Lscale)));
         std::string detail;
         if (std::isfinite(p.density)) {
-          detail =
-              fmt::format("density {} {}", Num(P.units.FromSI(p.density, kDensityDim), 0), P.rho);
+          detail = fmt::format("density {} {}", Num(P.units.FromSI(p.density, kDensity), 0), P.rho);
           if (p.mass_source != "density") detail += fmt::format(" ({})", p.mass_source);
         } else if (p.mass_source != "mass" && p.notes.empty()) {
           detail = p.mass_source;
@@ -168,10 +162,10 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
           detail += std::string(detail.empty() ? "" : "; ") +
                     "no volume or surface area (its mass lies on a curve or at a point)";
         } else if (!std::isnan(p.volume)) {
-          detail += fmt::format(
-              "{}volume {} {}, surface area {} {}", detail.empty() ? "" : "; ",
-              Num(P.units.FromSI(p.volume, kVolumeDim), 0), P.units.FormatUnit(kVolumeDim),
-              Num(P.units.FromSI(p.surface_area, kAreaDim), 0), P.units.FormatUnit(kAreaDim));
+          detail +=
+              fmt::format("{}volume {} {}, surface area {} {}", detail.empty() ? "" : "; ",
+                          Num(P.units.FromSI(p.volume, kVolume), 0), P.units.FormatUnit(kVolume),
+                          Num(P.units.FromSI(p.surface_area, kArea), 0), P.units.FormatUnit(kArea));
         }
         if (!detail.empty()) out += fmt::format("  {:<{}}  {}\n", "", w, detail);
         // The part's own central inertia, in body axes: the six tensor entries on one line.
@@ -194,14 +188,14 @@ std::string TextReport(const Scene& scene, const Presenter& P, const MassArgs& a
         "  Volume              {}\n",
         std::isnan(measures.volume)
             ? measures.volume_note
-            : fmt::format("{} {}{}", Num(P.units.FromSI(measures.volume, kVolumeDim), 0),
-                          P.units.FormatUnit(kVolumeDim), VolumeRemark(body, measures.volume)));
-    out += fmt::format(
-        "  Surface area        {}\n",
-        std::isnan(measures.surface_area)
-            ? measures.surface_area_note
-            : fmt::format("{} {}", Num(P.units.FromSI(measures.surface_area, kAreaDim), 0),
-                          P.units.FormatUnit(kAreaDim)));
+            : fmt::format("{} {}{}", Num(P.units.FromSI(measures.volume, kVolume), 0),
+                          P.units.FormatUnit(kVolume), VolumeRemark(body, measures.volume)));
+    out +=
+        fmt::format("  Surface area        {}\n",
+                    std::isnan(measures.surface_area)
+                        ? measures.surface_area_note
+                        : fmt::format("{} {}", Num(P.units.FromSI(measures.surface_area, kArea), 0),
+                                      P.units.FormatUnit(kArea)));
     out += fmt::format("  Inertia about the centre of mass, body axes [{}]\n", P.I);
     MatrixText(out, P.InertiaMatrix(Icm.matrix()), "    ");
     const PrincipalAxes pa = Icm.CalcPrincipalAxes();

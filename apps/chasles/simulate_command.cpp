@@ -104,16 +104,6 @@ double Clean(double x, double scale) {
   return std::abs(x) <= 1e-12 * scale ? 0.0 : x;
 }
 
-constexpr Dimension kTimeDim{0, 0, 1};
-constexpr Dimension kLengthDim{1, 0, 0};
-constexpr Dimension kVelocityDim{1, 0, -1};
-constexpr Dimension kRateDim{0, 0, -1};
-constexpr Dimension kEnergyDim{2, 1, -2};
-constexpr Dimension kMomentumDim{1, 1, -1};
-constexpr Dimension kAngularMomentumDim{2, 1, -1};
-constexpr Dimension kForceDim{1, 1, -2};
-constexpr Dimension kMomentDim{2, 1, -2};
-
 /// The state at an event, concisely: per body position, velocity and angular velocity (world
 /// frame), per reaction force and moment, per contact point mode, N and friction.
 std::string SnapshotText(const Scene& scene, const StudySnapshot& snap, const Show& show,
@@ -127,30 +117,30 @@ std::string SnapshotText(const Scene& scene, const StudySnapshot& snap, const Sh
       out += fmt::format("    {}: x, y {}, theta {}; v {}, omega {}\n", b.name,
                          show.Xy(b.p_WBcm, kLength, k.length),
                          show(b.theta, kDimensionless, Angular::kYes),
-                         show.Xy(b.v_WBcm_W, kVelocityDim, v_s),
-                         show(Clean(b.w_WB_W.z(), w_s), kRateDim, Angular::kYes));
+                         show.Xy(b.v_WBcm_W, kVelocity, v_s),
+                         show(Clean(b.w_WB_W.z(), w_s), kRate, Angular::kYes));
       continue;
     }
     out += fmt::format("    {}: position {}, velocity {}, angular velocity {}\n", b.name,
                        show(b.p_WBcm, kLength, Angular::kNo, k.length),
-                       show(b.v_WBcm_W, kVelocityDim, Angular::kNo, v_s),
-                       show(b.w_WB_W, kRateDim, Angular::kYes, w_s));
+                       show(b.v_WBcm_W, kVelocity, Angular::kNo, v_s),
+                       show(b.w_WB_W, kRate, Angular::kYes, w_s));
   }
   for (const auto& x : snap.reactions) {
     if (scene.planar) {
       out += fmt::format("    {}: force {}, moment {}\n", x.name,
-                         show.Xy(x.F_Jc_W, kForceDim, k.force), show(x.M_Jc_W.z(), kMomentDim));
+                         show.Xy(x.F_Jc_W, kForce, k.force), show(x.M_Jc_W.z(), kMoment));
       continue;
     }
     out += fmt::format("    {}: force {}, moment {}\n", x.name,
-                       show(x.F_Jc_W, kForceDim, Angular::kNo, k.force),
-                       show(x.M_Jc_W, kMomentDim, Angular::kNo, k.moment));
+                       show(x.F_Jc_W, kForce, Angular::kNo, k.force),
+                       show(x.M_Jc_W, kMoment, Angular::kNo, k.moment));
   }
   for (const auto& c : snap.contacts) {
     out += fmt::format("    {}: {}, N = {}, friction {}\n", c.point, c.mode,
-                       show(c.normal_force, kForceDim),
-                       scene.planar ? show.Xy(c.friction_force_W, kForceDim, k.force)
-                                    : show(c.friction_force_W, kForceDim, Angular::kNo, k.force));
+                       show(c.normal_force, kForce),
+                       scene.planar ? show.Xy(c.friction_force_W, kForce, k.force)
+                                    : show(c.friction_force_W, kForce, Angular::kNo, k.force));
   }
   return out;
 }
@@ -161,11 +151,11 @@ struct TextUnits {
   Show show;
   bool joules;
   explicit TextUnits(const UnitSystem& units)
-      : show{units}, joules(units.FormatUnit(kEnergyDim) == "N*m") {}
-  std::string Time(double t) const { return show(t, kTimeDim); }
+      : show{units}, joules(units.FormatUnit(kEnergy) == "N*m") {}
+  std::string Time(double t) const { return show(t, kTime); }
   std::string Energy(double e) const {
     return joules ? fmt::format("{:.9g} J", Finite(e, "an energy of the report"))
-                  : show(e, kEnergyDim);
+                  : show(e, kEnergy);
   }
 };
 
@@ -195,16 +185,16 @@ std::string SteppingText(const StudyResult& r, const TextUnits& u) {
   out += fmt::format(
       "  contact problems' residual at most {} ({}); momentum balance to {}, angular momentum "
       "to {}\n",
-      u.show(c.max_residual_impulse, kMomentumDim), u.show(c.max_residual_velocity, kVelocityDim),
-      u.show(c.max_momentum_residual, kMomentumDim),
-      u.show(c.max_angular_momentum_residual, kAngularMomentumDim));
+      u.show(c.max_residual_impulse, kMomentum), u.show(c.max_residual_velocity, kVelocity),
+      u.show(c.max_momentum_residual, kMomentum),
+      u.show(c.max_angular_momentum_residual, kAngularMomentum));
   out += fmt::format(
       "  penetration at most {}, gap drift at most {}; step-doubling error estimate per step at "
       "most {} ({}), summed over the steps {}{}\n",
-      u.show(c.max_penetration, kLengthDim), u.show(c.max_gap_drift, kLengthDim),
-      u.show(c.max_velocity_error, kVelocityDim),
-      u.show(c.max_angular_velocity_error, kRateDim, Angular::kYes),
-      u.show(c.accumulated_velocity_error, kVelocityDim),
+      u.show(c.max_penetration, kLength), u.show(c.max_gap_drift, kLength),
+      u.show(c.max_velocity_error, kVelocity),
+      u.show(c.max_angular_velocity_error, kRate, Angular::kYes),
+      u.show(c.accumulated_velocity_error, kVelocity),
       ts.tolerance_met ? "" : " (a tolerance was missed: see the warnings)");
   out += fmt::format(
       "  energy: {} at the start, {} at the end; non-conservative forces {}, normal impulses {}, "
@@ -237,7 +227,7 @@ std::string Abridged(const std::vector<T>& items, size_t head, size_t tail, cons
 std::string EventsText(const Scene& scene, const StudyResult& r, const Show& show) {
   if (r.events.empty()) return "";
   return "\nEvents\n" + Abridged(r.events, 10, 3, "event", [&](const StudyEvent& e) {
-           return fmt::format("  {:<24} t = {}{}\n", e.name, show(e.t, kTimeDim),
+           return fmt::format("  {:<24} t = {}{}\n", e.name, show(e.t, kTime),
                               e.stopped ? "  (stop)" : "") +
                   SnapshotText(scene, e.snapshot, show, CalcReportScales(r));
          });
@@ -263,11 +253,11 @@ std::string JumpDetailText(const Scene& scene, const StudyJump& x, const Show& s
                                  : "    velocity jumps (centre of mass, angular; world frame)\n";
   for (const BodyImpulseBalance& b : x.bodies) {
     out += scene.planar ? fmt::format("      {}: dv {}, domega {}\n", b.body,
-                                      show.Xy(b.dv_WBcm_W, kVelocityDim, dv),
-                                      show(Clean(b.dw_WB_W.z(), dw), kRateDim, Angular::kYes))
+                                      show.Xy(b.dv_WBcm_W, kVelocity, dv),
+                                      show(Clean(b.dw_WB_W.z(), dw), kRate, Angular::kYes))
                         : fmt::format("      {}: dv {}, dw {}\n", b.body,
-                                      show(b.dv_WBcm_W, kVelocityDim, Angular::kNo, dv),
-                                      show(b.dw_WB_W, kRateDim, Angular::kYes, dw));
+                                      show(b.dv_WBcm_W, kVelocity, Angular::kNo, dv),
+                                      show(b.dw_WB_W, kRate, Angular::kYes, dw));
   }
   if (!x.reactions.empty()) {
     out += "    impulsive reactions (on the child at the joint point)\n";
@@ -275,12 +265,12 @@ std::string JumpDetailText(const Scene& scene, const StudyJump& x, const Show& s
   for (const StudyReaction& r : x.reactions) {
     out += scene.planar
                ? fmt::format("      {} at {}: impulse {}, moment impulse {}\n", r.name,
-                             show.Xy(r.p_WJ, kLength, length), show.Xy(r.F_Jc_W, kMomentumDim, J),
-                             show(Clean(r.M_Jc_W.z(), M), kAngularMomentumDim))
+                             show.Xy(r.p_WJ, kLength, length), show.Xy(r.F_Jc_W, kMomentum, J),
+                             show(Clean(r.M_Jc_W.z(), M), kAngularMomentum))
                : fmt::format("      {} at {}: impulse {}, moment impulse {}\n", r.name,
                              show(r.p_WJ, kLength, Angular::kNo, length),
-                             show(r.F_Jc_W, kMomentumDim, Angular::kNo, J),
-                             show(r.M_Jc_W, kAngularMomentumDim, Angular::kNo, M));
+                             show(r.F_Jc_W, kMomentum, Angular::kNo, J),
+                             show(r.M_Jc_W, kAngularMomentum, Angular::kNo, M));
   }
   if (!x.impacts.empty()) {
     out += fmt::format("    contact impacts at this instant: {} (under \"Impacts at contacts\")\n",
@@ -297,12 +287,12 @@ std::string JumpsText(const Scene& scene, const StudyResult& r, const TextUnits&
     out += fmt::format("  t = {}: {}; energy {} -> {} (change {})\n", u.Time(x.t), x.description,
                        u.Energy(x.energy_before), u.Energy(x.energy_after),
                        u.Energy(x.energy_after - x.energy_before));
-    out += scene.planar
-               ? fmt::format("    afterwards: v = {}, omega = {}\n",
-                             u.show.Xy(x.v_after_W, kVelocityDim),
-                             u.show(x.w_after_W.z(), kRateDim, Angular::kYes))
-               : fmt::format("    afterwards: v = {}, w = {}\n", u.show(x.v_after_W, kVelocityDim),
-                             u.show(x.w_after_W, kRateDim, Angular::kYes));
+    out +=
+        scene.planar
+            ? fmt::format("    afterwards: v = {}, omega = {}\n", u.show.Xy(x.v_after_W, kVelocity),
+                          u.show(x.w_after_W.z(), kRate, Angular::kYes))
+            : fmt::format("    afterwards: v = {}, w = {}\n", u.show(x.v_after_W, kVelocity),
+                          u.show(x.w_after_W, kRate, Angular::kYes));
     out += JumpDetailText(scene, x, u.show, k.length);
   }
   return out;
@@ -342,8 +332,8 @@ std::string StringEventsText(const StudyResult& r, const TextUnits& u) {
            }
            if (e.reason == "snapped taut") {
              line += fmt::format("    approach speed {}, impulse {}, energy lost {}\n",
-                                 u.show(e.approach_speed, kVelocityDim),
-                                 u.show(e.impulse, kMomentumDim), u.Energy(e.energy_lost));
+                                 u.show(e.approach_speed, kVelocity), u.show(e.impulse, kMomentum),
+                                 u.Energy(e.energy_lost));
            }
            return line;
          });
@@ -352,7 +342,7 @@ std::string StringEventsText(const StudyResult& r, const TextUnits& u) {
 std::string ImpactText(const StudyImpact& x, const TextUnits& u) {
   std::string out =
       fmt::format("  t = {}  {}: approach speed {}, energy lost {}{}\n", u.Time(x.t), x.point,
-                  u.show(x.approach_speed, kVelocityDim), u.Energy(x.energy_lost),
+                  u.show(x.approach_speed, kVelocity), u.Energy(x.energy_lost),
                   x.jam ? "" : fmt::format(" ({} restitution)", x.restitution_law));
   if (x.jam) {
     out +=
@@ -395,8 +385,8 @@ std::string FinalStateText(const Scene& scene, const StudyResult& r, const Show&
       out += fmt::format("  {}\n    position {}, theta {}\n    velocity {}, omega {}\n", b.name,
                          show.Xy(b.p_WBcm, kLength, k.length),
                          show(b.theta, kDimensionless, Angular::kYes),
-                         show.Xy(b.v_WBcm_W, kVelocityDim, v_s),
-                         show(clean(b.w_WB_W.z(), w_s), kRateDim, Angular::kYes));
+                         show.Xy(b.v_WBcm_W, kVelocity, v_s),
+                         show(clean(b.w_WB_W.z(), w_s), kRate, Angular::kYes));
       continue;
     }
     const Eigen::Vector4d q = QuatToWxyz(b.q_WB);
@@ -409,8 +399,8 @@ std::string FinalStateText(const Scene& scene, const StudyResult& r, const Show&
         Finite(clean(q[1], 1.0), "a quaternion of the report") + 0.0,
         Finite(clean(q[2], 1.0), "a quaternion of the report") + 0.0,
         Finite(clean(q[3], 1.0), "a quaternion of the report") + 0.0,
-        show(b.v_WBcm_W, kVelocityDim, Angular::kNo, v_s),
-        show(b.w_WB_W, kRateDim, Angular::kYes, w_s), show(b.w_WB_B, kRateDim, Angular::kYes, w_s));
+        show(b.v_WBcm_W, kVelocity, Angular::kNo, v_s), show(b.w_WB_W, kRate, Angular::kYes, w_s),
+        show(b.w_WB_B, kRate, Angular::kYes, w_s));
   }
   return out;
 }
@@ -422,14 +412,14 @@ std::string EndReactionsText(const Scene& scene, const StudyResult& r, const Sho
   for (const auto& x : r.final_reactions) {
     if (scene.planar) {
       out += fmt::format("  {} ({}) at {}\n    force {}\n    moment {}\n", x.name, x.kind,
-                         show.Xy(x.p_WJ, kLength, k.length), show.Xy(x.F_Jc_W, kForceDim, k.force),
-                         show(Clean(x.M_Jc_W.z(), k.moment), kMomentDim));
+                         show.Xy(x.p_WJ, kLength, k.length), show.Xy(x.F_Jc_W, kForce, k.force),
+                         show(Clean(x.M_Jc_W.z(), k.moment), kMoment));
       continue;
     }
     out += fmt::format("  {} ({}) at {}\n    force {}\n    moment {}\n", x.name, x.kind,
                        show(x.p_WJ, kLength, Angular::kNo, k.length),
-                       show(x.F_Jc_W, kForceDim, Angular::kNo, k.force),
-                       show(x.M_Jc_W, kMomentDim, Angular::kNo, k.moment));
+                       show(x.F_Jc_W, kForce, Angular::kNo, k.force),
+                       show(x.M_Jc_W, kMoment, Angular::kNo, k.moment));
   }
   return out;
 }
@@ -440,18 +430,18 @@ std::string EndContactsText(const Scene& scene, const StudyResult& r, const Show
   std::string out = "\nContacts at the end (forces on the body, world frame)\n";
   for (const auto& c : r.final_contacts) {
     out += fmt::format("  {}: {}, N = {}, friction {}, slip {}, gap {}\n", c.point, c.mode,
-                       show(c.normal_force, kForceDim),
-                       scene.planar ? show.Xy(c.friction_force_W, kForceDim, k.force)
-                                    : show(c.friction_force_W, kForceDim, Angular::kNo, k.force),
-                       scene.planar ? show.Xy(c.slip_velocity_W, kVelocityDim, k.speed)
-                                    : show(c.slip_velocity_W, kVelocityDim, Angular::kNo, k.speed),
+                       show(c.normal_force, kForce),
+                       scene.planar ? show.Xy(c.friction_force_W, kForce, k.force)
+                                    : show(c.friction_force_W, kForce, Angular::kNo, k.force),
+                       scene.planar ? show.Xy(c.slip_velocity_W, kVelocity, k.speed)
+                                    : show(c.slip_velocity_W, kVelocity, Angular::kNo, k.speed),
                        show(std::abs(c.gap) <= 1e-12 * k.length ? 0.0 : c.gap, kLength));
     if (c.rolling_moment_W.squaredNorm() > 0.0) {
       // Rolling resistance: the moment holding the rolling, or resisting it (about z in a
       // planar scene).
       out += fmt::format("    rolling-resistance moment {}\n",
-                         scene.planar ? show(Clean(c.rolling_moment_W.z(), k.moment), kMomentDim)
-                                      : show(c.rolling_moment_W, kMomentDim, Angular::kNo,
+                         scene.planar ? show(Clean(c.rolling_moment_W.z(), k.moment), kMoment)
+                                      : show(c.rolling_moment_W, kMoment, Angular::kNo,
                                              std::max(k.moment, c.rolling_moment_W.norm())));
     }
   }
@@ -509,18 +499,18 @@ std::string LedgerText(const Scene& scene, const StudyResult& r, const TextUnits
       L.energy_scale > 0 ? std::abs(L.residual) / L.energy_scale : 0.0, u.Energy(L.energy_scale));
   if (scene.planar) {
     // Plane motion: momentum in the plane, angular momentum about z (eqs. 8.34-8.38).
-    out += fmt::format("  linear momentum     {}\n", u.show.Xy(L.linear_momentum_W, kMomentumDim));
+    out += fmt::format("  linear momentum     {}\n", u.show.Xy(L.linear_momentum_W, kMomentum));
     out += fmt::format(
         "  angular momentum    {} about the centre of mass, {} about the origin "
         "(about z)\n",
-        u.show(L.angular_momentum_Scm_W.z(), kAngularMomentumDim),
-        u.show(L.angular_momentum_Wo_W.z(), kAngularMomentumDim));
+        u.show(L.angular_momentum_Scm_W.z(), kAngularMomentum),
+        u.show(L.angular_momentum_Wo_W.z(), kAngularMomentum));
     return out;
   }
-  out += fmt::format("  linear momentum     {}\n", u.show(L.linear_momentum_W, kMomentumDim));
+  out += fmt::format("  linear momentum     {}\n", u.show(L.linear_momentum_W, kMomentum));
   out += fmt::format("  angular momentum    {} about the centre of mass, {} about the origin\n",
-                     u.show(L.angular_momentum_Scm_W, kAngularMomentumDim),
-                     u.show(L.angular_momentum_Wo_W, kAngularMomentumDim));
+                     u.show(L.angular_momentum_Scm_W, kAngularMomentum),
+                     u.show(L.angular_momentum_Wo_W, kAngularMomentum));
   return out;
 }
 

@@ -44,16 +44,6 @@ double Clean(double x, double scale) {
   return std::abs(Finite(x, "a value of the solve report")) <= 1e-12 * scale ? 0.0 : x;
 }
 
-constexpr Dimension kAccelDim{1, 0, -2};
-constexpr Dimension kAlphaDim{0, 0, -2};
-constexpr Dimension kVelocityDim{1, 0, -1};
-constexpr Dimension kRateDim{0, 0, -1};
-constexpr Dimension kForceDim{1, 1, -2};
-constexpr Dimension kMomentDim{2, 1, -2};
-constexpr Dimension kEnergyDim{2, 1, -2};
-constexpr Dimension kMomentumDim{1, 1, -1};
-constexpr Dimension kAngularMomentumDim{2, 1, -1};
-
 /// The text report's values in the units asked for (--units, else the scene's `units:`); the
 /// JSON and CSV stay SI. Each value is converted from SI after its round-off is cleaned.
 struct Show {
@@ -65,8 +55,8 @@ struct Show {
   }
   /// An energy: as a moment (same dimension), but in SI its own name, the joule.
   std::string E(double si) const {
-    const std::string unit = u.FormatUnit(kEnergyDim);
-    return Num(si, kEnergyDim) + (unit == "N*m" ? " J" : " " + unit);
+    const std::string unit = u.FormatUnit(kEnergy);
+    return Num(si, kEnergy) + (unit == "N*m" ? " J" : " " + unit);
   }
   std::string Num(double si, const Dimension& d, Angular a = Angular::kNo) const {
     return fmt::format("{:.9g}", u.FromSI(Finite(si, "a value of the solve report"), d, a));
@@ -139,33 +129,33 @@ std::string KinematicsText(const SolveReport& s, const ReportScales& k, const Sh
       "origin)\n";
   const auto hdot = [&](const Vec3& cm, const Vec3& o) {
     if (s.planar) {
-      return fmt::format("    dH_z/dt  {}\n    dH_Oz/dt {}\n", u(Clean(cm.z(), k.hdot), kMomentDim),
-                         u(Clean(o.z(), k.hdot), kMomentDim));
+      return fmt::format("    dH_z/dt  {}\n    dH_Oz/dt {}\n", u(Clean(cm.z(), k.hdot), kMoment),
+                         u(Clean(o.z(), k.hdot), kMoment));
     }
-    return fmt::format("    dH/dt   {}\n    dH_O/dt {}\n", u.Vec(cm, kMomentDim, k.hdot),
-                       u.Vec(o, kMomentDim, k.hdot));
+    return fmt::format("    dH/dt   {}\n    dH_O/dt {}\n", u.Vec(cm, kMoment, k.hdot),
+                       u.Vec(o, kMoment, k.hdot));
   };
   for (const BodyMotionReport& m : s.motion) {
     out += fmt::format("  {}\n", m.name);
     if (s.planar) {
       out += fmt::format("    v_x   {}\n    v_y   {}\n    omega {}\n",
-                         u(Clean(m.v_WBcm_W.x(), k.v), kVelocityDim),
-                         u(Clean(m.v_WBcm_W.y(), k.v), kVelocityDim),
-                         u(Clean(m.w_WB_W.z(), k.w), kRateDim, Angular::kYes));
+                         u(Clean(m.v_WBcm_W.x(), k.v), kVelocity),
+                         u(Clean(m.v_WBcm_W.y(), k.v), kVelocity),
+                         u(Clean(m.w_WB_W.z(), k.w), kRate, Angular::kYes));
     } else {
-      out += fmt::format("    v_cm  {}\n    omega {}\n", u.Vec(m.v_WBcm_W, kVelocityDim, k.v),
-                         u.Vec(m.w_WB_W, kRateDim, k.w, Angular::kYes));
+      out += fmt::format("    v_cm  {}\n    omega {}\n", u.Vec(m.v_WBcm_W, kVelocity, k.v),
+                         u.Vec(m.w_WB_W, kRate, k.w, Angular::kYes));
     }
     for (const PointMotionReport& p : m.points) {
       if (s.planar) {
-        out += fmt::format("    point {} at {}: v {}, a {}\n", p.name,
-                           u.InPlane(true, p.p_WP, kLength),
-                           u.InPlane(true, p.v_WP_W, kVelocityDim, k.v),
-                           u.InPlane(true, p.a_WP_W, kAccelDim, k.a));
+        out +=
+            fmt::format("    point {} at {}: v {}, a {}\n", p.name,
+                        u.InPlane(true, p.p_WP, kLength), u.InPlane(true, p.v_WP_W, kVelocity, k.v),
+                        u.InPlane(true, p.a_WP_W, kAcceleration, k.a));
       } else {
         out += fmt::format("    point {} at {}\n      v {}\n      a {}\n", p.name,
-                           u.Vec(p.p_WP, kLength), u.Vec(p.v_WP_W, kVelocityDim, k.v),
-                           u.Vec(p.a_WP_W, kAccelDim, k.a));
+                           u.Vec(p.p_WP, kLength), u.Vec(p.v_WP_W, kVelocity, k.v),
+                           u.Vec(p.a_WP_W, kAcceleration, k.a));
       }
     }
     out += hdot(m.Hdot_cm, m.Hdot_O);
@@ -183,14 +173,14 @@ std::string AccelerationsText(const SolveReport& s, const ReportScales& k, const
   for (const auto& b : s.solution.bodies) {
     if (s.planar) {
       out += fmt::format("  {}\n    a_x   {}\n    a_y   {}\n    alpha {}\n", b.name,
-                         u(Clean(b.a_WBcm_W.x(), k.a), kAccelDim),
-                         u(Clean(b.a_WBcm_W.y(), k.a), kAccelDim),
-                         u(Clean(b.alpha_WB_W.z(), k.alpha), kAlphaDim, Angular::kYes));
+                         u(Clean(b.a_WBcm_W.x(), k.a), kAcceleration),
+                         u(Clean(b.a_WBcm_W.y(), k.a), kAcceleration),
+                         u(Clean(b.alpha_WB_W.z(), k.alpha), kAngularAcceleration, Angular::kYes));
       continue;
     }
-    out +=
-        fmt::format("  {}\n    a_cm  {}\n    alpha {}\n", b.name, u.Vec(b.a_WBcm_W, kAccelDim, k.a),
-                    u.Vec(b.alpha_WB_W, kAlphaDim, k.alpha, Angular::kYes));
+    out += fmt::format("  {}\n    a_cm  {}\n    alpha {}\n", b.name,
+                       u.Vec(b.a_WBcm_W, kAcceleration, k.a),
+                       u.Vec(b.alpha_WB_W, kAngularAcceleration, k.alpha, Angular::kYes));
   }
   return out;
 }
@@ -203,34 +193,32 @@ std::string ReactionsText(const SolveReport& s, const ReportScales& k, const Sho
     const ReactionReport& r = s.solution.reactions[i];
     if (s.planar) {
       out += fmt::format("  {} ({}) at {}\n", r.name, r.kind, u.InPlane(true, r.p_WJ, kLength));
-      out += fmt::format("    Fx {}, Fy {}, Mz {}\n", u(Clean(r.F_Jc_W.x(), k.force), kForceDim),
-                         u(Clean(r.F_Jc_W.y(), k.force), kForceDim),
-                         u(Clean(r.M_Jc_W.z(), k.moment), kMomentDim));
+      out += fmt::format("    Fx {}, Fy {}, Mz {}\n", u(Clean(r.F_Jc_W.x(), k.force), kForce),
+                         u(Clean(r.F_Jc_W.y(), k.force), kForce),
+                         u(Clean(r.M_Jc_W.z(), k.moment), kMoment));
     } else {
       out += fmt::format("  {} ({}) at {}\n", r.name, r.kind, u.Vec(r.p_WJ, kLength));
-      out += fmt::format("    force  {}\n", u.Vec(r.F_Jc_W, kForceDim, k.force));
-      out += fmt::format("    moment {}\n", u.Vec(r.M_Jc_W, kMomentDim, k.moment));
+      out += fmt::format("    force  {}\n", u.Vec(r.F_Jc_W, kForce, k.force));
+      out += fmt::format("    moment {}\n", u.Vec(r.M_Jc_W, kMoment, k.moment));
       // What a bearing fixed in the child feels, and what its housing (the parent) feels;
       // a joint to the world has the world as its parent frame (the lines above).
-      out +=
-          fmt::format("    in the child's frame: force {}, moment {}\n",
-                      u.Vec(r.F_Jc_B, kForceDim, k.force), u.Vec(r.M_Jc_B, kMomentDim, k.moment));
+      out += fmt::format("    in the child's frame: force {}, moment {}\n",
+                         u.Vec(r.F_Jc_B, kForce, k.force), u.Vec(r.M_Jc_B, kMoment, k.moment));
       if (r.parent != kWorld) {
-        out +=
-            fmt::format("    in the parent's frame: force {}, moment {}\n",
-                        u.Vec(r.F_Jc_P, kForceDim, k.force), u.Vec(r.M_Jc_P, kMomentDim, k.moment));
+        out += fmt::format("    in the parent's frame: force {}, moment {}\n",
+                           u.Vec(r.F_Jc_P, kForce, k.force), u.Vec(r.M_Jc_P, kMoment, k.moment));
       }
     }
     if (!r.mode.empty()) {
       out += fmt::format(
           "    {}: tension {}, slack {} (chosen by T >= 0, slack acceleration >= 0, "
           "T * slack acceleration = 0)\n",
-          r.mode, u(Clean(r.lambda[0], k.force), kForceDim), u(r.gap, kLength));
+          r.mode, u(Clean(r.lambda[0], k.force), kForce), u(r.gap, kLength));
     }
     if (r.is_rolling) {
-      out += fmt::format("    normal force {}, friction {}, f/N = {:.9g}",
-                         u(r.normal_force, kForceDim), u(r.friction_W.norm(), kForceDim),
-                         r.friction_needed);
+      out +=
+          fmt::format("    normal force {}, friction {}, f/N = {:.9g}", u(r.normal_force, kForce),
+                      u(r.friction_W.norm(), kForce), r.friction_needed);
       if (!std::isnan(s.mu_s[i])) {
         out += fmt::format(" against mu_s = {:.6g}: {}", s.mu_s[i],
                            r.friction_needed <= s.mu_s[i] ? "rolls" : "slips");
@@ -249,14 +237,14 @@ std::string RollingResistanceText(const SolveReport& s, const ContactPointReport
   const double scale = std::max({k.moment, M.stableNorm(), cap});
   // A planar scene's moments are about z.
   const std::string moment =
-      s.planar ? "Mz " + u(Clean(M.z(), scale), kMomentDim) : u.Vec(M, kMomentDim, scale);
+      s.planar ? "Mz " + u(Clean(M.z(), scale), kMoment) : u.Vec(M, kMoment, scale);
   if (c.out.rolling_held) {
     return fmt::format(
         "    rolling held: moment {} (|M| {}) within mu_r N R = {} (|M|/(mu_r N R) = {:.9g})\n",
-        moment, u(M.norm(), kMomentDim), u(cap, kMomentDim), cap > 0.0 ? M.norm() / cap : 0.0);
+        moment, u(M.norm(), kMoment), u(cap, kMoment), cap > 0.0 ? M.norm() / cap : 0.0);
   }
   return fmt::format("    rolling: moment {} = mu_r N R = {} against the rolling (mu_r = {:.6g})\n",
-                     moment, u(cap, kMomentDim), c.mu_r);
+                     moment, u(cap, kMoment), c.mu_r);
 }
 
 /// Each contact point's mode and forces.
@@ -269,16 +257,15 @@ std::string ContactsText(const SolveReport& s, const ReportScales& k, const Show
       out += fmt::format("    gap {}\n", u(c.out.gap, kLength));
       continue;
     }
-    out +=
-        fmt::format("    normal force {}, friction {} (|f| {})\n", u(c.out.normal_force, kForceDim),
-                    u.InPlane(s.planar, c.out.friction_force_W, kForceDim, k.force),
-                    u(c.out.friction_force_W.norm(), kForceDim));
+    out += fmt::format("    normal force {}, friction {} (|f| {})\n", u(c.out.normal_force, kForce),
+                       u.InPlane(s.planar, c.out.friction_force_W, kForce, k.force),
+                       u(c.out.friction_force_W.norm(), kForce));
     if (c.out.mode == ContactMode::kSticking) {
       out += fmt::format("    f/N = {:.9g} against mu_s = {:.6g}\n", c.FrictionRatio(), c.mu_s);
       if (c.round && c.mu_r > 0.0) out += RollingResistanceText(s, c, k, u);
     } else {
       out += fmt::format("    slip velocity {}, f/N = mu_k = {:.6g}\n",
-                         u.InPlane(s.planar, c.out.slip_velocity_W, kVelocityDim), c.mu_k);
+                         u.InPlane(s.planar, c.out.slip_velocity_W, kVelocity), c.mu_k);
     }
   }
   return out;
@@ -302,15 +289,15 @@ std::string Text(const Scene& scene, const SolveReport& s, const UnitSystem& uni
                        u.E(m.T_trans), u.E(m.T_rot));
     if (s.planar) {
       // In the plane: p = (p_x, p_y), H about z (eq. 8.38).
-      out += fmt::format("    p   {}\n", u.InPlane(true, m.P, kMomentumDim, k.p));
-      out += fmt::format("    H_z {} (about {})\n", u(Clean(m.H_cm.z(), k.h), kAngularMomentumDim),
-                         cm);
-      out += fmt::format("    H_Oz {}\n", u(Clean(m.H_O.z(), k.h), kAngularMomentumDim));
+      out += fmt::format("    p   {}\n", u.InPlane(true, m.P, kMomentum, k.p));
+      out +=
+          fmt::format("    H_z {} (about {})\n", u(Clean(m.H_cm.z(), k.h), kAngularMomentum), cm);
+      out += fmt::format("    H_Oz {}\n", u(Clean(m.H_O.z(), k.h), kAngularMomentum));
       return;
     }
-    out += fmt::format("    p   {}\n", u.Vec(m.P, kMomentumDim, k.p));
-    out += fmt::format("    H   {} (about {})\n", u.Vec(m.H_cm, kAngularMomentumDim, k.h), cm);
-    out += fmt::format("    H_O {}\n", u.Vec(m.H_O, kAngularMomentumDim, k.h));
+    out += fmt::format("    p   {}\n", u.Vec(m.P, kMomentum, k.p));
+    out += fmt::format("    H   {} (about {})\n", u.Vec(m.H_cm, kAngularMomentum, k.h), cm);
+    out += fmt::format("    H_O {}\n", u.Vec(m.H_O, kAngularMomentum, k.h));
   };
   for (const BodyMotionReport& m : s.motion) {
     out += fmt::format("  {}\n", m.name);

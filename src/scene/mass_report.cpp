@@ -18,11 +18,6 @@ const char* const kInertiaConvention =
 
 namespace {
 
-constexpr Dimension kDensityDim{-3, 1, 0};
-constexpr Dimension kInertiaDim{2, 1, 0};
-constexpr Dimension kAreaDim{2, 0, 0};
-constexpr Dimension kVolumeDim{3, 0, 0};
-
 /// A value in `dim`, or null (NaN: not given).
 nlohmann::json OrNull(const UnitSystem& units, double v, const Dimension& dim) {
   return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(units.FromSI(v, dim));
@@ -32,7 +27,7 @@ nlohmann::json OrNull(const UnitSystem& units, double v, const Dimension& dim) {
 struct Convert {
   const UnitSystem& units;
   double Mass(double v) const { return units.FromSI(v, kMass); }
-  double Inertia(double v) const { return units.FromSI(v, kInertiaDim); }
+  double Inertia(double v) const { return units.FromSI(v, kInertia); }
   Vec3 Lengths(const Vec3& v) const {
     return Vec3(units.FromSI(v.x(), kLength), units.FromSI(v.y(), kLength),
                 units.FromSI(v.z(), kLength));
@@ -52,10 +47,10 @@ nlohmann::json PartJson(const ScenePart& p, const Convert& P) {
       {"mass", P.Mass(q.mass())},
       {"center_of_mass", VecJson(P.Lengths(q.p_BoBcm_B()))},
       {"inertia_about_center_of_mass", MatJson(P.InertiaMatrix(q.I_BBcm_B().matrix()))},
-      {"volume", OrNull(P.units, p.volume, kVolumeDim)},
-      {"surface_area", OrNull(P.units, p.surface_area, kAreaDim)},
+      {"volume", OrNull(P.units, p.volume, kVolume)},
+      {"surface_area", OrNull(P.units, p.surface_area, kArea)},
       {"notes", p.notes}};
-  if (std::isfinite(p.density)) pj["density"] = P.units.FromSI(p.density, kDensityDim);
+  if (std::isfinite(p.density)) pj["density"] = P.units.FromSI(p.density, kDensity);
   return pj;
 }
 
@@ -87,8 +82,8 @@ nlohmann::json BodyJson(const SceneBody& body, const Convert& P,
   b["inertia_about_center_of_mass"] = MatJson(P.InertiaMatrix(Icm.matrix()));
   AddPrincipalJson(b, Icm, mp.mass(), P);
   const BodyMeasures measures = CalcBodyMeasures(body);
-  b["volume"] = OrNull(P.units, measures.volume, kVolumeDim);
-  b["surface_area"] = OrNull(P.units, measures.surface_area, kAreaDim);
+  b["volume"] = OrNull(P.units, measures.volume, kVolume);
+  b["surface_area"] = OrNull(P.units, measures.surface_area, kArea);
   if (!measures.volume_note.empty()) b["volume_note"] = measures.volume_note;
   if (!measures.surface_area_note.empty()) b["surface_area_note"] = measures.surface_area_note;
   b["points"] = nlohmann::json::array();
@@ -155,10 +150,9 @@ nlohmann::json MassReportJson(const Scene& scene, const UnitSystem& units,
   nlohmann::json j;
   j["scene"] = scene.file;
   j["title"] = scene.title;
-  j["units"] = {
-      {"length", units.FormatUnit(kLength)},      {"mass", units.FormatUnit(kMass)},
-      {"inertia", units.FormatUnit(kInertiaDim)}, {"density", units.FormatUnit(kDensityDim)},
-      {"volume", units.FormatUnit(kVolumeDim)},   {"area", units.FormatUnit(kAreaDim)}};
+  j["units"] = {{"length", units.FormatUnit(kLength)},   {"mass", units.FormatUnit(kMass)},
+                {"inertia", units.FormatUnit(kInertia)}, {"density", units.FormatUnit(kDensity)},
+                {"volume", units.FormatUnit(kVolume)},   {"area", units.FormatUnit(kArea)}};
   j["inertia_convention"] = kInertiaConvention;
   j["parameters"] = nlohmann::json::object();
   for (const auto& [name, q] : scene.parameters) {

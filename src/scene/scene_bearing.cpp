@@ -6,11 +6,7 @@
 #include "internal/scene_reader.h"
 
 namespace chasles::scene_internal {
-namespace {
-constexpr Dimension kLength{1, 0, 0};
-constexpr Dimension kStiffness{0, 1, -2};
-constexpr Dimension kDamping{0, 1, -1};
-}  // namespace
+namespace {}  // namespace
 
 Eigen::Vector2d SceneReader::PairAt(const At& at, const Dimension& expected,
                                     std::string_view what) {
@@ -39,9 +35,9 @@ void SceneReader::ReadBearing(const At& at, const Scene& scene, const std::strin
   f.bearing_axis_W = AxisAt(report_.Require(at, "axis", what), "the bearing's axis");
   const Eigen::Vector2d k =
       PairAt(report_.Require(at, "stiffness", what), kStiffness, "the bearing's stiffness");
-  const Eigen::Vector2d c = at.Has("damping")
-                                ? PairAt(at.Child("damping"), kDamping, "the bearing's damping")
-                                : Eigen::Vector2d::Zero();
+  const Eigen::Vector2d c =
+      at.Has("damping") ? PairAt(at.Child("damping"), kLinearDamping, "the bearing's damping")
+                        : Eigen::Vector2d::Zero();
   if (k.minCoeff() < 0) report_.Fail(at.Child("stiffness"), "the stiffness must be >= 0");
   if (c.minCoeff() < 0) report_.Fail(at.Child("damping"), "the damping must be >= 0");
   const auto cross = [&](const char* key, const Dimension& dim, const char* name) {
@@ -53,7 +49,7 @@ void SceneReader::ReadBearing(const At& at, const Scene& scene, const std::strin
     return PairAt(a, dim, name);
   };
   const Eigen::Vector2d kx = cross("cross_stiffness", kStiffness, "the cross-coupled stiffness");
-  const Eigen::Vector2d cx = cross("cross_damping", kDamping, "the cross-coupled damping");
+  const Eigen::Vector2d cx = cross("cross_damping", kLinearDamping, "the cross-coupled damping");
   f.bearing_K << k[0], kx[0], kx[1], k[1];
   f.bearing_C << c[0], cx[0], cx[1], c[1];
 }

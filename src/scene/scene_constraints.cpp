@@ -53,11 +53,6 @@ SceneSpot Spot(const At& at) {
   return {mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0, at.path};
 }
 
-constexpr Dimension kVelocity{1, 0, -1};
-constexpr Dimension kAcceleration{1, 0, -2};
-constexpr Dimension kAngularVelocity{0, 0, -1};
-constexpr Dimension kAngularAcceleration{0, 0, -2};
-
 struct JointType {
   const char* name;
   JointKind kind;

@@ -18,18 +18,6 @@ namespace chasles {
 
 namespace {
 
-constexpr Dimension kVelocity{1, 0, -1};
-constexpr Dimension kAngularVelocity{0, 0, -1};
-constexpr Dimension kAcceleration{1, 0, -2};
-constexpr Dimension kAngularAcceleration{0, 0, -2};
-constexpr Dimension kForce{1, 1, -2};
-constexpr Dimension kTorque{2, 1, -2};
-constexpr Dimension kImpulse{1, 1, -1};
-constexpr Dimension kStiffness{0, 1, -2};
-constexpr Dimension kLinearDamping{0, 1, -1};
-constexpr Dimension kAngularDamping{2, 1, -1};
-constexpr Dimension kGravitationalParameter{3, 0, -2};
-
 // Dimension of each state variable suffix, in StateVariableLayout order.
 constexpr std::array<Dimension, StateVariableLayout::kPerBody> kSuffixDimensions = {
     kLength,          kLength,          kLength,          kVelocity,        kVelocity,
@@ -118,7 +106,7 @@ std::optional<Symbol> SceneReader::ResolveStateSymbol(const At& at, std::string_
                                      "event's 'when'",
                                      name));
       }
-      return Symbol::Variable(slot, (slot - reaction_slot_begin_) % 6 < 3 ? kForce : kTorque);
+      return Symbol::Variable(slot, (slot - reaction_slot_begin_) % 6 < 3 ? kForce : kMoment);
     }
     const int suffix = slot == 0 ? -1 : (slot - 1) % StateVariableLayout::kPerBody;
     if (suffix == StateVariableLayout::kAlpha && !allow_reactions_) {
@@ -298,9 +286,9 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
           at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
     }
     f.value = planar_
-                  ? PlanarStateVector(report_.Require(at, "value", what), force ? kForce : kTorque,
+                  ? PlanarStateVector(report_.Require(at, "value", what), force ? kForce : kMoment,
                                       force ? "a force" : "a moment", !force)
-                  : StateVector(report_.Require(at, "value", what), force ? kForce : kTorque,
+                  : StateVector(report_.Require(at, "value", what), force ? kForce : kMoment,
                                 force ? "a force" : "a moment");
     if (at.Has("frame")) f.frame = FrameAt(at.Child("frame"));
   } else if (type == "cable") {
@@ -452,7 +440,7 @@ void SceneReader::ReadJointTorque(const At& at, const Scene& scene, const std::s
                                        names.empty() ? "" : "; joints: ", fmt::join(names, ", ")));
   }
   f.body = joints[static_cast<size_t>(f.joint)].child;
-  f.scalar = StateExpression(report_.Require(at, "value", what), kTorque, "a torque");
+  f.scalar = StateExpression(report_.Require(at, "value", what), kMoment, "a torque");
 }
 
 SceneEvent SceneReader::ReadEvent(const At& at, size_t index, const Scene& scene) {

@@ -35,12 +35,6 @@ using scene_internal::ShapeEntry;
 
 namespace {
 
-const Dimension kDensity{-3, 1, 0};
-const Dimension kLinearDensity{-1, 1, 0};
-const Dimension kArealDensity{-2, 1, 0};
-const Dimension kArea{2, 0, 0};
-const Dimension kInertia{2, 1, 0};
-
 const std::vector<std::string> kRootKeys = {
     "chasles",    "title",    "description",    "units",           "parameters", "materials",
     "bodies",     "gravity",  "forces",         "events",          "impulses",   "impacts",

@@ -12,8 +12,6 @@
 namespace chasles::scene_internal {
 
 namespace {
-const Dimension kDensityDim{-3, 1, 0};
-const Dimension kArealDensityDim{-2, 1, 0};
 
 // The remarks a mesh part shows in the report: what was read and what was repaired.
 std::vector<std::string> MeshNotes(const MeshMassReport& r) {
@@ -94,11 +92,11 @@ MassProperties SceneReader::ReadMeshPart(const At& at, const At& body_at, const 
     options.mass = PositiveValue(source, kMass, "the mass");
     part.mass_source = "mass";
   } else if (key == "areal_density") {
-    options.areal_density = PositiveValue(source, kArealDensityDim, "the areal density");
+    options.areal_density = PositiveValue(source, kArealDensity, "the areal density");
     part.mass_source = "areal_density";
   } else {
     const double rho = key == "material" ? MaterialDensity(source)
-                                         : PositiveValue(source, kDensityDim, "the density");
+                                         : PositiveValue(source, kDensity, "the density");
     part.density = rho;
     part.mass_source = key == "material" ? source.node.Scalar() : "density";
     options.density = rho;

@@ -16,13 +16,7 @@
 
 namespace chasles::scene_internal {
 
-namespace {
-
-constexpr Dimension kVelocity{1, 0, -1};
-constexpr Dimension kAngularVelocity{0, 0, -1};
-constexpr Dimension kInertia{2, 1, 0};
-
-}  // namespace
+namespace {}  // namespace
 
 void SceneReader::ReadPlanar(const At& root, Scene& scene) {
   if (!root.Has("planar")) return;

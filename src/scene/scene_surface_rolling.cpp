@@ -8,9 +8,7 @@
 #include "internal/scene_reader.h"
 
 namespace chasles::scene_internal {
-namespace {
-constexpr Dimension kLength{1, 0, 0};
-}  // namespace
+namespace {}  // namespace
 
 // surface: {shape: sphere | cylinder, center: [x, y, z], axis: [x, y, z] (a cylinder),
 //           radius: R, side: inside | outside}

@@ -30,13 +30,6 @@ struct UnitEntry {
   Dimension dim;
 };
 
-constexpr Dimension kVolume{3, 0, 0};
-constexpr Dimension kForce{1, 1, -2};
-constexpr Dimension kEnergy{2, 1, -2};
-constexpr Dimension kPower{2, 1, -3};
-constexpr Dimension kPressure{-1, 1, -2};
-constexpr Dimension kRate{0, 0, -1};
-
 // The unit table. Names are case-sensitive.
 const std::array kUnits{
     // length

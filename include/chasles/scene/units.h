@@ -47,10 +47,36 @@ struct Dimension {
   std::string Describe() const;
 };
 
+/// The named dimensions, each defined here once: the scene reader, the reports and the commands
+/// check quantities against them. Names that share a dimension (kRate and kAngularVelocity,
+/// kEnergy and kMoment, kMomentum and kImpulse) say what the quantity is.
 inline constexpr Dimension kDimensionless{0, 0, 0};
 inline constexpr Dimension kLength{1, 0, 0};
 inline constexpr Dimension kMass{0, 1, 0};
 inline constexpr Dimension kTime{0, 0, 1};
+inline constexpr Dimension kArea{2, 0, 0};
+inline constexpr Dimension kVolume{3, 0, 0};
+inline constexpr Dimension kDensity{-3, 1, 0};
+inline constexpr Dimension kArealDensity{-2, 1, 0};
+inline constexpr Dimension kLinearDensity{-1, 1, 0};
+inline constexpr Dimension kVelocity{1, 0, -1};
+inline constexpr Dimension kAcceleration{1, 0, -2};
+inline constexpr Dimension kRate{0, 0, -1};
+inline constexpr Dimension kAngularVelocity{0, 0, -1};
+inline constexpr Dimension kAngularAcceleration{0, 0, -2};
+inline constexpr Dimension kForce{1, 1, -2};
+inline constexpr Dimension kMoment{2, 1, -2};
+inline constexpr Dimension kEnergy{2, 1, -2};
+inline constexpr Dimension kPower{2, 1, -3};
+inline constexpr Dimension kPressure{-1, 1, -2};
+inline constexpr Dimension kMomentum{1, 1, -1};
+inline constexpr Dimension kImpulse{1, 1, -1};
+inline constexpr Dimension kAngularMomentum{2, 1, -1};
+inline constexpr Dimension kInertia{2, 1, 0};
+inline constexpr Dimension kStiffness{0, 1, -2};
+inline constexpr Dimension kLinearDamping{0, 1, -1};
+inline constexpr Dimension kAngularDamping{2, 1, -1};
+inline constexpr Dimension kGravitationalParameter{3, 0, -2};
 
 /// A value with its dimension; the value is in SI units. NaN by default so that a value never
 /// set shows.
