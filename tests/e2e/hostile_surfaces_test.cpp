@@ -281,6 +281,16 @@ TEST(ReadBack, ReportRefusesEndlessDeepAndFailedInputNamingTheFile) {
   WriteText(run.dir / "deep.json", text);
   ExpectRefused(RunCli("report " + Quote((run.dir / "deep.json").string()) + " -o " + page),
                 "deep.json: arrays and objects are nested deeper than 64 levels");
+  // A number past a double's range is the summary's fault, named with its file (the JSON
+  // library's own error once escaped as "the report cannot be written as JSON").
+  WriteText(run.dir / "huge.json", "{\"scene\": \"s.yaml\", \"t_end\": 1e99999}");
+  for (const std::string command : {"report", "plot"}) {
+    const std::string target =
+        command == "plot" ? " t x -o " + Quote((run.dir / "p.svg").string()) : " -o " + page;
+    ExpectRefused(RunCli(command + " " + Quote((run.dir / "huge.json").string()) + target),
+                  "huge.json: not a chasles summary: [json.exception.out_of_range.406] number "
+                  "overflow parsing '1e99999'");
+  }
   // A run's CSV with a failed row (empty values, a reason) is refused at its line, not drawn
   // as NaN poses.
   std::string csv = ReadText(run.csv);
