@@ -811,6 +811,14 @@ void CheckLimitsUpFront(const Scene& scene, const RunLimits& limits, double span
         fmt::format("the smallest step must be a positive time, got {:.6g} s", limits.min_step), "",
         "set");
   }
+  // A smallest step longer than the whole run bounds nothing: any rejected step would stop
+  // the run, and an accepted one never meets it (--min-step 1e300 would be taken silently).
+  if (limits.min_step > span) {
+    ThrowLimit(scene, sim.Spot("min_step"), "min_step", "--min-step",
+               fmt::format("the smallest step {:.6g} s is longer than the run's span of {:.6g} s",
+                           limits.min_step, span),
+               "", "lower");
+  }
   if (sim.integrator != IntegratorKind::kDormandPrince5 && std::isfinite(sim.step)) {
     if (sim.step < limits.min_step) {
       ThrowLimit(scene, sim.Spot("step"), "min_step", "--min-step",
