@@ -3,7 +3,8 @@
 # ${FUZZ_BUILD_DIR:-build-asan}, the sanitizer build the tests share (scripts/common.sh), and
 # runs each one on its corpus for a bounded time.
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET ...]     (default 60 s; targets: scene
-#                                                          expression mesh cli robot)
+#                                                          expression mesh cli robot plot
+#                                                          report)
 # A target that finds a crash, a leak, a timeout (20 s per input), an out-of-memory (2 GiB) or a
 # broken promise (fuzz/fuzz_support.h) stops the script with exit 1; the input is kept under
 # build-asan/artifacts/ and its report is printed. Copy it into fuzz/regressions/<target>/ once
@@ -14,7 +15,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene expression mesh cli robot)
+[ ${#targets[@]} -gt 0 ] || targets=(scene expression mesh cli robot plot report)
 build=${FUZZ_BUILD_DIR:-build-asan}
 # shellcheck source=scripts/common.sh
 source scripts/common.sh
@@ -61,7 +62,7 @@ for t in "${targets[@]}"; do
     tail -n 30 "$log" >&2
     artifact=$(ls -t "$build/artifacts/$t-"* 2>/dev/null | head -n 1 || true)
     # Each target writes the input it is running to /tmp/chasles-fuzz-PID/ when it needs a
-    # file (scene, cli); after a kill that is where the last input is.
+    # file (scene, cli, plot, report); after a kill that is where the last input is.
     if [ -z "$artifact" ]; then
       echo "fuzz: no artifact was written; look for the last input in /tmp/chasles-fuzz-*/" >&2
     fi

@@ -330,11 +330,18 @@ void CheckPointInertias(const Scene& scene, const std::vector<MassReportPoint>& 
       const Mat3 I = mp.CalcInertiaAbout(p.p_BoP_B).matrix();
       if (I.allFinite()) continue;
       const double d = (p.p_BoP_B - mp.p_BoBcm_B()).stableNorm();
-      throw InputError(fmt::format(
+      const std::string what = fmt::format(
           "the inertia of body '{}' about point {} is not a finite number: the point is {:.6g} m "
           "from the centre of mass, and m d² = {:.6g} kg * ({:.6g} m)² overflows the range of a "
           "double (about 1.8e308 kg*m^2); give a point nearer the body",
-          body.name, p.name, d, mp.mass(), d));
+          body.name, p.name, d, mp.mass(), d);
+      // A point of the scene's `points` is refused at its value; one of --about has no place.
+      for (const ScenePoint& sp : body.points) {
+        if (sp.name == p.name && sp.where.line > 0) {
+          throw SceneError(scene.file, sp.where.line, sp.where.column, sp.where.key, what);
+        }
+      }
+      throw InputError(what);
     }
   }
 }

@@ -14,6 +14,18 @@ namespace chasles::python {
 
 namespace {
 
+/// sqrt(I/m) about each axis (eq. 8.19); InputError when that is not a number (a mass that is
+/// not positive, a moment past a double's range), rather than NaN radii.
+Vec3 RadiiOfGyration(const RotationalInertia& I, double mass) {
+  const Vec3 k = I.CalcRadiiOfGyration(mass);
+  if (!k.allFinite()) {
+    throw InputError("the radii of gyration sqrt(I/m) are not finite numbers for a mass of " +
+                     std::string(py::str(py::float_(mass))) +
+                     " kg: they need a positive mass and finite moments");
+  }
+  return k;
+}
+
 MeshMassOptions MeshOptions(const std::string& mode, double scale, double density, double mass,
                             double areal_density, double thickness) {
   MeshMassOptions o;
@@ -46,21 +58,38 @@ void BindInertia(py::module_& m) {
       .def(py::init<double, double, double, double, double, double>(), py::arg("Ixx"),
            py::arg("Iyy"), py::arg("Izz"), py::arg("Ixy") = 0.0, py::arg("Ixz") = 0.0,
            py::arg("Iyz") = 0.0, "From the tensor entries (products as they stand in [I]).")
-      .def_static("from_matrix", &RotationalInertia::FromMatrix, py::arg("matrix"),
-                  "From a symmetric 3x3 matrix.")
+      .def_static(
+          "from_matrix",
+          [](const Mat3& m) { return RotationalInertia::FromMatrix(RequireFinite(m, "matrix")); },
+          py::arg("matrix"), "From a symmetric 3x3 matrix.")
       .def_property_readonly("matrix", &RotationalInertia::matrix, "The 3x3 tensor [kg*m^2]")
       .def("principal_axes", &RotationalInertia::CalcPrincipalAxes,
            "Principal moments (ascending) and right-handed axes.")
-      .def("radii_of_gyration", &RotationalInertia::CalcRadiiOfGyration, py::arg("mass"),
-           "Radii of gyration about the frame's axes, sqrt(I/m) (eq. 8.19) [m].")
+      .def(
+          "radii_of_gyration",
+          [](const RotationalInertia& I, double mass) { return RadiiOfGyration(I, mass); },
+          py::arg("mass"), "Radii of gyration about the frame's axes, sqrt(I/m) (eq. 8.19) [m].")
       .def("check_physically_valid", &RotationalInertia::CheckPhysicallyValid,
            "'' when the tensor could belong to a real body, else the rule it breaks.")
-      .def("re_expressed_in", &RotationalInertia::ReExpressedIn, py::arg("R_AB"),
-           "The tensor in frame A given R_AB: R I R^T.")
-      .def("shift_from_center_of_mass", &RotationalInertia::ShiftFromCenterOfMass, py::arg("mass"),
-           py::arg("p_PCm"),
-           "Parallel-axis theorem (eq. 8.29): this tensor about the centre of mass; returns it "
-           "about P, p_PCm being the centre of mass from P.")
+      .def(
+          "re_expressed_in",
+          [](const RotationalInertia& I, const Mat3& R) {
+            const RotationalInertia out = I.ReExpressedIn(RequireFinite(R, "R_AB"));
+            FiniteResult(out.matrix(), "the re-expressed tensor");
+            return out;
+          },
+          py::arg("R_AB"), "The tensor in frame A given R_AB: R I R^T.")
+      .def(
+          "shift_from_center_of_mass",
+          [](const RotationalInertia& I, double mass, const Vec3& p) {
+            RequireFinite(Eigen::Matrix<double, 1, 1>(mass), "mass");
+            const RotationalInertia out = I.ShiftFromCenterOfMass(mass, RequireFinite(p, "p_PCm"));
+            FiniteResult(out.matrix(), "the shifted tensor");
+            return out;
+          },
+          py::arg("mass"), py::arg("p_PCm"),
+          "Parallel-axis theorem (eq. 8.29): this tensor about the centre of mass; returns it "
+          "about P, p_PCm being the centre of mass from P.")
       .def("__repr__", [](const RotationalInertia& I) {
         return py::str("RotationalInertia({})").format(py::cast(I.matrix()));
       });
@@ -72,8 +101,13 @@ void BindMassProperties(py::module_& m) {
       .def(py::init<double, const Vec3&, const RotationalInertia&>(), py::arg("mass"),
            py::arg("center_of_mass"), py::arg("inertia"),
            "mass [kg], centre of mass from B's origin [m], inertia about it [kg*m^2], in B.")
-      .def_static("point_mass", &MassProperties::PointMass, py::arg("mass"), py::arg("position"),
-                  "A point mass at `position` [m].")
+      .def_static(
+          "point_mass",
+          [](double mass, const Vec3& p) {
+            RequireFinite(Eigen::Matrix<double, 1, 1>(mass), "mass");
+            return MassProperties::PointMass(mass, RequireFinite(p, "position"));
+          },
+          py::arg("mass"), py::arg("position"), "A point mass at `position` [m].")
       .def_property_readonly("mass", &MassProperties::mass, "Mass [kg]")
       .def_property_readonly("center_of_mass", &MassProperties::p_BoBcm_B,
                              "Centre of mass from B's origin, in B [m]")
@@ -84,7 +118,10 @@ void BindMassProperties(py::module_& m) {
                              "The same as a RotationalInertia")
       .def(
           "inertia_about",
-          [](const MassProperties& mp, const Vec3& p) { return mp.CalcInertiaAbout(p).matrix(); },
+          [](const MassProperties& mp, const Vec3& p) {
+            return FiniteResult(mp.CalcInertiaAbout(RequireFinite(p, "point")).matrix(),
+                                "the inertia about the point");
+          },
           py::arg("point"),
           "Inertia tensor about a point given from B's origin in B (eq. 8.29) [kg*m^2].")
       .def_property_readonly(
@@ -97,20 +134,28 @@ void BindMassProperties(py::module_& m) {
           "Principal axes (columns, in B) matching principal_moments")
       .def_property_readonly(
           "radii_of_gyration",
-          [](const MassProperties& mp) { return mp.I_BBcm_B().CalcRadiiOfGyration(mp.mass()); },
+          [](const MassProperties& mp) { return RadiiOfGyration(mp.I_BBcm_B(), mp.mass()); },
           "Radii of gyration about B's axes through the centre of mass [m]")
       .def_property_readonly(
           "principal_radii_of_gyration",
           [](const MassProperties& mp) {
             const PrincipalAxes pa = mp.I_BBcm_B().CalcPrincipalAxes();
-            return RotationalInertia(pa.moments[0], pa.moments[1], pa.moments[2])
-                .CalcRadiiOfGyration(mp.mass());
+            return RadiiOfGyration(RotationalInertia(pa.moments[0], pa.moments[1], pa.moments[2]),
+                                   mp.mass());
           },
           "Radii of gyration about the principal axes [m]")
-      .def("expressed_in_parent", &MassProperties::ExpressedInParent, py::arg("R_BP"),
-           py::arg("p_BoPo_B"),
-           "These properties of a part whose frame P is at p_BoPo_B in B, rotated by R_BP, "
-           "expressed in B.")
+      .def(
+          "expressed_in_parent",
+          [](const MassProperties& mp, const Mat3& R, const Vec3& p) {
+            const MassProperties out =
+                mp.ExpressedInParent(RequireFinite(R, "R_BP"), RequireFinite(p, "p_BoPo_B"));
+            FiniteResult(out.I_BBcm_B().matrix(), "the inertia expressed in the parent");
+            FiniteResult(out.p_BoBcm_B(), "the centre of mass expressed in the parent");
+            return out;
+          },
+          py::arg("R_BP"), py::arg("p_BoPo_B"),
+          "These properties of a part whose frame P is at p_BoPo_B in B, rotated by R_BP, "
+          "expressed in B.")
       .def("__add__", &MassProperties::operator+, "Composite body (eqs. 8.4, 8.29).")
       .def("negated", &MassProperties::Negated, "The same with negative mass (a hole).")
       .def("validate", &MassProperties::Validate, py::arg("what") = "mass properties",

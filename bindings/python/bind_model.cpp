@@ -60,6 +60,25 @@ VectorFrame FrameFrom(const std::string& frame) {
   throw InputError("frame must be 'world' or 'body', got '" + frame + "'");
 }
 
+/// A body of `model` (IndexError otherwise) in a state made for it (InputError otherwise):
+/// the state functions index both.
+void CheckBodyOfState(const Model& model, const State& state, int body) {
+  CheckIndex(body, model.num_bodies(), "body", "num_bodies");
+  if (state.bodies.size() != static_cast<size_t>(model.num_bodies())) {
+    throw InputError("the state has " + std::to_string(state.bodies.size()) +
+                     " bodies and the model " + std::to_string(model.num_bodies()) +
+                     ": make the state with make_rest_state(model) after the last body is added");
+  }
+}
+
+/// AttachmentFrameAtWorldPose for a body of the model and state (or WORLD), at a finite pose.
+AttachmentFrame CheckedAttachmentFrameAtWorldPose(const Model& model, const State& state,
+                                                  BodyIndex b, const Vec3& p, const Mat3& R) {
+  if (b != kWorld) CheckBodyOfState(model, state, b);
+  return AttachmentFrameAtWorldPose(model, state, b, RequireFinite(p, "position"),
+                                    RequireFinite(R, "rotation"));
+}
+
 void BindForces(py::module_& m) {
   py::class_<ForceElement, std::shared_ptr<ForceElement>>(
       m, "ForceElement", "Something that pushes on bodies; add it with Model.add_force_element.")
@@ -340,7 +359,7 @@ void BindConstraints(py::module_& m) {
                     const AttachmentFrame&, TimeFunction>(),
            py::arg("name"), py::arg("kind"), py::arg("parent"), py::arg("parent_frame"),
            py::arg("child"), py::arg("child_frame"), py::arg("f"));
-  m.def("attachment_frame_at_world_pose", &AttachmentFrameAtWorldPose, py::arg("model"),
+  m.def("attachment_frame_at_world_pose", &CheckedAttachmentFrameAtWorldPose, py::arg("model"),
         py::arg("state"), py::arg("body"), py::arg("position"),
         py::arg("rotation") = Mat3::Identity(),
         "The frame on `body` (or WORLD) that coincides with the world pose at `state`.");
@@ -439,27 +458,35 @@ void BindState(py::module_& m) {
   m.def(
       "set_body_pose",
       [](const Model& model, int b, const Vec3& p, const Eigen::Vector4d& q, State& state) {
+        CheckBodyOfState(model, state, b);
+        RequireFinite(p, "origin");
+        if (!(RequireFinite(q, "quaternion").norm() > 0.0)) {
+          throw InputError("quaternion must not be zero");
+        }
         SetBodyPose(model, b, p, QuatFrom(q), state);
       },
       py::arg("model"), py::arg("body"), py::arg("origin"), py::arg("quaternion"), py::arg("state"),
       "Places body's frame origin at `origin` with orientation [w, x, y, z].");
-  m.def("set_body_velocity", &SetBodyVelocity, py::arg("model"), py::arg("body"),
-        py::arg("origin_velocity"), py::arg("angular_velocity"), py::arg("state"),
-        "Sets the velocity of body's frame origin and its angular velocity (both in W).");
-  m.def("body_origin_position", &CalcBodyOriginPosition, py::arg("model"), py::arg("state"),
-        py::arg("body"), "Position of body's frame origin in W [m].");
+  m.def(
+      "set_body_velocity",
+      [](const Model& model, int b, const Vec3& v, const Vec3& w, State& state) {
+        CheckBodyOfState(model, state, b);
+        SetBodyVelocity(model, b, RequireFinite(v, "origin_velocity"),
+                        RequireFinite(w, "angular_velocity"), state);
+      },
+      py::arg("model"), py::arg("body"), py::arg("origin_velocity"), py::arg("angular_velocity"),
+      py::arg("state"),
+      "Sets the velocity of body's frame origin and its angular velocity (both in W).");
+  m.def(
+      "body_origin_position",
+      [](const Model& model, const State& state, int b) {
+        CheckBodyOfState(model, state, b);
+        return CalcBodyOriginPosition(model, state, b);
+      },
+      py::arg("model"), py::arg("state"), py::arg("body"),
+      "Position of body's frame origin in W [m].");
   m.def("validate_state", &ValidateState, py::arg("model"), py::arg("state"),
         "Raises InputError when the state does not fit the model or is not finite.");
-}
-
-/// Raises IndexError naming the argument unless 0 <= index < count (a negative index is not
-/// counted from the end: a body index is a handle, not a position in a list).
-void CheckIndex(int index, int count, const char* argument, const char* count_name) {
-  if (index < 0 || index >= count) {
-    throw py::index_error(std::string(argument) + " index " + std::to_string(index) +
-                          " is out of range: the model has " + count_name + " = " +
-                          std::to_string(count) + " (0 to " + std::to_string(count - 1) + ")");
-  }
 }
 
 void BindModelClass(py::module_& m) {
@@ -509,6 +536,14 @@ void BindModelClass(py::module_& m) {
 }
 
 }  // namespace
+
+void CheckIndex(int index, int count, const char* argument, const char* count_name) {
+  if (index < 0 || index >= count) {
+    throw py::index_error(std::string(argument) + " index " + std::to_string(index) +
+                          " is out of range: the model has " + count_name + " = " +
+                          std::to_string(count) + " (0 to " + std::to_string(count - 1) + ")");
+  }
+}
 
 void BindModel(py::module_& m) {
   BindModelClass(m);

@@ -142,7 +142,8 @@ void BindOptions(py::module_& m) {
           [](SimulationOptions& o, double v) { o.adaptive.atol = v; }, "Absolute tolerance")
       .def_property(
           "max_step", [](const SimulationOptions& o) { return o.adaptive.max_step; },
-          [](SimulationOptions& o, double v) { o.adaptive.max_step = v; }, "Largest step [s]")
+          [](SimulationOptions& o, double v) { o.adaptive.max_step = v; },
+          "Largest step [s] (inf: no limit)")
       .def_readwrite("events", &SimulationOptions::events,
                      "Events to locate (a list of EventSpec; Dormand-Prince only)")
       .def_readwrite("event_time_tolerance", &SimulationOptions::event_time_tolerance,

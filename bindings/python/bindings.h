@@ -15,6 +15,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "chasles/error.h"
 #include "chasles/math/types.h"
 #include "chasles/scene/scene.h"
 
@@ -81,5 +82,33 @@ T CallbackResult(const py::function& callable, const py::object& value, const ch
                          ", got " + std::string(py::repr(value)));
   }
 }
+
+/// `v` itself; InputError naming the argument unless every entry is finite (a point, a
+/// rotation or a mass given as NaN or an infinity is refused at the boundary, not carried
+/// into a result).
+template <typename Derived>
+const Derived& RequireFinite(const Derived& v, const char* argument) {
+  if (!v.allFinite()) {
+    throw InputError(std::string(argument) + " must be finite numbers, got " +
+                     std::string(py::str(py::cast(Eigen::MatrixXd(v)).attr("tolist")())));
+  }
+  return v;
+}
+
+/// `v` itself; InputError saying that `what` left a double's range unless it is finite (a
+/// point 1e200 m away makes m d^2 overflow).
+template <typename Derived>
+Derived FiniteResult(const Derived& v, const char* what) {
+  if (!v.allFinite()) {
+    throw InputError(std::string(what) +
+                     " is not a finite number (it left the range of a "
+                     "double, about 1.8e308): the arguments are too large");
+  }
+  return v;
+}
+
+/// IndexError naming the argument unless 0 <= index < count (a negative index is not counted
+/// from the end: a body index is a handle, not a position in a list).
+void CheckIndex(int index, int count, const char* argument, const char* count_name);
 
 }  // namespace chasles::python

@@ -3,6 +3,7 @@
 // the pure-Python conveniences (tables, pandas).
 
 #include <cstring>
+#include <filesystem>
 
 #include "bindings.h"
 #include "chasles/error.h"
@@ -91,6 +92,12 @@ void BindErrors(py::module_& m) {
       x.attr("message") = std::string(e.what());
       PyErr_SetObject(limit_type, x.ptr());
     } catch (const InputError& e) {
+      py::object x = py::reinterpret_borrow<py::object>(input_type)(e.what());
+      x.attr("message") = std::string(e.what());
+      PyErr_SetObject(input_type, x.ptr());
+    } catch (const std::filesystem::filesystem_error& e) {
+      // A path the file system refuses (an empty one, one too long): bad input, as the
+      // program's exit 2, not pybind11's RuntimeError.
       py::object x = py::reinterpret_borrow<py::object>(input_type)(e.what());
       x.attr("message") = std::string(e.what());
       PyErr_SetObject(input_type, x.ptr());

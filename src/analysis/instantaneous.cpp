@@ -36,6 +36,24 @@ InstantaneousSolution SolveInstantaneous(const Model& model, const State& state,
 }
 
 namespace {
+/// A force element whose force, moment or power is NaN or infinite (an expression dividing by
+/// zero at this state) is named, as a run names it, rather than passed on as non-finite
+/// accelerations.
+void CheckFiniteForces(const Model& model, const State& state, const Data& data) {
+  for (int e = 0; e < model.num_force_elements(); ++e) {
+    const ForceElementOutput& o = data.elements[static_cast<size_t>(e)];
+    if (o.force_W.allFinite() && o.moment_Wo_W.allFinite() && std::isfinite(o.power)) continue;
+    const bool inf = o.force_W.array().isInf().any() || o.moment_Wo_W.array().isInf().any() ||
+                     std::isinf(o.power);
+    throw InputError(fmt::format(
+        "force element '{}' evaluated to {} at t = {:.9g} s (force [{:.6g}, {:.6g}, {:.6g}] N): "
+        "check its expression or the bodies' positions (a body at a force centre, a logarithm "
+        "or a division by zero)",
+        model.force_element(e).name(), inf ? "infinite" : "NaN", state.t, o.force_W.x(),
+        o.force_W.y(), o.force_W.z()));
+  }
+}
+
 InstantaneousSolution SolveInChosenModes(const Model& model, const State& state,
                                          const InstantaneousOptions& options) {
   Data data = MakeData(model);
@@ -48,6 +66,7 @@ InstantaneousSolution SolveInChosenModes(const Model& model, const State& state,
         model.constraint(v.worst).name(), v.position, v.velocity, options.tolerance));
   }
   CalcAccelerations(model, state, data);
+  CheckFiniteForces(model, state, data);
   InstantaneousSolution s;
   s.t = state.t;
   s.num_rows = model.num_constraint_rows();

@@ -88,6 +88,9 @@ nlohmann::json ParseJsonText(const std::string& text, const std::string& path) {
     return nlohmann::json::parse(text, depth_cap);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(fmt::format("{}: not JSON: {}", path, e.what()));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number past a double's range (1e99999): the parser's error 406, not a parse_error.
+    throw InputError(fmt::format("{}: not a chasles summary: {}", path, e.what()));
   }
 }
 

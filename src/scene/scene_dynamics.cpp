@@ -230,10 +230,16 @@ void SceneReader::ReadInitial(const At& at, const SceneBody& body, SceneInitialS
                    {"position", "rotation", "euler", "quaternion", "velocity", "velocity_point",
                     "angular_velocity", "angular_velocity_frame"},
                    "an initial state");
-  if (at.Has("position")) initial.p_WBo = Vector(at.Child("position"), kLength, "a position");
+  if (at.Has("position")) {
+    const At p = at.Child("position");
+    initial.p_WBo = InitialMotion(p, Vector(p, kLength, "a position"), "position", "m");
+  }
   const Mat3 R_WB = ReadOrientation(at);
   initial.q_WB = Quat(R_WB).normalized();
-  if (at.Has("velocity")) initial.v_WP_W = Vector(at.Child("velocity"), kVelocity, "a velocity");
+  if (at.Has("velocity")) {
+    const At v = at.Child("velocity");
+    initial.v_WP_W = InitialMotion(v, Vector(v, kVelocity, "a velocity"), "velocity", "m/s");
+  }
   if (at.Has("velocity_point")) {
     const At p = at.Child("velocity_point");
     if (!at.Has("velocity")) report_.Fail(p, "'velocity_point' needs 'velocity'");
@@ -241,13 +247,25 @@ void SceneReader::ReadInitial(const At& at, const SceneBody& body, SceneInitialS
     initial.p_BoP_B = BodyPointAt(p, body);
   }
   if (at.Has("angular_velocity")) {
-    initial.w_WB_W = Vector(at.Child("angular_velocity"), kAngularVelocity, "an angular velocity");
+    const At w = at.Child("angular_velocity");
+    initial.w_WB_W = InitialMotion(w, Vector(w, kAngularVelocity, "an angular velocity"),
+                                   "angular velocity", "rad/s");
   }
   if (at.Has("angular_velocity_frame")) {
     if (FrameAt(at.Child("angular_velocity_frame")) == VectorFrame::kBody) {
       initial.w_WB_W = R_WB * initial.w_WB_W;
     }
   }
+}
+
+Vec3 SceneReader::InitialMotion(const At& at, const Vec3& v, std::string_view what,
+                                std::string_view unit) {
+  const double magnitude = v.stableNorm();
+  if (magnitude <= kMotionScale) return v;
+  report_.Fail(at, fmt::format("the initial {} has a magnitude of {:.6g} {}; a run accepts motions "
+                               "up to {:g} in SI (beyond, energies and moments leave double "
+                               "precision): check the value and its unit",
+                               what, magnitude, unit, kMotionScale));
 }
 
 SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index) {
@@ -285,6 +303,7 @@ SceneForce SceneReader::ReadForce(const At& at, const Scene& scene, size_t index
       f.p_BoP_B =
           at.Has("point") ? BodyPointAt(at.Child("point"), body) : body.mass_properties.p_BoBcm_B();
     }
+    f.expression_where = SpotAt(report_.Require(at, "value", what));
     f.value = planar_
                   ? PlanarStateVector(report_.Require(at, "value", what), force ? kForce : kMoment,
                                       force ? "a force" : "a moment", !force)
@@ -440,6 +459,7 @@ void SceneReader::ReadJointTorque(const At& at, const Scene& scene, const std::s
                                        names.empty() ? "" : "; joints: ", fmt::join(names, ", ")));
   }
   f.body = joints[static_cast<size_t>(f.joint)].child;
+  f.expression_where = SpotAt(report_.Require(at, "value", what));
   f.scalar = StateExpression(report_.Require(at, "value", what), kMoment, "a torque");
 }
 

@@ -323,8 +323,9 @@ SceneBody SceneReader::ReadBody(const At& at, size_t index) {
                        fmt::format("point '{}' appears twice", name));
         }
       }
+      const At value{kv.second, pts.path + "." + name};
       body.points.push_back(
-          {name, BodyVector(At{kv.second, pts.path + "." + name}, kLength, "a point's position")});
+          {name, BodyVector(value, kLength, "a point's position"), SpotAt(value)});
     }
   }
   const At parts = report_.Require(at, "parts", fmt::format("body '{}'", body.name));
@@ -444,6 +445,7 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at,
     }
     part.subtractive = subtract;
   }
+  part.where = SpotAt(at.Has("position") ? at.Child("position") : at);
   part.geometry.p_BoPo_B = p_BoPo_B;
   part.geometry.R_BP = R_BP;
   part.mass_properties = local.ExpressedInParent(R_BP, p_BoPo_B);

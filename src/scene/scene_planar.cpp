@@ -135,14 +135,16 @@ void SceneReader::ReadPlanarInitial(const At& at, const SceneBody& body,
   report_.CheckMap(at, {"position", "theta", "velocity", "velocity_point", "omega"},
                    "an initial state (planar: position [x, y], theta, velocity [vx, vy], omega)");
   if (at.Has("position")) {
-    initial.p_WBo = WorldVector(at.Child("position"), kLength, "a position");
+    const At p = at.Child("position");
+    initial.p_WBo = InitialMotion(p, WorldVector(p, kLength, "a position"), "position", "m");
   }
   if (at.Has("theta")) {
     initial.theta = Value(at.Child("theta"), kDimensionless, "the angle theta about z");
   }
   initial.q_WB = Quat(Eigen::AngleAxisd(initial.theta, Vec3::UnitZ()));
   if (at.Has("velocity")) {
-    initial.v_WP_W = WorldVector(at.Child("velocity"), kVelocity, "a velocity");
+    const At v = at.Child("velocity");
+    initial.v_WP_W = InitialMotion(v, WorldVector(v, kVelocity, "a velocity"), "velocity", "m/s");
   }
   if (at.Has("velocity_point")) {
     const At p = at.Child("velocity_point");

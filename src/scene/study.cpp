@@ -683,10 +683,6 @@ RunLimits ResolveLimits(const Scene& scene, const StudyOptions& o, double span) 
              "check the forces and masses for a singularity, or ", "lower");
 }
 
-/// Largest magnitude of a motion in SI (position, speed) that a run accepts: beyond it the
-/// energies (½ m v²) and moments (r × F) of ordinary bodies leave double precision, so such a
-/// motion is a blown-up or mistyped input (CheckFinite stops a run that gets there).
-constexpr double kMotionScale = 1e150;
 /// The accepted range of a body's mass [kg] and of the trace of its inertia [kg·m²]: with
 /// forces and lengths of any physical size the accelerations F/m and I⁻¹M stay far inside
 /// double precision (1e-300 kg would turn 1 N into 1e300 m/s²).
@@ -697,6 +693,18 @@ constexpr double kMinBodyScale = 1e-100, kMaxBodyScale = 1e100;
 /// kMotionScale (f = f0 + f1 t + ½ f2 t², f' = f1 + f2 t).
 void CheckPhysicalInputs(const Scene& scene, double t_end) {
   for (const SceneBody& b : scene.bodies) {
+    // A part 1e200 m out puts the body's centre of mass there: refused at the part's position,
+    // not later as a motion that "diverged".
+    for (const ScenePart& part : b.parts) {
+      const double d = part.mass_properties.p_BoBcm_B().stableNorm();
+      if (d <= kMotionScale) continue;
+      throw SceneError(
+          scene.file, part.where.line, part.where.column, part.where.key,
+          fmt::format("body '{}', part '{}': its centre of mass is {:.6g} m from the body's "
+                      "origin; a run accepts positions up to {:g} m (beyond, energies and "
+                      "moments leave double precision): check the position and its unit",
+                      b.name, part.name, d, kMotionScale));
+    }
     const double m = b.mass_properties.mass();
     const double tr = b.mass_properties.I_BBcm_B().Trace();
     const bool m_ok = m >= kMinBodyScale && m <= kMaxBodyScale;
@@ -802,6 +810,14 @@ void CheckLimitsUpFront(const Scene& scene, const RunLimits& limits, double span
         scene, sim.Spot("min_step"), "min_step", "--min-step",
         fmt::format("the smallest step must be a positive time, got {:.6g} s", limits.min_step), "",
         "set");
+  }
+  // A smallest step longer than the whole run bounds nothing: any rejected step would stop
+  // the run, and an accepted one never meets it (--min-step 1e300 would be taken silently).
+  if (limits.min_step > span) {
+    ThrowLimit(scene, sim.Spot("min_step"), "min_step", "--min-step",
+               fmt::format("the smallest step {:.6g} s is longer than the run's span of {:.6g} s",
+                           limits.min_step, span),
+               "", "lower");
   }
   if (sim.integrator != IntegratorKind::kDormandPrince5 && std::isfinite(sim.step)) {
     if (sim.step < limits.min_step) {
@@ -963,8 +979,22 @@ const SceneSpot* FindSceneEntry(const Scene& scene, const std::string& name,
 
 void ThrowAtSceneEntry(const Scene& scene, const InputError& error) {
   if (const auto* located = dynamic_cast<const SceneError*>(&error)) throw *located;
-  // The first quoted name in the message that is an element of the scene.
   const std::string what = error.what();
+  // A force, moment or torque that is its expression and evaluated to NaN or an infinity (the
+  // state is finite: that is checked first): the expression did, at its own value.
+  for (const SceneForce& f : scene.dynamics.forces) {
+    const SceneSpot& at = f.expression_where;
+    if (at.line == 0 ||
+        what.find(fmt::format("force element '{}' evaluated to ", f.name)) == std::string::npos) {
+      continue;
+    }
+    throw SceneError(scene.file, at.line, at.column, at.key,
+                     fmt::format("the expression of force element '{}' produced a non-finite "
+                                 "value (a division by zero, a logarithm of 0, a root of a "
+                                 "negative number or an overflow): {}",
+                                 f.name, what));
+  }
+  // The first quoted name in the message that is an element of the scene.
   const SceneSpot* spot = nullptr;
   size_t at = 0;
   while (!spot && (at = what.find('\'', at)) != std::string::npos) {

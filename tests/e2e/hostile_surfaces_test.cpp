@@ -176,6 +176,37 @@ TEST(OutputTargets, TwoRunsIntoOneOutFolderAtOnceNeverLeaveAMixedPair) {
   fs::remove_all(dir);
 }
 
+TEST(OutputTargets, TwoSweepsKeepingRunsInOneFolderAtOnceNeverLeaveAMixedPair) {
+  // Two sweeps over the same stiffnesses with different masses, keeping their runs in one
+  // folder at the same moment, 10 times: each point's CSV and JSON are renamed into place
+  // together under the folder's lock, so every pair left is of one run (the JSON's final
+  // position is the CSV's last x, bit for bit), whichever sweep wrote it last.
+  const fs::path dir = OutDir("hostile_kept_pair");
+  const std::string run = "'" + std::string(chasles::test::CliPath()) + "' simulate " +
+                          Quote(SourcePath(kSpring)) +
+                          " --quiet --until 0.3 --sweep 'k=100 N/m:900 N/m:3' --quantity "
+                          "'max(block_x)' --jobs 3 --keep-runs " +
+                          Quote(dir.string()) + " --set ";
+  for (int round = 0; round < 10; ++round) {
+    const std::string both =
+        run + "'m=2 kg' >/dev/null 2>&1 & " + run + "'m=7 kg' >/dev/null 2>&1 & wait";
+    ASSERT_EQ(std::system(both.c_str()), 0);
+    const std::vector<std::string> names = Entries(dir);
+    ASSERT_EQ(names.size(), 6u) << "round " << round;
+    for (const std::string& n : names) {
+      if (fs::path(n).extension() != ".json") continue;
+      const nlohmann::json j = nlohmann::json::parse(ReadText(dir / n));
+      const double json_x =
+          j.at("final").at("bodies").at(0).at("center_of_mass").at(0).get<double>();
+      const fs::path csv = dir / (fs::path(n).stem().string() + ".csv");
+      const std::vector<double> csv_x = ReadCsv(csv.string()).at("block_x");
+      ASSERT_FALSE(csv_x.empty());
+      EXPECT_EQ(csv_x.back(), json_x) << "round " << round << ": " << n;
+    }
+  }
+  fs::remove_all(dir);
+}
+
 /// A run of the spring-mass with its summary naming the scene by its full path.
 struct SpringFiles {
   fs::path dir, json, csv;
@@ -281,6 +312,16 @@ TEST(ReadBack, ReportRefusesEndlessDeepAndFailedInputNamingTheFile) {
   WriteText(run.dir / "deep.json", text);
   ExpectRefused(RunCli("report " + Quote((run.dir / "deep.json").string()) + " -o " + page),
                 "deep.json: arrays and objects are nested deeper than 64 levels");
+  // A number past a double's range is the summary's fault, named with its file (the JSON
+  // library's own error once escaped as "the report cannot be written as JSON").
+  WriteText(run.dir / "huge.json", "{\"scene\": \"s.yaml\", \"t_end\": 1e99999}");
+  for (const std::string command : {"report", "plot"}) {
+    const std::string target =
+        command == "plot" ? " t x -o " + Quote((run.dir / "p.svg").string()) : " -o " + page;
+    ExpectRefused(RunCli(command + " " + Quote((run.dir / "huge.json").string()) + target),
+                  "huge.json: not a chasles summary: [json.exception.out_of_range.406] number "
+                  "overflow parsing '1e99999'");
+  }
   // A run's CSV with a failed row (empty values, a reason) is refused at its line, not drawn
   // as NaN poses.
   std::string csv = ReadText(run.csv);

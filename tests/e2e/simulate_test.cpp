@@ -312,8 +312,8 @@ TEST(SimulateCli, HelpAndErrors) {
 }
 
 // A force that has no value below z = 0 (the square root of a negative number) on a fixed-step
-// integrator: the run stops at the first NaN with the force named at its entry (line 7,
-// column 5) and writes no output.
+// integrator: the run stops at the first NaN with the force named at its expression (line 7,
+// column 39: the value) and writes no output.
 TEST(SimulateCli, DivergingRunStopsWithTheForceNamed) {
   const auto dir = OutDir();
   const auto scene = dir / "diverge.yaml";
@@ -327,7 +327,10 @@ TEST(SimulateCli, DivergingRunStopsWithTheForceNamed) {
                           "simulation: {until: 3 s, integrator: rk4, step: 0.25 s}\n";
   const CliResult r = RunCli("simulate '" + scene.string() + "' --out '" + dir.string() + "'");
   EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_THAT(r.err, ::testing::HasSubstr(scene.string() + ":7:5: forces[0]: "));
+  EXPECT_THAT(r.err, ::testing::HasSubstr(scene.string() +
+                                          ":7:39: forces[0].value: the "
+                                          "expression of force element 'force 1' produced a "
+                                          "non-finite value"));
   EXPECT_THAT(r.err, ::testing::HasSubstr("force element 'force 1' evaluated to NaN at t = "));
   EXPECT_FALSE(std::filesystem::exists(dir / "diverge.csv"));
 }

@@ -110,3 +110,57 @@ def test_simulate_refuses_more_samples_than_max_rows_before_the_run():
         chasles.simulate(model, chasles.make_rest_state(model), t_end=1.0, output_interval=1e-12)
     r = chasles.simulate(model, chasles.make_rest_state(model), t_end=1.0, output_interval=0.25)
     assert len(r.table(model)["t"]) == 5
+
+
+def test_a_smallest_step_longer_than_the_run_is_refused_as_the_program_refuses_it():
+    # min_step=1e300 bounds nothing: once taken silently when no step was rejected.
+    with pytest.raises(chasles.InputError, match=r"simulation: the smallest step 1e\+300 s is "
+                                                 r"longer than the run's span of 2 s"):
+        chasles.run(chasles.load_scene(SPRING), min_step=1e300)
+
+
+def test_a_body_index_out_of_range_is_an_index_error_not_a_read_past_the_state():
+    # These read and wrote the state's body array at the index unchecked (a heap overrun).
+    model = _ball_model()
+    state = chasles.make_rest_state(model)
+    for body in (1, -1, 2**31 - 1):
+        with pytest.raises(IndexError, match="body index .* is out of range: the model has "
+                                             "num_bodies = 1"):
+            chasles.body_origin_position(model, state, body)
+        with pytest.raises(IndexError):
+            chasles.set_body_pose(model, body, [0, 0, 0], [1, 0, 0, 0], state)
+        with pytest.raises(IndexError):
+            chasles.set_body_velocity(model, body, [0, 0, 0], [0, 0, 0], state)
+        if body != chasles.WORLD:
+            with pytest.raises(IndexError):
+                chasles.attachment_frame_at_world_pose(model, state, body, [0, 0, 0])
+    other = chasles.make_rest_state(chasles.Model())
+    with pytest.raises(chasles.InputError, match="the state has 0 bodies and the model 1"):
+        chasles.body_origin_position(model, other, 0)
+    with pytest.raises(chasles.InputError, match="origin must be finite numbers"):
+        chasles.set_body_pose(model, 0, [math.nan, 0, 0], [1, 0, 0, 0], state)
+
+
+def test_computing_methods_refuse_non_finite_arguments_and_results():
+    mp = chasles.sphere(0.1).mass_properties(2.0)
+    with pytest.raises(chasles.InputError, match="point must be finite numbers"):
+        mp.inertia_about([math.nan, 0, 0])
+    # m d^2 = 2 kg * 1e400 m^2 passes the largest double.
+    with pytest.raises(chasles.InputError, match="the inertia about the point is not a finite"):
+        mp.inertia_about([1e200, 0, 0])
+    with pytest.raises(chasles.InputError, match="position must be finite numbers"):
+        chasles.MassProperties.point_mass(1.0, [0, math.inf, 0])
+    with pytest.raises(chasles.InputError, match="radii of gyration .* mass of 0.0 kg"):
+        chasles.MassProperties.point_mass(0.0, [1, 0, 0]).radii_of_gyration
+
+
+def test_paths_are_paths_and_file_system_errors_are_input_errors():
+    # read_csv(True) opened file descriptor 1 and closed the process's standard output.
+    for path in (True, 0, 2.5):
+        with pytest.raises(TypeError, match="path must be a str or a path"):
+            chasles.read_csv(path)
+    # std::filesystem's error on an empty path came out as RuntimeError.
+    with pytest.raises(chasles.InputError):
+        chasles.load_mesh_scene("", unit="m")
+    with pytest.raises(TypeError, match="scene must be a Scene"):
+        chasles.mass_properties("examples/spring-mass.yaml")

@@ -10,6 +10,7 @@ subclass ``SceneError`` with ``file``, ``line``, ``column`` and ``key``. See doc
 """
 
 import math as _math
+import os as _os
 
 import numpy as _np
 
@@ -22,6 +23,8 @@ from ._chasles import (  # noqa: F401
     Solution,
     SimulationOptions,
     SimulationResult,
+    StudyResult,
+    SweepTable,
     _run_json,
     _run_study,
     _simulate,
@@ -32,6 +35,13 @@ from ._chasles import (  # noqa: F401
     parse_sweep,
     study_column_units,
 )
+
+def _instance(name, value, cls):
+    """``value`` itself; TypeError naming the argument unless it is a ``cls``."""
+    if not isinstance(value, cls):
+        raise TypeError(f"{name} must be a {cls.__name__}, got {type(value).__name__} {value!r}")
+    return value
+
 
 class Table:
     """Named columns of numbers with their SI units.
@@ -100,6 +110,8 @@ class Run(Table):
     """
 
     def __init__(self, scene, result):
+        _instance("scene", scene, Scene)
+        _instance("result", result, StudyResult)
         super().__init__(result.columns, study_column_units(scene, result.columns), result.data)
         self.result = result
         self._scene = scene
@@ -135,6 +147,7 @@ class Sweep(Table):
     """
 
     def __init__(self, table):
+        _instance("table", table, SweepTable)
         super().__init__(table.columns, table.units, table.data)
         self._table = table
         self.parameter = table.parameter
@@ -308,6 +321,7 @@ def simulate(model, initial, options=None, max_rows=1_000_000, **kwargs):
             options.events = list(events)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
+    _instance("options", options, SimulationOptions)
     max_rows = _whole("max_rows", max_rows, 1, _MAX_COUNT)
     span, interval = options.t_end, options.output_interval
     if interval > 0 and _math.isfinite(span) and span / interval > max_rows:
@@ -328,7 +342,7 @@ SimulationResult.table = _simulation_table
 
 def mass_properties(scene):
     """Mass properties of every body of ``scene`` (``chasles mass``): name -> MassProperties."""
-    return scene.mass_properties()
+    return _instance("scene", scene, Scene).mass_properties()
 
 
 def _csv_header_name(field):
@@ -352,9 +366,21 @@ def read_csv(path, max_bytes=256 << 20):
     import io
 
     max_bytes = _whole("max_bytes", max_bytes, 1, _MAX_COUNT)
+    # A path, never a number: open(1) would read (and then close) the process's standard output.
+    if not isinstance(path, (str, bytes, _os.PathLike)):
+        raise TypeError(f"path must be a str or a path, got {type(path).__name__} {path!r}")
     try:
         with open(path, "rb") as f:
-            data = f.read(max_bytes + 1)
+            # In pieces: f.read(n) sets n bytes aside first, so a huge limit would ask for
+            # that much memory however short the file is.
+            pieces, size = [], 0
+            while size <= max_bytes:
+                piece = f.read(min(max_bytes + 1 - size, 1 << 20))
+                if not piece:
+                    break
+                pieces.append(piece)
+                size += len(piece)
+            data = b"".join(pieces)
     except OSError as e:
         raise InputError(f"{path}: cannot read the table: {e.strerror}") from None
     if len(data) > max_bytes:

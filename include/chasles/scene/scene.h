@@ -60,6 +60,9 @@ struct ScenePart {
   std::vector<std::string> notes;
   /// Line of the part in the scene file (1-based).
   int line = 0;
+  /// The part's `position` value (its entry when it has none), for errors found when a run
+  /// or a solve is set up.
+  SceneSpot where;
   /// Its shape and place, for drawings.
   ScenePartGeometry geometry;
 };
@@ -69,6 +72,8 @@ struct ScenePoint {
   std::string name;
   /// Position from the body origin, expressed in B [m].
   Vec3 p_BoP_B;
+  /// Its value in the scene file, for errors about it.
+  SceneSpot where;
 };
 
 /// A rigid body: the sum of its parts.

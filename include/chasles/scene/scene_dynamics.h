@@ -94,6 +94,11 @@ struct SceneVectorExpression {
   int variable_count() const;
 };
 
+/// Largest magnitude of a motion in SI (a position [m], a speed [m/s] or [rad/s]) that a
+/// scene may start a run with: beyond it the energies (½ m v²) and moments (r × F) of ordinary
+/// bodies leave double precision, so such a value is mistyped (docs/reliability-limits.md).
+inline constexpr double kMotionScale = 1e150;
+
 /// One entry of `forces`.
 struct SceneForce {
   enum class Type {
@@ -112,6 +117,10 @@ struct SceneForce {
   std::string name;
   /// The entry, for errors found when the motion is built or run.
   SceneSpot where;
+  /// The `value` of a force, moment or joint torque (whose force or torque is that expression
+  /// and nothing else), for an expression that evaluates to NaN or an infinity during a run or
+  /// a solve; line 0 for the other elements.
+  SceneSpot expression_where;
   /// Body acted on (scene index), or for a spring its first end.
   int body = -1;
   /// Point of application from Bo in B [m] (force; spring's first end; cable's body end;

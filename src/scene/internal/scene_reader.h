@@ -126,6 +126,9 @@ class SceneReader {
   SceneImpulse ReadImpulse(const At& at, const Scene& scene);
   SceneImpact ReadImpact(const At& at, const Scene& scene);
   void ReadInitial(const At& at, const SceneBody& body, SceneInitialState& initial);
+  /// `v` read at `at` (an initial position or velocity); fails there when its magnitude
+  /// passes kMotionScale.
+  Vec3 InitialMotion(const At& at, const Vec3& v, std::string_view what, std::string_view unit);
   void ReadCable(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
   void ReadStringPull(const At& at, const Scene& scene, const std::string& what, SceneForce& f);
   /// A rolling contact's `surface` (scene_surface_rolling.cpp).
