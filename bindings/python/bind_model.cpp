@@ -79,43 +79,8 @@ AttachmentFrame CheckedAttachmentFrameAtWorldPose(const Model& model, const Stat
                                     RequireFinite(R, "rotation"));
 }
 
-void BindForces(py::module_& m) {
-  py::class_<ForceElement, std::shared_ptr<ForceElement>>(
-      m, "ForceElement", "Something that pushes on bodies; add it with Model.add_force_element.")
-      .def_property_readonly("name", &ForceElement::name)
-      .def_property_readonly("has_potential", &ForceElement::has_potential)
-      .def_property_readonly("is_dissipative", &ForceElement::is_dissipative);
-  py::class_<UniformGravity, ForceElement, std::shared_ptr<UniformGravity>>(
-      m, "UniformGravity", "Uniform gravity g [m/s^2] on every body, at its centre of mass.")
-      .def(py::init<std::string, const Vec3&>(), py::arg("name"), py::arg("g"))
-      .def_property_readonly("g", &UniformGravity::g_W);
-  py::class_<CentralGravity, ForceElement, std::shared_ptr<CentralGravity>>(
-      m, "CentralGravity", "Inverse-square gravity towards a fixed point: mu = G M [m^3/s^2].")
-      .def(py::init<std::string, double, const Vec3&>(), py::arg("name"), py::arg("mu"),
-           py::arg("centre"));
-  py::class_<AppliedForce, ForceElement, std::shared_ptr<AppliedForce>>(
-      m, "AppliedForce",
-      "A force at a point of a body (point from its frame origin, in B [m]). The force is a "
-      "constant 3-vector [N] or a callable fn(t, state) returning one; frame 'world' or "
-      "'body'.")
-      .def(py::init([](std::string name, BodyIndex body, const Vec3& point, const Vec3& force,
-                       const std::string& frame, const std::string& point_frame) {
-             return std::make_shared<AppliedForce>(
-                 std::move(name), body, point, FrameFrom(point_frame),
-                 [force](const Model&, const State&) { return force; }, FrameFrom(frame));
-           }),
-           py::arg("name"), py::arg("body"), py::arg("point"), py::arg("force"),
-           py::arg("frame") = "world", py::arg("point_frame") = "body",
-           "point_frame 'body': the point from Bo in B, fixed in the body; 'world': a world "
-           "point, the force acting on the material point there at each instant")
-      .def(py::init([](std::string name, BodyIndex body, const Vec3& point, py::function force,
-                       const std::string& frame, const std::string& point_frame) {
-             return std::make_shared<AppliedForce>(
-                 std::move(name), body, point, FrameFrom(point_frame),
-                 PythonVectorFunction(std::move(force)), FrameFrom(frame));
-           }),
-           py::arg("name"), py::arg("body"), py::arg("point"), py::arg("force"),
-           py::arg("frame") = "world", py::arg("point_frame") = "body");
+/// The forces given by a tension or a torque: cables, strings pulled by hand, joint torques.
+void BindTensionForces(py::module_& m) {
   py::class_<CableForce, ForceElement, std::shared_ptr<CableForce>>(
       m, "CableForce",
       "A cable from a point of a body (from Bo in B [m]) to a fixed world point (the winch), "
@@ -183,6 +148,45 @@ void BindForces(py::module_& m) {
            }),
            py::arg("name"), py::arg("parent"), py::arg("child"), py::arg("axis"),
            py::arg("torque"));
+}
+
+void BindForces(py::module_& m) {
+  py::class_<ForceElement, std::shared_ptr<ForceElement>>(
+      m, "ForceElement", "Something that pushes on bodies; add it with Model.add_force_element.")
+      .def_property_readonly("name", &ForceElement::name)
+      .def_property_readonly("has_potential", &ForceElement::has_potential)
+      .def_property_readonly("is_dissipative", &ForceElement::is_dissipative);
+  py::class_<UniformGravity, ForceElement, std::shared_ptr<UniformGravity>>(
+      m, "UniformGravity", "Uniform gravity g [m/s^2] on every body, at its centre of mass.")
+      .def(py::init<std::string, const Vec3&>(), py::arg("name"), py::arg("g"))
+      .def_property_readonly("g", &UniformGravity::g_W);
+  py::class_<CentralGravity, ForceElement, std::shared_ptr<CentralGravity>>(
+      m, "CentralGravity", "Inverse-square gravity towards a fixed point: mu = G M [m^3/s^2].")
+      .def(py::init<std::string, double, const Vec3&>(), py::arg("name"), py::arg("mu"),
+           py::arg("centre"));
+  py::class_<AppliedForce, ForceElement, std::shared_ptr<AppliedForce>>(
+      m, "AppliedForce",
+      "A force at a point of a body (point from its frame origin, in B [m]). The force is a "
+      "constant 3-vector [N] or a callable fn(t, state) returning one; frame 'world' or "
+      "'body'.")
+      .def(py::init([](std::string name, BodyIndex body, const Vec3& point, const Vec3& force,
+                       const std::string& frame, const std::string& point_frame) {
+             return std::make_shared<AppliedForce>(
+                 std::move(name), body, point, FrameFrom(point_frame),
+                 [force](const Model&, const State&) { return force; }, FrameFrom(frame));
+           }),
+           py::arg("name"), py::arg("body"), py::arg("point"), py::arg("force"),
+           py::arg("frame") = "world", py::arg("point_frame") = "body",
+           "point_frame 'body': the point from Bo in B, fixed in the body; 'world': a world "
+           "point, the force acting on the material point there at each instant")
+      .def(py::init([](std::string name, BodyIndex body, const Vec3& point, py::function force,
+                       const std::string& frame, const std::string& point_frame) {
+             return std::make_shared<AppliedForce>(
+                 std::move(name), body, point, FrameFrom(point_frame),
+                 PythonVectorFunction(std::move(force)), FrameFrom(frame));
+           }),
+           py::arg("name"), py::arg("body"), py::arg("point"), py::arg("force"),
+           py::arg("frame") = "world", py::arg("point_frame") = "body");
   py::class_<AppliedMoment, ForceElement, std::shared_ptr<AppliedMoment>>(
       m, "AppliedMoment",
       "A pure moment [N*m] on a body: a constant 3-vector or a callable fn(t, state); frame "
@@ -211,6 +215,112 @@ void BindForces(py::module_& m) {
       m, "LinearDrag", "Viscous drag: F = -c v at the centre of mass, M = -c_w w.")
       .def(py::init<std::string, BodyIndex, double, double>(), py::arg("name"), py::arg("body"),
            py::arg("linear"), py::arg("angular") = 0.0);
+  BindTensionForces(m);
+}
+
+/// Strings: their ends, pulleys and the constraint.
+void BindStrings(py::module_& m) {
+  py::class_<StringEnd>(m, "StringEnd",
+                        "An end of a string: a point of a body (radius 0) or a drum of it "
+                        "(point = the drum's centre), from Bo in B (in W for WORLD) [m].")
+      .def(py::init([](BodyIndex body, const Vec3& point, double radius, const std::string& sense) {
+             return StringEnd{body, point, radius, SenseFrom(sense)};
+           }),
+           py::arg("body"), py::arg("point"), py::arg("radius") = 0.0,
+           py::arg("sense") = "counterclockwise")
+      .def_readwrite("body", &StringEnd::body)
+      .def_readwrite("point", &StringEnd::p_BoP_B)
+      .def_readwrite("radius", &StringEnd::radius)
+      .def_readwrite("sense", &StringEnd::sense, "+1 counterclockwise, -1 clockwise");
+  py::class_<StringPulley>(m, "StringPulley",
+                           "A massless frictionless pulley: fixed (body WORLD, centre in W) or "
+                           "carried by a body (centre from Bo in B) [m].")
+      .def(
+          py::init([](const Vec3& centre, double radius, const std::string& sense, BodyIndex body) {
+            return StringPulley{centre, radius, SenseFrom(sense), body};
+          }),
+          py::arg("centre"), py::arg("radius"), py::arg("sense"), py::arg("body") = kWorld)
+      .def_readwrite("centre", &StringPulley::p_BoO_B)
+      .def_readwrite("radius", &StringPulley::radius)
+      .def_readwrite("sense", &StringPulley::sense, "+1 counterclockwise, -1 clockwise")
+      .def_readwrite("body", &StringPulley::body);
+  py::class_<StringConstraint, Constraint, std::shared_ptr<StringConstraint>>(
+      m, "StringConstraint",
+      "An inextensible string held taut from end a (the parent) over pulleys to end b (the "
+      "child), in the plane normal to `normal`, keeping the free length `length` [m] (use "
+      "free_length at the initial state). Its multiplier is the tension [N]. Senses: the way "
+      "the string, followed from a to b, goes round each circle about the normal.")
+      .def(py::init<std::string, const StringEnd&, std::vector<StringPulley>, const StringEnd&,
+                    const Vec3&, double>(),
+           py::arg("name"), py::arg("a"), py::arg("pulleys"), py::arg("b"), py::arg("normal"),
+           py::arg("length"))
+      .def_static(
+          "free_length",
+          [](const Model& model, const State& state, const StringEnd& a,
+             const std::vector<StringPulley>& pulleys, const StringEnd& b, const Vec3& normal) {
+            const StringConstraint probe("probe", a, pulleys, b, normal, 1.0);
+            Data data = MakeData(model);
+            CalcKinematics(model, state, data);
+            return probe.CalcPath(model, state, data).length;
+          },
+          py::arg("model"), py::arg("state"), py::arg("a"), py::arg("pulleys"), py::arg("b"),
+          py::arg("normal"),
+          "The free length L (segments plus arcs on the pulleys) of that path at `state` [m].")
+      .def_property_readonly("length", &StringConstraint::length);
+}
+
+/// Gears in mesh and drivers (prescribed motions).
+void BindGearsAndDrivers(py::module_& m) {
+  py::enum_<GearKind>(m, "GearKind", "How two pitch circles mesh.")
+      .value("EXTERNAL", GearKind::kExternal)
+      .value("INTERNAL", GearKind::kInternal)
+      .value("FACE", GearKind::kFace);
+  py::class_<PitchCircle>(m, "PitchCircle", "A gear's pitch circle on its body.")
+      .def(py::init([](const Vec3& centre, const Vec3& axis, double radius) {
+             PitchCircle c;
+             c.p_BoO_B = centre;
+             c.axis_B = axis;
+             c.radius = radius;
+             return c;
+           }),
+           py::arg("centre"), py::arg("axis"), py::arg("radius"),
+           "centre from Bo in B (in W on the world) [m], unit axis in B, pitch radius [m]")
+      .def_readwrite("centre", &PitchCircle::p_BoO_B, "Centre from Bo, in B [m]")
+      .def_readwrite("axis", &PitchCircle::axis_B, "Unit axis, in B")
+      .def_readwrite("radius", &PitchCircle::radius, "Pitch radius [m]");
+  py::class_<GearMesh, Constraint, std::shared_ptr<GearMesh>>(
+      m, "GearMesh",
+      "Two gears in mesh: their pitch circles roll on each other without slipping. "
+      "keep_contact adds the row that keeps the pitch circles touching (leave it out when "
+      "bearings fix the centre distance). Multipliers: the mesh force [N] (and the separating "
+      "force).")
+      .def(py::init<std::string, GearKind, BodyIndex, const PitchCircle&, BodyIndex,
+                    const PitchCircle&, bool>(),
+           py::arg("name"), py::arg("kind"), py::arg("parent"), py::arg("parent_circle"),
+           py::arg("child"), py::arg("child_circle"), py::arg("keep_contact") = false);
+  py::class_<TimeFunction>(m, "TimeFunction",
+                           "A prescribed f(t) with its rate and acceleration (for drivers).")
+      .def(py::init([](py::function value, py::function rate, py::function acceleration) {
+             return TimeFunction{PythonTimeFunction(std::move(value)),
+                                 PythonTimeFunction(std::move(rate)),
+                                 PythonTimeFunction(std::move(acceleration))};
+           }),
+           py::arg("value"), py::arg("rate"), py::arg("acceleration"),
+           "Three callables of t: f(t) [m or rad], its rate and its acceleration.")
+      .def_static("quadratic", &TimeFunction::Quadratic, py::arg("f0"), py::arg("f1"),
+                  py::arg("f2"), "f = f0 + f1 t + f2 t^2 / 2");
+  py::enum_<DriverKind>(m, "DriverKind", "What a PrescribedMotion drives.")
+      .value("TRANSLATION", DriverKind::kTranslation)
+      .value("ROTATION", DriverKind::kRotation);
+  py::class_<PrescribedMotion, Constraint, std::shared_ptr<PrescribedMotion>>(
+      m, "PrescribedMotion",
+      "A driver: the child's J origin along the parent's z axis (TRANSLATION), or the angle "
+      "from a_x to b_x about a_z (ROTATION, with a revolute joint on z), follows f(t). Its "
+      "multiplier is the force [N] or moment [N m] the driver supplies.")
+      .def(py::init<std::string, DriverKind, BodyIndex, const AttachmentFrame&, BodyIndex,
+                    const AttachmentFrame&, TimeFunction>(),
+           py::arg("name"), py::arg("kind"), py::arg("parent"), py::arg("parent_frame"),
+           py::arg("child"), py::arg("child_frame"), py::arg("f"));
 }
 
 void BindConstraints(py::module_& m) {
@@ -262,103 +372,8 @@ void BindConstraints(py::module_& m) {
                     const Vec3&, const Vec3&>(),
            py::arg("name"), py::arg("shape"), py::arg("body"), py::arg("centre"), py::arg("axis"),
            py::arg("radius"), py::arg("plane_point"), py::arg("plane_normal"));
-  py::class_<StringEnd>(m, "StringEnd",
-                        "An end of a string: a point of a body (radius 0) or a drum of it "
-                        "(point = the drum's centre), from Bo in B (in W for WORLD) [m].")
-      .def(py::init([](BodyIndex body, const Vec3& point, double radius, const std::string& sense) {
-             return StringEnd{body, point, radius, SenseFrom(sense)};
-           }),
-           py::arg("body"), py::arg("point"), py::arg("radius") = 0.0,
-           py::arg("sense") = "counterclockwise")
-      .def_readwrite("body", &StringEnd::body)
-      .def_readwrite("point", &StringEnd::p_BoP_B)
-      .def_readwrite("radius", &StringEnd::radius)
-      .def_readwrite("sense", &StringEnd::sense, "+1 counterclockwise, -1 clockwise");
-  py::class_<StringPulley>(m, "StringPulley",
-                           "A massless frictionless pulley: fixed (body WORLD, centre in W) or "
-                           "carried by a body (centre from Bo in B) [m].")
-      .def(
-          py::init([](const Vec3& centre, double radius, const std::string& sense, BodyIndex body) {
-            return StringPulley{centre, radius, SenseFrom(sense), body};
-          }),
-          py::arg("centre"), py::arg("radius"), py::arg("sense"), py::arg("body") = kWorld)
-      .def_readwrite("centre", &StringPulley::p_BoO_B)
-      .def_readwrite("radius", &StringPulley::radius)
-      .def_readwrite("sense", &StringPulley::sense, "+1 counterclockwise, -1 clockwise")
-      .def_readwrite("body", &StringPulley::body);
-  py::class_<StringConstraint, Constraint, std::shared_ptr<StringConstraint>>(
-      m, "StringConstraint",
-      "An inextensible string held taut from end a (the parent) over pulleys to end b (the "
-      "child), in the plane normal to `normal`, keeping the free length `length` [m] (use "
-      "free_length at the initial state). Its multiplier is the tension [N]. Senses: the way "
-      "the string, followed from a to b, goes round each circle about the normal.")
-      .def(py::init<std::string, const StringEnd&, std::vector<StringPulley>, const StringEnd&,
-                    const Vec3&, double>(),
-           py::arg("name"), py::arg("a"), py::arg("pulleys"), py::arg("b"), py::arg("normal"),
-           py::arg("length"))
-      .def_static(
-          "free_length",
-          [](const Model& model, const State& state, const StringEnd& a,
-             const std::vector<StringPulley>& pulleys, const StringEnd& b, const Vec3& normal) {
-            const StringConstraint probe("probe", a, pulleys, b, normal, 1.0);
-            Data data = MakeData(model);
-            CalcKinematics(model, state, data);
-            return probe.CalcPath(model, state, data).length;
-          },
-          py::arg("model"), py::arg("state"), py::arg("a"), py::arg("pulleys"), py::arg("b"),
-          py::arg("normal"),
-          "The free length L (segments plus arcs on the pulleys) of that path at `state` [m].")
-      .def_property_readonly("length", &StringConstraint::length);
-  py::enum_<GearKind>(m, "GearKind", "How two pitch circles mesh.")
-      .value("EXTERNAL", GearKind::kExternal)
-      .value("INTERNAL", GearKind::kInternal)
-      .value("FACE", GearKind::kFace);
-  py::class_<PitchCircle>(m, "PitchCircle", "A gear's pitch circle on its body.")
-      .def(py::init([](const Vec3& centre, const Vec3& axis, double radius) {
-             PitchCircle c;
-             c.p_BoO_B = centre;
-             c.axis_B = axis;
-             c.radius = radius;
-             return c;
-           }),
-           py::arg("centre"), py::arg("axis"), py::arg("radius"),
-           "centre from Bo in B (in W on the world) [m], unit axis in B, pitch radius [m]")
-      .def_readwrite("centre", &PitchCircle::p_BoO_B, "Centre from Bo, in B [m]")
-      .def_readwrite("axis", &PitchCircle::axis_B, "Unit axis, in B")
-      .def_readwrite("radius", &PitchCircle::radius, "Pitch radius [m]");
-  py::class_<GearMesh, Constraint, std::shared_ptr<GearMesh>>(
-      m, "GearMesh",
-      "Two gears in mesh: their pitch circles roll on each other without slipping. "
-      "keep_contact adds the row that keeps the pitch circles touching (leave it out when "
-      "bearings fix the centre distance). Multipliers: the mesh force [N] (and the separating "
-      "force).")
-      .def(py::init<std::string, GearKind, BodyIndex, const PitchCircle&, BodyIndex,
-                    const PitchCircle&, bool>(),
-           py::arg("name"), py::arg("kind"), py::arg("parent"), py::arg("parent_circle"),
-           py::arg("child"), py::arg("child_circle"), py::arg("keep_contact") = false);
-  py::class_<TimeFunction>(m, "TimeFunction",
-                           "A prescribed f(t) with its rate and acceleration (for drivers).")
-      .def(py::init([](py::function value, py::function rate, py::function acceleration) {
-             return TimeFunction{PythonTimeFunction(std::move(value)),
-                                 PythonTimeFunction(std::move(rate)),
-                                 PythonTimeFunction(std::move(acceleration))};
-           }),
-           py::arg("value"), py::arg("rate"), py::arg("acceleration"),
-           "Three callables of t: f(t) [m or rad], its rate and its acceleration.")
-      .def_static("quadratic", &TimeFunction::Quadratic, py::arg("f0"), py::arg("f1"),
-                  py::arg("f2"), "f = f0 + f1 t + f2 t^2 / 2");
-  py::enum_<DriverKind>(m, "DriverKind", "What a PrescribedMotion drives.")
-      .value("TRANSLATION", DriverKind::kTranslation)
-      .value("ROTATION", DriverKind::kRotation);
-  py::class_<PrescribedMotion, Constraint, std::shared_ptr<PrescribedMotion>>(
-      m, "PrescribedMotion",
-      "A driver: the child's J origin along the parent's z axis (TRANSLATION), or the angle "
-      "from a_x to b_x about a_z (ROTATION, with a revolute joint on z), follows f(t). Its "
-      "multiplier is the force [N] or moment [N m] the driver supplies.")
-      .def(py::init<std::string, DriverKind, BodyIndex, const AttachmentFrame&, BodyIndex,
-                    const AttachmentFrame&, TimeFunction>(),
-           py::arg("name"), py::arg("kind"), py::arg("parent"), py::arg("parent_frame"),
-           py::arg("child"), py::arg("child_frame"), py::arg("f"));
+  BindStrings(m);
+  BindGearsAndDrivers(m);
   m.def("attachment_frame_at_world_pose", &CheckedAttachmentFrameAtWorldPose, py::arg("model"),
         py::arg("state"), py::arg("body"), py::arg("position"),
         py::arg("rotation") = Mat3::Identity(),

@@ -162,6 +162,82 @@ void BindCertificate(py::module_& m) {
           .def("failure_messages", &Certificate::FailureMessages, "One sentence per failed check");
 }
 
+/// Sweeps of solve, simulate and mass, and their table.
+void BindSweeps(py::module_& m) {
+  py::class_<SweepTable>(m, "SweepTable", "A sweep's table (SI).") RO(SweepTable, parameter, "") RO(
+      SweepTable, columns, "") RO(SweepTable, units, "") RO(SweepTable, warnings, "") RO(SweepTable,
+                                                                                         failed, "")
+      .def_property_readonly(
+          "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); })
+      .def_readonly("parameters", &SweepTable::parameters, "A grid's parameter names")
+      .def_readonly(
+          "errors", &SweepTable::errors,
+          "Per row why a value is missing (NaN): its run failed, or a quantity could not be had "
+          "('' when every value is there); empty when no row can fail")
+      .def(
+          "to_json", [](const SweepTable& t) { return DumpJson(SweepJson(t), "the sweep table"); },
+          "The table as `chasles solve --sweep ... --format json` prints it")
+      .def(
+          "to_csv",
+          [](const SweepTable& t, bool full_precision) {
+            return SweepCsv(t, full_precision ? CsvPrecision::kFull : CsvPrecision::kDefault);
+          },
+          py::arg("full_precision") = false,
+          "The table as `chasles solve --sweep ...` prints it (full_precision: "
+          "--full-precision, every value %.17g)");
+  m.def(
+      "_sweep",
+      [](const PyScene& s, const std::string& name, const std::string& start,
+         const std::string& stop, int count) {
+        SweepSpec spec;
+        spec.name = name;
+        spec.start = start;
+        spec.stop = stop;
+        spec.count = count;
+        py::gil_scoped_release release;
+        return SolveSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, spec);
+      },
+      py::arg("scene"), py::arg("parameter"), py::arg("start"), py::arg("stop"), py::arg("count"));
+  m.def(
+      "_simulate_sweep",
+      [](const PyScene& s, const std::vector<std::string>& sweeps,
+         const std::vector<std::string>& quantities, double until, int jobs,
+         std::int64_t max_runs) {
+        std::vector<SweepSpec> specs;
+        for (const std::string& t : sweeps) specs.push_back(ParseSweep(t));
+        std::vector<SweepQuantity> qs;
+        for (const std::string& q : quantities)
+          qs.push_back(ParseSweepQuantity(q, "python", "quantities"));
+        SimulateSweepOptions options;
+        if (!std::isnan(until)) options.study.until = until;
+        options.jobs = jobs;
+        py::gil_scoped_release release;
+        return SimulateSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, specs,
+                             qs, options, max_runs);
+      },
+      py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("until"), py::arg("jobs"),
+      py::arg("max_runs"));
+  m.def(
+      "_mass_sweep",
+      [](const PyScene& s, const std::vector<std::string>& sweeps,
+         const std::vector<std::string>& quantities, int jobs, std::int64_t max_runs) {
+        std::vector<SweepSpec> specs;
+        for (const std::string& t : sweeps) specs.push_back(ParseSweep(t));
+        py::gil_scoped_release release;
+        return MassSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, specs,
+                         quantities, jobs, {}, max_runs);
+      },
+      py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("jobs"),
+      py::arg("max_runs"));
+  m.def(
+      "parse_sweep",
+      [](const std::string& text) {
+        const SweepSpec s = ParseSweep(text);
+        return py::make_tuple(s.name, s.start, s.stop, s.count);
+      },
+      py::arg("text"), "NAME=START:STOP:COUNT -> (name, start, stop, count)");
+}
+
 void BindSolve(py::module_& m) {
   py::class_<PointMotionReport>(m, "PointMotion",
                                 "A named body point at the solved state (in W, SI).")
@@ -244,78 +320,7 @@ void BindSolve(py::module_& m) {
         return SolveScene(s.scene);
       },
       py::arg("scene"));
-  py::class_<SweepTable>(m, "SweepTable", "A sweep's table (SI).") RO(SweepTable, parameter, "") RO(
-      SweepTable, columns, "") RO(SweepTable, units, "") RO(SweepTable, warnings, "") RO(SweepTable,
-                                                                                         failed, "")
-      .def_property_readonly(
-          "data", [](const SweepTable& t) { return TableArray(t.rows, t.columns.size()); })
-      .def_readonly("parameters", &SweepTable::parameters, "A grid's parameter names")
-      .def_readonly(
-          "errors", &SweepTable::errors,
-          "Per row why a value is missing (NaN): its run failed, or a quantity could not be had "
-          "('' when every value is there); empty when no row can fail")
-      .def(
-          "to_json", [](const SweepTable& t) { return DumpJson(SweepJson(t), "the sweep table"); },
-          "The table as `chasles solve --sweep ... --format json` prints it")
-      .def(
-          "to_csv",
-          [](const SweepTable& t, bool full_precision) {
-            return SweepCsv(t, full_precision ? CsvPrecision::kFull : CsvPrecision::kDefault);
-          },
-          py::arg("full_precision") = false,
-          "The table as `chasles solve --sweep ...` prints it (full_precision: "
-          "--full-precision, every value %.17g)");
-  m.def(
-      "_sweep",
-      [](const PyScene& s, const std::string& name, const std::string& start,
-         const std::string& stop, int count) {
-        SweepSpec spec;
-        spec.name = name;
-        spec.start = start;
-        spec.stop = stop;
-        spec.count = count;
-        py::gil_scoped_release release;
-        return SolveSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, spec);
-      },
-      py::arg("scene"), py::arg("parameter"), py::arg("start"), py::arg("stop"), py::arg("count"));
-  m.def(
-      "_simulate_sweep",
-      [](const PyScene& s, const std::vector<std::string>& sweeps,
-         const std::vector<std::string>& quantities, double until, int jobs,
-         std::int64_t max_runs) {
-        std::vector<SweepSpec> specs;
-        for (const std::string& t : sweeps) specs.push_back(ParseSweep(t));
-        std::vector<SweepQuantity> qs;
-        for (const std::string& q : quantities)
-          qs.push_back(ParseSweepQuantity(q, "python", "quantities"));
-        SimulateSweepOptions options;
-        if (!std::isnan(until)) options.study.until = until;
-        options.jobs = jobs;
-        py::gil_scoped_release release;
-        return SimulateSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, specs,
-                             qs, options, max_runs);
-      },
-      py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("until"), py::arg("jobs"),
-      py::arg("max_runs"));
-  m.def(
-      "_mass_sweep",
-      [](const PyScene& s, const std::vector<std::string>& sweeps,
-         const std::vector<std::string>& quantities, int jobs, std::int64_t max_runs) {
-        std::vector<SweepSpec> specs;
-        for (const std::string& t : sweeps) specs.push_back(ParseSweep(t));
-        py::gil_scoped_release release;
-        return MassSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, specs,
-                         quantities, jobs, {}, max_runs);
-      },
-      py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("jobs"),
-      py::arg("max_runs"));
-  m.def(
-      "parse_sweep",
-      [](const std::string& text) {
-        const SweepSpec s = ParseSweep(text);
-        return py::make_tuple(s.name, s.start, s.stop, s.count);
-      },
-      py::arg("text"), "NAME=START:STOP:COUNT -> (name, start, stop, count)");
+  BindSweeps(m);
 }
 
 void BindStudyParts(py::module_& m) {
