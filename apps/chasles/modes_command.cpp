@@ -101,7 +101,8 @@ nlohmann::json SceneModesJson(const SceneModes& s) {
             {"turn", Vec(op.generator.w_W)},
             {"translation", Vec(op.generator.v_W)},
             {"spins", spins},
-            {"reactions", reactions}}},
+            {"reactions", reactions},
+            {"warnings", op.warnings}}},
           {"coordinates", CoordinatesJson(lin.coordinates)},
           {"speeds", CoordinatesJson(lin.speeds)},
           {"linearisation",
@@ -153,6 +154,7 @@ std::string Text(const Scene& scene, const SceneModes& s) {
       "Operating point: {} (residual {:.3g}{})\n",
       op.kind == OperatingPointKind::kEquilibrium ? "static equilibrium" : "steady motion",
       op.residual, op.iterations > 0 ? fmt::format(", {} Newton steps", op.iterations) : "");
+  for (const std::string& w : op.warnings) out += fmt::format("  Warning: {}\n", w);
   // Components below 1e-12 of the largest reaction are the solve's round-off: printed as 0
   // (and + 0.0 turns a -0 into 0).
   double largest = 0.0;

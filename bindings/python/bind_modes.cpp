@@ -36,6 +36,7 @@ py::dict ModesDict(const SceneModes& s) {
   py::dict op;
   op["kind"] = OperatingPointKindName(s.operating_point.kind);
   op["residual"] = s.operating_point.residual;
+  op["warnings"] = s.operating_point.warnings;
   py::dict out;
   out["operating_point"] = op;
   out["coordinates"] = coordinates;

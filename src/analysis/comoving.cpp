@@ -5,6 +5,7 @@
 
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/math/quaternion.h"
+#include "chasles/model/bearing.h"
 #include "chasles/model/forces.h"
 
 namespace chasles::internal {
@@ -89,6 +90,33 @@ SteadyGenerator ZeroGenerator(const Model& model) {
   g.spin.assign(static_cast<size_t>(model.num_bodies()), 0.0);
   g.spin_axis_B.assign(static_cast<size_t>(model.num_bodies()), Vec3::Zero());
   return g;
+}
+
+// Whether nothing ties the system to a place: no constraint, spring or bearing to the world (then
+// its centre of mass moves freely, and in a turning frame its drift is a frame's artefact).
+bool TranslationInvariant(const Model& model) {
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    if (model.constraint(c).parent() == kWorld) return false;
+  }
+  for (int i = 0; i < model.num_force_elements(); ++i) {
+    const ForceElement& e = model.force_element(i);
+    if (const auto* s = dynamic_cast<const SpringDamper*>(&e)) {
+      if (s->body_b() == kWorld) return false;
+    }
+    if (dynamic_cast<const Bearing*>(&e) != nullptr) return false;
+  }
+  return true;
+}
+
+bool TorqueFree(const Model& model) {
+  if (!TranslationInvariant(model)) return false;
+  for (int i = 0; i < model.num_force_elements(); ++i) {
+    const ForceElement& e = model.force_element(i);
+    if (dynamic_cast<const SpringDamper*>(&e) != nullptr) continue;  // between two bodies
+    const auto* g = dynamic_cast<const UniformGravity*>(&e);
+    if (g == nullptr || g->g_W().norm() > 0.0) return false;
+  }
+  return true;
 }
 
 }  // namespace chasles::internal

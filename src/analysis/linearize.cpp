@@ -122,22 +122,6 @@ struct Readout {
   Eigen::RowVectorXd row;
 };
 
-/// Whether nothing ties the system to a place: no constraint, spring or bearing to the world (then
-/// its centre of mass moves freely, and in a turning frame its drift is a frame's artefact).
-bool TranslationInvariant(const Model& model) {
-  for (int c = 0; c < model.num_constraints(); ++c) {
-    if (model.constraint(c).parent() == kWorld) return false;
-  }
-  for (int i = 0; i < model.num_force_elements(); ++i) {
-    const ForceElement& e = model.force_element(i);
-    if (const auto* s = dynamic_cast<const SpringDamper*>(&e)) {
-      if (s->body_b() == kWorld) return false;
-    }
-    if (dynamic_cast<const Bearing*>(&e) != nullptr) return false;
-  }
-  return true;
-}
-
 std::vector<Readout> Readouts(const Model& model, const State& state) {
   const int n = model.num_bodies(), N = 6 * n;
   Data data = MakeData(model);
@@ -178,7 +162,7 @@ std::vector<Readout> Readouts(const Model& model, const State& state) {
     }
   }
   static const char* kAxes[3] = {"x", "y", "z"};
-  if (TranslationInvariant(model)) {
+  if (internal::TranslationInvariant(model)) {
     // The whole system's centre of mass: free, and apart from everything else.
     double mass = 0.0;
     for (int b = 0; b < n; ++b) mass += model.body(b).mass();

@@ -75,6 +75,25 @@ Vec3 GravityAxis(const Model& model) {
   return Vec3::Zero();
 }
 
+/// The system's angular momentum about its centre of mass, in W.
+Vec3 SystemAngularMomentum(const Model& model, const State& state, const Data& data) {
+  double mass = 0.0;
+  Vec3 c = Vec3::Zero(), v = Vec3::Zero(), H = Vec3::Zero();
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    const double m = model.body(b).mass();
+    mass += m, c += m * state.bodies[i].p_WBcm, v += m * state.bodies[i].v_WBcm_W;
+  }
+  c /= mass, v /= mass;
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto i = static_cast<size_t>(b);
+    const Mat3 I_W = data.R_WB[i] * model.body(b).I_BBcm_B() * data.R_WB[i].transpose();
+    H += I_W * data.w_WB_W[i] +
+         model.body(b).mass() * (state.bodies[i].p_WBcm - c).cross(state.bodies[i].v_WBcm_W - v);
+  }
+  return H;
+}
+
 /// `state` moved by the finite element exp(τ ξ) of the generator's group.
 State MoveByGenerator(const Model& model, const State& state, const SteadyGenerator& xi, double tau,
                       Mat3& Q) {
@@ -220,9 +239,14 @@ OperatingPoint MakeSteadyMotion(const Model& model, const State& start) {
   CalcAccelerations(model, start, data);
   const internal::RateScales k = internal::CalcRateScales(model, start, data);
   // Candidate generators, each as its 6 n velocity rates (lengths scaled by ℓ).
+  // The turn: about the gravity axis; in a system no external moment acts on, about its
+  // angular momentum H (conserved, so a motion steady in a turning frame turns about H: a
+  // torque-free precession); else about any world axis.
   const Vec3 g = GravityAxis(model);
-  std::vector<Vec3> turns = g.norm() > 0.0
-                                ? std::vector<Vec3>{g}
+  const Vec3 H = SystemAngularMomentum(model, start, data);
+  std::vector<Vec3> turns = g.norm() > 0.0 ? std::vector<Vec3>{g}
+                            : internal::TorqueFree(model) && H.norm() > 0.0
+                                ? std::vector<Vec3>{H.normalized()}
                                 : std::vector<Vec3>{Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
   std::vector<std::pair<int, Vec3>> spins;
   for (int b = 0; b < n; ++b) {
@@ -272,6 +296,26 @@ OperatingPoint MakeSteadyMotion(const Model& model, const State& start) {
   }
   op.residual = Residual(model, start, op.generator);
   CheckSymmetry(model, start, op.generator);
+  if (op.residual > kNotSteady) {
+    throw InputError(fmt::format(
+        "the initial motion is not a steady motion (residual {:.3g} of its accelerations; about "
+        "1e-15 for one): its modes are not defined. Give a steady motion: a uniform rotation "
+        "about a principal axis, a steady precession, steady rolling, a uniform translation; or "
+        "all bodies at rest for a static equilibrium",
+        op.residual));
+  }
+  if (op.residual > kSteadyResidual) {
+    // The rates of f(y) - ξ·y are the residual times the motion's acceleration scale, so the
+    // linearisation carries errors of the order of residual × (the motion's rate) in its
+    // eigenvalues; ten times that is the bound stated (the Dzhanibekov box's spurious mode is
+    // 1.33 times it).
+    const double rate = 10.0 * op.residual * std::max(k.rate, k.speed / k.length);
+    op.warnings.push_back(fmt::format(
+        "the initial motion is near a steady one but not one (residual {:.3g}; about 1e-15 for "
+        "a steady motion): the linearisation is about the state as given, and modes slower "
+        "than about {:.3g} 1/s are artefacts of its unsteadiness",
+        op.residual, rate));
+  }
   return op;
 }
 

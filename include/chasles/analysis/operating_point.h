@@ -47,7 +47,16 @@ struct OperatingPoint {
   double residual = 0.0;
   /// Newton iterations an equilibrium took (0 when the given state was one already).
   int iterations = 0;
+  /// What the analysis should be read with: a steady motion whose residual is above
+  /// kSteadyResidual (the state is not exactly steady; slow modes are its artefacts).
+  std::vector<std::string> warnings;
 };
+
+/// A steady motion's residual above this is reported (OperatingPoint::warnings): the state
+/// given is near one, not one (an exact one is at round-off, about 1e-15).
+inline constexpr double kSteadyResidual = 1e-9;
+/// A residual above this is no steady motion at all: an InputError.
+inline constexpr double kNotSteady = 1e-2;
 
 struct EquilibriumOptions {
   /// Stop when the scaled residual is below this.

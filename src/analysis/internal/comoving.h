@@ -33,6 +33,16 @@ double ScaledResidual(const Eigen::VectorXd& rates, const RateScales& s);
 /// W) times h: p += h δp, q = exp(h δθ) q, v += h δv, w_W += h δω.
 State PerturbState(const Model& model, const State& state, const Eigen::VectorXd& z, double h);
 
+/// Whether nothing ties the system to a place: no constraint, spring or bearing to the world
+/// (then its centre of mass moves freely, and in a turning frame its drift is a frame's
+/// artefact).
+bool TranslationInvariant(const Model& model);
+
+/// Whether no external force or moment acts: translation invariant, and every force element
+/// a spring between two bodies or zero gravity (then the angular momentum is conserved, and a
+/// steady motion turns about it).
+bool TorqueFree(const Model& model);
+
 /// A generator with no motion, sized for `model`.
 SteadyGenerator ZeroGenerator(const Model& model);
 

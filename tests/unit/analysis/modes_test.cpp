@@ -315,6 +315,69 @@ TEST(Modes, TorqueFreeRotationMajorMinorIntermediate) {
   }
 }
 
+// A torque-free precession of an axisymmetric body (ω off its axis of symmetry) is a steady
+// motion: a turn about the angular momentum H (conserved) plus a spin about the axis. Found
+// as one (residual at round-off, no warning), and stable (the axis cones about H; a nearby
+// motion is another such precession).
+TEST(Modes, TorqueFreePrecessionIsASteadyMotion) {
+  const Study s = Build(R"(
+chasles: 2
+bodies:
+  - name: disk
+    parts: [{shape: cylinder, radius: 0.2, length: 0.05, mass: 3}]
+    initial: {angular_velocity: [1.5, 0, 8], angular_velocity_frame: body}
+gravity: [0, 0, 0]
+)");
+  const OperatingPoint op = MakeSteadyMotion(*s.model, s.initial);
+  EXPECT_LT(op.residual, 1e-14);
+  EXPECT_TRUE(op.warnings.empty());
+  const ModalAnalysis modes = AnalyseModes(*s.model, op);
+  EXPECT_TRUE(modes.stable) << Describe(modes);
+}
+
+// A box (1, 2, 3 kg m²) turning at (0.01, 10, 0.01) rad/s in its frame is near the steady
+// rotation about its intermediate axis but not on it: analysed as given with a warning whose
+// rate bound (residual × |ω|) covers the slow mode the unsteadiness makes, and the growth rate
+// Ω √((I2 - I1)(I3 - I2)/(I1 I3)) = 10/√3 within that bound.
+TEST(Modes, NearlySteadyMotionIsAnalysedWithAWarning) {
+  const Study s = Build(R"(
+chasles: 2
+bodies:
+  - name: handle
+    parts: [{shape: custom, mass: 1 kg, inertia: {Ixx: 1 kg*m^2, Iyy: 2 kg*m^2, Izz: 3 kg*m^2}}]
+    initial: {angular_velocity: [0.01, 10, 0.01], angular_velocity_frame: body}
+gravity: [0, 0, 0]
+)");
+  const OperatingPoint op = MakeSteadyMotion(*s.model, s.initial);
+  EXPECT_GT(op.residual, kSteadyResidual);
+  ASSERT_EQ(op.warnings.size(), 1u);
+  EXPECT_NE(op.warnings[0].find("near a steady one but not one"), std::string::npos);
+  const ModalAnalysis modes = AnalyseModes(*s.model, op);
+  const double bound = op.residual * 10.0, sigma = 10.0 / std::sqrt(3.0);
+  EXPECT_NEAR(modes.max_real_part, sigma, 10 * bound);
+}
+
+// A motion that is no steady one (a ball thrown through viscous drag: its velocity decays at
+// c/m) has no modes: an error, not a linearisation about a state that does not stay.
+TEST(Modes, MotionThatIsNotSteadyIsAnError) {
+  const Study s = Build(R"(
+chasles: 2
+bodies:
+  - name: ball
+    parts: [{shape: sphere, radius: 0.1, mass: 1}]
+    initial: {velocity: [3, 0, 0]}
+gravity: [0, 0, 0]
+forces:
+  - {type: drag, name: air, body: ball, linear: 0.5 N*s/m}
+)");
+  try {
+    MakeSteadyMotion(*s.model, s.initial);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a steady motion"), std::string::npos) << e.what();
+  }
+}
+
 // A sleeping top: a solid cylinder (radius ρ, length h, mass m) on a spherical joint at its
 // lower end, its centre of mass l = h/2 above, spinning at Ω about the vertical. With
 // I₁ = m (3ρ² + h²)/12 + m l² about the pivot and I₃ = m ρ²/2, the tilt obeys
