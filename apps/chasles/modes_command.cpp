@@ -18,6 +18,7 @@
 
 #include "chasles/error.h"
 #include "chasles/io/json_report.h"
+#include "chasles/io/modes_json.h"
 #include "chasles/io/output_set.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/scene/modes.h"
@@ -33,25 +34,6 @@ namespace {
 
 nlohmann::json Vec(const Vec3& v) {
   return {v.x(), v.y(), v.z()};
-}
-
-nlohmann::json Complex(std::complex<double> z) {
-  return {z.real(), z.imag()};
-}
-
-nlohmann::json ModeJson(const Mode& m) {
-  nlohmann::json shape = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < m.shape.size(); ++i) shape.push_back(Complex(m.shape[i]));
-  nlohmann::json j = {{"eigenvalue", Complex(m.eigenvalue)},
-                      {"frequency_hz", m.frequency_hz},
-                      {"damping_ratio", m.damping_ratio},
-                      {"growth_rate", m.growth_rate},
-                      {"stable", m.stable},
-                      {"neutral", m.neutral},
-                      {"rigid", m.rigid},
-                      {"shape", shape}};
-  if (m.rigid) j["frees"] = m.rigid_coordinate;
-  return j;
 }
 
 nlohmann::json ModesJson(const ModalAnalysis& a) {

@@ -53,6 +53,7 @@
 #include "chasles/io/input_file.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/mesh_reader.h"
+#include "chasles/io/modes_json.h"
 #include "chasles/io/output_set.h"
 #include "chasles/io/simulation_report.h"
 #include "chasles/io/solve_json.h"

@@ -11,6 +11,7 @@
 
 #include "chasles/error.h"
 #include "chasles/io/json_report.h"
+#include "chasles/io/modes_json.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/scene/report_data.h"
 
@@ -97,26 +98,12 @@ Eigen::Index UnitEntry(const Mode& m, Eigen::Index coordinates) {
   return at;
 }
 
-nlohmann::json ModeJson(const Mode& m, const Linearization& lin,
-                        const std::vector<std::string>& names, const std::vector<double>& rho,
-                        double size, double largest) {
-  nlohmann::json shape = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < m.shape.size(); ++i) {
-    shape.push_back({m.shape[i].real(), m.shape[i].imag()});
-  }
-  nlohmann::json j = {{"eigenvalue", {m.eigenvalue.real(), m.eigenvalue.imag()}},
-                      {"frequency_hz", m.frequency_hz},
-                      {"damping_ratio", m.damping_ratio},
-                      {"growth_rate", m.growth_rate},
-                      {"stable", m.stable},
-                      {"neutral", m.neutral},
-                      {"rigid", m.rigid},
-                      {"shape", shape},
-                      {"animated", false}};
-  if (m.rigid) {
-    j["frees"] = m.rigid_coordinate;
-    return j;
-  }
+nlohmann::json ModePageJson(const Mode& m, const Linearization& lin,
+                            const std::vector<std::string>& names, const std::vector<double>& rho,
+                            double size, double largest) {
+  nlohmann::json j = ModeJson(m);
+  j["animated"] = false;
+  if (m.rigid) return j;
   const std::vector<BodyModeShape> bodies = CalcBodyModeShapes(lin, m);
   double excursion = 0.0;  // per unit of the shape: max_b |dp_b| + ρ_b |dθ_b| (complex norms)
   for (size_t b = 0; b < bodies.size(); ++b) {
@@ -177,7 +164,7 @@ nlohmann::json ModesReportData(const Scene& scene, const SceneModes& s) {
   nlohmann::json modes = nlohmann::json::array();
   const Linearization& lin = s.modes.linearization;
   for (const Mode& m : s.modes.modes) {
-    modes.push_back(ModeJson(m, lin, s.bodies, rho, size, largest));
+    modes.push_back(ModePageJson(m, lin, s.bodies, rho, size, largest));
   }
   j["operating_point"] = {{"kind", OperatingPointKindName(op.kind)}, {"residual", op.residual}};
   j["poses"] = poses;
