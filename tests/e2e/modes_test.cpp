@@ -190,17 +190,25 @@ TEST(Modes, BicycleRootLocusTable) {
 #endif
 }
 
+// examples/rotor-on-bearings.yaml's rotor (its comment): a shaft (8 kg, radius 5 cm, length
+// 60 cm) and a disk (5 kg, radius 20 cm) at z = 28 cm, about the whole rotor's centre of mass
+// z_c; bearings of 3e5 and 1e5 N/m at z = -28 cm and 10 cm, K_n = Σ k_j (z_j - z_c)^n.
+struct ExampleRotor {
+  static constexpr double ms = 8, rho = 0.05, L = 0.6, md = 5, Rd = 0.2, zd = 0.28;
+  double m = ms + md, zc = md * zd / m;
+  double It = ms * (3 * rho * rho + L * L) / 12 + ms * zc * zc + md * Rd * Rd / 4 +
+              md * (zd - zc) * (zd - zc);
+  double Ip = ms * rho * rho / 2 + md * Rd * Rd / 2;
+  double kA = 3e5, kB = 1e5, zA = -0.28 - zc, zB = 0.1 - zc;
+  double K0 = kA + kB, K1 = kA * zA + kB * zB, K2 = kA * zA * zA + kB * zB * zB;
+};
+
 // examples/rotor-on-bearings.yaml over its spin: the critical speeds are the spins at which a
 // root ω = Ω of (K0 - m ω²)(K2 - I_t ω² + I_p Ω ω) = K1² (docs/modes.md), i.e. the roots of
 // (K0 - m Ω²)(K2 - (I_t - I_p) Ω²) = K1², a quadratic in Ω².
 TEST(Modes, RotorCriticalSpeeds) {
-  const double ms = 8, rho = 0.05, L = 0.6, md = 5, Rd = 0.2, zd = 0.28;
-  const double m = ms + md, zc = md * zd / m;
-  const double It = ms * (3 * rho * rho + L * L) / 12 + ms * zc * zc + md * Rd * Rd / 4 +
-                    md * (zd - zc) * (zd - zc);
-  const double Ip = ms * rho * rho / 2 + md * Rd * Rd / 2;
-  const double kA = 3e5, kB = 1e5, zA = -0.28 - zc, zB = 0.1 - zc;
-  const double K0 = kA + kB, K1 = kA * zA + kB * zB, K2 = kA * zA * zA + kB * zB * zB;
+  const ExampleRotor r;
+  const double m = r.m, It = r.It, Ip = r.Ip, K0 = r.K0, K1 = r.K1, K2 = r.K2;
   // m (It - Ip) x² - (m K2 + K0 (It - Ip)) x + K0 K2 - K1² = 0, x = Ω².
   const double a = m * (It - Ip), b = -(m * K2 + K0 * (It - Ip)), c = K0 * K2 - K1 * K1;
   const double x1 = (-b - std::sqrt(b * b - 4 * a * c)) / (2 * a);
@@ -223,13 +231,8 @@ TEST(Modes, RotorCriticalSpeeds) {
 // (K0 - m ω²)(K2 - I_t ω² + I_p Ω ω) = K1², i.e. (K0 - m Ω²)(K2 - (I_t - I_p) Ω²) = K1², and
 // backward where ω = -Ω does, (K0 - m Ω²)(K2 - (I_t + I_p) Ω²) = K1²: quadratics in Ω².
 TEST(Balance, WhirlRowsAndCriticalSpeedsFromTheCli) {
-  const double ms = 8, rho = 0.05, L = 0.6, md = 5, Rd = 0.2, zd = 0.28;
-  const double m = ms + md, zc = md * zd / m;
-  const double It = ms * (3 * rho * rho + L * L) / 12 + ms * zc * zc + md * Rd * Rd / 4 +
-                    md * (zd - zc) * (zd - zc);
-  const double Ip = ms * rho * rho / 2 + md * Rd * Rd / 2;
-  const double kA = 3e5, kB = 1e5, zA = -0.28 - zc, zB = 0.1 - zc;
-  const double K0 = kA + kB, K1 = kA * zA + kB * zB, K2 = kA * zA * zA + kB * zB * zB;
+  const ExampleRotor r;
+  const double m = r.m, It = r.It, Ip = r.Ip, K0 = r.K0, K1 = r.K1, K2 = r.K2;
   // The two roots Ω of m J x² - (m K2 + K0 J) x + K0 K2 - K1² = 0 (x = Ω²), J = I_t ∓ I_p.
   const auto roots = [&](double J) {
     const double a = m * J, b = -(m * K2 + K0 * J), c = K0 * K2 - K1 * K1;

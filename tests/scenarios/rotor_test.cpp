@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -134,8 +135,8 @@ TEST(Rotor, CorrectionZeroesTheBearingReactionsAtSpeed) {
 // a quartic in ω: positive roots whirl forward, negative backward. Its roots from the
 // companion matrix, |ω| sorted, are the modes' frequencies. A critical speed has ω = Ω:
 //   (K0 - m Ω²)(K2 - (I_t - I_p) Ω²) = K1².
-std::vector<double> WhirlClosedForm(double m, double It, double Ip, double K0, double K1, double K2,
-                                    double W) {
+std::vector<double> SignedWhirlRoots(double m, double It, double Ip, double K0, double K1,
+                                     double K2, double W) {
   // m It ω⁴ - m Ip Ω ω³ - (m K2 + K0 It) ω² + K0 Ip Ω ω + K0 K2 - K1² = 0
   const double a4 = m * It;
   const double c[4] = {(K0 * K2 - K1 * K1) / a4, K0 * Ip * W / a4, -(m * K2 + K0 * It) / a4,
@@ -145,7 +146,14 @@ std::vector<double> WhirlClosedForm(double m, double It, double Ip, double K0, d
   for (int i = 0; i < 4; ++i) companion(i, 3) = -c[i];
   const Eigen::Vector4cd roots = companion.eigenvalues();
   std::vector<double> w;
-  for (int i = 0; i < 4; ++i) w.push_back(std::abs(roots[i].real()));
+  for (int i = 0; i < 4; ++i) w.push_back(roots[i].real());
+  return w;
+}
+
+std::vector<double> WhirlClosedForm(double m, double It, double Ip, double K0, double K1, double K2,
+                                    double W) {
+  std::vector<double> w = SignedWhirlRoots(m, It, Ip, K0, K1, K2, W);
+  for (double& x : w) x = std::abs(x);
   std::sort(w.begin(), w.end());
   return w;
 }
@@ -245,17 +253,7 @@ TEST(Rotor, OverhungGyroscopicDiskWhirl) {
 
 // The same quartic's real roots, signed: ω > 0 whirls forward (with the spin), ω < 0 backward.
 std::vector<double> SignedWhirl(const RotorOnBearings& r, double W) {
-  const double m = r.Mass(), It = r.It(), Ip = r.Ip(), K0 = r.K(0), K1 = r.K(1), K2 = r.K(2);
-  const double a4 = m * It;
-  const double c[4] = {(K0 * K2 - K1 * K1) / a4, K0 * Ip * W / a4, -(m * K2 + K0 * It) / a4,
-                       -m * Ip * W / a4};
-  Eigen::Matrix4d companion = Eigen::Matrix4d::Zero();
-  for (int i = 1; i < 4; ++i) companion(i, i - 1) = 1.0;
-  for (int i = 0; i < 4; ++i) companion(i, 3) = -c[i];
-  const Eigen::Vector4cd roots = companion.eigenvalues();
-  std::vector<double> w;
-  for (int i = 0; i < 4; ++i) w.push_back(roots[i].real());
-  return w;
+  return SignedWhirlRoots(r.Mass(), r.It(), r.Ip(), r.K(0), r.K(1), r.K(2), W);
 }
 
 /// CalcWhirl's frequencies [rad/s] in direction `d` at the point `p`, ascending.
@@ -301,6 +299,22 @@ TEST(Rotor, WhirlDirectionsAgainstTheQuarticsSigns) {
   overhung.zA = -0.28, overhung.zB = 0.1, overhung.kA = 3e5, overhung.kB = 1e5;
   overhung.disk_m = 5.0, overhung.disk_R = 0.2, overhung.disk_z = 0.28;
   ExpectDirections(overhung, {0.0, 150.0, 600.0});
+}
+
+// Seeded random rotors (shaft mass, length, bearing places and stiffnesses, an overhung disk)
+// at seeded spins: every whirl frequency and its direction against the quartic's signed roots.
+TEST(Rotor, SeededRandomRotorsWhirlInTheQuarticsDirections) {
+  std::mt19937_64 rng(20261128);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < 6; ++k) {
+    RotorOnBearings r;
+    r.m = 2.0 + 10.0 * u(rng), r.L = 0.3 + 0.6 * u(rng);
+    r.zA = -0.5 * r.L * (0.3 + 0.7 * u(rng)), r.zB = 0.5 * r.L * (0.3 + 0.7 * u(rng));
+    r.kA = 1e4 * std::pow(100.0, u(rng)), r.kB = 1e4 * std::pow(100.0, u(rng));
+    r.disk_m = 5.0 * u(rng), r.disk_R = 0.1 + 0.2 * u(rng), r.disk_z = 0.5 * r.L * u(rng);
+    SCOPED_TRACE(fmt::format("rotor {}", k));
+    ExpectDirections(r, {0.0, 50.0 + 500.0 * u(rng), 800.0 + 1000.0 * u(rng)});
+  }
 }
 
 // The critical speeds with their directions: translation Ω² = K0/m both ways (K1 = 0), the
