@@ -48,7 +48,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   const std::vector<std::string> names{"L", "m_wheel", "k", "x", "y", "z"};
   try {
-    const Expression e = Expression::Parse(text, Resolve, names);
+    const Expression e = Expression::Parse(text, Resolve, [&names] { return names; });
     if (e.variable_count() > 3) chasles::fuzz::Fail("variable slot out of range", text);
     if (e.is_constant()) {
       const double v = e.Evaluate();

@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config
   ccache               # compiler cache: a rebuild of what was compiled before costs seconds
   libeigen3-dev        # linear algebra
-  libyaml-cpp-dev      # scene files, with line/column marks
+  libyaml-dev          # scene files: the YAML reference parser's events, with line/column marks
   libcli11-dev         # command line
   libfmt-dev           # formatting
   libboost-dev         # Boost.Math: quadrature, special functions (header-only)

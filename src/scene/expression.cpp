@@ -100,7 +100,7 @@ class ExpressionCompiler {
   using Instruction = Expression::Instruction;
 
   ExpressionCompiler(std::string_view text, const SymbolResolver* resolver,
-                     const std::vector<std::string>* symbol_names)
+                     const SymbolNames* symbol_names)
       : text_(text), resolver_(resolver), symbol_names_(symbol_names) {}
 
   Expression Compile() {
@@ -633,10 +633,8 @@ class ExpressionCompiler {
     if (FindFunction(name)) {
       Fail("'" + std::string(name) + "' is a function: write " + std::string(name) + "(...)", pos);
     }
-    std::vector<std::string> candidates = UnitNames();
-    if (symbol_names_ != nullptr) {
-      candidates.insert(candidates.begin(), symbol_names_->begin(), symbol_names_->end());
-    }
+    std::vector<std::string> candidates = SymbolNameList();
+    for (const std::string& u : UnitNames()) candidates.push_back(u);
     for (const Function& fn : kFunctions) candidates.emplace_back(fn.name);
     candidates.emplace_back("pi");
     Fail(
@@ -737,11 +735,8 @@ class ExpressionCompiler {
             "unit, even when a parameter or variable has that name); to use the {} '{}' write "
             "({}) {} {}",
             next.text, Trimmed(suffix_->value, tok_.pos + 1), next.text, tok_.text,
-            symbol_names_ != nullptr && std::find(symbol_names_->begin(), symbol_names_->end(),
-                                                  next.text) != symbol_names_->end()
-                ? "variable"
-                : "parameter",
-            next.text, Trimmed(suffix_->value, tok_.pos), tok_.text, next.text);
+            IsListedSymbol(next.text) ? "variable" : "parameter", next.text,
+            Trimmed(suffix_->value, tok_.pos), tok_.text, next.text);
       }
       const bool mul = IsOp('*');
       Advance();
@@ -814,10 +809,8 @@ class ExpressionCompiler {
     }
     if (suffix_ && suffix_->unit < pos) {
       // After '*' or '/' inside a unit suffix: say that the suffix went on, and how to end it.
-      std::vector<std::string> candidates = UnitNames();
-      if (symbol_names_ != nullptr) {
-        candidates.insert(candidates.begin(), symbol_names_->begin(), symbol_names_->end());
-      }
+      std::vector<std::string> candidates = SymbolNameList();
+      for (const std::string& u : UnitNames()) candidates.push_back(u);
       for (const Function& fn : kFunctions) candidates.emplace_back(fn.name);
       const size_t op = text_.find_last_of("*/", pos);
       Fail(fmt::format("'{}' was read as a unit: a name after a unit and '{}' continues the unit, "
@@ -852,7 +845,16 @@ class ExpressionCompiler {
 
   std::string_view text_;
   const SymbolResolver* resolver_;
-  const std::vector<std::string>* symbol_names_;
+  const SymbolNames* symbol_names_;
+
+  std::vector<std::string> SymbolNameList() const {
+    return symbol_names_ != nullptr && *symbol_names_ ? (*symbol_names_)()
+                                                      : std::vector<std::string>();
+  }
+  bool IsListedSymbol(std::string_view name) const {
+    const std::vector<std::string> names = SymbolNameList();
+    return std::find(names.begin(), names.end(), name) != names.end();
+  }
   std::vector<Node> nodes_;
   Token tok_;
   Token prev_;
@@ -877,7 +879,7 @@ class ExpressionCompiler {
 };
 
 Expression Expression::Parse(std::string_view text, const SymbolResolver& resolver,
-                             const std::vector<std::string>& symbol_names) {
+                             const SymbolNames& symbol_names) {
   return ExpressionCompiler(text, &resolver, &symbol_names).Compile();
 }
 
@@ -890,7 +892,7 @@ double Expression::Evaluate(std::span<const double> variables) const {
 }
 
 Quantity EvaluateQuantity(std::string_view text, const SymbolResolver& resolver,
-                          const std::vector<std::string>& symbol_names) {
+                          const SymbolNames& symbol_names) {
   const Expression e = Expression::Parse(text, resolver, symbol_names);
   if (!e.is_constant()) {
     throw ExpressionError("a constant is needed here, but the expression depends on a variable", 0);

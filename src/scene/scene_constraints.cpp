@@ -47,9 +47,9 @@ namespace scene_internal {
 
 namespace {
 
-// The entry's position in the file (yaml-cpp marks are 0-based).
+// The entry's position in the file (marks are 0-based).
 SceneSpot Spot(const At& at) {
-  const YAML::Mark mark = at.node.Mark();
+  const YamlMark mark = at.node.Mark();
   return {mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0, at.path};
 }
 
@@ -305,7 +305,7 @@ SceneGear SceneReader::ReadGear(const At& at, size_t i, const Scene& scene,
   g.child_circle = circle("child_circle", true);
   if (at.Has("keep_contact")) {
     const At k = at.Child("keep_contact");
-    if (!k.node.IsScalar() || !YAML::convert<bool>::decode(k.node, g.keep_contact)) {
+    if (!k.node.IsScalar() || !DecodeBool(k.node, g.keep_contact)) {
       report_.Fail(k, fmt::format("expected true or false, got {}", KindOf(k.node)));
     }
   }

@@ -291,7 +291,7 @@ void SceneReader::ReadContactShape(const At& at, const std::string& what, const 
     for (size_t k = 0; k < pts.node.size(); ++k) {
       const At p = pts.Item(k);
       c.points_B.push_back(BodyPointAt(p, body));
-      c.point_names.push_back(p.node.IsScalar() ? p.node.Scalar() : std::string());
+      c.point_names.push_back(std::string(p.node.Scalar()));
     }
   } else {
     refuse("points", "has no point list (only shape points has)");

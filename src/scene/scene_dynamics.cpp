@@ -66,7 +66,7 @@ SceneSpot KeySpotAt(const At& map, std::string_view key) {
   if (map.node.IsMap()) {
     for (const auto& kv : map.node) {
       if (kv.first.IsScalar() && kv.first.Scalar() == key) {
-        const YAML::Mark mark = kv.first.Mark();
+        const YamlMark mark = kv.first.Mark();
         return {mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0, path};
       }
     }
@@ -77,13 +77,12 @@ SceneSpot KeySpotAt(const At& map, std::string_view key) {
 }
 
 std::optional<Symbol> SceneReader::ResolveStateSymbol(const At& at, std::string_view name) {
-  if (auto it = state_variables_.find(name); it != state_variables_.end()) {
+  if (const int slot = StateSlot(name); slot >= 0) {
     if (parameters_.count(name)) {
       report_.Fail(at, fmt::format("'{}' is both a parameter and a state variable in this "
                                    "expression; rename the parameter",
                                    name));
     }
-    const int slot = it->second;
     if (slot >= contact_slot_begin_) {
       // A contact point's force, slip or mode: known only after the contact solve in the
       // point's current mode, so (like a reaction) only an event may read it.
@@ -129,29 +128,24 @@ std::optional<Symbol> SceneReader::ResolveStateSymbol(const At& at, std::string_
 
 void SceneReader::PlanarNameHint(const At& at, std::string_view name) {
   // A 3-D body variable in a planar scene: say which planar name to use instead of a bare
-  // "unknown name".
-  for (const auto& [var, slot] : state_variables_) {
-    if (slot < 1 || slot >= reaction_slot_begin_ ||
-        (slot - 1) % StateVariableLayout::kPerBody != 0) {
-      continue;  // one entry per body: its x
-    }
-    const std::string prefix = var.substr(0, var.size() - 1);  // "<body>_"
-    if (name.size() <= prefix.size() || name.substr(0, prefix.size()) != prefix) continue;
-    const std::string_view suffix = name.substr(prefix.size());
-    bool three_d = false;
-    for (const char* s : StateVariableLayout::kSuffixes) three_d = three_d || suffix == s;
-    if (!three_d) continue;
-    std::vector<std::string> names;
-    for (const auto& [s, k] : StateVariableLayout::kPlanarNames) names.push_back(prefix + s);
-    const bool rotation = suffix[0] == 'w' || suffix == "omega";
-    report_.Fail(at, fmt::format("'{}' is a 3-D state variable; a planar scene's body variables "
-                                 "are {}{}",
-                                 name, fmt::join(names, ", "),
-                                 rotation ? fmt::format(" ('{}omega' is the signed angular "
-                                                        "velocity about z)",
-                                                        prefix)
-                                          : ""));
-  }
+  // "unknown name". Every suffix is one word: the body is what comes before the last '_'.
+  const size_t cut = name.rfind('_');
+  if (cut == std::string_view::npos || !state_bodies_.contains(name.substr(0, cut))) return;
+  const std::string prefix(name.substr(0, cut + 1));  // "<body>_"
+  const std::string_view suffix = name.substr(cut + 1);
+  bool three_d = false;
+  for (const char* s : StateVariableLayout::kSuffixes) three_d = three_d || suffix == s;
+  if (!three_d) return;
+  std::vector<std::string> names;
+  for (const auto& [s, k] : StateVariableLayout::kPlanarNames) names.push_back(prefix + s);
+  const bool rotation = suffix[0] == 'w' || suffix == "omega";
+  report_.Fail(at, fmt::format("'{}' is a 3-D state variable; a planar scene's body variables "
+                               "are {}{}",
+                               name, fmt::join(names, ", "),
+                               rotation ? fmt::format(" ('{}omega' is the signed angular "
+                                                      "velocity about z)",
+                                                      prefix)
+                                        : ""));
 }
 
 Expression SceneReader::StateExpression(const At& at, const Dimension& expected,
@@ -160,7 +154,8 @@ Expression SceneReader::StateExpression(const At& at, const Dimension& expected,
   Expression e;
   try {
     e = Expression::Parse(
-        text, [&](std::string_view n) { return ResolveStateSymbol(at, n); }, state_variable_names_);
+        text, [&](std::string_view n) { return ResolveStateSymbol(at, n); },
+        [this] { return StateVariableNames(); });
   } catch (const SceneError&) {
     throw;
   } catch (const ExpressionError& err) {
@@ -482,7 +477,7 @@ SceneEvent SceneReader::ReadEvent(const At& at, size_t index, const Scene& scene
   try {
     probe = Expression::Parse(
         text, [&](std::string_view n) { return ResolveStateSymbol(when, n); },
-        state_variable_names_);
+        [this] { return StateVariableNames(); });
   } catch (const SceneError&) {
     allow_reactions_ = false;
     throw;
@@ -524,7 +519,7 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
   sim.present = true;
   if (at.node.IsMap()) {
     for (const auto& kv : at.node) {
-      const std::string key = kv.first.Scalar();
+      const std::string key(kv.first.Scalar());
       sim.keys[key] = KeySpotAt(at, key);
     }
   }
@@ -676,7 +671,7 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
   ReadInitialStates(root, scene);
   if (root.Has("project_initial")) {
     const At at = root.Child("project_initial");
-    if (!at.node.IsScalar() || !YAML::convert<bool>::decode(at.node, d.project_initial)) {
+    if (!at.node.IsScalar() || !DecodeBool(at.node, d.project_initial)) {
       report_.Fail(at, fmt::format("expected true or false, got {}", KindOf(at.node)));
     }
   }
@@ -762,54 +757,111 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
 // The names expressions may use: t, every body's state variables, then the constraints'
 // reactions and the contact points' variables (StateVariableLayout's slots).
 void SceneReader::DeclareStateVariables(const Scene& scene) {
+  // The owners of the names, not the names: a scene of 100 000 bodies has 1.8 million of them,
+  // and a name is resolved from its parts (StateSlot). A name that is not an identifier cannot
+  // appear in an expression.
   const SceneDynamics& d = scene.dynamics;
-  state_variables_.clear();
-  state_variable_names_.clear();
-  state_variables_.emplace("t", 0);
-  state_variable_names_.emplace_back("t");
+  state_planar_ = scene.planar;
+  state_bodies_.clear();
+  state_constraints_.clear();
+  state_points_.clear();
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
-    if (!IsIdentifier(scene.bodies[b].name)) continue;
-    const auto declare = [&](const char* suffix, int j) {
-      const std::string name = scene.bodies[b].name + "_" + suffix;
-      state_variables_.emplace(name, StateVariableLayout::Slot(static_cast<int>(b), j));
-      state_variable_names_.push_back(name);
-    };
-    if (scene.planar) {
-      // One name per quantity, those of the `planar` output columns: θ, signed ω and α about z.
-      for (const auto& [suffix, j] : StateVariableLayout::kPlanarNames) declare(suffix, j);
-      continue;
-    }
-    for (int j = 0; j < StateVariableLayout::kTheta; ++j) {
-      declare(StateVariableLayout::kSuffixes[static_cast<size_t>(j)], j);
-    }
+    if (IsIdentifier(scene.bodies[b].name)) state_bodies_.emplace(scene.bodies[b].name, b);
   }
   // Reactions of the constraints, after the bodies' blocks: "<name>_Fx" ... "<name>_Mz" (W).
   reaction_slot_begin_ = StateVariableLayout::Slot(static_cast<int>(scene.bodies.size()), 0);
   const std::vector<std::string> constraint_names = d.constraints.names();
   for (size_t i = 0; i < constraint_names.size(); ++i) {
-    if (!IsIdentifier(constraint_names[i])) continue;
-    const char* suffixes[] = {"Fx", "Fy", "Fz", "Mx", "My", "Mz"};
-    for (int k = 0; k < 6; ++k) {
-      const std::string name = constraint_names[i] + "_" + suffixes[k];
-      state_variables_.emplace(name, reaction_slot_begin_ + 6 * static_cast<int>(i) + k);
-      state_variable_names_.push_back(name);
-    }
+    if (IsIdentifier(constraint_names[i])) state_constraints_.emplace(constraint_names[i], i);
   }
   // Contact points after the reactions: "<point>_mode", "<point>_N", ... (the columns' names).
   contact_slot_begin_ = reaction_slot_begin_ + StateVariableLayout::kPerConstraint *
                                                    static_cast<int>(constraint_names.size());
   const std::vector<std::string> point_labels = d.contacts.point_labels();
   for (size_t p = 0; p < point_labels.size(); ++p) {
-    if (!IsIdentifier(point_labels[p])) continue;
-    for (int k = 0; k < StateVariableLayout::kPerContactPoint; ++k) {
-      const std::string name =
-          point_labels[p] + "_" + StateVariableLayout::kContactSuffixes[static_cast<size_t>(k)];
-      state_variables_.emplace(
-          name,
-          contact_slot_begin_ + StateVariableLayout::kPerContactPoint * static_cast<int>(p) + k);
-      state_variable_names_.push_back(name);
+    if (IsIdentifier(point_labels[p])) state_points_.emplace(point_labels[p], p);
+  }
+}
+
+namespace {
+
+/// Index of `suffix` in `suffixes`, or -1.
+int SuffixIndex(std::span<const char* const> suffixes, std::string_view suffix) {
+  for (size_t k = 0; k < suffixes.size(); ++k) {
+    if (suffix == suffixes[k]) return static_cast<int>(k);
+  }
+  return -1;
+}
+
+constexpr std::array<const char*, StateVariableLayout::kPerConstraint> kReactionSuffixes = {
+    "Fx", "Fy", "Fz", "Mx", "My", "Mz"};
+
+}  // namespace
+
+int SceneReader::StateSlot(std::string_view name) const {
+  if (name == "t") return 0;
+  // Every suffix is one word: the owner is what comes before the last '_'.
+  const size_t cut = name.rfind('_');
+  if (cut == std::string_view::npos) return -1;
+  const std::string_view owner = name.substr(0, cut), suffix = name.substr(cut + 1);
+  if (const auto b = state_bodies_.find(owner); b != state_bodies_.end()) {
+    const int body = static_cast<int>(b->second);
+    if (state_planar_) {
+      // One name per quantity, those of the `planar` output columns: θ, signed ω and α about z.
+      for (const auto& [s, j] : StateVariableLayout::kPlanarNames) {
+        if (suffix == s) return StateVariableLayout::Slot(body, j);
+      }
+    } else if (const int j = SuffixIndex(
+                   std::span(StateVariableLayout::kSuffixes).first(StateVariableLayout::kTheta),
+                   suffix);
+               j >= 0) {
+      return StateVariableLayout::Slot(body, j);
     }
   }
+  if (const auto c = state_constraints_.find(owner); c != state_constraints_.end()) {
+    if (const int k = SuffixIndex(kReactionSuffixes, suffix); k >= 0) {
+      return reaction_slot_begin_ +
+             StateVariableLayout::kPerConstraint * static_cast<int>(c->second) + k;
+    }
+  }
+  if (const auto p = state_points_.find(owner); p != state_points_.end()) {
+    const auto& suffixes = StateVariableLayout::kContactSuffixes;
+    if (const int k = SuffixIndex(suffixes, suffix); k >= 0) {
+      return contact_slot_begin_ +
+             StateVariableLayout::kPerContactPoint * static_cast<int>(p->second) + k;
+    }
+  }
+  return -1;
+}
+
+std::vector<std::string> SceneReader::StateVariableNames() const {
+  // In slot order: t, each body's block, the reactions, the contact points.
+  const auto by_index = [](const NameIndex& names) {
+    std::vector<const std::string*> v(names.size());
+    size_t k = 0;
+    for (const auto& [name, i] : names) v[k++] = &name;
+    std::sort(v.begin(), v.end(), [&names](const std::string* a, const std::string* b) {
+      return names.find(*a)->second < names.find(*b)->second;
+    });
+    return v;
+  };
+  std::vector<std::string> out{"t"};
+  for (const std::string* body : by_index(state_bodies_)) {
+    if (state_planar_) {
+      for (const auto& [s, j] : StateVariableLayout::kPlanarNames) out.push_back(*body + "_" + s);
+    } else {
+      for (int j = 0; j < StateVariableLayout::kTheta; ++j) {
+        out.push_back(*body + "_" + StateVariableLayout::kSuffixes[static_cast<size_t>(j)]);
+      }
+    }
+  }
+  for (const std::string* c : by_index(state_constraints_)) {
+    for (const char* s : kReactionSuffixes) out.push_back(*c + "_" + s);
+  }
+  for (const std::string* p : by_index(state_points_)) {
+    for (const char* s : StateVariableLayout::kContactSuffixes) out.push_back(*p + "_" + s);
+  }
+  return out;
 }
 
 void SceneReader::ReadGravity(const At& g, SceneDynamics& d) {
@@ -844,7 +896,7 @@ void SceneReader::ReadInitialStates(const At& root, Scene& scene) {
     d.initial[b].p_BoP_B = scene.bodies[b].mass_properties.p_BoBcm_B();
     const At body_at = bodies.Item(b);
     const At spot_at = body_at.Has("initial") ? body_at.Child("initial") : body_at;
-    const YAML::Mark mark = spot_at.node.Mark();
+    const YamlMark mark = spot_at.node.Mark();
     d.initial[b].where = {mark.line >= 0 ? mark.line + 1 : 0,
                           mark.column >= 0 ? mark.column + 1 : 0, spot_at.path};
     if (body_at.Has("initial"))

@@ -10,7 +10,6 @@
 #include <unordered_set>
 
 #include <fmt/format.h>
-#include <yaml-cpp/yaml.h>
 
 #include "chasles/mass/density_field.h"
 #include "chasles/mass/materials.h"
@@ -192,7 +191,7 @@ void SceneReader::ReadParameters(const At& root) {
     }
     static const std::regex ident("[A-Za-z_][A-Za-z_0-9]*");
     for (const auto& kv : at.node) {
-      const std::string name = kv.first.Scalar();
+      const std::string name(kv.first.Scalar());
       const At p{kv.second, at.path + "." + name};
       if (!std::regex_match(name, ident)) {
         report_.Fail(At{kv.first, at.path},
@@ -223,7 +222,9 @@ void SceneReader::ReadParameters(const At& root) {
     it->second.text = text;
     it->second.origin = "--set " + name;
     // Errors in an override point at the command line, not the file.
-    it->second.at = At{YAML::Node(text), "--set " + name};
+    YamlDocument& doc = override_documents_.emplace_back();
+    doc.SetRoot(doc.AddScalar(text));
+    it->second.at = At{doc.Root(), "--set " + name};
   }
 }
 
@@ -235,7 +236,7 @@ void SceneReader::ReadMaterials(const At& root) {
                                  KindOf(at.node)));
   }
   for (const auto& kv : at.node) {
-    const std::string name = kv.first.Scalar();
+    const std::string name(kv.first.Scalar());
     if (materials_.count(name)) {
       report_.Fail(At{kv.first, at.path + "." + name},
                    fmt::format("material '{}' appears twice", name));
@@ -257,7 +258,7 @@ double SceneReader::MaterialDensity(const At& at) {
                                name, DidYouMean(name, known)));
 }
 
-Scene SceneReader::Read(const YAML::Node& document) {
+Scene SceneReader::Read(const YamlNode& document) {
   const At root{document, ""};
   if (!document.IsMap()) {
     report_.Fail(root, fmt::format("a scene file is a mapping with keys such as 'bodies:', got {}",
@@ -316,7 +317,7 @@ SceneBody SceneReader::ReadBody(const At& at, size_t index) {
                                     KindOf(pts.node)));
     }
     for (const auto& kv : pts.node) {
-      const std::string name = kv.first.Scalar();
+      const std::string name(kv.first.Scalar());
       for (const auto& p : body.points) {
         if (p.name == name) {
           report_.Fail(At{kv.first, pts.path + "." + name},
@@ -440,7 +441,7 @@ ScenePart SceneReader::ReadPart(const At& at, size_t index, const At& body_at,
   if (at.Has("subtract")) {
     const At s = at.Child("subtract");
     bool subtract = false;
-    if (!s.node.IsScalar() || !YAML::convert<bool>::decode(s.node, subtract)) {
+    if (!s.node.IsScalar() || !DecodeBool(s.node, subtract)) {
       report_.Fail(s, fmt::format("expected true or false, got {}", KindOf(s.node)));
     }
     part.subtractive = subtract;
@@ -615,7 +616,7 @@ std::vector<double> SceneReader::ReadDimension(const At& at,
     }
     case DimensionKind::kFlag: {
       bool on = false;
-      if (!at.node.IsScalar() || !YAML::convert<bool>::decode(at.node, on)) {
+      if (!at.node.IsScalar() || !DecodeBool(at.node, on)) {
         report_.Fail(at, fmt::format("'{}' is a switch: expected true or false ({}), got {}", d.key,
                                      d.meaning, KindOf(at.node)));
       }
@@ -702,7 +703,7 @@ MassProperties SceneReader::ReadShapeMass(const At& at, const At& body_at, const
     return geometry.CalcMassProperties(PositiveValue(source, kMass, "the mass"));
   }
   if (key == "material") {
-    part.mass_source = source.node.Scalar();
+    part.mass_source = std::string(source.node.Scalar());
     return uniform(MaterialDensity(source));
   }
   if (key == "linear_density" || key == "areal_density") {
@@ -762,7 +763,7 @@ MassProperties SceneReader::ReadShapeMass(const At& at, const At& body_at, const
 
 }  // namespace scene_internal
 
-Scene scene_internal::ReadSceneDocument(const YAML::Node& document, const std::string& name,
+Scene scene_internal::ReadSceneDocument(const YamlNode& document, const std::string& name,
                                         const SceneOptions& options) {
   SceneReader reader(name, options);
   return reader.Read(document);
@@ -773,35 +774,34 @@ Scene LoadSceneText(std::string_view text, const std::string& name, const SceneO
   for (const auto& [key, value] : options.parameter_overrides) {
     scene_internal::CheckSceneText(key + "=" + value, "command line --set");
   }
-  const YAML::Node document = scene_internal::ParseSingleDocument(text, name);
-  try {
-    return scene_internal::ReadSceneDocument(document, name, options);
-  } catch (const YAML::Exception& e) {
-    // A yaml-cpp error the reader did not foresee still points at the scene, never exit 1.
-    throw SceneError(name, e.mark.line + 1, e.mark.column + 1, "", e.msg);
-  }
+  const scene_internal::YamlDocument document = scene_internal::ParseYaml(text, name);
+  return scene_internal::ReadSceneDocument(document.Root(), name, options);
 }
 
 namespace {
-YAML::Node ParseOptionText(std::string_view text, std::string_view option) {
+constexpr std::string_view kNotYaml = "this is not valid YAML: ";
+
+scene_internal::YamlDocument ParseOptionText(std::string_view text, std::string_view option) {
   scene_internal::CheckSceneText(text, fmt::format("command line {}", option));
   try {
-    return YAML::Load(std::string(text));
-  } catch (const YAML::Exception& e) {
+    return scene_internal::ParseYaml(text, "command line");
+  } catch (const SceneError& e) {
+    std::string_view problem = e.message();
+    if (problem.starts_with(kNotYaml)) problem.remove_prefix(kNotYaml.size());
     throw SceneError("command line", 0, 0, std::string(option),
-                     fmt::format("'{}' is not valid: {}", text, e.msg));
+                     fmt::format("'{}' is not valid YAML: {}", text, problem));
   }
 }
 }  // namespace
 
 Vec3 ReadPointOption(const Scene& scene, std::string_view text, std::string_view option) {
   SceneReader reader(scene, fmt::format("command line {}", option), SceneOptions{});
-  return reader.PointOption(ParseOptionText(text, option));
+  return reader.PointOption(ParseOptionText(text, option).Root());
 }
 
 Mat3 ReadRotationOption(const Scene& scene, std::string_view text, std::string_view option) {
   SceneReader reader(scene, fmt::format("command line {}", option), SceneOptions{});
-  return reader.RotationOption(ParseOptionText(text, option));
+  return reader.RotationOption(ParseOptionText(text, option).Root());
 }
 
 Scene LoadSceneFile(const std::string& path, const SceneOptions& options) {

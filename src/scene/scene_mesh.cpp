@@ -98,7 +98,7 @@ MassProperties SceneReader::ReadMeshPart(const At& at, const At& body_at, const 
     const double rho = key == "material" ? MaterialDensity(source)
                                          : PositiveValue(source, kDensity, "the density");
     part.density = rho;
-    part.mass_source = key == "material" ? source.node.Scalar() : "density";
+    part.mass_source = key == "material" ? std::string(source.node.Scalar()) : "density";
     options.density = rho;
     if (shell) {
       if (!at.Has("thickness")) {
@@ -152,25 +152,32 @@ Scene LoadMeshAsScene(const std::string& path, const MeshCommandOptions& o) {
                      "the mesh needs a mass: give --density, --material or --mass (shell mode: "
                      "--areal-density, or --thickness with --density or --material)");
   }
-  YAML::Node part;
-  part["name"] = std::filesystem::path(path).filename().string();
-  part["shape"] = "mesh";
-  part["file"] = std::filesystem::absolute(path).string();
-  if (!o.unit.empty()) part["unit"] = o.unit;
-  if (!o.mode.empty()) part["mode"] = o.mode;
-  if (!o.density.empty()) part["density"] = o.density;
-  if (!o.material.empty()) part["material"] = o.material;
-  if (!o.mass.empty()) part["mass"] = o.mass;
-  if (!o.areal_density.empty()) part["areal_density"] = o.areal_density;
-  if (!o.thickness.empty()) part["thickness"] = o.thickness;
-  YAML::Node body;
-  body["name"] = std::filesystem::path(path).stem().string();
-  body["parts"].push_back(part);
-  YAML::Node document;
-  document["title"] = std::filesystem::path(path).filename().string();
-  document["bodies"].push_back(body);
+  scene_internal::YamlDocument doc;
+  using Pairs = std::vector<
+      std::pair<scene_internal::YamlDocument::Index, scene_internal::YamlDocument::Index>>;
+  Pairs part;
+  const auto add = [&doc](Pairs& map, const char* key, const std::string& value) {
+    if (!value.empty()) map.emplace_back(doc.AddScalar(key), doc.AddScalar(value));
+  };
+  add(part, "name", std::filesystem::path(path).filename().string());
+  add(part, "shape", "mesh");
+  add(part, "file", std::filesystem::absolute(path).string());
+  add(part, "unit", o.unit);
+  add(part, "mode", o.mode);
+  add(part, "density", o.density);
+  add(part, "material", o.material);
+  add(part, "mass", o.mass);
+  add(part, "areal_density", o.areal_density);
+  add(part, "thickness", o.thickness);
+  Pairs body;
+  add(body, "name", std::filesystem::path(path).stem().string());
+  body.emplace_back(doc.AddScalar("parts"), doc.AddSequence({doc.AddMap(part)}));
+  Pairs document;
+  add(document, "title", std::filesystem::path(path).filename().string());
+  document.emplace_back(doc.AddScalar("bodies"), doc.AddSequence({doc.AddMap(body)}));
+  doc.SetRoot(doc.AddMap(document));
   try {
-    return scene_internal::ReadSceneDocument(document, path, SceneOptions{});
+    return scene_internal::ReadSceneDocument(doc.Root(), path, SceneOptions{});
   } catch (const SceneError& e) {
     std::string key = e.key();
     const std::string prefix = "bodies[0].parts[0]";

@@ -22,7 +22,7 @@ void SceneReader::ReadPlanar(const At& root, Scene& scene) {
   if (!root.Has("planar")) return;
   const At at = root.Child("planar");
   bool planar = false;
-  if (!at.node.IsScalar() || !YAML::convert<bool>::decode(at.node, planar)) {
+  if (!at.node.IsScalar() || !DecodeBool(at.node, planar)) {
     report_.Fail(at, fmt::format("expected true or false, got {}", KindOf(at.node)));
   }
   planar_ = planar;
@@ -199,7 +199,7 @@ MassProperties SceneReader::ReadPlanarPart(const At& at, ScenePart& part, Vec3& 
 
 void SceneReader::ReadPlanarJointType(const At& at, const std::string& what, SceneJoint& j) {
   const At type_at = at.Child("type");
-  const std::string type = type_at.node.Scalar();
+  const std::string type(type_at.node.Scalar());
   switch (j.kind) {
     case JointKind::kRevolute:
       j.kind = JointKind::kRevoluteInPlane;

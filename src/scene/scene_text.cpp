@@ -5,12 +5,9 @@
 #include <unistd.h>
 #include <cerrno>
 #include <cstring>
-#include <sstream>
 #include <vector>
 
 #include <fmt/format.h>
-
-#include <yaml-cpp/eventhandler.h>
 
 #include "chasles/scene/scene_error.h"
 
@@ -39,25 +36,6 @@ struct Fd {
   ~Fd() {
     if (fd >= 0) ::close(fd);
   }
-};
-
-/// The place of the second document's "---", found by walking the parser's events (only on the
-/// error path, so a good scene is parsed once).
-class DocumentStarts : public YAML::EventHandler {
- public:
-  YAML::Mark start;
-  void OnDocumentStart(const YAML::Mark& mark) override { start = mark; }
-  void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                const std::string&) override {}
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                       YAML::EmitterStyle::value) override {}
-  void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                  YAML::EmitterStyle::value) override {}
-  void OnMapEnd() override {}
 };
 
 }  // namespace
@@ -148,81 +126,6 @@ void CheckSceneText(std::string_view text, const std::string& name) {
     }
     i += len;
   }
-}
-
-namespace {
-
-/// True when a line starts with a document marker, "---" or "...", followed by a blank, a line
-/// break or the end: a YAML stream can hold a second document only after one of them.
-bool HasDocumentMarker(std::string_view text) {
-  for (size_t at = 0; at < text.size();) {
-    const std::string_view rest = text.substr(at);
-    if (rest.starts_with("---") || rest.starts_with("...")) {
-      const char next = rest.size() > 3 ? rest[3] : '\n';
-      if (next == ' ' || next == '\t' || next == '\r' || next == '\n') return true;
-    }
-    const size_t eol = text.find('\n', at);
-    if (eol == std::string_view::npos) break;
-    at = eol + 1;
-  }
-  return false;
-}
-
-}  // namespace
-
-YAML::Node ParseSingleDocument(std::string_view text, const std::string& name) {
-  const auto invalid = [&](const YAML::Exception& e) {
-    return SceneError(name, e.mark.line + 1, e.mark.column + 1, "",
-                      fmt::format("this is not valid YAML: {}", e.msg));
-  };
-  YAML::Node document;
-  try {
-    document = YAML::Load(std::string(text));  // the first document only
-  } catch (const YAML::Exception& e) {
-    throw invalid(e);
-  }
-  if (document.IsNull()) {
-    // yaml-cpp reads nothing, without an error, from a text that starts with a flow indicator
-    // that cannot start a document: say where it is rather than "got nothing".
-    int line = 1;
-    size_t line_start = 0;
-    for (size_t i = 0; i < text.size(); ++i) {
-      const char c = text[i];
-      if (c == '\n') {
-        ++line;
-        line_start = i + 1;
-      } else if (c == '#') {
-        while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
-      } else if (c != ' ' && c != '\t' && c != '\r') {
-        if (c == ',' || c == ']' || c == '}') {
-          throw SceneError(name, line, static_cast<int>(i - line_start) + 1, "",
-                           fmt::format("this is not valid YAML: a document cannot start with "
-                                       "'{}'",
-                                       c));
-        }
-        break;
-      }
-    }
-  }
-  if (!HasDocumentMarker(text)) return document;
-  // Walk the parser's events one document at a time, twice at most. Not YAML::LoadAll: on a
-  // token that no document consumes (a lone ',') yaml-cpp 0.7 reports an empty document at the
-  // same place again and again, and LoadAll collects them until memory runs out. For the same
-  // reason only a second start further on than the first is a second document.
-  std::istringstream in{std::string(text)};
-  YAML::Parser parser(in);
-  DocumentStarts first, second;
-  try {
-    if (!parser.HandleNextDocument(first)) return document;
-    if (!parser.HandleNextDocument(second) || second.start.pos <= first.start.pos) {
-      return document;
-    }
-  } catch (const YAML::Exception& e) {
-    throw invalid(e);
-  }
-  throw SceneError(name, second.start.line + 1, second.start.column + 1, "",
-                   "a second YAML document starts here; a scene file holds one document "
-                   "(remove this '---' and what follows, or put it in its own file)");
 }
 
 }  // namespace chasles::scene_internal

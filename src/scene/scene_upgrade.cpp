@@ -1,5 +1,5 @@
 // A scene file rewritten to the current format version (chasles/scene/scene_upgrade.h): the
-// reader records each version-1 spelling with the yaml-cpp marks of its nodes
+// reader records each version-1 spelling with the marks of its nodes
 // (scene_versions.cpp); here each becomes an edit of the file's bytes at those marks.
 
 #include "chasles/scene/scene_upgrade.h"
@@ -55,9 +55,7 @@ class EditPlanner {
   }
 
  private:
-  size_t Pos(const ScalarSource& s) const {
-    return s.mark.pos >= 0 ? static_cast<size_t>(s.mark.pos) : source_.size();
-  }
+  size_t Pos(const ScalarSource& s) const { return s.mark.line >= 0 ? s.mark.pos : source_.size(); }
 
   /// The bytes of a scalar in the file, its quotes included.
   std::pair<size_t, size_t> ScalarBytes(const SceneRewrite& r, const ScalarSource& s) const {
@@ -157,16 +155,12 @@ std::string ChangeLine(const std::string& file, const SceneRewrite& r, std::stri
 SceneUpgrade UpgradeSceneText(std::string_view text, const std::string& name,
                               const SceneOptions& options) {
   scene_internal::CheckSceneText(text, name);
-  const YAML::Node document = scene_internal::ParseSingleDocument(text, name);
+  const scene_internal::YamlDocument document = scene_internal::ParseYaml(text, name);
   scene_internal::SceneReader reader(name, options);
   SceneUpgrade upgrade;
   upgrade.before = std::string(text);
-  try {
-    upgrade.from_version = reader.Read(document).format_version;
-  } catch (const YAML::Exception& e) {
-    throw SceneError(name, e.mark.line + 1, e.mark.column + 1, "", e.msg);
-  }
-  // yaml-cpp's marks count from after a byte-order mark: the edits are made after it.
+  upgrade.from_version = reader.Read(document.Root()).format_version;
+  // The parser's places count from after a byte-order mark: the edits are made after it.
   const std::string_view bom = "\xEF\xBB\xBF";
   const std::string_view lead = text.starts_with(bom) ? bom : std::string_view();
   text.remove_prefix(lead.size());

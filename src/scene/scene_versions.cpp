@@ -59,7 +59,7 @@ std::vector<size_t> NameOffsets(std::string_view text, std::string_view name) {
 /// The place of byte `offset` in scalar `at` (a quoted scalar's mark is its opening quote).
 SceneSpot SpotInScalar(const At& at, size_t offset) {
   SceneSpot spot = SpotAt(at);
-  if (at.node.IsScalar() && at.node.Tag() == "!") ++spot.column;
+  if (at.node.IsScalar() && at.node.Quoted()) ++spot.column;
   spot.column += static_cast<int>(offset);
   return spot;
 }
@@ -86,8 +86,8 @@ void SceneReader::ReadVersion(const At& root, Scene& scene) {
     // No version: the format as it was before versions meant anything.
     version_ = 1;
     r.insert = true;
-    r.flow = root.node.Style() == YAML::EmitterStyle::Flow;
-    if (root.node.size() > 0) r.scalar.mark = root.node.begin()->first.Mark();
+    r.flow = root.node.Flow();
+    if (root.node.size() > 0) r.scalar.mark = (*root.node.begin()).first.Mark();
     r.spot = {r.scalar.mark.line + 1, r.scalar.mark.column + 1, "chasles"};
   }
   scene.format_version = version_;
@@ -126,7 +126,7 @@ void SceneReader::PlanarThreeValues(const At& at, std::string_view what, const c
   r.spot = SpotAt(at);
   r.scalar = SourceOf(at.node[1]);
   r.last = SourceOf(at.node[2]);
-  r.flow = at.node.Style() == YAML::EmitterStyle::Flow;
+  r.flow = at.node.Flow();
   OldSpelling(std::move(r), fmt::format("version-1 spelling [{}, {}] of a planar scene's world "
                                         "vector: write {}",
                                         two.substr(1, two.size() - 2), text(2), two));
@@ -134,21 +134,19 @@ void SceneReader::PlanarThreeValues(const At& at, std::string_view what, const c
 
 std::optional<Symbol> SceneReader::PlanarOldName(const At& at, std::string_view name) {
   std::string new_name, new_suffix;
-  for (const auto& [var, slot] : state_variables_) {
-    if (slot < 1 || slot >= reaction_slot_begin_ ||
-        (slot - 1) % StateVariableLayout::kPerBody != 0) {
-      continue;  // one entry per body: its x
-    }
-    const std::string prefix = var.substr(0, var.size() - 1);  // "<body>_"
+  // Every suffix is one word: the body is what comes before the last '_'.
+  const size_t cut = name.rfind('_');
+  if (cut != std::string_view::npos && state_bodies_.contains(name.substr(0, cut))) {
+    const std::string prefix(name.substr(0, cut + 1));  // "<body>_"
     for (const auto& [old_suffix, suffix] : kRenamedSuffixes) {
-      if (name == prefix + old_suffix) {
+      if (name.substr(cut + 1) == old_suffix) {
         new_name = prefix + suffix;
         new_suffix = suffix;
       }
     }
   }
   if (new_name.empty()) return std::nullopt;
-  const std::string text = at.node.IsScalar() ? at.node.Scalar() : std::string();
+  const std::string text(at.node.Scalar());
   const std::vector<size_t> offsets = NameOffsets(text, name);
   if (version_ >= 2) {
     report_.Fail(at,

@@ -218,7 +218,7 @@ SweepGrid MakeSweepGrid(const Scene& scene, const std::vector<SweepSpec>& specs,
     for (int e = 0; e < 2; ++e) {
       Quantity v;
       try {
-        v = EvaluateQuantity(*texts[e], resolver, known);
+        v = EvaluateQuantity(*texts[e], resolver, [&known] { return known; });
       } catch (const InputError& x) {
         fail(fmt::format("{} '{}' of '{}': {}", e ? "STOP" : "START", *texts[e], s.name, x.what()));
       }

@@ -1,5 +1,6 @@
 #include "internal/yaml_reader.h"
 
+#include <algorithm>
 #include <set>
 
 #include <fmt/format.h>
@@ -9,7 +10,7 @@
 namespace chasles::scene_internal {
 
 At At::Child(std::string_view key) const {
-  At child{node[std::string(key)], path.empty() ? std::string(key) : path + "." + std::string(key)};
+  At child{node[key], path.empty() ? std::string(key) : path + "." + std::string(key)};
   if (child.node.IsDefined() && child.node.IsNull() && node.IsMap()) {
     for (const auto& kv : node) {
       if (kv.first.IsScalar() && kv.first.Scalar() == key) child.key_mark = kv.first.Mark();
@@ -23,16 +24,16 @@ At At::Item(size_t index) const {
 }
 
 bool At::Has(std::string_view key) const {
-  return node.IsMap() && static_cast<bool>(node[std::string(key)]);
+  return node.IsMap() && node[key].IsDefined();
 }
 
-std::string KindOf(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Sequence:
+std::string KindOf(const YamlNode& node) {
+  switch (node.type()) {
+    case YamlNode::Type::kSequence:
       return "a list";
-    case YAML::NodeType::Map:
+    case YamlNode::Type::kMap:
       return "a mapping";
-    case YAML::NodeType::Scalar:
+    case YamlNode::Type::kScalar:
       return fmt::format("the value '{}'", node.Scalar());
     default:
       return "nothing";
@@ -44,12 +45,12 @@ void Reporter::Fail(const At& at, const std::string& message, size_t offset) con
   int column = 0;
   if (at.node.IsDefined()) {
     const bool empty = at.node.IsNull() && at.key_mark.line >= 0;
-    const YAML::Mark mark = empty ? at.key_mark : at.node.Mark();
+    const YamlMark mark = empty ? at.key_mark : at.node.Mark();
     if (mark.line >= 0) {
       line = mark.line + 1;
       column = mark.column + 1;
-      // Quoted scalars start one column before their text (yaml-cpp tags them "!").
-      if (offset > 0 && at.node.IsScalar() && at.node.Tag() == "!") ++column;
+      // Quoted scalars start one column before their text.
+      if (offset > 0 && at.node.IsScalar() && at.node.Quoted()) ++column;
       column += static_cast<int>(offset);
     }
   }
@@ -66,7 +67,7 @@ void Reporter::CheckMap(const At& at, const std::vector<std::string>& allowed,
   for (const auto& kv : at.node) {
     const At key_at{kv.first, at.path};
     if (!kv.first.IsScalar()) Fail(key_at, "keys must be plain names");
-    const std::string key = kv.first.Scalar();
+    const std::string key(kv.first.Scalar());
     const At named{kv.first, at.path.empty() ? key : at.path + "." + key};
     if (!seen.insert(key).second) Fail(named, fmt::format("key '{}' appears twice", key));
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
@@ -86,7 +87,7 @@ At Reporter::Require(const At& at, std::string_view key, std::string_view what) 
 std::string Reporter::Text(const At& at, std::string_view what) const {
   if (!at.node.IsScalar()) Fail(at, fmt::format("expected {}, got {}", what, KindOf(at.node)));
   if (at.node.Scalar().empty()) Fail(at, fmt::format("expected {}, got an empty value", what));
-  return at.node.Scalar();
+  return std::string(at.node.Scalar());
 }
 
 void Reporter::CheckSequence(const At& at, std::string_view what) const {

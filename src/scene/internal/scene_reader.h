@@ -8,14 +8,14 @@
 #include <functional>
 #include <initializer_list>
 #include <limits>
+#include <list>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
-
-#include <yaml-cpp/yaml.h>
 
 #include "chasles/mass/mass_properties.h"
 #include "chasles/mass/shape.h"
@@ -28,9 +28,9 @@
 
 namespace chasles::scene_internal {
 
-/// Where `at` stands in the file (yaml-cpp marks are 0-based; the spot's are 1-based).
+/// Where `at` stands in the file (marks are 0-based; the spot's are 1-based).
 inline SceneSpot SpotAt(const At& at) {
-  const YAML::Mark mark = at.node.Mark();
+  const YamlMark mark = at.node.Mark();
   return {mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0, at.path};
 }
 
@@ -43,7 +43,7 @@ class SceneReader {
   SceneReader(std::string file, const SceneOptions& options)
       : report_(std::move(file)), options_(options) {}
 
-  Scene Read(const YAML::Node& document);
+  Scene Read(const YamlNode& document);
   /// The version-1 spellings the last Read met, in the order met (the version line first).
   const std::vector<SceneRewrite>& rewrites() const { return rewrites_; }
 
@@ -59,8 +59,8 @@ class SceneReader {
       parameters_.emplace(name, p);
     }
   }
-  Vec3 PointOption(const YAML::Node& node) { return Vector(At{node, ""}, kLength, "a point"); }
-  Mat3 RotationOption(const YAML::Node& node) {
+  Vec3 PointOption(const YamlNode& node) { return Vector(At{node, ""}, kLength, "a point"); }
+  Mat3 RotationOption(const YamlNode& node) {
     const At holder{node, ""};
     report_.CheckMap(holder, {"axis", "rotation", "euler", "quaternion"}, "an orientation");
     return ReadOrientation(holder);
@@ -120,6 +120,10 @@ class SceneReader {
   void ReadDynamics(const At& root, Scene& scene);
   /// Steps of ReadDynamics.
   void DeclareStateVariables(const Scene& scene);
+  /// The slot of state variable `name` (StateVariableLayout), or -1 if it names none.
+  int StateSlot(std::string_view name) const;
+  /// Every state variable's name in slot order, for "did you mean" hints.
+  std::vector<std::string> StateVariableNames() const;
   void ReadGravity(const At& g, SceneDynamics& dynamics);
   void ReadInitialStates(const At& root, Scene& scene);
   void ReadForces(const At& root, Scene& scene);
@@ -262,11 +266,22 @@ class SceneReader {
   std::unique_ptr<UnitSystem> units_;
   std::string units_text_ = "SI";
   std::map<std::string, Parameter, std::less<>> parameters_;
+  /// The text of each --set override as a one-scalar document, which its parameter's node
+  /// points into (a list: the documents do not move).
+  std::list<YamlDocument> override_documents_;
   std::vector<std::string> resolving_;  // parameters being evaluated, for cycle messages
   std::map<std::string, double, std::less<>> materials_;  // the scene's own, by name
   std::vector<std::string> warnings_;
-  std::map<std::string, int, std::less<>> state_variables_;  // name -> slot
-  std::vector<std::string> state_variable_names_;
+  /// Names hashed as views, so a name's parts are looked up without copies.
+  struct NameHash {
+    using is_transparent = void;
+    size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+  };
+  using NameIndex = std::unordered_map<std::string, size_t, NameHash, std::equal_to<>>;
+  /// The owners of state-variable names, by index: bodies (scene order), constraints (their
+  /// reactions), contact points (SceneContacts::point_labels() order); identifiers only.
+  NameIndex state_bodies_, state_constraints_, state_points_;
+  bool state_planar_ = false;
   // First slot of the constraints' reaction variables (after every body's block), and whether
   // the expression being read may use them (only events' `when`).
   int reaction_slot_begin_ = std::numeric_limits<int>::max();
@@ -276,7 +291,7 @@ class SceneReader {
 };
 
 /// Reads a parsed YAML document as a scene named `name` in messages.
-Scene ReadSceneDocument(const YAML::Node& document, const std::string& name,
+Scene ReadSceneDocument(const YamlNode& document, const std::string& name,
                         const SceneOptions& options);
 
 }  // namespace chasles::scene_internal

@@ -1,13 +1,13 @@
 #pragma once
 /// @file
 /// A version-1 spelling met while reading a scene, as `chasles upgrade` rewrites it: where it
-/// stands in the file (yaml-cpp marks: 0-based line and column, byte offset `pos`) and what
+/// stands in the file (0-based line and column, byte offset `pos`) and what
 /// replaces it. The reader records one per use (scene_versions.cpp); UpgradeSceneText
 /// (scene_upgrade.cpp) turns them into edits of the file's text. Private to the scene layer.
 
 #include <string>
 
-#include <yaml-cpp/yaml.h>
+#include "yaml_tree.h"
 
 #include "chasles/scene/scene_constraints.h"
 
@@ -16,7 +16,7 @@ namespace chasles::scene_internal {
 /// A scalar as it stands in the file: where it starts, its value and whether it is quoted
 /// (then `mark` is the opening quote's).
 struct ScalarSource {
-  YAML::Mark mark;
+  YamlMark mark;
   std::string value;
   bool quoted = false;
 };
@@ -47,10 +47,8 @@ struct SceneRewrite {
 };
 
 /// The source of scalar `node`.
-inline ScalarSource SourceOf(const YAML::Node& node) {
-  // yaml-cpp tags a quoted scalar "!" (a plain one "?").
-  return {node.Mark(), node.IsScalar() ? node.Scalar() : std::string(),
-          node.IsScalar() && node.Tag() == "!"};
+inline ScalarSource SourceOf(const YamlNode& node) {
+  return {node.Mark(), std::string(node.Scalar()), node.Quoted()};
 }
 
 }  // namespace chasles::scene_internal

@@ -6,9 +6,10 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
+#include "yaml_tree.h"
 
 #include "chasles/scene/scene_error.h"
 
@@ -16,12 +17,15 @@ namespace chasles::scene_internal {
 
 /// A node with the dotted key path that led to it ("bodies[0].parts[2].radius").
 struct At {
-  YAML::Node node;
+  At() = default;
+  At(YamlNode node_, std::string path_, YamlMark key_mark_ = {})
+      : node(node_), path(std::move(path_)), key_mark(key_mark_) {}
+  YamlNode node;
   std::string path;
   /// Where the key of a child with an empty value is ("bodies:" with nothing after it): such a
-  /// value has no place of its own (yaml-cpp marks it where the next token starts, which may be
-  /// lines later or past the end of the file), so errors point at its key.
-  YAML::Mark key_mark = YAML::Mark::null_mark();
+  /// value has no place of its own (the parser marks it where the next token starts, which may
+  /// be lines later or past the end of the file), so errors point at its key.
+  YamlMark key_mark;
 
   At Child(std::string_view key) const;
   At Item(size_t index) const;
@@ -53,6 +57,6 @@ class Reporter {
 };
 
 /// "a list", "a mapping", "a value", "nothing" for messages about the wrong kind of node.
-std::string KindOf(const YAML::Node& node);
+std::string KindOf(const YamlNode& node);
 
 }  // namespace chasles::scene_internal

@@ -38,10 +38,13 @@ struct Table {
       return it->second;
     };
   }
-  std::vector<std::string> names() const {
-    std::vector<std::string> out;
-    for (const auto& [name, s] : symbols) out.push_back(name);
-    return out;
+  /// Lists the names when a message asks (Expression::Parse calls it only then).
+  SymbolNames names() const {
+    return [this] {
+      std::vector<std::string> out;
+      for (const auto& [name, s] : symbols) out.push_back(name);
+      return out;
+    };
   }
 };
 
