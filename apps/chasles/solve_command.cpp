@@ -387,19 +387,21 @@ int RunSolve(const SolveArgs& args) {
     // Checked before the solve: a mistyped unit is bad input (exit 2).
     const UnitSystem units = UnitSystem::Parse(args.units.empty() ? scene.units : args.units);
     const SolveReport s = SolveScene(scene);
-    // Every value of any report is in the JSON form: checked there first, by name.
-    const nlohmann::json j = SolveJson(s);
+    // Every value of any report is in the JSON form: checked there first, by name (and let go
+    // before another form is written).
     std::string report;
-    if (args.format == "json") {
-      report = DumpJson(j, "the solve report");
-    } else if (args.format == "csv") {
-      report = SolveCsv(s, precision);
-    } else {
-      CheckFiniteJson(j, "the solve report");
-      report = Text(scene, s, units);
+    {
+      const nlohmann::json j = SolveJson(s);
+      if (args.format == "json") {
+        report = DumpJson(j, "the solve report");
+      } else if (args.format == "text") {
+        CheckFiniteJson(j, "the solve report");
+      }
     }
+    if (args.format == "csv") report = SolveCsv(s, precision);
+    if (args.format == "text") report = Text(scene, s, units);
     if (!args.html.empty()) out.Add(args.html, HtmlReport(SolveReportData(scene, s)));
-    out.Add(ReportTarget(args.output), report);
+    out.Add(ReportTarget(args.output), std::move(report));
     out.Commit();
     SayWroteHtmlReport(args.html);
     return args.strict && !s.certificate.passed() ? kExitCheckFailed : 0;
