@@ -9,6 +9,7 @@
 #include "chasles/error.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/contact.h"
+#include "chasles/model/contact_set.h"
 #include "chasles/model/data.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/model.h"
@@ -58,6 +59,58 @@ VectorFrame FrameFrom(const std::string& frame) {
   if (frame == "world") return VectorFrame::kWorld;
   if (frame == "body") return VectorFrame::kBody;
   throw InputError("frame must be 'world' or 'body', got '" + frame + "'");
+}
+
+/// A set of bodies given from Python: "all", a name or a pattern (one str), or a list of names
+/// and patterns; TypeError for anything else.
+BodySet BodySetFrom(const py::handle& value, const char* argument) {
+  if (py::isinstance<py::str>(value)) return BodySetOfText(value.cast<std::string>());
+  if (py::isinstance<py::sequence>(value)) {
+    BodySet set;
+    for (const py::handle item : value.cast<py::sequence>()) {
+      if (!py::isinstance<py::str>(item)) {
+        throw py::type_error(std::string(argument) +
+                             ": every item must be a str (a body's "
+                             "name or a pattern)");
+      }
+      set.items.push_back(item.cast<std::string>());
+    }
+    return set;
+  }
+  throw py::type_error(std::string(argument) +
+                       " must be 'all', a body's name, a pattern such as 'ball*', or a list of "
+                       "names and patterns");
+}
+
+/// Model.add_contact_set: the sets from the keywords, then AddContactSet; a set's error names
+/// the argument and item it is about.
+std::vector<int> AddContactSetFromPython(Model& model, const ContactSpec& spec,
+                                         const py::object& bodies, const py::object& with_bodies,
+                                         const py::object& between) {
+  if (bodies.is_none() == between.is_none()) {
+    throw InputError(
+        "add_contact_set: give either bodies= (with a plane, or with with_bodies=) "
+        "or between= (every pair within one set)");
+  }
+  if (!between.is_none() && !with_bodies.is_none()) {
+    throw InputError("add_contact_set: with_bodies= goes with bodies=, not with between=");
+  }
+  ContactBodySets sets;
+  sets.between = !between.is_none();
+  sets.bodies = BodySetFrom(sets.between ? between : bodies, sets.between ? "between" : "bodies");
+  sets.has_with = !with_bodies.is_none();
+  if (sets.has_with) sets.with = BodySetFrom(with_bodies, "with_bodies");
+  try {
+    return AddContactSet(model, spec, sets);
+  } catch (const BodySetError& e) {
+    const bool with = e.role() == BodySetRole::kWith;
+    const char* argument = with ? "with_bodies" : sets.between ? "between" : "bodies";
+    const bool listed = !py::isinstance<py::str>(with           ? with_bodies
+                                                 : sets.between ? between
+                                                                : bodies);
+    const std::string item = listed && e.item() >= 0 ? "[" + std::to_string(e.item()) + "]" : "";
+    throw InputError(std::string(argument) + item + ": " + e.what());
+  }
 }
 
 /// A body of `model` (IndexError otherwise) in a state made for it (InputError otherwise):
@@ -527,6 +580,18 @@ void BindModelClass(py::module_& m) {
           py::arg("constraint"), "Adds a joint, rolling contact or driver; returns its index.")
       .def("add_contact", &Model::AddContact, py::arg("spec"),
            "Adds a unilateral contact; returns its index.")
+      .def("add_contact_set", &AddContactSetFromPython, py::arg("spec"),
+           py::arg("bodies") = py::none(), py::arg("with_bodies") = py::none(),
+           py::arg("between") = py::none(),
+           "Adds the contacts a set of bodies stands for, each a copy of `spec` (its name the "
+           "base of theirs): bodies= one per body (against spec's plane), with with_bodies= "
+           "one per pair across the two sets, between= one per pair within the set (shape "
+           "SPHERE_SPHERE for pairs). A set is 'all', a body's name, a pattern ('*' any run "
+           "of characters, '?' one character) or a list of names and patterns; the contacts "
+           "come in body order, named <name>_<body> or <name>_<a>_<b> (docs/scene-format.md, "
+           "'Sets of bodies'). Returns their indices; InputError, with the model unchanged, "
+           "for a set that names no body, more than 20000 contacts, or a contact that repeats "
+           "one of the model's.")
       .def_property_readonly("num_bodies", &Model::num_bodies)
       .def_property_readonly("num_force_elements", &Model::num_force_elements)
       .def_property_readonly("num_constraints", &Model::num_constraints)

@@ -73,6 +73,7 @@
 #include "chasles/model/constraint.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/contact.h"
+#include "chasles/model/contact_set.h"
 #include "chasles/model/data.h"
 #include "chasles/model/force_element.h"
 #include "chasles/model/forces.h"

@@ -173,9 +173,19 @@ void SceneReader::ReadContacts(const At& root, Scene& scene) {
   if (!root.Has("contacts")) return;
   const At list = root.Child("contacts");
   report_.CheckSequence(list, "a list of contacts");
-  std::vector<std::string> taken = scene.dynamics.constraints.names();
+  const std::vector<std::string> constraints = scene.dynamics.constraints.names();
+  NameSet taken(constraints.begin(), constraints.end());
+  ContactTargetIndex targets;
   for (size_t i = 0; i < list.node.size(); ++i) {
-    out.contacts.push_back(ReadContact(list.Item(i), i, scene, taken));
+    const At entry = list.Item(i);
+    if (IsContactSet(entry, scene)) {
+      ReadContactSet(entry, i, scene, taken, targets, out.contacts);
+    } else {
+      out.contacts.push_back(ReadContact(entry, i, scene, taken));
+      const SceneContact& c = out.contacts.back();
+      CheckContactTarget(entry.Child(c.with_plane ? "body" : "with"), out.contacts, c,
+                         static_cast<int>(out.contacts.size()) - 1, false, targets);
+    }
   }
 }
 
@@ -199,8 +209,7 @@ SceneMaterialPair SceneReader::ReadMaterialPair(const At& at,
   return p;
 }
 
-SceneContact SceneReader::ReadContact(const At& at, size_t i, const Scene& scene,
-                                      std::vector<std::string>& taken) {
+SceneContact SceneReader::ReadContact(const At& at, size_t i, const Scene& scene, NameSet& taken) {
   report_.CheckMap(at,
                    {"name", "body", "shape", "radius", "axis", "center", "length", "size", "points",
                     "plane", "with", "other_radius", "other_center", "materials", "mu_s", "mu_k",
@@ -210,13 +219,12 @@ SceneContact SceneReader::ReadContact(const At& at, size_t i, const Scene& scene
   c.where = SpotAt(at);
   c.name =
       at.Has("name") ? report_.Text(at.Child("name"), "a name") : fmt::format("contact{}", i + 1);
-  if (std::find(taken.begin(), taken.end(), c.name) != taken.end()) {
+  if (!taken.insert(c.name).second) {
     report_.Fail(at.Has("name") ? at.Child("name") : at,
                  fmt::format("the name '{}' is already used by a contact, joint, rolling "
                              "contact or driver; names must be unique",
                              c.name));
   }
-  taken.push_back(c.name);
   const std::string what = fmt::format("contact '{}'", c.name);
   c.body = BodyIndexAt(report_.Require(at, "body", what), scene);
   const SceneBody& body = scene.bodies[static_cast<size_t>(c.body)];
@@ -288,13 +296,22 @@ void SceneReader::ReadContactShape(const At& at, const std::string& what, const 
     const At pts = report_.Require(at, "points", what);
     report_.CheckSequence(pts, "a list of body points (names or [x, y, z])");
     if (pts.node.size() == 0) report_.Fail(pts, "give at least one point");
+  } else {
+    refuse("points", "has no point list (only shape points has)");
+  }
+  ReadContactBodyPoints(at, body, c);
+}
+
+void SceneReader::ReadContactBodyPoints(const At& at, const SceneBody& body, SceneContact& c) {
+  c.points_B.clear();
+  c.point_names.clear();
+  if (c.shape == SceneContactShape::kPoints) {
+    const At pts = at.Child("points");
     for (size_t k = 0; k < pts.node.size(); ++k) {
       const At p = pts.Item(k);
       c.points_B.push_back(BodyPointAt(p, body));
       c.point_names.push_back(std::string(p.node.Scalar()));
     }
-  } else {
-    refuse("points", "has no point list (only shape points has)");
   }
   c.p_BoC_B =
       at.Has("center") ? BodyPointAt(at.Child("center"), body) : body.mass_properties.p_BoBcm_B();

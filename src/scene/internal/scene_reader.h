@@ -15,10 +15,12 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "chasles/mass/mass_properties.h"
 #include "chasles/mass/shape.h"
+#include "chasles/model/contact_set.h"
 #include "chasles/scene/expression.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/units.h"
@@ -37,6 +39,9 @@ inline SceneSpot SpotAt(const At& at) {
 /// Where the key `key` of the mapping at `map` stands (the key itself, e.g. the line of
 /// `simulation:`), with the path of its value.
 SceneSpot KeySpotAt(const At& map, std::string_view key);
+
+/// Names already taken (contacts, joints, rolling contacts, drivers).
+using NameSet = std::unordered_set<std::string>;
 
 class SceneReader {
  public:
@@ -242,11 +247,37 @@ class SceneReader {
   /// An entry of `material_pairs` (not one of `pairs`, those read before it).
   SceneMaterialPair ReadMaterialPair(const At& at, const std::vector<SceneMaterialPair>& pairs);
   /// Entry `i` of `contacts` (its name added to `taken`), and its steps: the shape and its
-  /// keys, the plane or other body, the material pair named at `m`.
-  SceneContact ReadContact(const At& at, size_t i, const Scene& scene,
-                           std::vector<std::string>& taken);
+  /// keys, the body's points of it (`points`, `center`), the plane or other body, the material
+  /// pair named at `m`.
+  SceneContact ReadContact(const At& at, size_t i, const Scene& scene, NameSet& taken);
   void ReadContactShape(const At& at, const std::string& what, const SceneBody& body,
                         SceneContact& c);
+  void ReadContactBodyPoints(const At& at, const SceneBody& body, SceneContact& c);
+  // Contact entries naming sets of bodies (scene_contact_sets.cpp) ------------------------
+  /// Whether entry `at` names a set (`between`, or a list, a pattern or `all` in `body` or
+  /// `with` where no body has that name).
+  bool IsContactSet(const At& at, const Scene& scene);
+  /// Entry `i` naming a set: the contacts it stands for (ExpandContactSet), appended to `out`
+  /// with their names added to `taken` and their targets to `targets`.
+  void ReadContactSet(const At& at, size_t i, const Scene& scene, NameSet& taken,
+                      ContactTargetIndex& targets, std::vector<SceneContact>& out);
+  /// The set written at `at` (a list, a pattern, `all`, or a body's name).
+  BodySet BodySetAt(const At& at);
+  /// The template of a set entry's contacts: shape, plane or other sphere, coefficients
+  /// (read once; `first` stands for the body-dependent keys until each body's are read).
+  SceneContact ReadContactSetTemplate(const At& at, const std::string& what,
+                                      const ContactBodySets& sets, const Scene& scene,
+                                      const SceneBody& first);
+  /// Fails at the item (`item`) that brought `body` into the set written at `set_at` when one
+  /// of its parts has a shape that the contact's shape does not describe.
+  void CheckSetBodyFits(const At& set_at, int item, const SceneBody& body, SceneContactShape shape);
+  /// Fails with the error of ExpandContactSet or ResolveBodySet at its set and item.
+  [[noreturn]] void FailAtSet(const At& at, const BodySetError& e);
+  /// Fails at `at` when `c` (contact `index` of `contacts`, from a set or not) touches what an
+  /// earlier contact does that it may not share with (ContactTargetIndex), naming both.
+  void CheckContactTarget(const At& at, const std::vector<SceneContact>& contacts,
+                          const SceneContact& c, int index, bool from_set,
+                          ContactTargetIndex& targets);
   void ReadContactCounterpart(const At& at, const std::string& what, const Scene& scene,
                               SceneContact& c);
   void ReadContactMaterials(const At& m, const std::vector<SceneMaterialPair>& pairs,
