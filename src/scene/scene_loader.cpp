@@ -284,6 +284,8 @@ Scene SceneReader::Read(const YamlNode& document) {
   report_.CheckSequence(bodies, "a list of bodies");
   if (bodies.node.size() == 0) report_.Fail(bodies, "the scene has no bodies; add at least one");
   std::unordered_set<std::string> names;  // a set: a scene may have 100 000 bodies
+  names.reserve(bodies.node.size());
+  scene.bodies.reserve(bodies.node.size());
   for (size_t i = 0; i < bodies.node.size(); ++i) {
     scene.bodies.push_back(ReadBody(bodies.Item(i), i));
     if (!names.insert(scene.bodies[i].name).second) {

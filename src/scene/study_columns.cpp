@@ -278,10 +278,18 @@ void ColumnIndex::AddGroup(const std::string& name, std::vector<std::string>& ou
 
 std::vector<std::string> ColumnIndex::Expand(const std::string& name) const {
   std::vector<std::string> out;
+  ExpandInto(name, out);
+  return out;
+}
+
+void ColumnIndex::ExpandInto(const std::string& name, std::vector<std::string>& out) const {
+  const size_t first = out.size();
   if (IsGroup(name)) AddGroup(name, out);
   const std::optional<ColumnInfo> one = Find(name);
-  if (one && std::find(out.begin(), out.end(), one->name) == out.end()) out.push_back(one->name);
-  return out;
+  if (one && std::find(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(), one->name) ==
+                 out.end()) {
+    out.push_back(one->name);
+  }
 }
 
 std::string ColumnIndex::Unknown(const std::string& name) const {
@@ -313,15 +321,15 @@ std::vector<std::string> ExpandColumn(const Scene& scene, const std::string& nam
 std::vector<std::string> DefaultColumns(const Scene& scene) {
   const ColumnIndex index(scene);
   std::vector<std::string> cols;
+  // t, 13 per body (position, quaternion, velocity, angular velocity) and the scene's own.
+  cols.reserve(13 * scene.bodies.size() + 64);
   const std::vector<const char*> groups =
       scene.planar
           ? std::vector<const char*>{"t", "planar", "reactions", "energy", "W_nc", "residual"}
           : std::vector<const char*>{"t",        "position",         "quaternion",
                                      "velocity", "angular_velocity", "energy",
                                      "W_nc",     "residual"};
-  for (const char* g : groups) {
-    for (auto& c : index.Expand(g)) cols.push_back(std::move(c));
-  }
+  for (const char* g : groups) index.ExpandInto(g, cols);
   return cols;
 }
 

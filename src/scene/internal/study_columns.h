@@ -34,6 +34,8 @@ class ColumnIndex {
   std::optional<ColumnInfo> Find(const std::string& name) const;
   /// The names of a group's columns, or of the one column called `name`; empty when unknown.
   std::vector<std::string> Expand(const std::string& name) const;
+  /// Expand, appended to `out` (one array for many groups: a scene may have millions).
+  void ExpandInto(const std::string& name, std::vector<std::string>& out) const;
   /// Why `name` is neither (with suggestions), for the error.
   std::string Unknown(const std::string& name) const;
 
