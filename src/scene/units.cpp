@@ -302,26 +302,37 @@ UnitSystem UnitSystem::Parse(std::string_view spec) {
 }
 
 UnitSystem::Unit UnitSystem::Compose(const Dimension& dim, Angular angular) const {
+  const double factor = Factor(dim, angular);
   if (angular == Angular::kYes && dim.length == 0 && dim.mass == 0) {
     if (dim.time == -1 && angular_velocity_) return *angular_velocity_;
-    std::string name = angle_.name;
-    double factor = angle_.factor;
-    if (dim.time != 0) {
-      name = ComposeFormula({{angle_.name, 1}, {time_.name, dim.time}});
-      factor *= std::pow(time_.factor, dim.time);
-    }
-    return {name, factor};
+    return {
+        dim.time != 0 ? ComposeFormula({{angle_.name, 1}, {time_.name, dim.time}}) : angle_.name,
+        factor};
   }
   // Forces, torques, pressures, stiffnesses, powers: one force factor, then the rest.
   if (force_ && dim.mass == 1 && dim.time <= -2) {
-    const int l = dim.length - 1, t = dim.time + 2;
-    return {ComposeFormula({{force_->name, 1}, {length_.name, l}, {time_.name, t}}),
-            force_->factor * std::pow(length_.factor, l) * std::pow(time_.factor, t)};
+    return {ComposeFormula(
+                {{force_->name, 1}, {length_.name, dim.length - 1}, {time_.name, dim.time + 2}}),
+            factor};
   }
   return {
       ComposeFormula({{mass_.name, dim.mass}, {length_.name, dim.length}, {time_.name, dim.time}}),
-      std::pow(mass_.factor, dim.mass) * std::pow(length_.factor, dim.length) *
-          std::pow(time_.factor, dim.time)};
+      factor};
+}
+
+double UnitSystem::Factor(const Dimension& dim, Angular angular) const {
+  if (angular == Angular::kYes && dim.length == 0 && dim.mass == 0) {
+    if (dim.time == -1 && angular_velocity_) return angular_velocity_->factor;
+    double factor = angle_.factor;
+    if (dim.time != 0) factor *= std::pow(time_.factor, dim.time);
+    return factor;
+  }
+  if (force_ && dim.mass == 1 && dim.time <= -2) {
+    const int l = dim.length - 1, t = dim.time + 2;
+    return force_->factor * std::pow(length_.factor, l) * std::pow(time_.factor, t);
+  }
+  return std::pow(mass_.factor, dim.mass) * std::pow(length_.factor, dim.length) *
+         std::pow(time_.factor, dim.time);
 }
 
 std::string UnitSystem::FormatUnit(const Dimension& dim, Angular angular) const {
@@ -329,11 +340,11 @@ std::string UnitSystem::FormatUnit(const Dimension& dim, Angular angular) const 
 }
 
 double UnitSystem::FromSI(double value_si, const Dimension& dim, Angular angular) const {
-  return value_si / Compose(dim, angular).factor;
+  return value_si / Factor(dim, angular);
 }
 
 double UnitSystem::ToSI(double value, const Dimension& dim, Angular angular) const {
-  return value * Compose(dim, angular).factor;
+  return value * Factor(dim, angular);
 }
 
 }  // namespace chasles

@@ -149,6 +149,8 @@ class UnitSystem {
   };
   // The unit string and its SI factor for `dim`.
   Unit Compose(const Dimension& dim, Angular angular) const;
+  /// Compose's factor alone (no name is built: a report converts millions of values).
+  double Factor(const Dimension& dim, Angular angular) const;
 
   std::string spec_;
   Unit length_, mass_, time_, angle_;
