@@ -164,8 +164,35 @@ std::string Count(long n, const char* noun) {
   return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
 }
 
-/// Moreau–Jean: the certificate of its steps (docs/contact.md, "Time stepping"), the worst
-/// step's values and the ledger's totals; the point whose regime changed most.
+/// The certificate of time-stepped steps (docs/contact.md, "Time stepping"): the worst step's
+/// values and the ledger's totals, each line after `indent`.
+std::string SteppingCertificateText(const TimeSteppingSummary& c, bool tolerance_met,
+                                    const TextUnits& u, const char* indent) {
+  std::string out = fmt::format(
+      "{}contact problems' residual at most {} ({}); momentum balance to {}, angular momentum "
+      "to {}\n",
+      indent, u.show(c.max_residual_impulse, kMomentum), u.show(c.max_residual_velocity, kVelocity),
+      u.show(c.max_momentum_residual, kMomentum),
+      u.show(c.max_angular_momentum_residual, kAngularMomentum));
+  out += fmt::format(
+      "{}penetration at most {}, gap drift at most {}; step-doubling error estimate per step at "
+      "most {} ({}), summed over the steps {}{}\n",
+      indent, u.show(c.max_penetration, kLength), u.show(c.max_gap_drift, kLength),
+      u.show(c.max_velocity_error, kVelocity),
+      u.show(c.max_angular_velocity_error, kRate, Angular::kYes),
+      u.show(c.accumulated_velocity_error, kVelocity),
+      tolerance_met ? "" : " (a tolerance was missed: see the warnings)");
+  out += fmt::format(
+      "{}energy: {} at the start, {} at the end; non-conservative forces {}, normal impulses {}, "
+      "friction {}; the scheme's own error {}\n",
+      indent, u.Energy(c.initial_energy), u.Energy(c.final_energy),
+      u.Energy(c.work_nonconservative), u.Energy(c.work_normal), u.Energy(c.work_friction),
+      u.Energy(c.numerical_energy_error));
+  return out;
+}
+
+/// Moreau–Jean: the certificate of its steps, the worst step's values and the ledger's totals;
+/// the point whose regime changed most.
 std::string SteppingText(const StudyResult& r, const TextUnits& u) {
   const StudyResult::TimeStepped& ts = *r.time_stepping;
   const TimeSteppingSummary& c = ts.summary;
@@ -182,25 +209,48 @@ std::string SteppingText(const StudyResult& r, const TextUnits& u) {
       "problem {} points\n",
       u.Time(ts.step), r.stats.steps, Count(c.regime_changes, "regime change"), busiest,
       c.largest_island);
-  out += fmt::format(
-      "  contact problems' residual at most {} ({}); momentum balance to {}, angular momentum "
-      "to {}\n",
-      u.show(c.max_residual_impulse, kMomentum), u.show(c.max_residual_velocity, kVelocity),
-      u.show(c.max_momentum_residual, kMomentum),
-      u.show(c.max_angular_momentum_residual, kAngularMomentum));
-  out += fmt::format(
-      "  penetration at most {}, gap drift at most {}; step-doubling error estimate per step at "
-      "most {} ({}), summed over the steps {}{}\n",
-      u.show(c.max_penetration, kLength), u.show(c.max_gap_drift, kLength),
-      u.show(c.max_velocity_error, kVelocity),
-      u.show(c.max_angular_velocity_error, kRate, Angular::kYes),
-      u.show(c.accumulated_velocity_error, kVelocity),
-      ts.tolerance_met ? "" : " (a tolerance was missed: see the warnings)");
-  out += fmt::format(
-      "  energy: {} at the start, {} at the end; non-conservative forces {}, normal impulses {}, "
-      "friction {}; the scheme's own error {}\n",
-      u.Energy(c.initial_energy), u.Energy(c.final_energy), u.Energy(c.work_nonconservative),
-      u.Energy(c.work_normal), u.Energy(c.work_friction), u.Energy(c.numerical_energy_error));
+  return out + SteppingCertificateText(c, ts.tolerance_met, u, "  ");
+}
+
+/// Why an engine took over (integrator: auto).
+std::string SwitchText(const StudyEngineSegment& g, const TextUnits& u) {
+  switch (g.reason) {
+    case EngineSwitch::kStart:
+      return g.stays.empty() ? "start" : fmt::format("start; stays event-driven: {}", g.stays);
+    case EngineSwitch::kRegimeChanges:
+      return fmt::format("{} regime changes within {} (the last at {}): faster than the bound",
+                         g.changes, u.Time(g.span), g.where);
+    case EngineSwitch::kQuiet:
+      return fmt::format(
+          "no regime change for {}; the touching points projected onto their planes: {} deep "
+          "at most, energy changed by {}",
+          u.Time(g.quiet), u.show(g.projection_depth, kLength), u.Energy(g.projection_energy));
+  }
+  return "";
+}
+
+/// integrator: auto: the rule, then each engine's stretch of the run, why it took over and its
+/// work (a time-stepped one with the certificate of its steps).
+std::string EnginesText(const StudyResult& r, const TextUnits& u) {
+  const EngineChoiceRule& rule = *r.engine_rule;
+  std::string out = fmt::format(
+      "\nIntegrator: auto (event-driven, time stepped with step {} while {} regime changes come "
+      "within {}, back after {} without one): {} steps, {} rejected, {} evaluations\n",
+      u.Time(rule.step), rule.changes, u.Time(rule.window), u.Time(rule.quiet_span), r.stats.steps,
+      r.stats.rejected_steps, r.stats.function_evaluations);
+  for (const StudyEngineSegment& g : r.segments) {
+    out += fmt::format("  {} to {}: {}, {}\n", u.Time(g.t_begin), u.Time(g.t_end),
+                       StudyEngineName(g.engine), SwitchText(g, u));
+    if (g.engine == StudyEngine::kAdaptive) {
+      out += fmt::format("    {} steps, {} rejected, {} evaluations\n", g.stats.steps,
+                         g.stats.rejected_steps, g.stats.function_evaluations);
+      continue;
+    }
+    out +=
+        fmt::format("    {} steps, {}, largest contact problem {} points\n", g.stepping.steps,
+                    Count(g.stepping.regime_changes, "regime change"), g.stepping.largest_island);
+    out += SteppingCertificateText(g.stepping, g.tolerance_met, u, "    ");
+  }
   return out;
 }
 
@@ -497,6 +547,12 @@ std::string LedgerText(const Scene& scene, const StudyResult& r, const TextUnits
   out += fmt::format(
       "  balance residual    {} ({:.2e} of the energy scale {})\n", u.Energy(L.residual),
       L.energy_scale > 0 ? std::abs(L.residual) / L.energy_scale : 0.0, u.Energy(L.energy_scale));
+  if (r.engine_rule) {
+    out += fmt::format(
+        "    time stepping's own {} (its scheme's energy error, and the projections of its "
+        "penetration at the handovers to events)\n",
+        u.Energy(L.time_stepping_error));
+  }
   if (scene.planar) {
     // Plane motion: momentum in the plane, angular momentum about z (eqs. 8.34-8.38).
     out += fmt::format("  linear momentum     {}\n", u.show.Xy(L.linear_momentum_W, kMomentum));
@@ -554,6 +610,8 @@ std::string Text(const Scene& scene, const StudyResult& r, const UnitSystem& uni
     }
   } else if (r.time_stepping) {
     out += SteppingText(r, u);
+  } else if (r.engine_rule) {
+    out += EnginesText(r, u);
   } else {
     out += fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n", r.integrator,
                        r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);

@@ -395,13 +395,54 @@ void BindStudyParts(py::module_& m) {
               StudyLedger, friction_work, "[J]") RO(StudyLedger, rolling_work, "[J]")
               RO(StudyLedger, impact_work, "[J]") RO(StudyLedger, dissipated, "[J]") RO(
                   StudyLedger, jumps, "[J]") RO(StudyLedger, residual, "E - E0 - W_nc - jumps [J]")
-                  RO(StudyLedger, energy_scale, "[J]")
+                  RO(StudyLedger, time_stepping_error, "[J]") RO(StudyLedger, energy_scale, "[J]")
                       .def_readonly("linear_momentum", &StudyLedger::linear_momentum_W)
                       .def_readonly("angular_momentum_cm", &StudyLedger::angular_momentum_Scm_W)
                       .def_readonly("angular_momentum_origin", &StudyLedger::angular_momentum_Wo_W);
 }
 
+/// A time-stepped stretch's certificate as a dict (TimeSteppingSummary).
+py::dict SteppingSummaryDict(const TimeSteppingSummary& c) {
+  py::dict d;
+  d["steps"] = c.steps;
+  d["regime_changes"] = c.regime_changes;
+  d["residual_impulse"] = c.max_residual_impulse;
+  d["residual_velocity"] = c.max_residual_velocity;
+  d["momentum_residual"] = c.max_momentum_residual;
+  d["angular_momentum_residual"] = c.max_angular_momentum_residual;
+  d["max_penetration"] = c.max_penetration;
+  d["velocity_error_estimate"] = c.max_velocity_error;
+  d["scheme_error"] = c.numerical_energy_error;
+  return d;
+}
+
+void BindEngineSegments(py::module_& m) {
+  py::class_<StudyEngineSegment>(m, "EngineSegment",
+                                 "One stretch of an `integrator: auto` run on one engine, and why "
+                                 "that engine took over.") RO(StudyEngineSegment, t_begin, "[s]")
+      RO(StudyEngineSegment, t_end, "[s]")
+          .def_property_readonly(
+              "engine", [](const StudyEngineSegment& g) { return StudyEngineName(g.engine); },
+              "'adaptive' (event-driven) or 'stepping'")
+          .def_property_readonly(
+              "reason", [](const StudyEngineSegment& g) { return EngineSwitchName(g.reason); },
+              "'start', 'regime changes' or 'quiet'") RO(StudyEngineSegment, changes, "")
+              RO(StudyEngineSegment, span, "[s]") RO(StudyEngineSegment, where, "")
+                  RO(StudyEngineSegment, quiet, "[s]") RO(StudyEngineSegment, stays, "")
+                      RO(StudyEngineSegment, stats, "") RO(StudyEngineSegment, tolerance_met, "")
+                          RO(StudyEngineSegment, projection_depth, "[m]")
+                              RO(StudyEngineSegment, projection_energy, "[J]")
+          .def_property_readonly(
+              "stepping",
+              [](const StudyEngineSegment& g) -> py::object {
+                if (g.engine != StudyEngine::kStepping) return py::none();
+                return SteppingSummaryDict(g.stepping);
+              },
+              "A time-stepped segment's certificate (None otherwise)");
+}
+
 void BindStudy(py::module_& m) {
+  BindEngineSegments(m);
   py::class_<StudyResult>(m, "StudyResult", "The result of a scene's run (RunStudy).")
       RO(StudyResult, columns, "") RO(StudyResult, events, "") RO(StudyResult, jumps, "")
           RO(StudyResult, contact_events, "") RO(StudyResult, impacts, "")
@@ -409,7 +450,7 @@ void BindStudy(py::module_& m) {
                   RO(StudyResult, stopped_by_event, "") RO(StudyResult, final_bodies, "")
                       RO(StudyResult, final_reactions, "") RO(StudyResult, ledger, "")
                           RO(StudyResult, integrator, "") RO(StudyResult, stats, "")
-                              RO(StudyResult, notes, "")
+                              RO(StudyResult, notes, "") RO(StudyResult, segments, "")
                                   RO(StudyResult, warnings, "")
                                       RO(StudyResult, certificate, "")
                                           .def_property_readonly(

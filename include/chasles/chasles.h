@@ -37,6 +37,7 @@
 #include "chasles/integrate/contact_problem.h"
 #include "chasles/integrate/dormand_prince.h"
 #include "chasles/integrate/energy_momentum.h"
+#include "chasles/integrate/engine_choice.h"
 #include "chasles/integrate/free_body_batch.h"
 #include "chasles/integrate/integrator.h"
 #include "chasles/integrate/islands.h"

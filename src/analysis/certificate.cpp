@@ -94,12 +94,13 @@ std::vector<std::string> Certificate::FailureMessages() const {
 }
 
 CertificateBuilder::CertificateBuilder(const CertificateTolerances& tolerances)
-    : tol_(tolerances), counts_(kNumChecks, 0) {}
+    : tol_(tolerances), gap_time_(tolerances.gap_time), counts_(kNumChecks, 0) {}
 
 void CertificateBuilder::Add(int check, double value, Scale scale, double a, double b,
                              double local_scale, std::string where, double t, CheckPhase phase) {
   ++counts_[static_cast<size_t>(check)];
-  entries_.push_back({check, value, scale, a, b, local_scale, std::move(where), t, phase});
+  entries_.push_back(
+      {check, value, scale, a, b, local_scale, std::move(where), t, phase, gap_time_});
   if (entries_.size() >= compact_at_) Compact();
 }
 
@@ -410,8 +411,8 @@ double CertificateBuilder::Tolerance(const Entry& e, const Scales& k) const {
     case Scale::kLength:
       rel = tol_.state;
       run = e.a * length_ + e.b;  // b: the rotational part, per radian
-      if (e.check == kGap && tol_.gap_time > 0.0) {
-        return std::max(rel * std::max(run, e.local_scale), tol_.gap_time * k.velocity);
+      if (e.check == kGap && e.gap_time > 0.0) {
+        return std::max(rel * std::max(run, e.local_scale), e.gap_time * k.velocity);
       }
       break;
     case Scale::kVelocity:

@@ -86,9 +86,20 @@ class StudyRun {
   void Certify(const State& s, CheckPhase phase);
   void OnStep(double t);
   void RunTo(double t_b);
+  /// Where the next run of an engine ends and its output interval (0: none before its end).
+  struct Stretch {
+    double t_end;
+    double output_interval;
+  };
+  Stretch NextStretch(double t_b) const;
+  void RunAdaptiveStretch(double t_b);
+  void RunSteppingStretch(double t_b);
+  void SwitchToStepping(const RegimeChangeYield& why);
+  void SwitchToEvents();
   void RunEvents(double t_b);
   void RecordSphereEvents(const SphereEventResult& r);
   void RunStepping(double t_b);
+  void RecordSteppingSamples(const TimeSteppingResult& r);
   void RecordStepping(const TimeSteppingResult& r);
   void RecordSimulation(const SimulationResult& r, const std::vector<ContactPointState>& carried,
                         const std::vector<EventSpec>& events);
@@ -112,7 +123,16 @@ class StudyRun {
   double energy_initial_ = 0.0;
   std::vector<std::string> labels_;
   bool stopped_ = false;
+  /// Time of the last output row [s] (the run's errors say how far it got).
+  double t_last_row_ = 0.0;
   StudyResult result_;
+  /// integrator: auto: the engine the run is on, the time-stepped segments' own energy error so
+  /// far (and the projections at their handovers) [J], the last regime change of the current
+  /// time-stepped segment [s], and whether the impact-law warnings were given.
+  StudyEngine engine_ = StudyEngine::kAdaptive;
+  double scheme_error_ = 0.0;
+  double quiet_from_ = 0.0;
+  bool law_warned_ = false;
 };
 
 StudyResult StudyRun::Run() {
@@ -147,7 +167,26 @@ void StudyRun::Start() {
   }
   result_.integrator = def_.sphere_events   ? "events"
                        : def_.time_stepping ? "stepping"
+                       : def_.auto_engine   ? "auto"
                                             : IntegratorName(def_.options.integrator);
+  if (def_.auto_engine) {
+    if (def_.sphere_events || def_.time_stepping) {
+      throw InputError("a run chooses its engine (auto_engine) or names one, not both");
+    }
+    const EngineChoiceRule& rule = def_.auto_engine->rule;
+    if (!(rule.step > 0) || !std::isfinite(rule.step) || !(rule.changes >= 1) ||
+        !(rule.window >= 0) || !std::isfinite(rule.window) || !(rule.quiet_span > 0)) {
+      throw InputError(fmt::format(
+          "the engine choice's rule (step {:.6g} s, {} changes within {:.6g} s, quiet span "
+          "{:.6g} s) needs a positive step, at least one change, a finite window >= 0 and a "
+          "positive quiet span (MakeEngineChoiceRule makes one)",
+          rule.step, rule.changes, rule.window, rule.quiet_span));
+    }
+    result_.engine_rule = def_.auto_engine->rule;
+    StudyEngineSegment first;
+    first.t_begin = def_.initial.t;
+    result_.segments.push_back(std::move(first));
+  }
   result_.warnings = def_.warnings;
   for (const StudyColumn& c : def_.columns) result_.columns.push_back(c.name);
   seg_ = study_internal::FirstSegment(def_);
@@ -250,7 +289,7 @@ void StudyRun::SettleContacts(const char* reason, std::vector<std::pair<int, Vec
 void StudyRun::Certify(const State& s, CheckPhase phase) {
   certificate_.CheckState(*seg_.model, s, phase);
   const LedgerSample L = CalcLedgerSample(*seg_.model, s, carry_.segment_initial);
-  certificate_.CheckLedger(s.t, carry_.residual + L.energy_residual,
+  certificate_.CheckLedger(s.t, carry_.residual + L.energy_residual - scheme_error_,
                            std::max(carry_.scale, L.energy_scale), phase);
 }
 
@@ -279,7 +318,9 @@ void StudyRun::OnStep(double t) {
   }
 }
 
-// Integrates from state.t to t_b, sampling on the global grid k * dt_out.
+// Integrates from state.t to t_b, sampling on the global grid k * dt_out: on the engine the
+// definition names, or (integrator: auto) on the one the run is on, each stretch handing over
+// to the other when its rule says so.
 void StudyRun::RunTo(double t_b) {
   if (def_.sphere_events) {
     RunEvents(t_b);
@@ -289,54 +330,174 @@ void StudyRun::RunTo(double t_b) {
     RunStepping(t_b);
     return;
   }
-  const double dt_out = def_.options.output_interval;
   while (state_.t < t_b && !stopped_) {
-    const double k = std::ceil(state_.t / dt_out - 1e-9);
-    const double next_grid = k * dt_out;
-    const bool on_grid = std::abs(next_grid - state_.t) <= 1e-9 * dt_out;
-    SimulationOptions o = def_.options;
-    o.t_end = on_grid ? t_b : std::min(next_grid, t_b);
-    o.output_interval = on_grid ? dt_out : 0.0;
-    o.events = def_.events ? def_.events(seg_.map) : std::vector<EventSpec>{};
-    o.store_samples = false;
-    o.on_step = [this](double t) { OnStep(t); };
-    bool first = true;
-    o.on_sample = [&](const State& s) {
-      if (first) {
-        first = false;
-        return;
-      }
-      if (static_cast<std::int64_t>(result_.rows.size()) >= def_.limits.max_rows) {
-        throw LimitError(LimitError::Limit::kRows,
-                         fmt::format("the run reached the limit of {} output rows at t = {:.9g} s",
-                                     def_.limits.max_rows, s.t));
-      }
-      CheckFinite(*seg_.model, s);
-      AddRow(*seg_.model, s);
-      Certify(s, CheckPhase::kSample);
-      slip_.Sample(*seg_.model, s);
-      if (def_.progress) def_.progress(s.t);
-    };
-    o.on_transition = [&](const State& before, const State& after) {
-      Certify(before, CheckPhase::kBeforeTransition);
-      Certify(after, CheckPhase::kAfterTransition);
-    };
-    const double t_from = state_.t;
-    // Modes carried into this run: its "initial" records that only restate them are dropped.
-    const std::vector<ContactPointState> carried = state_.contacts;
-    SimulationResult r;
-    try {
-      r = Simulate(*seg_.model, state_, o);
-    } catch (const LimitError&) {
-      throw;
-    } catch (const InputError& e) {
-      const double t_last = result_.rows.empty() ? t_from : result_.rows.back().front();
-      throw InputError(fmt::format("the run stopped after t = {:.9g} s: {}", t_last, e.what()));
+    if (engine_ == StudyEngine::kStepping) {
+      RunSteppingStretch(t_b);
+    } else {
+      RunAdaptiveStretch(t_b);
     }
-    RecordSimulation(r, carried, o.events);
-    state_ = r.final_state;
-    if (r.stopped_by_event) stopped_ = true;
   }
+}
+
+// A run from state.t towards t_b: to t_b with the output grid when state.t is on it, else to
+// the next grid time with no output between (its final state is that grid time's row).
+StudyRun::Stretch StudyRun::NextStretch(double t_b) const {
+  const double dt_out = def_.options.output_interval;
+  const double k = std::ceil(state_.t / dt_out - 1e-9);
+  const double next_grid = k * dt_out;
+  const bool on_grid = std::abs(next_grid - state_.t) <= 1e-9 * dt_out;
+  return {on_grid ? t_b : std::min(next_grid, t_b), on_grid ? dt_out : 0.0};
+}
+
+// One run of the hybrid event-driven engine (Simulate) over the next stretch. Under
+// integrator: auto it yields where its regime changes come faster than the rule allows, and the
+// run goes on time stepped from the state reached.
+void StudyRun::RunAdaptiveStretch(double t_b) {
+  const Stretch stretch = NextStretch(t_b);
+  SimulationOptions o = def_.options;
+  o.t_end = stretch.t_end;
+  o.output_interval = stretch.output_interval;
+  o.events = def_.events ? def_.events(seg_.map) : std::vector<EventSpec>{};
+  o.store_samples = false;
+  o.on_step = [this](double t) { OnStep(t); };
+  bool first = true;
+  o.on_sample = [&](const State& s) {
+    if (first) {
+      first = false;
+      return;
+    }
+    if (static_cast<std::int64_t>(result_.rows.size()) >= def_.limits.max_rows) {
+      throw LimitError(LimitError::Limit::kRows,
+                       fmt::format("the run reached the limit of {} output rows at t = {:.9g} s",
+                                   def_.limits.max_rows, s.t));
+    }
+    CheckFinite(*seg_.model, s);
+    AddRow(*seg_.model, s);
+    Certify(s, CheckPhase::kSample);
+    slip_.Sample(*seg_.model, s);
+    if (def_.progress) def_.progress(s.t);
+  };
+  o.on_transition = [&](const State& before, const State& after) {
+    Certify(before, CheckPhase::kBeforeTransition);
+    Certify(after, CheckPhase::kAfterTransition);
+  };
+  std::string stays;
+  if (def_.auto_engine) {
+    stays = study_internal::SteppingObstacle(!o.events.empty(), *seg_.model);
+    if (stays.empty()) {
+      o.contact.yield_changes = def_.auto_engine->rule.changes;
+      o.contact.yield_window = def_.auto_engine->rule.window;
+    }
+    result_.segments.back().stays = stays;
+  }
+  // Modes carried into this run: its "initial" records that only restate them are dropped.
+  const std::vector<ContactPointState> carried = state_.contacts;
+  SimulationResult r;
+  try {
+    r = Simulate(*seg_.model, state_, o);
+  } catch (const LimitError&) {
+    throw;
+  } catch (const InputError& e) {
+    std::string why = fmt::format("the run stopped after t = {:.9g} s: {}", t_last_row_, e.what());
+    if (!stays.empty()) {
+      why += "; integrator auto cannot hand this run over to time stepping: " + stays;
+    }
+    throw InputError(why);
+  }
+  RecordSimulation(r, carried, o.events);
+  state_ = r.final_state;
+  if (r.stopped_by_event) stopped_ = true;
+  if (def_.auto_engine) {
+    IntegratorStats& st = result_.segments.back().stats;
+    st.steps += r.stats.steps;
+    st.rejected_steps += r.stats.rejected_steps;
+    st.function_evaluations += r.stats.function_evaluations;
+  }
+  if (r.yielded) SwitchToStepping(*r.yielded);
+}
+
+// One run of time stepping (integrator: auto) over the next stretch, ended early where no
+// regime has changed for the rule's quiet span: the run then goes on event-driven.
+void StudyRun::RunSteppingStretch(double t_b) {
+  const EngineChoiceRule& rule = def_.auto_engine->rule;
+  const Stretch stretch = NextStretch(t_b);
+  TimeSteppingOptions o = def_.auto_engine->stepping;
+  o.step = rule.step;
+  o.t_end = stretch.t_end;
+  o.output_interval = stretch.output_interval;
+  o.quiet_span = rule.quiet_span;
+  o.quiet_from = quiet_from_;
+  o.on_step = [this](double t) { OnStep(t); };
+  TimeSteppingResult r;
+  try {
+    r = SimulateTimeStepping(*seg_.model, state_, o);
+  } catch (const LimitError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("the run stopped after t = {:.9g} s: {}", t_last_row_, e.what()));
+  }
+  RecordSteppingSamples(r);
+  CheckFinite(*seg_.model, r.final_state);
+  StudyEngineSegment& seg = result_.segments.back();
+  study_internal::AddSteppingSummary(seg.stepping, r.summary);
+  seg.tolerance_met = seg.tolerance_met && r.tolerance_met;
+  seg.stats.steps += r.stats.steps;
+  seg.stats.function_evaluations += r.stats.function_evaluations;
+  result_.stats.steps += r.stats.steps;
+  result_.stats.function_evaluations += r.stats.function_evaluations;
+  result_.warnings.insert(result_.warnings.end(), r.warnings.begin(), r.warnings.end());
+  scheme_error_ += r.summary.numerical_energy_error;
+  quiet_from_ = r.last_regime_change;
+  state_ = r.final_state;
+  if (r.quiet) SwitchToEvents();
+}
+
+// The event-driven engine's regime changes came faster than the rule allows (`why`): the run
+// goes on time stepped from the state just after the last of them.
+void StudyRun::SwitchToStepping(const RegimeChangeYield& why) {
+  result_.segments.back().t_end = state_.t;
+  StudyEngineSegment seg;
+  seg.t_begin = state_.t;
+  seg.engine = StudyEngine::kStepping;
+  seg.reason = EngineSwitch::kRegimeChanges;
+  seg.changes = why.changes;
+  seg.span = why.t_last - why.t_first;
+  seg.where = why.where;
+  result_.segments.push_back(std::move(seg));
+  // Moreau–Jean sees an approaching point at its step's midpoint (time_stepping.h).
+  certificate_.SetGapTime(0.5 * def_.auto_engine->rule.step);
+  if (!law_warned_) {
+    law_warned_ = true;
+    for (std::string& w : TimeSteppingLawWarnings(*seg_.model)) {
+      result_.warnings.push_back(std::move(w));
+    }
+  }
+  quiet_from_ = state_.t;
+  engine_ = StudyEngine::kStepping;
+}
+
+// No regime has changed for the quiet span: the event-driven engine takes over. Its start
+// chooses the modes and projects the touching points onto their planes; that is done here, so
+// that what the projection changed (the scheme's penetration, its energy) is said and booked
+// with the scheme's own energy error.
+void StudyRun::SwitchToEvents() {
+  const Model& model = *seg_.model;
+  result_.segments.back().t_end = state_.t;
+  StudyEngineSegment seg;
+  seg.t_begin = state_.t;
+  seg.engine = StudyEngine::kAdaptive;
+  seg.reason = EngineSwitch::kQuiet;
+  seg.quiet = state_.t - quiet_from_;
+  SettleContacts("engine switch");
+  const study_internal::EventsHandover handover = study_internal::ProjectForEvents(model, state_);
+  CheckFinite(model, state_);
+  seg.projection_depth = handover.depth;
+  seg.projection_energy = handover.energy;
+  scheme_error_ += handover.energy;
+  result_.segments.push_back(std::move(seg));
+  certificate_.SetGapTime(def_.certificate.gap_time);
+  Certify(state_, CheckPhase::kAfterTransition);
+  engine_ = StudyEngine::kAdaptive;
 }
 
 // The balls event-driven from state.t to t_b (the only segment: no jumps), sampled on the
@@ -365,8 +526,21 @@ void StudyRun::RunStepping(double t_b) {
   state_ = r.final_state;
 }
 
-void StudyRun::RecordStepping(const TimeSteppingResult& r) {
+// A time-stepped run's samples as rows, each checked (its ledger with the scheme's own energy
+// error taken out: it is booked as its own term), and the regime changes at the output
+// resolution (every step's count is in the summary); a run that ended early (quiet) adds the
+// changes up to its final state.
+void StudyRun::RecordSteppingSamples(const TimeSteppingResult& r) {
   const Model& m = *seg_.model;
+  const auto changes = [&](const State& before, const State& after) {
+    for (int p = 0; p < m.num_contact_points(); ++p) {
+      const ContactMode a = before.contacts[static_cast<size_t>(p)].mode;
+      const ContactMode b = after.contacts[static_cast<size_t>(p)].mode;
+      if (a == b) continue;
+      result_.contact_events.push_back({after.t, Label(p), m.contact(m.contact_of_point(p)).name(),
+                                        ContactModeName(a), ContactModeName(b), "time step"});
+    }
+  };
   for (size_t k = 1; k < r.samples.size(); ++k) {  // the first is the start, already a row
     const State& s = r.samples[k];
     if (static_cast<std::int64_t>(result_.rows.size()) >= def_.limits.max_rows) {
@@ -378,19 +552,18 @@ void StudyRun::RecordStepping(const TimeSteppingResult& r) {
     AddRow(m, s);
     certificate_.CheckState(m, s, CheckPhase::kSample);
     const LedgerSample L = CalcLedgerSample(m, s, carry_.segment_initial);
-    certificate_.CheckLedger(s.t, L.energy_residual - r.sample_energy_error[k], L.energy_scale,
-                             CheckPhase::kSample);
+    certificate_.CheckLedger(
+        s.t, carry_.residual + L.energy_residual - (scheme_error_ + r.sample_energy_error[k]),
+        std::max(carry_.scale, L.energy_scale), CheckPhase::kSample);
     slip_.Sample(m, s);
-    // Regime changes at the output resolution (every step's count is in the summary).
-    const State& before = r.samples[k - 1];
-    for (int p = 0; p < m.num_contact_points(); ++p) {
-      const ContactMode a = before.contacts[static_cast<size_t>(p)].mode;
-      const ContactMode b = s.contacts[static_cast<size_t>(p)].mode;
-      if (a == b) continue;
-      result_.contact_events.push_back({s.t, Label(p), m.contact(m.contact_of_point(p)).name(),
-                                        ContactModeName(a), ContactModeName(b), "time step"});
-    }
+    changes(r.samples[k - 1], s);
   }
+  if (r.quiet && !r.samples.empty()) changes(r.samples.back(), r.final_state);
+}
+
+void StudyRun::RecordStepping(const TimeSteppingResult& r) {
+  const Model& m = *seg_.model;
+  RecordSteppingSamples(r);
   CheckFinite(m, r.final_state);
   result_.warnings.insert(result_.warnings.end(), r.warnings.begin(), r.warnings.end());
   result_.stats = r.stats;
@@ -615,6 +788,7 @@ void StudyRun::ApplyJump(const Jump& j) {
 }
 
 void StudyRun::AddRow(const Model& model, const State& s) {
+  t_last_row_ = s.t;
   result_.rows.push_back(rows_.Row(model, seg_.map, s, carry_));
   if (!def_.record_row_snapshots) return;
   StudySnapshot snap =
@@ -626,6 +800,7 @@ void StudyRun::AddRow(const Model& model, const State& s) {
 void StudyRun::Finish() {
   const Model& model = *seg_.model;
   result_.ledger = study_internal::FinalLedger(def_, model, state_, carry_, energy_initial_);
+  result_.ledger.time_stepping_error = scheme_error_;
   if (model.num_constraints() > 0) {
     Data data = MakeData(model);
     CalcAccelerations(model, state_, data);
@@ -647,6 +822,7 @@ void StudyRun::Finish() {
         "free bodies with at most uniform gravity on them: stepped by the free-body batch (the "
         "same RK4 on a structure of arrays)");
   }
+  if (!result_.segments.empty()) result_.segments.back().t_end = state_.t;
   result_.certificate = certificate_.Finish();
   result_.t_end = state_.t;
   result_.stopped_by_event = stopped_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -493,6 +494,12 @@ class HybridRun {
     for (size_t e = 0; e < o_.events.size(); ++e) {
       if (o_.events[e].g) ug_prev_[e] = o_.events[e].g(model_, s);
     }
+    if (YieldsAt(s.t, IsString(fn.fn) ? model_.constraint(fn.point).name()
+                                      : model_.contact_point_name(fn.point))) {
+      r_.final_state = s;
+      AddStats(integ);
+      return true;
+    }
     if (++switches_ > o_.contact.max_mode_switches) {
       throw InputError(fmt::format(
           "contacts and strings switched mode more than {} times (at t = {:.9g} s, {} '{}'); "
@@ -503,6 +510,22 @@ class HybridRun {
                           : model_.contact_point_name(fn.point)));
     }
     return false;
+  }
+
+  // Counts the transition just made at t (a touch-down that continues a geometric bounce
+  // sequence does not count: the run sums it); true when the last yield_changes counted ones
+  // fell within yield_window, and the run yields (RegimeChangeYield, naming `where`).
+  bool YieldsAt(double t, const std::string& where) {
+    const ContactOptions& c = o_.contact;
+    if (c.yield_changes <= 0 || geometric_bounce_) return false;
+    recent_.push_back(t);
+    if (recent_.size() > static_cast<size_t>(c.yield_changes)) recent_.pop_front();
+    if (recent_.size() < static_cast<size_t>(c.yield_changes) ||
+        !(t - recent_.front() <= c.yield_window)) {
+      return false;
+    }
+    r_.yielded = RegimeChangeYield{recent_.front(), t, c.yield_changes, where};
+    return true;
   }
 
   void Emit(const State& s) {
@@ -586,6 +609,42 @@ class HybridRun {
     }
   }
 
+  // A touch-down of `trigger` at time t with approach speed v, against the point's bounce
+  // history (which it joins): whether it continues a geometric sequence (successive approach
+  // speeds v_i/v_{i-1} = e and flight times τ_i/τ_{i-1} = e, as ballistic flights between
+  // bounces give), and whether the rest of it is short enough to sum: the remaining flights
+  // end at t + τ_i e/(1-e) (docs/contact.md, "Accumulating bounces").
+  struct BounceTest {
+    bool geometric = false;
+    bool sums = false;
+    double accumulation_time = std::numeric_limits<double>::quiet_NaN();
+  };
+  BounceTest TestBounce(int trigger, double t, double v) {
+    BounceTest out;
+    const double e = model_.contact(model_.contact_of_point(trigger)).restitution();
+    BounceHistory& h = bounces_[static_cast<size_t>(trigger)];
+    if (h.count >= 2 && e > 0.0 && e < 1.0 && v > 0.0) {
+      const double rtol = o_.contact.accumulation_ratio_tolerance;
+      const double r1 = v / h.v[1], r2 = h.v[1] / h.v[0];
+      const double tau1 = t - h.t[1], tau0 = h.t[1] - h.t[0];
+      // Each touch-down time is known to the event tolerance, so an approach speed v after
+      // a flight τ (v ~ a τ / 2) is known to about 2 v tol / τ: the ratios get that slack.
+      const double slack1 = 4.0 * o_.event_time_tolerance / (t - h.t[1]);
+      const double slack0 = 4.0 * o_.event_time_tolerance / (h.t[1] - h.t[0]);
+      out.geometric = std::abs(r1 - e) <= rtol * e + slack1 &&
+                      std::abs(r2 - e) <= rtol * e + slack0 &&
+                      std::abs(tau1 / tau0 - e) <= rtol * e + 2.0 * o_.event_time_tolerance / tau0;
+      if (out.geometric && tau1 * e / (1.0 - e) <= o_.contact.accumulation_remaining_time) {
+        out.sums = true;
+        out.accumulation_time = t + tau1 * e / (1.0 - e);
+      }
+    }
+    h.t[0] = h.t[1], h.v[0] = h.v[1];
+    h.t[1] = t, h.v[1] = v;
+    ++h.count;
+    return out;
+  }
+
   void TransitionContacts(State& s, int trigger, ContactEventReason reason) {
     std::vector<ContactMode> before(s.contacts.size());
     std::vector<char> held_before(s.contacts.size());
@@ -597,32 +656,15 @@ class HybridRun {
     const std::vector<ContactPointOutput> pre = CalcContactOutputs(model_, s);
     int plastic = -1;
     double accumulation_time = std::numeric_limits<double>::quiet_NaN();
+    geometric_bounce_ = false;
     if (reason == ContactEventReason::kTouchDown && o_.contact.accumulate_bounces) {
-      const auto p = static_cast<size_t>(trigger);
-      const Contact& con = model_.contact(model_.contact_of_point(trigger));
-      const double e = con.restitution();
-      const double v = -pre[p].normal_velocity;
-      BounceHistory& h = bounces_[p];
-      if (h.count >= 2 && e > 0.0 && e < 1.0 && v > 0.0) {
-        // Successive approach speeds v_i/v_{i-1} = e and flight times τ_i/τ_{i-1} = e, as
-        // ballistic flights between bounces give; the remaining flights sum to τ_i e/(1-e).
-        const double rtol = o_.contact.accumulation_ratio_tolerance;
-        const double r1 = v / h.v[1], r2 = h.v[1] / h.v[0];
-        const double tau1 = s.t - h.t[1], tau0 = h.t[1] - h.t[0];
-        // Each touch-down time is known to the event tolerance, so an approach speed v after
-        // a flight τ (v ~ a τ / 2) is known to about 2 v tol / τ: the ratios get that slack.
-        const double slack1 = 4.0 * o_.event_time_tolerance / (s.t - h.t[1]);
-        const double slack0 = 4.0 * o_.event_time_tolerance / (h.t[1] - h.t[0]);
-        if (std::abs(r1 - e) <= rtol * e + slack1 && std::abs(r2 - e) <= rtol * e + slack0 &&
-            std::abs(tau1 / tau0 - e) <= rtol * e + 2.0 * o_.event_time_tolerance / tau0 &&
-            tau1 * e / (1.0 - e) <= o_.contact.accumulation_remaining_time) {
-          plastic = trigger;
-          accumulation_time = s.t + tau1 * e / (1.0 - e);
-        }
+      const BounceTest b =
+          TestBounce(trigger, s.t, -pre[static_cast<size_t>(trigger)].normal_velocity);
+      geometric_bounce_ = b.geometric;
+      if (b.sums) {
+        plastic = trigger;
+        accumulation_time = b.accumulation_time;
       }
-      h.t[0] = h.t[1], h.v[0] = h.v[1];
-      h.t[1] = s.t, h.v[1] = v;
-      ++h.count;
     }
     const ImpactResult ir = plastic >= 0 ? ResolvePlasticImpact(model_, s, plastic, tol_)
                                          : ResolveImpacts(model_, s, tol_);
@@ -702,6 +744,10 @@ class HybridRun {
   std::vector<double> ug_prev_, ug_new_;
   /// Dense-output state for event location and samples.
   State scratch_;
+  /// Whether the last transition was a touch-down continuing a geometric bounce sequence.
+  bool geometric_bounce_ = false;
+  /// Times of the last counted transitions (at most ContactOptions::yield_changes).
+  std::deque<double> recent_;
 };
 
 }  // namespace

@@ -391,6 +391,10 @@ SimulationResult RunHybridIslands(const Model& model, const State& initial,
         "whole system's state at that instant";
   } else if (!o.events.empty()) {
     reason = "user events are functions of the whole state";
+  } else if (o.contact.yield_changes > 0) {
+    reason =
+        "the engine choice (integrator: auto) hands the whole model from one engine to the "
+        "other at once";
   } else {
     reason = IslandObstacle(model);
   }

@@ -51,6 +51,13 @@ void Validate(const Model& model, const State& initial, const SimulationOptions&
   if (!(o.threads >= 1)) {
     throw InputError(fmt::format("threads is {}; it must be >= 1", o.threads));
   }
+  if (!(o.contact.yield_changes >= 0) || !(o.contact.yield_window >= 0.0) ||
+      !std::isfinite(o.contact.yield_window)) {
+    throw InputError(fmt::format(
+        "the bound on regime changes ({} changes within {:.6g} s) must be a count >= 0 and a "
+        "finite span >= 0 (0 changes: none)",
+        o.contact.yield_changes, o.contact.yield_window));
+  }
   if (!(o.event_time_tolerance > 0.0)) {
     throw InputError("event time tolerance must be positive (e.g. 1e-12 s)");
   }

@@ -521,11 +521,14 @@ class Run {
     energy_ = CalcEnergy(model, s_);
     result_.summary.initial_energy = energy_;
     result_.regime_changes.assign(s_.contacts.size(), 0);
+    result_.last_regime_change = std::isnan(o.quiet_from) ? initial.t : o.quiet_from;
   }
 
   TimeSteppingResult Go();
 
  private:
+  /// Ends the run at the current state (the end time, or a quiet step).
+  TimeSteppingResult Finish();
   void TakeStep(double h);
   void Record(const TimeSteppingStep& c, const std::vector<ContactMode>& before);
   void Sample();
@@ -632,12 +635,22 @@ TimeSteppingResult Run::Go() {
     const auto n = static_cast<long>(std::ceil((b - a) / o_.step * (1.0 - 1e-12)));
     const double h = (b - a) / static_cast<double>(std::max(n, 1L));
     for (long j = 0; j < std::max(n, 1L); ++j) {
+      const long changes = result_.summary.regime_changes;
       TakeStep(h);
       s_.t = j + 1 == std::max(n, 1L) ? b : a + static_cast<double>(j + 1) * h;
+      if (result_.summary.regime_changes != changes) result_.last_regime_change = s_.t;
+      if (s_.t - result_.last_regime_change >= o_.quiet_span && s_.t < o_.t_end) {
+        result_.quiet = true;
+        return Finish();
+      }
     }
     if (b < o_.t_end) Sample();
   }
   Sample();
+  return Finish();
+}
+
+TimeSteppingResult Run::Finish() {
   result_.summary.final_energy = energy_;
   result_.final_state = s_;
   return std::move(result_);
@@ -659,6 +672,21 @@ std::string TimeSteppingObstacle(const Model& model) {
   return {};
 }
 
+std::vector<std::string> TimeSteppingLawWarnings(const Model& model) {
+  std::vector<std::string> out;
+  for (int c = 0; c < model.num_contacts(); ++c) {
+    const Contact& con = model.contact(c);
+    if (con.restitution() > 0 && con.restitution_law() != RestitutionLaw::kNewton) {
+      out.push_back(fmt::format(
+          "contact '{}': time stepping applies Newton's law at all touching points at once; "
+          "its restitution_law '{}' is not used (the laws agree for a frictionless collision "
+          "of two bodies)",
+          con.name(), RestitutionLawName(con.restitution_law())));
+    }
+  }
+  return out;
+}
+
 TimeSteppingResult SimulateTimeStepping(const Model& model, const State& initial,
                                         const TimeSteppingOptions& options) {
   if (const std::string why = TimeSteppingObstacle(model); !why.empty()) throw InputError(why);
@@ -672,6 +700,11 @@ TimeSteppingResult SimulateTimeStepping(const Model& model, const State& initial
   if (!(options.step > 0) || !std::isfinite(options.step)) {
     throw InputError(
         fmt::format("time stepping: step = {} s must be positive and finite", options.step));
+  }
+  if (!(options.quiet_span > 0)) {
+    throw InputError(
+        fmt::format("time stepping: quiet_span = {} s must be positive (infinite: never end early)",
+                    options.quiet_span));
   }
   if (!(options.output_interval >= 0) || !std::isfinite(options.output_interval)) {
     throw InputError(fmt::format("time stepping: output_interval = {} s must be >= 0 and finite",

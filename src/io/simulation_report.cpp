@@ -219,6 +219,64 @@ nlohmann::json LedgerJson(const StudyLedger& L) {
           {"angular_momentum_origin", VecJson(L.angular_momentum_Wo_W)}};
 }
 
+/// The certificate of time-stepped steps: the worst step and the ledger's totals.
+nlohmann::json SteppingSummaryJson(const TimeSteppingSummary& c) {
+  return {{"residual_impulse", c.max_residual_impulse},
+          {"residual_velocity", c.max_residual_velocity},
+          {"momentum_residual", c.max_momentum_residual},
+          {"angular_momentum_residual", c.max_angular_momentum_residual},
+          {"max_penetration", c.max_penetration},
+          {"max_gap_drift", c.max_gap_drift},
+          {"velocity_error_estimate", c.max_velocity_error},
+          {"angular_velocity_error_estimate", c.max_angular_velocity_error},
+          {"accumulated_velocity_error_estimate", c.accumulated_velocity_error},
+          {"regime_changes", c.regime_changes},
+          {"largest_island", c.largest_island},
+          {"newton_iterations", c.newton_iterations},
+          {"sweeps", c.sweeps},
+          {"energy",
+           {{"initial", c.initial_energy},
+            {"final", c.final_energy},
+            {"nonconservative", c.work_nonconservative},
+            {"normal_impulses", c.work_normal},
+            {"friction_impulses", c.work_friction},
+            {"scheme_error", c.numerical_energy_error}}}};
+}
+
+/// integrator: auto: each engine's stretch of the run and why it took over.
+nlohmann::json EngineSegmentsJson(const std::vector<StudyEngineSegment>& segments) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const StudyEngineSegment& g : segments) {
+    nlohmann::json x = {{"t_begin", g.t_begin},
+                        {"t_end", g.t_end},
+                        {"engine", StudyEngineName(g.engine)},
+                        {"reason", EngineSwitchName(g.reason)},
+                        {"steps", g.stats.steps},
+                        {"rejected_steps", g.stats.rejected_steps},
+                        {"function_evaluations", g.stats.function_evaluations}};
+    switch (g.reason) {
+      case EngineSwitch::kStart:
+        if (!g.stays.empty()) x["stays_event_driven"] = g.stays;
+        break;
+      case EngineSwitch::kRegimeChanges:
+        x["changes"] = g.changes;
+        x["span"] = g.span;
+        x["last_at"] = g.where;
+        break;
+      case EngineSwitch::kQuiet:
+        x["quiet"] = g.quiet;
+        x["projection"] = {{"depth", g.projection_depth}, {"energy", g.projection_energy}};
+        break;
+    }
+    if (g.engine == StudyEngine::kStepping) {
+      x["time_stepping"] = SteppingSummaryJson(g.stepping);
+      x["time_stepping"]["tolerance_met"] = g.tolerance_met;
+    }
+    out.push_back(std::move(x));
+  }
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
@@ -271,35 +329,23 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
                                          {"residual", e.energy.residual}}}};
   }
   if (r.time_stepping) {
-    const TimeSteppingSummary& c = r.time_stepping->summary;
-    j["integrator"]["time_stepping"] = {
-        {"step", r.time_stepping->step},
-        {"tolerance_met", r.time_stepping->tolerance_met},
-        {"residual_impulse", c.max_residual_impulse},
-        {"residual_velocity", c.max_residual_velocity},
-        {"momentum_residual", c.max_momentum_residual},
-        {"angular_momentum_residual", c.max_angular_momentum_residual},
-        {"max_penetration", c.max_penetration},
-        {"max_gap_drift", c.max_gap_drift},
-        {"velocity_error_estimate", c.max_velocity_error},
-        {"angular_velocity_error_estimate", c.max_angular_velocity_error},
-        {"accumulated_velocity_error_estimate", c.accumulated_velocity_error},
-        {"regime_changes", c.regime_changes},
-        {"largest_island", c.largest_island},
-        {"newton_iterations", c.newton_iterations},
-        {"sweeps", c.sweeps},
-        {"energy",
-         {{"initial", c.initial_energy},
-          {"final", c.final_energy},
-          {"nonconservative", c.work_nonconservative},
-          {"normal_impulses", c.work_normal},
-          {"friction_impulses", c.work_friction},
-          {"scheme_error", c.numerical_energy_error}}}};
+    j["integrator"]["time_stepping"] = SteppingSummaryJson(r.time_stepping->summary);
+    j["integrator"]["time_stepping"]["step"] = r.time_stepping->step;
+    j["integrator"]["time_stepping"]["tolerance_met"] = r.time_stepping->tolerance_met;
     nlohmann::json points = nlohmann::json::array();
     for (const auto& [label, changes] : r.time_stepping->regime_changes) {
       points.push_back({{"point", label}, {"regime_changes", changes}});
     }
     j["integrator"]["time_stepping"]["points"] = std::move(points);
+  }
+  if (r.engine_rule) {
+    const EngineChoiceRule& rule = *r.engine_rule;
+    j["integrator"]["auto"] = {{"step", rule.step},
+                               {"changes", rule.changes},
+                               {"window", rule.window},
+                               {"quiet_span", rule.quiet_span}};
+    j["integrator"]["segments"] = EngineSegmentsJson(r.segments);
+    j["ledger"]["time_stepping_error"] = r.ledger.time_stepping_error;
   }
   if (r.islands.count > 0) {
     j["integrator"]["islands"] = {

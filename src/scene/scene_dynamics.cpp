@@ -545,10 +545,15 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
   if (at.Has("min_step")) sim.min_step = PositiveValue(at.Child("min_step"), kTime, "min_step");
   if (at.Has("until")) sim.until = PositiveValue(at.Child("until"), kTime, "the end time");
   if (at.Has("integrator")) {
-    const std::string name = report_.Text(
-        at.Child("integrator"), "adaptive, rk4, energy_momentum, splitting, events or stepping");
+    const std::string name =
+        report_.Text(at.Child("integrator"),
+                     "adaptive, rk4, energy_momentum, splitting, events, stepping or auto");
     if (name == "adaptive") {
       sim.integrator = IntegratorKind::kDormandPrince5;
+    } else if (name == "auto") {
+      // Event-driven while regime changes come slowly, time stepped while they chatter.
+      sim.integrator = IntegratorKind::kDormandPrince5;
+      sim.auto_engine = true;
     } else if (name == "events") {
       // Balls on a table between events in closed form; pressing groups on the adaptive one.
       sim.integrator = IntegratorKind::kDormandPrince5;
@@ -566,10 +571,10 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
     } else {
       report_.Fail(at.Child("integrator"),
                    fmt::format("unknown integrator '{}'{}; integrators: adaptive (default), rk4, "
-                               "energy_momentum, splitting, events, stepping",
+                               "energy_momentum, splitting, events, stepping, auto",
                                name,
                                DidYouMean(name, {"adaptive", "rk4", "energy_momentum", "splitting",
-                                                 "events", "stepping"})));
+                                                 "events", "stepping", "auto"})));
     }
   }
   const bool fixed = sim.integrator != IntegratorKind::kDormandPrince5 || sim.time_stepping;
@@ -600,11 +605,11 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
                    "'step' is for the fixed-step integrators; 'events' takes no steps (the balls "
                    "move in closed form between events)");
     }
-    if (!fixed) {
+    if (!fixed && !sim.auto_engine) {
       report_.Fail(at.Child("step"),
                    "'step' is for the fixed-step integrators (rk4, energy_momentum, splitting) "
-                   "and time stepping (stepping); the adaptive integrator chooses its own steps "
-                   "from 'tolerance'");
+                   "and time stepping (stepping, auto); the adaptive integrator chooses its own "
+                   "steps from 'tolerance'");
     }
     sim.step = PositiveValue(at.Child("step"), kTime, "the step");
   } else if (fixed) {

@@ -1094,19 +1094,17 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
     }
     // Moreau's law at every point at once (docs/contact.md, "Time stepping"): a contact that
     // asks for another law is told which one it gets.
-    for (int c = 0; c < first.num_contacts(); ++c) {
-      const Contact& con = first.contact(c);
-      if (con.restitution() > 0 && con.restitution_law() != RestitutionLaw::kNewton) {
-        def.warnings.push_back(fmt::format(
-            "contact '{}': time stepping applies Newton's law at all touching points at once; "
-            "its restitution_law '{}' is not used (the laws agree for a frictionless collision "
-            "of two bodies)",
-            con.name(), RestitutionLawName(con.restitution_law())));
-      }
-    }
+    for (std::string& w : TimeSteppingLawWarnings(first)) def.warnings.push_back(std::move(w));
     TimeSteppingOptions stepping;
     stepping.step = sim.step;
     def.time_stepping = stepping;
+  }
+  if (sim.auto_engine) {
+    // Time stepping's step: the scene's, else one derived from the bodies' sizes and gravity.
+    StudyDefinition::AutoEngine engines;
+    engines.rule = MakeEngineChoiceRule(
+        std::isfinite(sim.step) ? sim.step : DefaultEngineStep(first, def.options.output_interval));
+    def.auto_engine = engines;
   }
   // On the constraints, or an error, or projected with each change a warning.
   def.initial =

@@ -310,6 +310,25 @@ def test_pool_balls_event_driven():
         .event_driven is None
 
 
+def test_auto_engine_segments():
+    # examples/contact-cube-tumbles-auto.yaml (closed forms in its comments): event-driven, time
+    # stepped where the rocking chatters, event-driven again at rest; kicked at t_k = 1.2 s by
+    # J = 0.6 N*s through its centre, the cube slides until t_k + v0/(mu g), v0 = J/m.
+    run = chasles.run(chasles.load_scene(example("contact-cube-tumbles-auto.yaml")))
+    assert run.integrator == "auto"
+    engines = [g.engine for g in run.segments]
+    assert engines[0] == "adaptive" and engines[-1] == "adaptive" and "stepping" in engines
+    assert [g.reason for g in run.segments][:2] == ["start", "regime changes"]
+    stepping = next(g for g in run.segments if g.engine == "stepping")
+    assert stepping.changes == 8 and stepping.stepping["steps"] > 0
+    assert run.segments[-1].reason == "quiet" and run.segments[-1].t_end == 1.6
+    stop = next(e for e in run.contact_events if e.reason == "slip stopped")
+    assert abs(stop.t - (1.2 + 0.6 / (0.3 * G0))) < 1e-10
+    assert run.certificate.passed
+    assert chasles.run(chasles.load_scene(example("problem-8.26-spinning-ball.yaml"))) \
+        .segments == []
+
+
 def test_struck_double_pendulum_pin_impulses():
     # examples/double-pendulum-struck.yaml (closed forms in its comments): hanging rods
     # (m1 = 2 kg, L1 = 1 m; m2 = 1 kg, L2 = 0.8 m) struck along x by J = 3 N*s at s = 0.6 m

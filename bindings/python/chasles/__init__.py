@@ -104,7 +104,9 @@ class Run(Table):
     timeline), ``impacts``, ``final_contacts``, ``final_bodies``, ``final_reactions``,
     ``ledger``, ``certificate``, ``notes``, ``warnings``, ``t_end``, ``stopped_by_event``,
     ``integrator``, ``stats``, ``event_driven`` (``integrator: events``: collisions, impacts,
-    regime changes, pressing groups and the closed-form energy balance; None otherwise);
+    regime changes, pressing groups and the closed-form energy balance; None otherwise),
+    ``segments`` (``integrator: auto``: each engine's stretch of the run and why it took over;
+    empty otherwise);
     ``result`` is the StudyResult itself. ``to_csv()`` and
     ``to_json()`` give the two files ``chasles simulate`` writes.
     """
@@ -118,7 +120,7 @@ class Run(Table):
         for name in ("events", "jumps", "contact_events", "impacts", "final_contacts",
                      "final_bodies", "final_reactions", "ledger", "certificate", "notes",
                      "warnings", "t_end", "stopped_by_event", "integrator", "stats",
-                     "event_driven"):
+                     "event_driven", "segments"):
             setattr(self, name, getattr(result, name))
 
     def to_csv(self, full_precision=False):

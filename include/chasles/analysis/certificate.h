@@ -140,6 +140,10 @@ class CertificateBuilder {
   /// Checks every body's impulse-momentum balance over the impulsive instant at time t
   /// (BodyImpulseBalance), from the values given.
   void CheckImpulseBalance(double t, const std::vector<BodyImpulseBalance>& bodies);
+  /// The gap checks of the states checked from now on allow `seconds` times the velocity
+  /// scale (CertificateTolerances::gap_time): a run whose engine changes (integrator: auto)
+  /// sets half its step for a time-stepped stretch and 0 for an event-driven one.
+  void SetGapTime(double seconds) { gap_time_ = seconds; }
 
   Certificate Finish() const;
 
@@ -157,6 +161,8 @@ class CertificateBuilder {
     std::string where;
     double t;
     CheckPhase phase;
+    /// The gap time in force when it was checked [s] (gap checks only).
+    double gap_time;
   };
   void Add(int check, double value, Scale scale, double a, double b, double local_scale,
            std::string where, double t, CheckPhase phase);
@@ -197,6 +203,8 @@ class CertificateBuilder {
                            CheckPhase phase);
 
   CertificateTolerances tol_;
+  /// The gap time of the states checked from now on [s] (tol_.gap_time until SetGapTime).
+  double gap_time_ = 0.0;
   std::vector<long long> counts_;
   std::vector<Entry> entries_;
   /// Compact when this many entries are held.

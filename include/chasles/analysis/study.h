@@ -28,6 +28,7 @@
 
 #include "chasles/analysis/certificate.h"
 #include "chasles/analysis/instantaneous.h"
+#include "chasles/integrate/engine_choice.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/integrate/sphere_events.h"
 #include "chasles/integrate/time_stepping.h"
@@ -161,6 +162,19 @@ struct StudyDefinition {
   /// taken from `options`) instead of `options.integrator`. The Model must pass
   /// TimeSteppingObstacle; no events, impulses or impacts.
   std::optional<TimeSteppingOptions> time_stepping;
+  /// `integrator: auto`: the run chooses its engine (docs/contact.md, "Choosing the engine"):
+  /// the hybrid event-driven run of `options` (Dormand–Prince) while regime changes come slower
+  /// than `rule` allows, time stepping (`stepping`, with the rule's step) while they come
+  /// faster, and back after the rule's quiet span; StudyResult::segments says which ran when
+  /// and why. The switch needs a Model time stepping can run (TimeSteppingObstacle) and no
+  /// events; otherwise the run stays event-driven and its first segment says why.
+  struct AutoEngine {
+    EngineChoiceRule rule;
+    /// Time stepping's other settings (its step, end, output interval and quiet span are the
+    /// run's).
+    TimeSteppingOptions stepping;
+  };
+  std::optional<AutoEngine> auto_engine;
   /// Output columns (t first, by convention).
   std::vector<StudyColumn> columns;
   std::vector<StudyImpulseSpec> impulses;
@@ -343,6 +357,10 @@ struct StudyLedger {
   double jumps = 0.0;
   /// E - E0 - W_nc - jumps [J]: zero for the exact solution.
   double residual = 0.0;
+  /// integrator: auto: the part of `residual` that is time stepping's own [J] (its scheme's
+  /// energy error, and the energy the projections of its penetration changed at its handovers
+  /// to the event-driven engine); the ledger check takes it out. 0 otherwise.
+  double time_stepping_error = 0.0;
   /// Energy scale for the residual [J].
   double energy_scale = 0.0;
   /// Linear momentum, angular momentum about the system's centre of mass and about the
@@ -388,6 +406,53 @@ struct StudyEvent {
   /// The output columns at the event's state (StudyResult::columns; not a row of the CSV):
   /// extremes over a run (a sweep's max(COLUMN)) see the event instants as well as the samples.
   std::vector<double> row;
+};
+
+/// The engines a study's run can switch between (StudyDefinition::auto_engine).
+enum class StudyEngine {
+  kAdaptive,  ///< the hybrid event-driven engine (Simulate, Dormand–Prince between events)
+  kStepping,  ///< Moreau–Jean time stepping (SimulateTimeStepping)
+};
+/// "adaptive", "stepping" (the scene's names of the two integrators).
+const char* StudyEngineName(StudyEngine engine);
+
+/// Why an engine took over the run.
+enum class EngineSwitch {
+  kStart,          ///< the run starts event-driven
+  kRegimeChanges,  ///< regime changes came faster than the bound (EngineChoiceRule)
+  kQuiet,          ///< no regime changed for the quiet span
+};
+/// "start", "regime changes", "quiet".
+const char* EngineSwitchName(EngineSwitch reason);
+
+/// One stretch of a run on one engine (integrator: auto).
+struct StudyEngineSegment {
+  /// From and to [s].
+  double t_begin = 0.0, t_end = 0.0;
+  StudyEngine engine = StudyEngine::kAdaptive;
+  EngineSwitch reason = EngineSwitch::kStart;
+  /// kRegimeChanges: the consecutive regime changes counted, the span they fell in [s] (less
+  /// than the rule's window), and the contact point (or string) of the last.
+  int changes = 0;
+  double span = 0.0;
+  std::string where;
+  /// kQuiet: how long no regime had changed [s] (at least the rule's quiet span).
+  double quiet = 0.0;
+  /// An event-driven segment that cannot hand over to time stepping: why (empty when it can).
+  std::string stays;
+  /// The engine's work in this segment: an event-driven one's integration steps, rejected steps
+  /// and evaluations; a time-stepped one's steps and contact solves.
+  IntegratorStats stats;
+  /// A time-stepped segment: the certificate of its steps (the worst step and the totals, as
+  /// TimeSteppingResult gives them) and whether every step met its tolerances.
+  TimeSteppingSummary stepping;
+  bool tolerance_met = true;
+  /// An event-driven segment after a time-stepped one: its start projects the touching points
+  /// onto their planes (the scheme leaves them up to half a step times their approach speed
+  /// deep): the largest penetration removed [m] and the energy it changed [J] (booked with the
+  /// scheme's own energy error, not as work).
+  double projection_depth = 0.0;
+  double projection_energy = 0.0;
 };
 
 /// What an event-driven run did (StudyDefinition::sphere_events): its counts, its ball-ball
@@ -440,6 +505,11 @@ struct StudyResult {
     std::vector<std::pair<std::string, int>> regime_changes;
   };
   std::optional<TimeStepped> time_stepping;
+  /// integrator: auto: the engines in time order, each with why it took over (empty for a run
+  /// on the engine its definition names).
+  std::vector<StudyEngineSegment> segments;
+  /// integrator: auto: the rule it followed (step, bound on regime changes, quiet span).
+  std::optional<EngineChoiceRule> engine_rule;
   /// Things to tell the user (impulses after the end time, ...).
   std::vector<std::string> notes;
   /// Things the user must know: initial values changed to satisfy the constraints

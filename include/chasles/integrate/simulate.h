@@ -17,6 +17,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -159,6 +160,23 @@ struct ContactOptions {
   double accumulation_remaining_time = 1e-6;
   /// The run stops with an InputError after this many mode switches (chattering guard).
   int max_mode_switches = 100000;
+  /// A bound on the rate of regime changes (integrator: auto; docs/contact.md, "Choosing the
+  /// engine"): the run yields, ending early at the state just after a transition, when the
+  /// last `yield_changes` transitions (each located event that switches modes counts once; a
+  /// touch-down that continues a geometric bounce sequence, which the run sums in closed form,
+  /// does not count) all fall within `yield_window` [s]. 0: never (the default).
+  int yield_changes = 0;
+  double yield_window = 0.0;
+};
+
+/// Why a hybrid run yielded (ContactOptions::yield_changes): its last `changes` transitions
+/// fell within [t_first, t_last], faster than the bound.
+struct RegimeChangeYield {
+  /// Times of the first and the last transition of the window [s].
+  double t_first = 0.0, t_last = 0.0;
+  int changes = 0;
+  /// The contact point (or string) whose event made the last one, by name.
+  std::string where;
 };
 
 struct SimulationOptions {
@@ -234,6 +252,10 @@ struct SimulationResult {
   std::vector<std::string> warnings;
   /// Which path ran: islands or one system, and why.
   IslandReport islands;
+  /// Set when the run yielded because its regime changes came faster than
+  /// ContactOptions::yield_changes allows: final_state is the state just after the transition
+  /// that exceeded the bound (not a sample: the caller goes on from it with another engine).
+  std::optional<RegimeChangeYield> yielded;
 };
 
 /// The mode timeline of contact point `point` from a run's contact events, from the first

@@ -61,6 +61,13 @@ struct TimeSteppingOptions {
   std::function<void(const State&)> on_sample = nullptr;
   /// Called after every step with its end time (optional); may throw LimitError to stop.
   std::function<void(double t)> on_step = nullptr;
+  /// End the run early, after the first step that ends `quiet_span` [s] or more after the last
+  /// regime change (integrator: auto hands the run back to the event-driven engine there;
+  /// docs/contact.md, "Choosing the engine"). Infinite: never (the default).
+  double quiet_span = std::numeric_limits<double>::infinity();
+  /// The time of the last regime change before this run [s] (a run continuing another);
+  /// NaN: the initial time.
+  double quiet_from = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The certificate of one step.
@@ -152,11 +159,21 @@ struct TimeSteppingResult {
   bool tolerance_met = true;
   /// What the run did that the user should know (the first step that missed a tolerance, ...).
   std::vector<std::string> warnings;
+  /// True when the run ended early because no regime changed for options.quiet_span:
+  /// final_state is the end of that step (not a sample).
+  bool quiet = false;
+  /// The end of the last step that changed a regime (or options.quiet_from) [s].
+  double last_regime_change = 0.0;
 };
 
 /// Why `model` cannot be time stepped (constraints are not taken yet, nor rolling
 /// resistance): names the first element that does not fit; empty when it can.
 std::string TimeSteppingObstacle(const Model& model);
+
+/// What a run of `model` by time stepping should tell the user about its impact law: for each
+/// contact with restitution whose restitution_law is not Newton's, that the scheme applies
+/// Newton's law at all touching points at once instead (empty when none).
+std::vector<std::string> TimeSteppingLawWarnings(const Model& model);
 
 /// Runs `model` from `initial` to options.t_end by Moreau–Jean time stepping. Throws
 /// InputError for a model that does not fit (TimeSteppingObstacle), an invalid state or options,

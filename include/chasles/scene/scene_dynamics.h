@@ -238,6 +238,9 @@ struct SceneSimulation {
   bool event_driven = false;
   /// `integrator: stepping`: Moreau–Jean time stepping (SimulateTimeStepping) with `step`.
   bool time_stepping = false;
+  /// `integrator: auto`: the run chooses between the adaptive (event-driven) engine and time
+  /// stepping with `step` (or DefaultEngineStep) as its regime changes come (EngineChoiceRule).
+  bool auto_engine = false;
   /// `ball_collisions`: every pair of balls the scene does not list as a sphere-sphere contact
   /// collides, with these coefficients (event-driven only).
   bool collide_all_pairs = false;
@@ -245,7 +248,8 @@ struct SceneSimulation {
   /// Relative and absolute tolerance of the adaptive integrator.
   double rtol = 1e-10;
   double atol = 1e-12;
-  /// Step of the fixed-step integrators and of time stepping [s] (NaN when not given).
+  /// Step of the fixed-step integrators and of time stepping (also auto's) [s] (NaN when not
+  /// given).
   double step = std::numeric_limits<double>::quiet_NaN();
   /// Output spacing [s]; NaN: 200 intervals over the run.
   double output_interval = std::numeric_limits<double>::quiet_NaN();

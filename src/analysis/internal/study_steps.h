@@ -152,4 +152,27 @@ void RecordJumpImpulses(const Model& model, const State& before, const State& af
 StudyLedger FinalLedger(const StudyDefinition& definition, const Model& model, const State& state,
                         const LedgerCarry& carry, double energy_initial);
 
+/// Why a run on `model` cannot hand over to time stepping (integrator: auto): events
+/// (`has_events`: located on the adaptive integrator's dense output), or TimeSteppingObstacle;
+/// empty when it can.
+std::string SteppingObstacle(bool has_events, const Model& model);
+
+/// Adds the certificate of a later stretch of time stepping to `into` (the worst of the two and
+/// the totals; the initial energy stays `into`'s, the final is `add`'s). `into` with no steps
+/// takes `add` as it is.
+void AddSteppingSummary(TimeSteppingSummary& into, const TimeSteppingSummary& add);
+
+/// What handing a time-stepped state over to the event-driven engine changed.
+struct EventsHandover {
+  /// The largest |gap| of a touching point before the projection (its penetration) [m].
+  double depth = 0.0;
+  /// The mechanical energy after the projection minus before [J].
+  double energy = 0.0;
+};
+
+/// Projects the touching points of `state` (in the modes it carries) onto their planes and its
+/// velocities onto the active rows (ProjectOntoContactModes), as the event-driven engine's start
+/// does, and says what that changed.
+EventsHandover ProjectForEvents(const Model& model, State& state);
+
 }  // namespace chasles::study_internal

@@ -1,0 +1,154 @@
+// The rule of integrator: auto (chasles/integrate/engine_choice.h) and the two ways a run hands
+// over: the hybrid run yields where its regime changes come faster than the bound
+// (ContactOptions::yield_changes), time stepping ends where no regime has changed for the quiet
+// span (TimeSteppingOptions::quiet_span).
+#include "chasles/integrate/engine_choice.h"
+
+#include <cmath>
+#include <memory>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "chasles/error.h"
+#include "chasles/integrate/simulate.h"
+#include "chasles/integrate/time_stepping.h"
+#include "chasles/model/forces.h"
+#include "reference/balls_on_floor.h"
+#include "test_support.h"
+
+namespace chasles {
+namespace {
+
+using test::Near;
+
+constexpr double kG = 9.81;
+// A sum of a few products of doubles of scale 1.
+constexpr double kRoundOff = 1e-15;
+// Event times are located to 1e-12 s each; a time summed over a few dozen is known to this [s].
+constexpr double kEventTime = 1e-10;
+
+// The rule for step h: 8 changes within 8 × 2 steps, back after as long without one.
+TEST(EngineChoiceRule, BoundAndQuietSpanFromTheStep) {
+  const double h = 1e-3;
+  const EngineChoiceRule rule = MakeEngineChoiceRule(h);
+  EXPECT_EQ(rule.step, h);
+  EXPECT_EQ(rule.changes, 8);
+  EXPECT_TRUE(Near(rule.window, 16 * h, kRoundOff));
+  EXPECT_TRUE(Near(rule.quiet_span, 16 * h, kRoundOff));
+  for (const double bad : {0.0, -1e-3, std::nan(""), HUGE_VAL}) {
+    EXPECT_THROW(MakeEngineChoiceRule(bad), InputError) << bad;
+  }
+}
+
+// h = 1/100 √(ρ / g) with ρ = √(I_max / m) the smallest radius of gyration of the bodies with
+// contacts: a solid ball's is √(2/5) R; of two balls the smaller one's counts.
+TEST(EngineChoiceRule, DefaultStepFromTheSmallestBodyAndGravity) {
+  const reference::Ball big{1.0, 0.1, 0.3, 0.3}, small{0.2, 0.02, 0.3, 0.3};
+  const Model one = reference::MakeBallsOnFloor(1, big, kG);
+  EXPECT_TRUE(
+      Near(DefaultEngineStep(one, 0.01), 0.01 * std::sqrt(std::sqrt(0.4) * 0.1 / kG), kRoundOff));
+  const Model two = reference::MakeBallsOnFloor({big, small}, kG);
+  EXPECT_TRUE(
+      Near(DefaultEngineStep(two, 0.01), 0.01 * std::sqrt(std::sqrt(0.4) * 0.02 / kG), kRoundOff));
+  // Without gravity: a tenth of the output interval; with neither, no step to derive.
+  const Model weightless = reference::MakeBallsOnFloor(1, big, 0.0);
+  EXPECT_EQ(DefaultEngineStep(weightless, 0.01), 1e-3);
+  EXPECT_THROW(DefaultEngineStep(weightless, 0.0), InputError);
+}
+
+// A ball dropped from h0 with restitution e and its bounces not summed: touch-down n at
+// T_n = t0 + 2 t0 e (1 - e^n)/(1 - e), t0 = √(2 h0 / g). The run yields at the first n >= 7
+// with T_n - T_(n-7) <= the window, at the state just after that touch-down, which is not a
+// sample.
+TEST(HybridYield, YieldsAtTheTouchDownThatExceedsTheBound) {
+  const double h0 = 1.0, e = 0.5;
+  reference::Ball ball{0.5, 0.1, 0.3, 0.3};
+  ball.restitution = e;
+  const Model model = reference::MakeBallsOnFloor(1, ball, kG);
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Vec3(0, 0, ball.radius + h0), Quat::Identity(), s);
+  const EngineChoiceRule rule = MakeEngineChoiceRule(1e-3);
+  SimulationOptions o;
+  o.t_end = 2.0;
+  o.output_interval = 0.01;
+  o.adaptive.rtol = 1e-12;
+  o.adaptive.atol = 1e-14;
+  o.contact.accumulate_bounces = false;
+  o.contact.yield_changes = rule.changes;
+  o.contact.yield_window = rule.window;
+  const double t0 = std::sqrt(2 * h0 / kG);
+  const auto touch_down = [&](int n) { return t0 + 2 * t0 * e * (1 - std::pow(e, n)) / (1 - e); };
+  int n = 7;
+  while (touch_down(n) - touch_down(n - 7) > rule.window) ++n;
+  const SimulationResult r = Simulate(model, s, o);
+  ASSERT_TRUE(r.yielded.has_value());
+  EXPECT_EQ(r.yielded->changes, 8);
+  EXPECT_EQ(r.yielded->where, "floor0");
+  EXPECT_NEAR(r.yielded->t_last, touch_down(n), kEventTime);
+  EXPECT_NEAR(r.yielded->t_first, touch_down(n - 7), kEventTime);
+  EXPECT_EQ(r.final_state.t, r.yielded->t_last);
+  EXPECT_LT(r.samples.back().t, r.final_state.t);
+  EXPECT_EQ(r.impacts.size(), static_cast<size_t>(n + 1));
+  // Just after the touch-down: rebounding at e times the approach speed e^n √(2 g h0).
+  EXPECT_NEAR(r.final_state.bodies[0].v_WBcm_W.z(), std::pow(e, n + 1) * std::sqrt(2 * kG * h0),
+              kG * kEventTime);
+  // The same bounces summed in closed form do not count: the run reaches its end.
+  o.contact.accumulate_bounces = true;
+  const SimulationResult summed = Simulate(model, s, o);
+  EXPECT_FALSE(summed.yielded.has_value());
+  EXPECT_EQ(summed.final_state.t, 2.0);
+  EXPECT_TRUE(summed.impacts.back().accumulation);
+}
+
+// A run that may yield hands over the whole model at once: two balls that form two islands run
+// as one system, and the result says why.
+TEST(HybridYield, RunsTheModelAsOneSystem) {
+  const Model model = reference::MakeBallsOnFloor(2, {0.5, 0.1, 0.3, 0.3}, kG);
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Vec3(0, 0, 0.5), Quat::Identity(), s);
+  SetBodyPose(model, 1, Vec3(1, 0, 0.5), Quat::Identity(), s);
+  SimulationOptions o;
+  o.t_end = 0.1;
+  o.contact.yield_changes = 8;
+  o.contact.yield_window = 0.016;
+  const SimulationResult r = Simulate(model, s, o);
+  EXPECT_EQ(r.islands.count, 2);
+  EXPECT_FALSE(r.islands.split);
+  EXPECT_THAT(r.islands.reason, ::testing::HasSubstr("integrator: auto"));
+  o.contact.yield_window = -1.0;
+  EXPECT_THROW(Simulate(model, s, o), InputError);
+}
+
+// A ball set down touching the floor at rest: the first step finds it touching (sticking, a
+// regime change from the separated mode it was given), none after. With a quiet span of 10.5
+// steps the run ends after step 12, the first to end 10.5 steps or more after step 1's change.
+TEST(SteppingQuiet, EndsAfterTheQuietSpan) {
+  const reference::Ball ball{0.5, 0.1, 0.3, 0.3};
+  const Model model = reference::MakeBallsOnFloor(1, ball, kG);
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Vec3(0, 0, ball.radius), Quat::Identity(), s);
+  const double h = 1e-3;
+  TimeSteppingOptions o;
+  o.t_end = 1.0;
+  o.step = h;
+  o.quiet_span = 10.5 * h;
+  const TimeSteppingResult r = SimulateTimeStepping(model, s, o);
+  EXPECT_TRUE(r.quiet);
+  EXPECT_EQ(r.summary.steps, 12);
+  EXPECT_TRUE(Near(r.last_regime_change, h, kRoundOff));
+  EXPECT_TRUE(Near(r.final_state.t, 12 * h, kRoundOff));
+  EXPECT_EQ(r.final_state.contacts[0].mode, ContactMode::kSticking);
+  // The final state is not a sample: only the initial one was taken.
+  ASSERT_EQ(r.samples.size(), 1u);
+  // Continuing a quiet stretch (quiet_from at the last change): the first step ends it.
+  o.quiet_from = r.final_state.t - 11 * h;
+  const TimeSteppingResult next = SimulateTimeStepping(model, r.final_state, o);
+  EXPECT_TRUE(next.quiet);
+  EXPECT_EQ(next.summary.steps, 1);
+  o.quiet_span = 0.0;
+  EXPECT_THROW(SimulateTimeStepping(model, s, o), InputError);
+}
+
+}  // namespace
+}  // namespace chasles
