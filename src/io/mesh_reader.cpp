@@ -108,4 +108,15 @@ MeshFileData ReadMeshFile(const std::string& path) {
   return internal::ReadMeshBytes(internal::ReadWholeFile(path, size), path);
 }
 
+std::optional<std::vector<float>> TryReadBinaryStlFloats(const std::string& path) {
+  std::error_code ec;
+  if (internal::Extension(path) != ".stl" ||
+      !std::filesystem::is_regular_file(std::filesystem::status(path, ec))) {
+    return std::nullopt;
+  }
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || !internal::LooksLikeBinaryStl(path, size)) return std::nullopt;
+  return internal::ReadBinaryStlFloats(path);
+}
+
 }  // namespace chasles

@@ -334,6 +334,22 @@ MeshMassResult ComputeMeshMassProperties(std::vector<double>&& xyz,
   return Finish(mesh, opts, density, what, std::move(report));
 }
 
+MeshMassResult ComputeMeshMassProperties(std::vector<float>&& soup, const MeshMassOptions& opts,
+                                         const std::string& what, MeshMassReport report) {
+  const double density = DensityFromOptions(opts, what);
+  const double tolerance = FileUnitTolerance(opts, what);
+  const auto t0 = std::chrono::steady_clock::now();
+  TriangleMesh mesh;  // in the file's unit: Finish scales the integrals
+  try {
+    mesh = BuildTriangleSoup(std::span<const float>(soup), 1.0, tolerance, &report.repair);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", what, e.what()));
+  }
+  std::vector<float>().swap(soup);  // released before validation allocates
+  report.weld_seconds = Seconds(t0);
+  return Finish(mesh, opts, density, what, std::move(report));
+}
+
 MeshMassResult ComputeMeshMassProperties(const TriangleMesh& in, const MeshMassOptions& opts) {
   const std::string what = "mesh";
   const double density = DensityFromOptions(opts, what);

@@ -88,8 +88,10 @@ void Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo, doub
   // The table holds, per occupied cell, the index of its most recent kept vertex (the head of
   // the cell's chain); the cell key of a kept vertex sits in kept_key, in insertion order.
   // Four bytes a slot keep the table small enough for the caches: with 16-byte slots holding
-  // the key the random probes made welding 1.4 times slower.
-  std::vector<std::uint32_t> table(16, kNone);
+  // the key the random probes made welding 1.4 times slower. It starts at the size an STL
+  // needs (about n / 6 kept vertices at a load factor below 1/2), so that it is not filled
+  // again at every doubling: fresh memory costs a page fault per 4 KB.
+  std::vector<std::uint32_t> table(std::bit_ceil(std::max<std::size_t>(16, n / 3)), kNone);
   std::vector<std::uint64_t> kept_key;
   std::vector<std::uint32_t> next;  // chain of kept vertices within a cell
   kept_key.reserve(n / 4);
@@ -218,16 +220,18 @@ void CheckFinite(std::span<const T> xyz) {
   }
 }
 
+// `soup`: the input is a triangle soup given without indices (triangle t is vertices 3 t,
+// 3 t + 1, 3 t + 2, and `indices` is empty).
 template <typename T>
-TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> indices, double scale,
-                       double tolerance, MeshRepairReport* report) {
+TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> indices, bool soup,
+                       double scale, double tolerance, MeshRepairReport* report) {
   if (!(std::isfinite(scale) && scale > 0.0)) {
     throw InputError(
         fmt::format("mesh scale is {}; it must be a positive, finite number of "
                     "metres per file unit",
                     scale));
   }
-  if (xyz.size() % 3 != 0 || indices.size() % 3 != 0) {
+  if (xyz.size() % (soup ? 9 : 3) != 0 || indices.size() % 3 != 0) {
     throw InputError("mesh arrays: coordinates and indices must come in threes");
   }
   const std::size_t nv = xyz.size() / 3;
@@ -236,13 +240,12 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
   // name the first offender run only when one failed. A triangle soup (an STL: triangle t uses
   // vertices 3t, 3t + 1, 3t + 2) is recognised in the same pass as the range check.
   std::uint32_t max_index = 0;
-  bool soup = indices.size() == nv;
-  std::uint32_t not_identity = 0;
+  std::uint32_t not_identity = indices.size() == nv ? 0 : 1;
   for (std::size_t i = 0; i < indices.size(); ++i) {
     max_index = std::max(max_index, indices[i]);
     not_identity |= indices[i] ^ static_cast<std::uint32_t>(i);
   }
-  soup = soup && not_identity == 0;
+  soup = soup || not_identity == 0;
   if (!indices.empty() && max_index >= nv) {
     for (std::size_t i = 0; i < indices.size(); ++i) {
       if (indices[i] >= nv) {
@@ -257,7 +260,7 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
   MeshRepairReport local;
   MeshRepairReport& rep = report ? *report : local;
   rep.vertices_in = nv;
-  rep.triangles_in = indices.size() / 3;
+  rep.triangles_in = soup ? nv / 3 : indices.size() / 3;
 
   // Bounding box of the scaled input, for the default tolerance and the weld grid (in the
   // input's precision: the minimum and maximum of floats are floats, exact in double).
@@ -343,12 +346,17 @@ inline std::uint32_t To(const std::vector<TriangleIndices>& tris, std::uint32_t 
 
 TriangleMesh BuildTriangleMesh(std::span<const float> xyz, std::span<const std::uint32_t> indices,
                                double scale, double tolerance, MeshRepairReport* report) {
-  return BuildImpl(xyz, indices, scale, tolerance, report);
+  return BuildImpl(xyz, indices, false, scale, tolerance, report);
 }
 
 TriangleMesh BuildTriangleMesh(std::span<const double> xyz, std::span<const std::uint32_t> indices,
                                double scale, double tolerance, MeshRepairReport* report) {
-  return BuildImpl(xyz, indices, scale, tolerance, report);
+  return BuildImpl(xyz, indices, false, scale, tolerance, report);
+}
+
+TriangleMesh BuildTriangleSoup(std::span<const float> xyz, double scale, double tolerance,
+                               MeshRepairReport* report) {
+  return BuildImpl(xyz, {}, true, scale, tolerance, report);
 }
 
 namespace {

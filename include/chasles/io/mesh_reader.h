@@ -6,6 +6,7 @@
 /// the scale (unit) and pose.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,5 +48,14 @@ struct MeshFileData {
 /// index out of range, a non-finite coordinate, a missing or unknown header line), or holds no
 /// triangles. Memory stays within a small multiple of the file's size, and time linear in it.
 MeshFileData ReadMeshFile(const std::string& path);
+
+/// When `path` is a regular file named .stl (any case) whose size is exactly that of a binary
+/// STL of the triangle count in its header (84 + 50 n bytes), its vertex coordinates as the
+/// floats the file stores: nine a triangle, triangle t the vertices 3 t, 3 t + 1, 3 t + 2, no
+/// vertex shared (ReadMeshFile returns the same numbers widened to double, with indices 0, 1,
+/// 2, ...). Otherwise nothing: ReadMeshFile reads the file, or says what is wrong with it.
+/// Throws InputError as ReadMeshFile does on an unreadable file or a non-finite coordinate.
+/// For the mass of a large binary STL: 36 bytes of coordinates a triangle instead of 84.
+std::optional<std::vector<float>> TryReadBinaryStlFloats(const std::string& path);
 
 }  // namespace chasles

@@ -135,6 +135,12 @@ MeshMassResult ComputeMeshMassProperties(std::vector<double>&& xyz,
                                          const MeshMassOptions& opts, const std::string& what,
                                          MeshMassReport report = {});
 
+/// The same for a triangle soup of floats (a binary STL; see BuildTriangleSoup): the same
+/// result as the overload above given these floats widened to double and the indices 0, 1,
+/// 2, ..., with 36 bytes of coordinates a triangle instead of 84 in memory.
+MeshMassResult ComputeMeshMassProperties(std::vector<float>&& soup, const MeshMassOptions& opts,
+                                         const std::string& what, MeshMassReport report = {});
+
 /// The same for an in-memory mesh whose vertices are in the unit given by opts.scale (welded,
 /// validated and integrated in that unit too).
 MeshMassResult ComputeMeshMassProperties(const TriangleMesh& mesh, const MeshMassOptions& opts);

@@ -71,6 +71,11 @@ TriangleMesh BuildTriangleMesh(std::span<const float> xyz, std::span<const std::
 /// The same for double-precision coordinates.
 TriangleMesh BuildTriangleMesh(std::span<const double> xyz, std::span<const std::uint32_t> indices,
                                double scale, double tolerance, MeshRepairReport* report);
+/// The same for a triangle soup (a binary STL): triangle t is the vertices 3 t, 3 t + 1,
+/// 3 t + 2, i.e. BuildTriangleMesh with the indices 0, 1, 2, ..., without storing them. The
+/// number of coordinates must be a multiple of 9.
+TriangleMesh BuildTriangleSoup(std::span<const float> xyz, double scale, double tolerance,
+                               MeshRepairReport* report);
 
 /// Makes `mesh` a valid solid boundary or throws InputError. Rules: every undirected edge is
 /// shared by exactly two triangles (closed, manifold); within each connected component the

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "chasles/io/mesh_reader.h"
 
@@ -26,6 +27,10 @@ bool LooksLikeBinaryStl(const std::string& path, std::uintmax_t file_size);
 /// defines the orientation. Throws InputError on a size mismatch, a read error or a
 /// non-finite vertex coordinate.
 MeshFileData ReadBinaryStl(const std::string& path);
+
+/// The same, keeping the coordinates as the floats the file stores (9 a triangle, triangle t
+/// the vertices 3 t, 3 t + 1, 3 t + 2): half the memory of ReadBinaryStl's doubles.
+std::vector<float> ReadBinaryStlFloats(const std::string& path);
 
 /// The same from memory.
 MeshFileData ReadBinaryStlBytes(std::string_view bytes, const std::string& name);

@@ -1,9 +1,13 @@
 #include "chasles/io/mesh_reader.h"
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -270,6 +274,109 @@ TEST_F(MeshReaderTest, OpenMeshFileErrorNamesTheFile) {
   EXPECT_THAT([&] { LoadMeshMassProperties(p, o); },
               ::testing::ThrowsMessage<InputError>(::testing::AllOf(
                   HasSubstr(p), HasSubstr("4 boundary edge(s)"), HasSubstr("use mode: shell"))));
+}
+
+// A torus of 2 x 40 x 24 float triangles about an off-centre point, written as a binary STL
+// record by record, with a few corners nudged by one float step (within the weld tolerance the
+// test sets, so welding merges them) and one triangle reversed (so validation repairs it).
+std::string TorusStlBytes() {
+  constexpr int kMajor = 40, kMinor = 24;
+  const double pi = std::acos(-1.0);
+  auto corner = [&](int i, int j) {
+    const double th = 2 * pi * (i % kMajor) / kMajor, ph = 2 * pi * (j % kMinor) / kMinor;
+    return std::array<float, 3>{float(3.7 + (0.1 + 0.03 * std::cos(ph)) * std::cos(th)),
+                                float(-1.3 + (0.1 + 0.03 * std::cos(ph)) * std::sin(th)),
+                                float(0.2 + 0.03 * std::sin(ph))};
+  };
+  std::string out(80, ' ');
+  const std::uint32_t n = 2 * kMajor * kMinor;
+  out.append(reinterpret_cast<const char*>(&n), 4);
+  std::uint32_t t = 0;
+  for (int i = 0; i < kMajor; ++i) {
+    for (int j = 0; j < kMinor; ++j) {
+      const int tri[2][3][2] = {{{i, j}, {i + 1, j}, {i + 1, j + 1}},
+                                {{i, j}, {i + 1, j + 1}, {i, j + 1}}};
+      for (const auto& c : tri) {
+        out.append(12, '\0');  // normal
+        for (int k = 0; k < 3; ++k) {
+          const int kk = t == 7 ? 2 - k : k;  // triangle 7 reversed
+          std::array<float, 3> v = corner(c[kk][0], c[kk][1]);
+          if (t % 97 == 5) v[0] = std::nextafter(v[0], 10.0f);  // a near, not equal, copy
+          out.append(reinterpret_cast<const char*>(v.data()), 12);
+        }
+        out.append(2, '\0');  // attribute word
+        ++t;
+      }
+    }
+  }
+  return out;
+}
+
+TEST_F(MeshReaderTest, BinaryStlMassFromItsFloatsIsBitwiseThatOfTheWidenedDoubles) {
+  // LoadMeshMassProperties keeps a binary STL's floats and welds them as a triangle soup; the
+  // general path reads them widened to double with indices 0, 1, 2, ... Widening is exact,
+  // so the two must agree bit for bit, repairs included.
+  const std::string p = WriteText("torus.stl", TorusStlBytes());
+  const std::optional<std::vector<float>> floats = TryReadBinaryStlFloats(p);
+  ASSERT_TRUE(floats.has_value());
+  MeshFileData d = ReadMeshFile(p);
+  ASSERT_EQ(floats->size(), d.xyz.size());
+  for (std::size_t i = 0; i < d.xyz.size(); ++i) ASSERT_EQ(double((*floats)[i]), d.xyz[i]);
+  MeshMassOptions o;
+  o.density = 7850;
+  o.scale = 1e-3;
+  o.weld_tolerance = 1e-8;  // 1e-5 file units: a float step at 3.8 is 4.8e-7
+  const MeshMassResult soup = LoadMeshMassProperties(p, o);
+  MeshMassReport as_read;  // what LoadMeshMassProperties fills in from the reader
+  as_read.format = d.format;
+  as_read.single_precision = d.single_precision;
+  const MeshMassResult general = ComputeMeshMassProperties(std::move(d.xyz), std::move(d.indices),
+                                                           o, "torus", std::move(as_read));
+  EXPECT_EQ(soup.mass_properties.mass(), general.mass_properties.mass());
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(soup.mass_properties.p_BoBcm_B()[k], general.mass_properties.p_BoBcm_B()[k]);
+    for (int l = 0; l < 3; ++l) {
+      EXPECT_EQ(soup.mass_properties.I_BBcm_B().matrix()(k, l),
+                general.mass_properties.I_BBcm_B().matrix()(k, l));
+    }
+  }
+  EXPECT_EQ(soup.report.volume, general.report.volume);
+  EXPECT_EQ(soup.report.surface_area, general.report.surface_area);
+  EXPECT_EQ(soup.report.float32_spacing, general.report.float32_spacing);
+  EXPECT_TRUE(soup.report.single_precision);
+  EXPECT_EQ(soup.report.format, "binary STL");
+  EXPECT_EQ(soup.report.repair.triangles_in, 2u * 40 * 24);
+  EXPECT_EQ(soup.report.repair.vertices_in, general.report.repair.vertices_in);
+  EXPECT_EQ(soup.report.repair.vertices_out, 40u * 24);  // the nudged copies welded
+  EXPECT_EQ(soup.report.repair.vertices_out, general.report.repair.vertices_out);
+  EXPECT_EQ(soup.report.repair.triangles_flipped, 1u);
+  EXPECT_EQ(soup.report.repair.triangles_flipped, general.report.repair.triangles_flipped);
+  EXPECT_EQ(soup.report.repair.weld_tolerance, general.report.repair.weld_tolerance);
+  EXPECT_EQ(soup.report.repair.warnings, general.report.repair.warnings);
+}
+
+TEST_F(MeshReaderTest, OnlyConsistentBinaryStlIsReadAsFloats) {
+  EXPECT_FALSE(TryReadBinaryStlFloats(WriteText("box.stl", AsciiStl())).has_value());
+  EXPECT_FALSE(TryReadBinaryStlFloats(WriteText("box.obj", Obj())).has_value());
+  EXPECT_FALSE(TryReadBinaryStlFloats(Path("missing.stl")).has_value());
+  std::string cut = TorusStlBytes();
+  cut.resize(cut.size() - 1);
+  EXPECT_FALSE(TryReadBinaryStlFloats(WriteText("cut.stl", cut)).has_value());
+  // A non-finite coordinate is refused on either path, with the same message.
+  std::string nan = TorusStlBytes();
+  const float q = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(nan.data() + 84 + 50 * 3 + 12 + 4, &q, 4);  // triangle 4, vertex 0, y
+  const std::string p = WriteText("nan.stl", nan);
+  MeshMassOptions o;
+  o.density = 1000;
+  EXPECT_THAT([&] { LoadMeshMassProperties(p, o); },
+              ::testing::ThrowsMessage<InputError>(
+                  HasSubstr("mesh file '" + p +
+                            "': triangle 4 has a non-finite vertex coordinate (nan) "
+                            "(byte offset 250)")));
+  EXPECT_THAT([&] { ReadMeshFile(p); },
+              ::testing::ThrowsMessage<InputError>(
+                  HasSubstr("triangle 4 has a non-finite vertex coordinate (nan)")));
 }
 
 }  // namespace
