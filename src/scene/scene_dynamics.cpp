@@ -54,8 +54,7 @@ const SceneSpot& SceneSimulation::Spot(std::string_view key) const {
   return it != keys.end() ? it->second : where;
 }
 
-Vec3 SceneVectorExpression::Evaluate(const std::vector<double>& variables) const {
-  const std::span<const double> v(variables.data(), variables.size());
+Vec3 SceneVectorExpression::Evaluate(std::span<const double> v) const {
   return {components[0].Evaluate(v), components[1].Evaluate(v), components[2].Evaluate(v)};
 }
 

@@ -7,12 +7,14 @@
 #include "chasles/scene/study.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <span>
 
 #include <fmt/format.h>
 
@@ -76,11 +78,55 @@ std::vector<double> PlanarInitialTheta(const Scene& scene) {
   return theta;
 }
 
-/// Fills the state variables (StateVariableLayout) up to `count` slots.
-void FillVariables(const Model& model, const State& state, const SceneMap& scene_map, int count,
-                   std::vector<double>& v) {
+/// The values of one evaluation's state variables (StateVariableLayout, at least one slot: t)
+/// on the caller's stack, on the heap only past kInline slots: forces and event functions run
+/// at every evaluation of every step, and keep nothing mutable of their own.
+class VariableBuffer {
+ public:
+  explicit VariableBuffer(int count) : size_(static_cast<size_t>(std::max(count, 1))) {
+    if (size_ > kInline) heap_.resize(size_);
+  }
+  std::span<double> span() {
+    return size_ > kInline ? std::span<double>(heap_) : std::span<double>(inline_.data(), size_);
+  }
+
+ private:
+  static constexpr size_t kInline = 64;
+  std::array<double, kInline> inline_;
+  std::vector<double> heap_;
+  size_t size_;
+};
+
+/// Body `b`'s block of state variables (StateVariableLayout), as many as `block` holds: the
+/// angles (tilt, yaw, pitch, roll, θ) only when a slot that holds one is read.
+void FillBodyBlock(const Model& model, const State& state, const SceneMap& scene_map, int b,
+                   double alpha_z, std::span<double> block) {
+  const MappedBodyMotion m = CalcMappedBodyMotion(model, state, scene_map.map, b);
+  const int used = static_cast<int>(block.size());
+  const Vec3 w_B = m.R_WB.transpose() * m.w_WB_W;
+  const Vec3 ypr = used > StateVariableLayout::kYaw ? CalcYawPitchRoll(m.R_WB) : Vec3::Zero();
+  const double tilt =
+      used > StateVariableLayout::kTilt ? std::acos(std::clamp(m.R_WB(2, 2), -1.0, 1.0)) : 0.0;
+  double theta = 0.0;
+  if (!scene_map.initial_theta.empty() && used > StateVariableLayout::kTheta) {
+    const BodyPlacement& pl = scene_map.map.place[static_cast<size_t>(b)];
+    theta = PlanarTheta(state.bodies[static_cast<size_t>(pl.model_body)].q_WB * Quat(pl.R_MB),
+                        scene_map.initial_theta[static_cast<size_t>(b)]);
+  }
+  const double values[StateVariableLayout::kPerBody] = {
+      m.p_WBcm.x(), m.p_WBcm.y(), m.p_WBcm.z(), m.v_WBcm_W.x(), m.v_WBcm_W.y(),    m.v_WBcm_W.z(),
+      m.w_WB_W.x(), m.w_WB_W.y(), m.w_WB_W.z(), w_B.x(),        w_B.y(),           w_B.z(),
+      tilt,         ypr.x(),      ypr.y(),      ypr.z(),        m.v_WBcm_W.norm(), m.w_WB_W.norm(),
+      theta,        alpha_z};
+  std::copy_n(values, block.size(), block.begin());
+}
+
+/// Fills the state variables (StateVariableLayout), as many as `v` holds (v[0] = t).
+void FillVariables(const Model& model, const State& state, const SceneMap& scene_map,
+                   std::span<double> v) {
   const BodyMap& map = scene_map.map;
-  v.assign(static_cast<size_t>(std::max(count, 1)), 0.0);
+  const int count = static_cast<int>(v.size());
+  std::fill(v.begin(), v.end(), 0.0);
   v[0] = state.t;
   const int per = StateVariableLayout::kPerBody;
   const int num_scene_bodies = static_cast<int>(map.place.size());
@@ -96,52 +142,26 @@ void FillVariables(const Model& model, const State& state, const SceneMap& scene
       first + StateVariableLayout::kPerConstraint * scene_map.num_scene_constraints;
   const bool reactions = count > first && num_constraints > 0;
   const bool contacts = count > first_contact && model.num_contact_points() > 0;
-  Data data;
+  // The workspace only when a value needs the accelerations: event functions run at every
+  // evaluation of a step and most read the state alone.
+  std::optional<Data> data;
   if (alpha || reactions || contacts) {
-    data = MakeData(model);
-    CalcAccelerations(model, state, data);
+    data.emplace(MakeData(model));
+    CalcAccelerations(model, state, *data);
   }
   for (int b = 0; b < num_scene_bodies && b * per + 1 < count; ++b) {
-    const MappedBodyMotion m = CalcMappedBodyMotion(model, state, map, b);
-    const BodyPlacement& pl = map.place[static_cast<size_t>(b)];
-    const auto mb = static_cast<size_t>(pl.model_body);
-    const double theta = planar ? PlanarTheta(state.bodies[mb].q_WB * Quat(pl.R_MB),
-                                              scene_map.initial_theta[static_cast<size_t>(b)])
-                                : 0.0;
-    const double alpha_z = alpha ? (data.R_WB[mb] * data.wdot_WB_B[mb]).z() : 0.0;
-    const Vec3 w_B = m.R_WB.transpose() * m.w_WB_W;
-    const Vec3 ypr = CalcYawPitchRoll(m.R_WB);
-    const double block[StateVariableLayout::kPerBody] = {
-        m.p_WBcm.x(),
-        m.p_WBcm.y(),
-        m.p_WBcm.z(),
-        m.v_WBcm_W.x(),
-        m.v_WBcm_W.y(),
-        m.v_WBcm_W.z(),
-        m.w_WB_W.x(),
-        m.w_WB_W.y(),
-        m.w_WB_W.z(),
-        w_B.x(),
-        w_B.y(),
-        w_B.z(),
-        std::acos(std::clamp(m.R_WB(2, 2), -1.0, 1.0)),
-        ypr.x(),
-        ypr.y(),
-        ypr.z(),
-        m.v_WBcm_W.norm(),
-        m.w_WB_W.norm(),
-        theta,
-        alpha_z};
-    for (int j = 0; j < per; ++j) {
-      const int slot = StateVariableLayout::Slot(b, j);
-      if (slot < count) v[static_cast<size_t>(slot)] = block[j];
-    }
+    const int used = std::min(per, count - StateVariableLayout::Slot(b, 0));
+    const auto mb = static_cast<size_t>(map.place[static_cast<size_t>(b)].model_body);
+    const double alpha_z = alpha ? (data->R_WB[mb] * data->wdot_WB_B[mb]).z() : 0.0;
+    FillBodyBlock(
+        model, state, scene_map, b, alpha_z,
+        v.subspan(static_cast<size_t>(StateVariableLayout::Slot(b, 0)), static_cast<size_t>(used)));
   }
   // Reactions (events only): six slots per scene constraint after the scene bodies' blocks,
   // then the contact points' values (StateVariableLayout).
   if (!reactions && !contacts) return;
   for (int i = 0; i < num_constraints; ++i) {
-    const ConstraintOutput& o = data.constraints[static_cast<size_t>(i)];
+    const ConstraintOutput& o = data->constraints[static_cast<size_t>(i)];
     for (int k = 0; k < 6; ++k) {
       const int slot = first + 6 * i + k;
       if (slot < count) v[static_cast<size_t>(slot)] = k < 3 ? o.F_Jc_W[k] : o.M_Jc_W[k - 3];
@@ -150,7 +170,7 @@ void FillVariables(const Model& model, const State& state, const SceneMap& scene
   if (!contacts) return;
   // Contact points in the modes `state` carries (the values of the output columns).
   for (int p = 0; p < model.num_contact_points(); ++p) {
-    const ContactPointOutput& o = data.contact_points[static_cast<size_t>(p)];
+    const ContactPointOutput& o = data->contact_points[static_cast<size_t>(p)];
     const double values[StateVariableLayout::kPerContactPoint] = {
         static_cast<double>(o.mode), o.normal_force, o.friction_force_W.norm(),
         o.slip_velocity_W.norm(), o.gap};
@@ -168,18 +188,18 @@ VectorFunction MakeVectorFunction(std::shared_ptr<const SceneMap> map,
                                   const SceneVectorExpression& value, const Mat3& R_MB) {
   const int count = value.variable_count();
   return [map, value, R_MB, count](const Model& model, const State& state) -> Vec3 {
-    std::vector<double> variables;
-    FillVariables(model, state, *map, count, variables);
-    return R_MB * value.Evaluate(variables);
+    VariableBuffer variables(count);
+    FillVariables(model, state, *map, variables.span());
+    return R_MB * value.Evaluate(variables.span());
   };
 }
 
 ScalarFunction MakeScalarFunction(std::shared_ptr<const SceneMap> map, const Expression& value) {
   const int count = value.variable_count();
   return [map, value, count](const Model& model, const State& state) -> double {
-    std::vector<double> variables;
-    FillVariables(model, state, *map, count, variables);
-    return value.Evaluate(variables);
+    VariableBuffer variables(count);
+    FillVariables(model, state, *map, variables.span());
+    return value.Evaluate(variables.span());
   };
 }
 
@@ -456,7 +476,7 @@ Model BuildModel(const Scene& scene, const std::vector<NamedBody>& bodies,
         const Mat3 R = f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity();
         VectorFunction value;
         if (f.value.is_constant()) {
-          const Vec3 v = R * f.value.Evaluate({0.0});
+          const Vec3 v = R * f.value.Evaluate(std::array{0.0});
           value = [v](const Model&, const State&) { return v; };
         } else {
           value = MakeVectorFunction(map, f.value, R);
@@ -497,7 +517,7 @@ Model BuildModel(const Scene& scene, const std::vector<NamedBody>& bodies,
       }
       case SceneForce::Type::kMoment:
         if (f.value.is_constant()) {
-          const Vec3 v = f.value.Evaluate({0.0});
+          const Vec3 v = f.value.Evaluate(std::array{0.0});
           model.AddForceElement(AppliedMoment::Constant(
               f.name, pl->model_body, f.frame == VectorFrame::kBody ? Vec3(pl->R_MB * v) : v,
               f.frame));
@@ -608,9 +628,9 @@ std::vector<EventSpec> BuildEvents(const Scene& scene, const BodyMap& body_map) 
     const int count = when.variable_count();
     events.push_back(EventSpec{e.name,
                                [map, when, level, count](const Model& model, const State& state) {
-                                 std::vector<double> variables;
-                                 FillVariables(model, state, *map, count, variables);
-                                 return when.Evaluate(variables) - level;
+                                 VariableBuffer variables(count);
+                                 FillVariables(model, state, *map, variables.span());
+                                 return when.Evaluate(variables.span()) - level;
                                },
                                e.direction, e.action});
   }

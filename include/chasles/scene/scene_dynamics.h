@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -38,8 +39,9 @@ struct StateVariableLayout {
       "x",   "y",   "z",    "vx",  "vy",    "vz",   "wx",    "wy",    "wz",    "wbx",
       "wby", "wbz", "tilt", "yaw", "pitch", "roll", "speed", "omega", "theta", "alpha"};
   static constexpr int kPerBody = static_cast<int>(kSuffixes.size());
-  /// Index in kSuffixes of ω_z, of |ω| (3-D `omega`), of θ and of α_z.
-  static constexpr int kWz = 8, kAngularSpeed = 17, kTheta = 18, kAlpha = 19;
+  /// Index in kSuffixes of ω_z, of the tilt, of the yaw (pitch and roll follow), of |ω| (3-D
+  /// `omega`), of θ and of α_z.
+  static constexpr int kWz = 8, kTilt = 12, kYaw = 13, kAngularSpeed = 17, kTheta = 18, kAlpha = 19;
   /// A planar scene's body variables: its name suffix and the kSuffixes slot it reads (one
   /// name per quantity, the names of the `planar` output columns).
   static constexpr std::array<std::pair<const char*, int>, 8> kPlanarNames = {{{"x", 0},
@@ -89,7 +91,7 @@ struct SceneVectorExpression {
   /// True when no component reads t or the state.
   bool is_constant() const;
   /// The vector for the given state variables (at least the largest slot used + 1 values).
-  Vec3 Evaluate(const std::vector<double>& variables) const;
+  Vec3 Evaluate(std::span<const double> variables) const;
   /// 1 + the highest slot any component reads.
   int variable_count() const;
 };

@@ -1,0 +1,113 @@
+// What a scene costs over the library doing the same run, timed in the same process.
+//
+// Dzhanibekov (examples/dzhanibekov.yaml: moments (1, 2, 3) kg·m², ω₀ = (0.01, 10, 0.01) rad/s,
+// 10 s at tolerance 1e-12, the event 'flip' on ω_y crossing zero, 201 output rows):
+// - SceneDzhanibekov: what `chasles simulate` does short of writing its files: the scene file
+//   read (LoadSceneFile), then RunStudy (the Model and options built, the run, the rows of the
+//   scene's columns, the certificate);
+// - LibraryDzhanibekov: Simulate on the same Model, initial state and options, the event
+//   function written in C++ (the body's ω_y, the model body's axes being the scene body's).
+// SceneDzhanibekov times a library run before each scene run (outside its own time); counters:
+// library_ms and scene_ms, the CPU time of the fastest of each, scene_over_library their ratio,
+// and flip_t_diff the difference of the two runs' flip times [s].
+//
+// Rolling cylinder (examples/contact-cylinder-incline.yaml: a solid cylinder on a 30° incline,
+// its two rim points sticking, 0.5 s at tolerance 1e-12): LibraryCylinder is Simulate on the
+// scene's Model, initial state and options. The two sticking points' six rows hold five
+// degrees of freedom, so every evaluation's contact system is singular: it is solved least-norm
+// (CompleteOrthogonalDecomposition) and again weighted (dynamics/contact_solve.cpp).
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <ctime>
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "chasles/integrate/simulate.h"
+#include "chasles/scene/scene.h"
+#include "chasles/scene/study.h"
+
+namespace chasles {
+namespace {
+
+const std::string kDzhanibekov = CHASLES_SOURCE_DIR "/examples/dzhanibekov.yaml";
+const std::string kCylinder = CHASLES_SOURCE_DIR "/examples/contact-cylinder-incline.yaml";
+
+// This thread's CPU time [s] (the machine is shared: wall time would count other jobs).
+double CpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// The scene's Model and options with the event 'flip' written in C++: ω_y in the body frame.
+struct LibraryRun {
+  Study study = BuildStudy(LoadSceneFile(kDzhanibekov));
+  LibraryRun() {
+    study.options.events.at(0).g = [](const Model&, const State& s) {
+      return s.bodies[0].w_WB_B.y();
+    };
+  }
+  SimulationResult Run() const { return Simulate(*study.model, study.initial, study.options); }
+};
+
+const LibraryRun& Library() {
+  static const LibraryRun run;
+  return run;
+}
+
+void LibraryDzhanibekov(benchmark::State& st) {
+  double flip = 0.0;
+  for (auto _ : st) {
+    const SimulationResult res = Library().Run();
+    flip = res.events.at(0).t;
+    benchmark::DoNotOptimize(res.samples.data());
+  }
+  st.counters["flip_t"] = flip;
+}
+
+// Each iteration times a library run and then the scene's, and the ratio is that of the
+// fastest of each (the least disturbed by other work on the machine).
+void SceneDzhanibekov(benchmark::State& st) {
+  double library = 1e9;
+  double scene = 1e9;
+  double flip_diff = 0.0;
+  for (auto _ : st) {
+    st.PauseTiming();
+    double t0 = CpuSeconds();
+    const SimulationResult lib = Library().Run();
+    library = std::min(library, CpuSeconds() - t0);
+    st.ResumeTiming();
+    t0 = CpuSeconds();
+    const StudyResult res = RunStudy(LoadSceneFile(kDzhanibekov));
+    scene = std::min(scene, CpuSeconds() - t0);
+    flip_diff = std::abs(res.events.at(0).t - lib.events.at(0).t);
+    benchmark::DoNotOptimize(res.events.data());
+  }
+  st.counters["library_ms"] = 1e3 * library;
+  st.counters["scene_ms"] = 1e3 * scene;
+  st.counters["scene_over_library"] = scene / library;
+  st.counters["flip_t_diff"] = flip_diff;
+}
+
+void LibraryCylinder(benchmark::State& st) {
+  const Study study = BuildStudy(LoadSceneFile(kCylinder));
+  std::int64_t evaluations = 0;
+  for (auto _ : st) {
+    const SimulationResult res = Simulate(*study.model, study.initial, study.options);
+    evaluations = res.stats.function_evaluations;
+    benchmark::DoNotOptimize(res.samples.data());
+  }
+  st.counters["evaluations"] = static_cast<double>(evaluations);
+}
+
+BENCHMARK(LibraryDzhanibekov)->Unit(benchmark::kMillisecond)->Iterations(30);
+BENCHMARK(SceneDzhanibekov)->Unit(benchmark::kMillisecond)->Iterations(30);
+BENCHMARK(LibraryCylinder)->Unit(benchmark::kMillisecond)->Iterations(30);
+
+}  // namespace
+}  // namespace chasles
+
+BENCHMARK_MAIN();
