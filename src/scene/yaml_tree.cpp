@@ -216,7 +216,13 @@ class YamlBuilder {
       context = fmt::format(" ({} that starts at line {}, column {})", p.context, c.line + 1,
                             c.column + 1);
     }
-    Fail(places_.At(p.problem_mark.index), "this is not valid YAML: " + problem + context);
+    // libyaml names the token it missed; in a block the usual cause is a line indented unlike
+    // its siblings.
+    const bool block =
+        p.context && std::string_view(p.context).find("block") != std::string_view::npos;
+    Fail(places_.At(p.problem_mark.index),
+         "this is not valid YAML: " + problem + context +
+             (block ? "; check this line's indentation against the lines above it" : ""));
   }
 
   void OnEvent(const yaml_event_t& e) {

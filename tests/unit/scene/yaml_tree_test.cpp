@@ -43,7 +43,8 @@ TEST(YamlTree, SyntaxErrorsNameTheirPlace) {
   // The context points back to where the construct started.
   EXPECT_EQ(Error("x: 1\na:\n  - 1\n  b: 2\n"),
             "4:3 this is not valid YAML: did not find expected '-' indicator (while parsing a "
-            "block collection that starts at line 3, column 3)");
+            "block collection that starts at line 3, column 3); check this line's indentation "
+            "against the lines above it");
   EXPECT_THAT(Error("a: [1, 2\n"), ::testing::StartsWith("2:1 this is not valid YAML"));
   // A control character is the reader's error, at its byte.
   EXPECT_THAT(Error("a: 1\nb: x\x01y\n"),
