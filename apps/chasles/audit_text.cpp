@@ -10,9 +10,9 @@
 
 #include "chasles/analysis/robot_mass.h"
 #include "chasles/error.h"
-#include "chasles/io/json_report.h"
 #include "chasles/math/quaternion.h"
-#include "chasles/scene/report_data.h"
+#include "chasles/report/json_report.h"
+#include "chasles/report/report_data.h"
 #include "chasles/scene/robot_file.h"
 #include "chasles/scene/scene.h"
 

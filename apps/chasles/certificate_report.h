@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The "Checks" section of the simulate and solve text reports (the JSON form is the io
-/// layer's CertificateJson, chasles/io/certificate_json.h), and the exit code of --strict.
+/// The "Checks" section of the simulate and solve text reports (the JSON form is the report
+/// layer's CertificateJson, chasles/report/certificate_json.h), and the exit code of --strict.
 
 #include <string>
 

@@ -7,11 +7,11 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
-#include "chasles/io/json_report.h"
-#include "chasles/io/output_set.h"
+#include "chasles/files/output_set.h"
+#include "chasles/report/json_report.h"
+#include "chasles/report/report_data.h"
 #include "chasles/scene/mass_report.h"
 #include "chasles/scene/mesh_file.h"
-#include "chasles/scene/report_data.h"
 #include "chasles/scene/robot_file.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"

@@ -17,12 +17,12 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
-#include "chasles/io/json_report.h"
-#include "chasles/io/modes_json.h"
-#include "chasles/io/output_set.h"
+#include "chasles/files/output_set.h"
 #include "chasles/math/quaternion.h"
+#include "chasles/report/json_report.h"
+#include "chasles/report/modes_json.h"
+#include "chasles/report/report_data.h"
 #include "chasles/scene/modes.h"
-#include "chasles/scene/report_data.h"
 #include "chasles/scene/scene_dynamics.h"
 #include "chasles/scene/scene_error.h"
 #include "commands.h"

@@ -5,9 +5,9 @@
 #include <utility>
 
 #include "bindings.h"
-#include "chasles/io/json_report.h"
-#include "chasles/io/simulation_report.h"
-#include "chasles/io/solve_json.h"
+#include "chasles/report/json_report.h"
+#include "chasles/report/simulation_report.h"
+#include "chasles/report/solve_json.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/mesh_file.h"
 #include "chasles/scene/scene.h"

@@ -5,7 +5,7 @@
 /// rolling needs against mu_s, each contact point's mode and forces, the kinetic energy and
 /// momenta, and the solve's checks of its own answer. A sweep repeats it over a range of one
 /// scene parameter and returns a table. The report types are the analysis layer's
-/// (chasles/analysis/solve_report.h); the io layer writes them (chasles/io/solve_json.h).
+/// (chasles/analysis/solve_report.h); the report layer writes them (chasles/report/solve_json.h).
 
 #include <cstdint>
 #include <functional>
