@@ -13,7 +13,7 @@ endif()
 if(LAYERS)
   string(REPLACE "," ";" layers "${LAYERS}")
 else()
-  set(layers math files mass model dynamics integrate analysis io scene)
+  set(layers math files mass model dynamics integrate analysis io scene report)
 endif()
 set(violations "")
 
