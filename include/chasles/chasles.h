@@ -1,9 +1,9 @@
 #pragma once
 /// @file
 /// The whole chasles library in one include: every public header of the layers math, files,
-/// mass, model, dynamics, integrate, analysis and io, and the scene layer's entry points (loading a
-/// scene file, running its study). Link chasles::chasles (docs/cpp.md). tests/layering checks
-/// that every public header of those layers is listed here.
+/// mass, model, dynamics, integrate, analysis, io and report, and the scene layer's entry points
+/// (loading a scene file, running its study). Link chasles::chasles (docs/cpp.md).
+/// tests/layering checks that every public header of those layers is listed here.
 
 #include "chasles/analysis/audit.h"
 #include "chasles/analysis/balance.h"
@@ -82,6 +82,11 @@
 #include "chasles/model/state.h"
 #include "chasles/model/string_constraint.h"
 #include "chasles/model/surface_rolling.h"
+#include "chasles/report/certificate_text.h"
+#include "chasles/report/mass_text.h"
+#include "chasles/report/simulation_text.h"
+#include "chasles/report/solve_text.h"
+#include "chasles/report/text_format.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
 #include "chasles/suggest.h"
