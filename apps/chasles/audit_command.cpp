@@ -17,6 +17,7 @@
 #include "chasles/io/audit_json.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/output_set.h"
+#include "chasles/report/audit_text.h"
 #include "chasles/scene/robot_file.h"
 #include "commands.h"
 #include "html_report.h"
