@@ -16,6 +16,7 @@
 #include "chasles/files/robot_reader.h"
 #include "chasles/files/robot_writer.h"
 #include "chasles/report/audit_json.h"
+#include "chasles/report/audit_text.h"
 #include "chasles/report/json_report.h"
 #include "chasles/scene/robot_file.h"
 #include "commands.h"

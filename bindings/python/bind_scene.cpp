@@ -7,7 +7,9 @@
 #include "bindings.h"
 #include "chasles/report/json_report.h"
 #include "chasles/report/simulation_report.h"
+#include "chasles/report/simulation_text.h"
 #include "chasles/report/solve_json.h"
+#include "chasles/report/solve_text.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/mesh_file.h"
 #include "chasles/scene/scene.h"
@@ -285,7 +287,9 @@ void BindSolve(py::module_& m) {
           .def_property_readonly("normal_W", [](const ContactPointReport& c) { return c.out.n_W; })
           .def_property_readonly("friction_needed", &ContactPointReport::FrictionRatio,
                                  "|f|/N (sticking: compare with mu_s)");
-  py::class_<SolveReport>(m, "Solution", "What `chasles solve` reports for a scene.")
+  // dynamic_attr: solve() keeps the scene beside its solution, for text().
+  py::class_<SolveReport>(m, "Solution", "What `chasles solve` reports for a scene.",
+                          py::dynamic_attr())
       .def_property_readonly("t", [](const SolveReport& s) { return s.solution.t; })
       .def_property_readonly("bodies", [](const SolveReport& s) { return s.solution.bodies; })
       .def_property_readonly("reactions", [](const SolveReport& s) { return s.solution.reactions; })
@@ -313,6 +317,14 @@ void BindSolve(py::module_& m) {
         SolutionTableRow(s, &names, &units, &values);
         return py::make_tuple(names, units, values);
       });
+  m.def(
+      "_solve_text",
+      [](const PyScene& s, const SolveReport& solution, const std::string& units) {
+        TextOptions options;
+        options.units = units;
+        return SolveText(s.scene, solution, options);
+      },
+      py::arg("scene"), py::arg("solution"), py::arg("units"));
   m.def(
       "_solve",
       [](const PyScene& s) {
@@ -499,6 +511,13 @@ void BindStudy(py::module_& m) {
         return DumpJson(SimulationJson(r, header, csv_path), "the JSON summary");
       },
       py::arg("scene"), py::arg("result"), py::arg("csv_path"));
+  m.def(
+      "_run_text",
+      [](const PyScene& s, const StudyResult& r, const std::string& units, const std::string& out) {
+        const SimulationFiles files = SimulationFilesIn(out, s.scene.file);
+        return SimulationText(s.scene, r, TextOptions{units, files.csv, files.json});
+      },
+      py::arg("scene"), py::arg("result"), py::arg("units"), py::arg("out"));
   m.def(
       "_run_study",
       [](const PyScene& s, double until, std::int64_t max_steps, std::int64_t max_rows,

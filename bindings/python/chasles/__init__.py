@@ -26,9 +26,11 @@ from ._chasles import (  # noqa: F401
     StudyResult,
     SweepTable,
     _run_json,
+    _run_text,
     _run_study,
     _simulate,
     _solve,
+    _solve_text,
     _sweep,
     _simulate_sweep,
     _mass_sweep,
@@ -108,7 +110,8 @@ class Run(Table):
     ``segments`` (``integrator: auto``: each engine's stretch of the run and why it took over;
     empty otherwise);
     ``result`` is the StudyResult itself. ``to_csv()`` and
-    ``to_json()`` give the two files ``chasles simulate`` writes.
+    ``to_json()`` give the two files ``chasles simulate`` writes; ``text()`` the report it
+    prints.
     """
 
     def __init__(self, scene, result):
@@ -132,6 +135,14 @@ class Run(Table):
         """The JSON summary, as ``chasles simulate`` writes it (text); ``csv_path`` is
         recorded under ``"csv"``."""
         return _run_json(self._scene, self.result, csv_path)
+
+    def text(self, units=None, out=None):
+        """The report ``chasles simulate SCENE`` prints (text), in ``units`` ("SI", "US", or a
+        list such as "mm,g"; None: the scene's own, as ``--units``); its last line names the
+        CSV and JSON files the program writes in the folder ``out`` (None: the current folder,
+        as ``--out``)."""
+        return _run_text(self._scene, self.result, _text_option("units", units),
+                         _text_option("out", out))
 
     def event(self, name):
         """The first event called ``name`` (KeyError when none fired)."""
@@ -180,9 +191,27 @@ def solve(scene):
     Returns a Solution: ``bodies`` (accelerations), ``reactions``, ``contacts``,
     ``motion`` / ``total`` (energy, momenta, dH/dt; per body ω, v, named points' velocity
     and acceleration), ``certificate``, ``warnings``; ``table()``
-    gives the sweep-table row as a one-row Table.
+    gives the sweep-table row as a one-row Table; ``text()`` the report ``chasles solve``
+    prints.
     """
-    return _solve(scene)
+    solution = _solve(scene)
+    solution._scene = scene
+    return solution
+
+
+def _text_option(name, value):
+    """A text option as the program's of that name takes it: a string, None for its default."""
+    if value is None:
+        return ""
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a string, got {type(value).__name__} {value!r}")
+    return value
+
+
+def _solution_text(self, units=None):
+    """The report ``chasles solve SCENE`` prints (text), in ``units`` ("SI", "US", or a list
+    such as "ft,slug"; None: the scene's own, as ``--units``)."""
+    return _solve_text(self._scene, self, _text_option("units", units))
 
 
 def _solution_table(self):
@@ -199,6 +228,7 @@ def _find(items, name, attr, what):
 
 
 Solution.table = _solution_table
+Solution.text = _solution_text
 Solution.body = lambda self, name: _find(self.bodies, name, "name", "body")
 Solution.body.__doc__ = "The accelerations of the body called ``name``."
 Solution.reaction = lambda self, name: _find(self.reactions, name, "name", "reaction")

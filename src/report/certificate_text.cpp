@@ -1,9 +1,8 @@
-#include "certificate_report.h"
+#include "chasles/report/certificate_text.h"
 
 #include <fmt/format.h>
 
-namespace chasles::cli {
-
+namespace chasles {
 std::string CertificateText(const Certificate& c) {
   std::string out = fmt::format("\nChecks ({}; worst value against its tolerance, SI)\n",
                                 c.passed() ? "all passed" : "SOME FAILED");
@@ -19,4 +18,4 @@ std::string CertificateText(const Certificate& c) {
   return out;
 }
 
-}  // namespace chasles::cli
+}  // namespace chasles
