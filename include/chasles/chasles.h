@@ -17,6 +17,7 @@
 #include "chasles/analysis/robot_mass.h"
 #include "chasles/analysis/solve_report.h"
 #include "chasles/analysis/study.h"
+#include "chasles/analysis/sweep.h"
 #include "chasles/analysis/whirl.h"
 #include "chasles/dynamics/constraint_modes.h"
 #include "chasles/dynamics/constraint_residual.h"
