@@ -385,6 +385,7 @@ class Study(Table):
     """
 
     def __init__(self, result, units):
+        _instance("result", result, StudyResult)
         super().__init__(result.columns, units, result.data)
         self.result = result
         for name in ("events", "ledger", "certificate", "final_bodies", "final_reactions",
