@@ -15,6 +15,7 @@
 #include "chasles/analysis/momentum.h"
 #include "chasles/analysis/operating_point.h"
 #include "chasles/analysis/robot_mass.h"
+#include "chasles/analysis/solve.h"
 #include "chasles/analysis/solve_report.h"
 #include "chasles/analysis/study.h"
 #include "chasles/analysis/sweep.h"

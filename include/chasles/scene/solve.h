@@ -12,13 +12,21 @@
 #include <string>
 #include <vector>
 
+#include "chasles/analysis/solve.h"
 #include "chasles/analysis/solve_report.h"
 #include "chasles/analysis/sweep.h"
 #include "chasles/scene/scene.h"
 
 namespace chasles {
 
-/// Solves the scene's instantaneous problem at its initial state (projected onto the
+/// The scene's instantaneous problem for the analysis layer's SolveAtState: its Model and
+/// initial state (BuildStudy: on the constraints, projected when `project_initial: true`, each
+/// change a warning after the scene's own), its bodies' named points, the rolling contacts'
+/// mu_s and the contact point labels. Errors are SceneErrors at the scene entry they concern.
+SolveDefinition MakeSolveDefinition(const Scene& scene);
+
+/// Solves the scene's instantaneous problem at its initial state (SolveAtState of
+/// MakeSolveDefinition) (projected onto the
 /// constraints; contact modes chosen as a simulation starts, impacts not applied). Errors are
 /// SceneErrors at the scene entry they concern (ThrowAtSceneEntry).
 SolveReport SolveScene(const Scene& scene);
