@@ -99,9 +99,9 @@ bool KeptRunNamesInFull(const Scene& base, const std::vector<SweepSpec>& specs,
                         std::int64_t max_runs) {
   const SweepGrid grid = MakeSweepGrid(base, specs, max_runs);
   std::unordered_set<std::string> names;
-  for (std::int64_t k = 0; k < grid.size; ++k) {
+  for (std::int64_t k = 0; k < grid.parameters.size(); ++k) {
     std::string name;
-    for (const double v : grid.Values(k)) name += fmt::format("_{:.12g}", v);
+    for (const double v : grid.parameters.Values(k)) name += fmt::format("_{:.12g}", v);
     if (!names.insert(name).second) return true;
   }
   return false;

@@ -1,10 +1,17 @@
 // Scenes: loading with overrides, mass properties, the instantaneous solve, the run
-// (RunStudy) and sweeps.
+// (RunStudy) and sweeps; a study of a Model built in Python, and a sweep of a Python function
+// of the parameters (no scene file).
 
 #include <cmath>
+#include <memory>
+#include <string>
+#include <tuple>
 #include <utility>
+#include <vector>
 
 #include "bindings.h"
+#include "chasles/analysis/study.h"
+#include "chasles/analysis/sweep.h"
 #include "chasles/report/json_report.h"
 #include "chasles/report/simulation_report.h"
 #include "chasles/report/simulation_text.h"
@@ -231,6 +238,43 @@ void BindSweeps(py::module_& m) {
       },
       py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("jobs"),
       py::arg("max_runs"));
+  m.def(
+      "_run_sweep",
+      [](const std::vector<std::string>& names, const std::vector<std::string>& units,
+         const std::vector<double>& start, const std::vector<double>& stop,
+         const std::vector<int>& counts, const std::vector<std::string>& quantities,
+         const std::vector<std::string>& quantity_units, const py::function& function, int jobs,
+         std::int64_t max_points, const py::object& input_error) {
+        const ParameterGrid grid{names, units, start, stop, counts};
+        CheckParameterGrid(grid, max_points);
+        // Each point calls the Python function with the GIL held; its chasles.InputError (a bad
+        // value at that point) fails that row alone, any other exception the sweep.
+        const SweepFunction point = [&](const std::vector<double>& values) {
+          py::gil_scoped_acquire acquire;
+          py::object out;
+          try {
+            out = function(*py::cast(values));
+          } catch (py::error_already_set& e) {
+            if (e.matches(input_error)) throw InputError(py::str(e.value()).cast<std::string>());
+            throw;
+          }
+          SweepRow row{values, ""};
+          const auto got = out.cast<std::vector<double>>();
+          if (got.size() != quantities.size()) {
+            throw UsageError("the sweep's function returned " + std::to_string(got.size()) +
+                             " values for " + std::to_string(quantities.size()) + " quantities");
+          }
+          row.values.insert(row.values.end(), got.begin(), got.end());
+          return row;
+        };
+        SweepRunOptions options;
+        options.jobs = jobs;
+        py::gil_scoped_release release;
+        return RunSweep(grid, quantities, quantity_units, point, options);
+      },
+      py::arg("names"), py::arg("units"), py::arg("start"), py::arg("stop"), py::arg("counts"),
+      py::arg("quantities"), py::arg("quantity_units"), py::arg("function"), py::arg("jobs"),
+      py::arg("max_points"), py::arg("input_error"));
   m.def(
       "parse_sweep",
       [](const std::string& text) {
@@ -533,6 +577,37 @@ void BindStudy(py::module_& m) {
       },
       py::arg("scene"), py::arg("until"), py::arg("max_steps"), py::arg("max_rows"),
       py::arg("timeout"), py::arg("min_step"));
+  m.def(
+      "_run_definition",
+      [](const Model& model, const State& initial, const SimulationOptions& options,
+         const std::vector<std::tuple<std::string, int, std::string>>& columns,
+         std::int64_t max_steps, std::int64_t max_rows, double timeout) {
+        // A study of the caller's Model: its bodies are the study's, the run starts on a copy
+        // of it (a Python Model may change afterwards), no impact embeds, so no ModelBuilder.
+        StudyDefinition def;
+        for (int b = 0; b < model.num_bodies(); ++b) {
+          def.bodies.push_back({model.body(b).name(), model.body(b).mass_properties()});
+        }
+        def.model = std::make_shared<const Model>(model);
+        def.initial = initial;
+        def.options = options;
+        def.options.events.clear();
+        for (const auto& [name, body, quantity] : columns) {
+          StudyColumn c;
+          c.name = name;
+          c.body = body;
+          c.quantity = quantity;
+          c.group = body < 0 ? (name == "t" ? "time" : "energy") : "body";
+          def.columns.push_back(std::move(c));
+        }
+        def.limits = {max_steps, max_rows, timeout};
+        {
+          py::gil_scoped_release release;
+          return RunStudy(def);
+        }
+      },
+      py::arg("model"), py::arg("initial"), py::arg("options"), py::arg("columns"),
+      py::arg("max_steps"), py::arg("max_rows"), py::arg("timeout"));
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
-// A sweep split over processes (chasles/scene/sweep_share.h): each share runs its points, its
+// A sweep split over processes (chasles/analysis/sweep.h): each share runs its points, its
 // part goes through bytes, and the merged table is the serial one bit for bit; without MPI.
 
-#include "chasles/scene/sweep_share.h"
+#include "chasles/analysis/sweep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,27 +15,28 @@
 #include <gtest/gtest.h>
 
 #include "chasles/error.h"
-#include "chasles/scene/scene.h"
-#include "chasles/scene/sweep.h"
 
 namespace chasles {
 namespace {
 
-// A box of mass m and sides a, 1 m, 1 m: its central Izz = m (a² + (1 m)²) / 12. A side a <= 0
-// is bad input at that point: a failed row.
-constexpr const char* kScene = R"(chasles: 1
-parameters:
-  a: 2 m
-  m: 3 kg
-bodies:
-  - name: box
-    parts: [{shape: box, size: [a, 1 m, 1 m], mass: m}]
-)";
-
+// A box of mass m and sides a, 1 m, 1 m: its central Izz = m (a² + (1 m)²) / 12 (Appendix A).
+// A side a <= 0 is bad input at that point: a failed row.
 SweepTable Sweep(const SweepShare& share) {
-  const auto load = [](const SceneOptions& o) { return LoadSceneText(kScene, "box.yaml", o); };
-  return MassSweep(load, {}, {ParseSweep("a=-1 m:3 m:5"), ParseSweep("m=1 kg:4 kg:3")},
-                   {"Izz", "mass"}, 2, {}, 1000, share);
+  ParameterGrid grid;
+  grid.names = {"a", "m"};
+  grid.units = {"m", "kg"};
+  grid.start = {-1.0, 1.0};
+  grid.stop = {3.0, 4.0};
+  grid.counts = {5, 3};
+  const SweepFunction box = [](const std::vector<double>& v) {
+    const double a = v[0], m = v[1];
+    if (a <= 0) throw InputError("side a must be > 0\nat this point");
+    return SweepRow{{a, m, m * (a * a + 1) / 12, m}, ""};
+  };
+  SweepRunOptions options;
+  options.jobs = 2;
+  options.share = share;
+  return RunSweep(grid, {"Izz", "mass"}, {"kg*m^2", "kg"}, box, options);
 }
 
 bool SameBits(double x, double y) {

@@ -1,6 +1,6 @@
-// A sweep split over several processes (chasles/scene/sweep_share.h).
+// A sweep split over several processes (chasles/analysis/sweep.h).
 
-#include "chasles/scene/sweep_share.h"
+#include "chasles/analysis/sweep.h"
 
 #include <cstring>
 #include <stdexcept>
