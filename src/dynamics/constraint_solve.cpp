@@ -137,7 +137,11 @@ void CalcConstraintRows(const Model& model, const State& state, Data& data) {
     for (int k = 0; k < e.num_extra; ++k)
       data.J.block(o, 6 * e.extra_body[static_cast<size_t>(k)], n, 6).setZero();
     e = ConstraintEval{};
-    con.Evaluate(model, state, data, e);
+    try {
+      con.Evaluate(model, state, data, e);
+    } catch (const InputError& x) {
+      RethrowForElement(x, {ErrorElement::Kind::kConstraint, c});
+    }
     // A constraint that can let go keeps its gap (its row's g) for the events; released, its
     // rows leave the system (zero in J, b, c, g; its multiplier is held at 0 by
     // internal::HoldReleasedRows) but `e` keeps its Jacobian rows for the gap rate.
@@ -263,12 +267,14 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
       // when the constraints cannot be assembled at all (wrong lengths, a closed loop that
       // does not close).
       if (g_max > options.assembly_tolerance) {
-        throw InputError(fmt::format(
-            "constraint '{}' cannot be satisfied: after {} Gauss-Newton steps its position "
-            "error is still {:.3g}; check its attachment points and axes against the other "
-            "constraints",
-            model.constraint(hol_owner[static_cast<size_t>(worst)]).name(), options.max_iterations,
-            g_max));
+        throw InputError(
+            fmt::format(
+                "constraint '{}' cannot be satisfied: after {} Gauss-Newton steps its position "
+                "error is still {:.3g}; check its attachment points and axes against the other "
+                "constraints",
+                model.constraint(hol_owner[static_cast<size_t>(worst)]).name(),
+                options.max_iterations, g_max),
+            ErrorElement{ErrorElement::Kind::kConstraint, hol_owner[static_cast<size_t>(worst)]});
       }
       break;
     }

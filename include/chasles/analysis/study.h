@@ -525,7 +525,10 @@ struct StudyResult {
 
 /// Runs a study. Throws InputError for bad settings, and for a force, reaction, acceleration
 /// or state that becomes non-finite (naming the element, the quantity and the time: nothing
-/// non-finite is ever returned); LimitError when a limit on the work is reached.
+/// non-finite is ever returned); LimitError when a limit on the work is reached. An
+/// InputError's element (InputError::element) that is a body is a user body (an index into
+/// definition.bodies), whatever segment's Model the run was on; the other kinds are Model
+/// indices, the same in every segment (the ModelBuilder places them alike).
 StudyResult RunStudy(const StudyDefinition& definition);
 
 /// Mechanical energy T + V of the whole Model at `state` [J].
