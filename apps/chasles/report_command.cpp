@@ -18,6 +18,7 @@
 #include "chasles/io/csv_table.h"
 #include "chasles/io/input_file.h"
 #include "chasles/io/output_set.h"
+#include "chasles/io/result_names.h"
 #include "chasles/scene/report_data.h"
 #include "chasles/scene/scene.h"
 #include "commands.h"
@@ -107,7 +108,7 @@ void ReadTimeline(const nlohmann::json& j, const std::string& json, StudyResult&
     const std::string where = json + ": jumps";
     StudyJump x;
     x.t = Get<double>(e, "t", where);
-    x.kind = Get<std::string>(e, "kind", where);
+    x.kind = ParseStudyJumpKind(Get<std::string>(e, "kind", where), where);
     x.description = Get<std::string>(e, "description", where);
     r.jumps.push_back(x);
   }

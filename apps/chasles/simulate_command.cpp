@@ -14,6 +14,7 @@
 #include "chasles/error.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/output_set.h"
+#include "chasles/io/result_names.h"
 #include "chasles/io/simulation_report.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/scene/report_data.h"
@@ -390,10 +391,10 @@ std::string StringEventsText(const StudyResult& r, const TextUnits& u) {
 }
 
 std::string ImpactText(const StudyImpact& x, const TextUnits& u) {
-  std::string out =
-      fmt::format("  t = {}  {}: approach speed {}, energy lost {}{}\n", u.Time(x.t), x.point,
-                  u.show(x.approach_speed, kVelocity), u.Energy(x.energy_lost),
-                  x.jam ? "" : fmt::format(" ({} restitution)", x.restitution_law));
+  std::string out = fmt::format(
+      "  t = {}  {}: approach speed {}, energy lost {}{}\n", u.Time(x.t), x.point,
+      u.show(x.approach_speed, kVelocity), u.Energy(x.energy_lost),
+      x.jam ? "" : fmt::format(" ({} restitution)", RestitutionLawName(*x.restitution_law)));
   if (x.jam) {
     out +=
         "    a jam: the slip had no consistent contact forces (Painlevé) and was stopped "

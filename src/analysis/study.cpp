@@ -275,8 +275,8 @@ void StudyRun::RecordImpacts(const ImpactResult& r, double t) {
   for (const ContactImpulse& imp : r.impulses) {
     result_.impacts.push_back({t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
                                r.kinetic_energy_before - r.kinetic_energy_after, false,
-                               std::numeric_limits<double>::quiet_NaN(), false,
-                               RestitutionLawName(imp.law), r.frictionless_fallback});
+                               std::numeric_limits<double>::quiet_NaN(), false, imp.law,
+                               r.frictionless_fallback});
   }
 }
 
@@ -305,7 +305,8 @@ void StudyRun::SettleContacts(const char* reason, std::vector<std::pair<int, Vec
   }
   for (const JamImpulse& j : notes.jams) {
     result_.impacts.push_back({state_.t, Label(j.point), 0.0, j.normal_impulse, j.energy_lost,
-                               false, std::numeric_limits<double>::quiet_NaN(), true, "", false});
+                               false, std::numeric_limits<double>::quiet_NaN(), true, std::nullopt,
+                               false});
     result_.warnings.push_back(fmt::format(
         "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces had no "
         "consistent solution (a Painlevé-type paradox); the slip was stopped by an impulsive "
@@ -649,8 +650,8 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
   std::vector<StudyImpact> impacts;
   for (const ImpactRecord& imp : r.plane_impacts) {
     impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
-                       imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam,
-                       RestitutionLawName(imp.law), imp.frictionless_fallback});
+                       imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam, imp.law,
+                       imp.frictionless_fallback});
   }
   for (const SphereCollision& c : r.collisions) {
     std::string point = fmt::format("{} | {}", m.body(c.body_a).name(), m.body(c.body_b).name());
@@ -663,8 +664,7 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
       }
     }
     impacts.push_back({c.t, point, c.approach_speed, c.normal_impulse, c.energy_lost, false,
-                       std::numeric_limits<double>::quiet_NaN(), false, RestitutionLawName(c.law),
-                       false});
+                       std::numeric_limits<double>::quiet_NaN(), false, c.law, false});
   }
   std::stable_sort(impacts.begin(), impacts.end(),
                    [](const StudyImpact& a, const StudyImpact& b) { return a.t < b.t; });
@@ -724,7 +724,7 @@ void StudyRun::RecordSimulation(const SimulationResult& r,
   for (const ImpactRecord& imp : r.impacts) {
     result_.impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
                                imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam,
-                               RestitutionLawName(imp.law), imp.frictionless_fallback});
+                               imp.law, imp.frictionless_fallback});
   }
   result_.warnings.insert(result_.warnings.end(), r.warnings.begin(), r.warnings.end());
 }
@@ -776,7 +776,7 @@ void StudyRun::ApplyJump(const Jump& j) {
   int shown = 0;
   if (j.impulse) {
     shown = study_internal::ApplyStudyImpulse(*j.impulse, seg_, state_, &impulses);
-    rec.kind = "impulse";
+    rec.kind = StudyJumpKind::kImpulse;
     rec.description =
         fmt::format("impulse on {}", def_.bodies[static_cast<size_t>(j.impulse->body)].name);
   } else {
@@ -794,7 +794,8 @@ void StudyRun::ApplyJump(const Jump& j) {
           ErrorElement{ErrorElement::Kind::kBody, model_body(j.impact->projectile)});
     }
     shown = study_internal::ApplyStudyImpact(*j.impact, def_.build_model, seg_, state_, &impulses);
-    rec.kind = j.impact->exit_fraction > 0 ? "pass-through" : "embedding";
+    rec.kind =
+        j.impact->exit_fraction > 0 ? StudyJumpKind::kPassThrough : StudyJumpKind::kEmbedding;
     rec.description = j.impact->exit_fraction > 0
                           ? fmt::format("{} passes through {} keeping {:.4g} of its velocity",
                                         projectile, target, j.impact->exit_fraction)

@@ -18,6 +18,7 @@
 #include "chasles/error.h"
 #include "chasles/io/json_report.h"
 #include "chasles/io/mesh_reader.h"
+#include "chasles/io/result_names.h"
 #include "chasles/io/solve_json.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/scene/column_units.h"
@@ -329,7 +330,8 @@ nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r) {
   j["impacts"] = impacts;
   nlohmann::json jumps = nlohmann::json::array();
   for (const StudyJump& x : r.jumps) {
-    jumps.push_back({{"t", x.t}, {"kind", x.kind}, {"description", x.description}});
+    jumps.push_back(
+        {{"t", x.t}, {"kind", StudyJumpKindName(x.kind)}, {"description", x.description}});
   }
   j["jumps"] = jumps;
 

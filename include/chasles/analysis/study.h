@@ -208,10 +208,16 @@ struct StudyDefinition {
 /// constraint stage's ConstraintOutput by MakeReactionReport.
 using StudyReaction = ReactionReport;
 
+/// What a jump of the state was.
+enum class StudyJumpKind {
+  kImpulse,      ///< an impulse applied to a body
+  kEmbedding,    ///< a projectile that stays in its target (one composite body after)
+  kPassThrough,  ///< a projectile that passes through its target, keeping part of its velocity
+};
+
 /// An impulse or impact applied during the run.
 struct StudyJump {
-  /// "impulse", "embedding" or "pass-through".
-  std::string kind;
+  StudyJumpKind kind = StudyJumpKind::kImpulse;
   /// What happened, for the report ("bullet embeds in block").
   std::string description;
   /// Time [s].
@@ -280,8 +286,8 @@ struct StudyImpact {
   /// True for a jam: a slip without consistent contact forces (Painlevé) stopped by an
   /// impulse at zero approach speed.
   bool jam = false;
-  /// The restitution law used ("energetic", "newton", "poisson").
-  std::string restitution_law;
+  /// The restitution law used; none for a jam.
+  std::optional<RestitutionLaw> restitution_law;
   /// True when the impulse with friction would have raised the kinetic energy and the
   /// frictionless one was used (ImpactResult::frictionless_fallback).
   bool frictionless_fallback = false;
