@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,17 +65,23 @@ int SolveSchur(const Model& model, const std::vector<int>* row_owner, const Matr
     const std::vector<int> all = row_owner ? std::vector<int>() : RowOwners(model);
     const std::vector<int>& owner = row_owner ? *row_owner : all;
     std::string names;
+    int first = -1;  // the first constraint named
     for (Eigen::Index k = 0; k < n; ++k) {
-      const std::string quoted = "'" + model.constraint(owner[static_cast<size_t>(k)]).name() + "'";
+      const int c = owner[static_cast<size_t>(k)];
+      const std::string quoted = "'" + model.constraint(c).name() + "'";
       if (std::abs(res[k]) > tol && names.find(quoted) == std::string::npos) {
         names += (names.empty() ? "" : ", ") + quoted;
+        if (first < 0) first = c;
       }
     }
-    throw InputError(fmt::format(
-        "constraints {} are inconsistent: no {} satisfies all of them (least-squares residual "
-        "{:.3g}); remove or change one of them (two drivers on the same coordinate, or a "
-        "joint that contradicts another)",
-        names, what, res.cwiseAbs().maxCoeff()));
+    throw InputError(
+        fmt::format(
+            "constraints {} are inconsistent: no {} satisfies all of them (least-squares residual "
+            "{:.3g}); remove or change one of them (two drivers on the same coordinate, or a "
+            "joint that contradicts another)",
+            names, what, res.cwiseAbs().maxCoeff()),
+        first >= 0 ? std::optional(ErrorElement{ErrorElement::Kind::kConstraint, first})
+                   : std::nullopt);
   }
   return static_cast<int>(cod.rank());
 }
