@@ -20,6 +20,7 @@
 #include "chasles/report/csv_table.h"
 #include "chasles/report/json_input.h"
 #include "chasles/report/report_data.h"
+#include "chasles/report/result_names.h"
 #include "chasles/scene/scene.h"
 #include "commands.h"
 #include "html_report.h"
@@ -108,7 +109,7 @@ void ReadTimeline(const nlohmann::json& j, const std::string& json, StudyResult&
     const std::string where = json + ": jumps";
     StudyJump x;
     x.t = Get<double>(e, "t", where);
-    x.kind = Get<std::string>(e, "kind", where);
+    x.kind = ParseStudyJumpKind(Get<std::string>(e, "kind", where), where);
     x.description = Get<std::string>(e, "description", where);
     r.jumps.push_back(x);
   }

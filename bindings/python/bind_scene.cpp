@@ -13,6 +13,7 @@
 #include "chasles/analysis/study.h"
 #include "chasles/analysis/sweep.h"
 #include "chasles/report/json_report.h"
+#include "chasles/report/result_names.h"
 #include "chasles/report/simulation_report.h"
 #include "chasles/report/simulation_text.h"
 #include "chasles/report/solve_json.h"
@@ -425,14 +426,17 @@ void BindStudyParts(py::module_& m) {
       .def_readonly("angular_momentum_change", &BodyImpulseBalance::dH_Bcm_W, "[kg*m^2/s]")
           RO(BodyImpulseBalance, impulses, "");
   py::class_<StudyJump>(m, "Jump", "An impulse or impact applied during the run.")
-      RO(StudyJump, kind, "") RO(StudyJump, description, "") RO(StudyJump, t, "")
-          RO(StudyJump, energy_before, "[J]") RO(StudyJump, energy_after, "[J]")
-              .def_readonly("velocity_after", &StudyJump::v_after_W)
-              .def_readonly("angular_velocity_after", &StudyJump::w_after_W)
-                  RO(StudyJump, reactions,
-                     "The supports' impulsive reactions (Reaction records in N*s, N*m*s)")
-                      RO(StudyJump, bodies, "Every body's velocity jumps and impulses")
-                          RO(StudyJump, impacts, "Indices into run.impacts of this instant");
+      .def_property_readonly(
+          "kind", [](const StudyJump& x) { return StudyJumpKindName(x.kind); },
+          "\"impulse\", \"embedding\" or \"pass-through\"") RO(StudyJump, description, "")
+          RO(StudyJump, t, "") RO(StudyJump, energy_before, "[J]")
+              RO(StudyJump, energy_after, "[J]")
+      .def_readonly("velocity_after", &StudyJump::v_after_W)
+      .def_readonly("angular_velocity_after", &StudyJump::w_after_W)
+          RO(StudyJump, reactions,
+             "The supports' impulsive reactions (Reaction records in N*s, N*m*s)")
+              RO(StudyJump, bodies, "Every body's velocity jumps and impulses")
+                  RO(StudyJump, impacts, "Indices into run.impacts of this instant");
   py::class_<StudyContactEvent>(m, "StudyContactEvent", "A contact mode change.")
       RO(StudyContactEvent, t, "[s]") RO(StudyContactEvent, point, "")
           RO(StudyContactEvent, contact, "")
@@ -442,7 +446,13 @@ void BindStudyParts(py::module_& m) {
       RO(StudyImpact, point, "") RO(StudyImpact, approach_speed, "[m/s]")
           RO(StudyImpact, normal_impulse, "[N*s]") RO(StudyImpact, energy_lost, "[J]")
               RO(StudyImpact, accumulation, "") RO(StudyImpact, rest_time, "")
-                  RO(StudyImpact, jam, "") RO(StudyImpact, restitution_law, "");
+                  RO(StudyImpact, jam, "")
+                      .def_property_readonly(
+                          "restitution_law",
+                          [](const StudyImpact& x) {
+                            return x.restitution_law ? RestitutionLawName(*x.restitution_law) : "";
+                          },
+                          "\"energetic\", \"newton\" or \"poisson\"");
   py::class_<StudyLedger>(m, "Ledger", "The work-energy ledger at the end of the run.") RO(
       StudyLedger, kinetic_translational, "[J]") RO(StudyLedger, kinetic_rotational, "[J]")
       RO(StudyLedger, potential, "[J]") RO(StudyLedger, energy, "[J]") RO(

@@ -45,11 +45,13 @@ void CheckFinite(const Model& model, const State& state) {
                     s.q_WB.coeffs().allFinite() && s.p_WBcm.norm() < kMotionScale &&
                     s.v_WBcm_W.norm() < kMotionScale && s.w_WB_B.norm() < kMotionScale;
     if (!ok) {
-      throw InputError(fmt::format(
-          "the motion of body '{}' diverged (non-finite or beyond 1e150 in SI) near t = {:.9g} s; "
-          "the run is stopped. Check the force expressions for a singularity, or use a smaller "
-          "'step' or the adaptive integrator",
-          model.body(b).name(), state.t));
+      throw InputError(
+          fmt::format(
+              "the motion of body '{}' diverged (non-finite or beyond 1e150 in SI) near "
+              "t = {:.9g} s; the run is stopped. Check the force expressions for a singularity, "
+              "or use a smaller 'step' or the adaptive integrator",
+              model.body(b).name(), state.t),
+          ErrorElement{ErrorElement::Kind::kBody, b});
     }
   }
 }
@@ -72,9 +74,14 @@ class StudyRun {
         slip_(def.rolling_watch),
         started_(std::chrono::steady_clock::now()) {}
 
+  /// The run; an InputError that names a body names a user body (an index into def.bodies).
   StudyResult Run();
 
  private:
+  StudyResult RunUnmapped();
+  /// Rethrows `e`, naming the first user body placed in the current segment's model body it
+  /// names (after an embedding a model body carries several).
+  [[noreturn]] void RethrowForUserBody(const InputError& e) const;
   const std::string& Label(int p) const { return labels_[static_cast<size_t>(p)]; }
   void Start();
   void RecordImpacts(const ImpactResult& r, double t);
@@ -136,6 +143,29 @@ class StudyRun {
 };
 
 StudyResult StudyRun::Run() {
+  try {
+    return RunUnmapped();
+  } catch (const InputError& e) {
+    RethrowForUserBody(e);
+  }
+}
+
+void StudyRun::RethrowForUserBody(const InputError& e) const {
+  if (!e.element() || e.element()->kind != ErrorElement::Kind::kBody ||
+      typeid(e) != typeid(InputError)) {
+    throw;
+  }
+  for (size_t b = 0; b < seg_.map.place.size(); ++b) {
+    if (seg_.map.place[b].model_body == e.element()->index) {
+      ErrorElement element = *e.element();
+      element.index = static_cast<int>(b);
+      throw InputError(e.what(), element);
+    }
+  }
+  throw;
+}
+
+StudyResult StudyRun::RunUnmapped() {
   Start();
   // Impulses and impacts in time order (stable: the definition's order at equal times).
   std::vector<Jump> jumps;
@@ -245,8 +275,8 @@ void StudyRun::RecordImpacts(const ImpactResult& r, double t) {
   for (const ContactImpulse& imp : r.impulses) {
     result_.impacts.push_back({t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
                                r.kinetic_energy_before - r.kinetic_energy_after, false,
-                               std::numeric_limits<double>::quiet_NaN(), false,
-                               RestitutionLawName(imp.law), r.frictionless_fallback});
+                               std::numeric_limits<double>::quiet_NaN(), false, imp.law,
+                               r.frictionless_fallback});
   }
 }
 
@@ -275,7 +305,8 @@ void StudyRun::SettleContacts(const char* reason, std::vector<std::pair<int, Vec
   }
   for (const JamImpulse& j : notes.jams) {
     result_.impacts.push_back({state_.t, Label(j.point), 0.0, j.normal_impulse, j.energy_lost,
-                               false, std::numeric_limits<double>::quiet_NaN(), true, "", false});
+                               false, std::numeric_limits<double>::quiet_NaN(), true, std::nullopt,
+                               false});
     result_.warnings.push_back(fmt::format(
         "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces had no "
         "consistent solution (a Painlevé-type paradox); the slip was stopped by an impulsive "
@@ -402,7 +433,7 @@ void StudyRun::RunAdaptiveStretch(double t_b) {
     if (!stays.empty()) {
       why += "; integrator auto cannot hand this run over to time stepping: " + stays;
     }
-    throw InputError(why);
+    throw InputError(why, e.element());
   }
   RecordSimulation(r, carried, o.events);
   state_ = r.final_state;
@@ -434,7 +465,8 @@ void StudyRun::RunSteppingStretch(double t_b) {
   } catch (const LimitError&) {
     throw;
   } catch (const InputError& e) {
-    throw InputError(fmt::format("the run stopped after t = {:.9g} s: {}", t_last_row_, e.what()));
+    throw InputError(fmt::format("the run stopped after t = {:.9g} s: {}", t_last_row_, e.what()),
+                     e.element());
   }
   RecordSteppingSamples(r);
   CheckFinite(*seg_.model, r.final_state);
@@ -618,8 +650,8 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
   std::vector<StudyImpact> impacts;
   for (const ImpactRecord& imp : r.plane_impacts) {
     impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
-                       imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam,
-                       RestitutionLawName(imp.law), imp.frictionless_fallback});
+                       imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam, imp.law,
+                       imp.frictionless_fallback});
   }
   for (const SphereCollision& c : r.collisions) {
     std::string point = fmt::format("{} | {}", m.body(c.body_a).name(), m.body(c.body_b).name());
@@ -632,8 +664,7 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
       }
     }
     impacts.push_back({c.t, point, c.approach_speed, c.normal_impulse, c.energy_lost, false,
-                       std::numeric_limits<double>::quiet_NaN(), false, RestitutionLawName(c.law),
-                       false});
+                       std::numeric_limits<double>::quiet_NaN(), false, c.law, false});
   }
   std::stable_sort(impacts.begin(), impacts.end(),
                    [](const StudyImpact& a, const StudyImpact& b) { return a.t < b.t; });
@@ -693,7 +724,7 @@ void StudyRun::RecordSimulation(const SimulationResult& r,
   for (const ImpactRecord& imp : r.impacts) {
     result_.impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
                                imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam,
-                               RestitutionLawName(imp.law), imp.frictionless_fallback});
+                               imp.law, imp.frictionless_fallback});
   }
   result_.warnings.insert(result_.warnings.end(), r.warnings.begin(), r.warnings.end());
 }
@@ -745,7 +776,7 @@ void StudyRun::ApplyJump(const Jump& j) {
   int shown = 0;
   if (j.impulse) {
     shown = study_internal::ApplyStudyImpulse(*j.impulse, seg_, state_, &impulses);
-    rec.kind = "impulse";
+    rec.kind = StudyJumpKind::kImpulse;
     rec.description =
         fmt::format("impulse on {}", def_.bodies[static_cast<size_t>(j.impulse->body)].name);
   } else {
@@ -755,13 +786,16 @@ void StudyRun::ApplyJump(const Jump& j) {
       return seg_.map.place[static_cast<size_t>(b)].model_body;
     };
     if (model_body(j.impact->target) == model_body(j.impact->projectile)) {
-      throw InputError(fmt::format(
-          "impact at t = {:.6g} s: '{}' and '{}' are already one body (an earlier impact "
-          "embedded one in the other)",
-          j.impact->t, projectile, target));
+      throw InputError(
+          fmt::format(
+              "impact at t = {:.6g} s: '{}' and '{}' are already one body (an earlier impact "
+              "embedded one in the other)",
+              j.impact->t, projectile, target),
+          ErrorElement{ErrorElement::Kind::kBody, model_body(j.impact->projectile)});
     }
     shown = study_internal::ApplyStudyImpact(*j.impact, def_.build_model, seg_, state_, &impulses);
-    rec.kind = j.impact->exit_fraction > 0 ? "pass-through" : "embedding";
+    rec.kind =
+        j.impact->exit_fraction > 0 ? StudyJumpKind::kPassThrough : StudyJumpKind::kEmbedding;
     rec.description = j.impact->exit_fraction > 0
                           ? fmt::format("{} passes through {} keeping {:.4g} of its velocity",
                                         projectile, target, j.impact->exit_fraction)

@@ -39,7 +39,7 @@ std::string SteppingObstacle(bool has_events, const Model& model) {
   if (has_events) {
     return "the run's events are located on the adaptive integrator's dense output";
   }
-  return TimeSteppingObstacle(model);
+  return TimeSteppingObstacle(model).why;
 }
 
 void AddSteppingSummary(TimeSteppingSummary& into, const TimeSteppingSummary& add) {

@@ -106,7 +106,8 @@ int ApplyStudyImpact(const StudyImpactSpec& impact, const ModelBuilder& build, S
         fmt::format("impact at t = {:.6g} s: '{}' and '{}' are already one body (an earlier impact "
                     "embedded one in the other)",
                     impact.t, seg.bodies[static_cast<size_t>(mp)].name,
-                    seg.bodies[static_cast<size_t>(mt)].name));
+                    seg.bodies[static_cast<size_t>(mt)].name),
+        ErrorElement{ErrorElement::Kind::kBody, mp});
   }
   const BodyState& sp = state.bodies[static_cast<size_t>(mp)];
   if (impact.exit_fraction > 0) {

@@ -115,12 +115,13 @@ std::unique_ptr<Integrator> MakeIntegrator(const Model& model, const SimulationO
     return std::make_unique<FixedGridIntegrator<Rk4Integrator>>(model, h);
   }
   if (options.integrator == IntegratorKind::kSplitting) {
-    const std::string obstacle = FreeBodyBatchObstacle(model);
+    const ModelObstacle obstacle = FreeBodyBatchObstacle(model);
     if (!obstacle.empty()) {
-      throw InputError(fmt::format(
-          "the splitting integrator steps free bodies under uniform gravity only, and {}; "
-          "choose rk4 or the adaptive integrator",
-          obstacle));
+      throw InputError(
+          fmt::format("the splitting integrator steps free bodies under uniform gravity only, and "
+                      "{}; choose rk4 or the adaptive integrator",
+                      obstacle.why),
+          obstacle.element);
     }
     return std::make_unique<FixedGridIntegrator<FreeBodyBatchIntegrator>>(
         model, h, FreeBodyStepper::kSplitting);

@@ -39,13 +39,16 @@ void Validate(const Model& model, const State& initial, const SimulationOptions&
           "Dormand-Prince integrator for a run with events");
     }
   }
-  for (const EventSpec& e : o.events) {
+  for (size_t i = 0; i < o.events.size(); ++i) {
+    const EventSpec& e = o.events[i];
+    const ErrorElement element{ErrorElement::Kind::kEvent, static_cast<int>(i)};
     if (!e.g && !e.on_mode_change) {
-      throw InputError(fmt::format("event '{}' has no event function", e.name));
+      throw InputError(fmt::format("event '{}' has no event function", e.name), element);
     }
     if (!e.g && model.num_contacts() == 0) {
       throw InputError(
-          fmt::format("event '{}' watches contact modes, but the model has no contacts", e.name));
+          fmt::format("event '{}' watches contact modes, but the model has no contacts", e.name),
+          element);
     }
   }
   if (!(o.threads >= 1)) {

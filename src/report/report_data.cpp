@@ -18,6 +18,7 @@
 #include "chasles/files/mesh_reader.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/report/json_report.h"
+#include "chasles/report/result_names.h"
 #include "chasles/report/solve_json.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/study.h"
@@ -324,7 +325,8 @@ nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r) {
   j["impacts"] = impacts;
   nlohmann::json jumps = nlohmann::json::array();
   for (const StudyJump& x : r.jumps) {
-    jumps.push_back({{"t", x.t}, {"kind", x.kind}, {"description", x.description}});
+    jumps.push_back(
+        {{"t", x.t}, {"kind", StudyJumpKindName(x.kind)}, {"description", x.description}});
   }
   j["jumps"] = jumps;
 

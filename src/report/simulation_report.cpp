@@ -10,6 +10,7 @@
 #include "chasles/math/quaternion.h"
 #include "chasles/report/certificate_json.h"
 #include "chasles/report/json_report.h"
+#include "chasles/report/result_names.h"
 
 namespace chasles {
 
@@ -130,7 +131,7 @@ nlohmann::json JumpBodiesJson(const std::vector<BodyImpulseBalance>& bodies, boo
 nlohmann::json JumpsJson(const std::vector<StudyJump>& jumps, bool planar) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& x : jumps) {
-    out.push_back({{"kind", x.kind},
+    out.push_back({{"kind", StudyJumpKindName(x.kind)},
                    {"description", x.description},
                    {"t", x.t},
                    {"energy_before", x.energy_before},
@@ -175,14 +176,15 @@ nlohmann::json StringEventsJson(const std::vector<StudyStringEvent>& events) {
 nlohmann::json ImpactsJson(const std::vector<StudyImpact>& impacts) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& x : impacts) {
-    out.push_back({{"t", x.t},
-                   {"point", x.point},
-                   {"approach_speed", x.approach_speed},
-                   {"normal_impulse", x.normal_impulse},
-                   {"energy_lost", x.energy_lost},
-                   {"accumulation", x.accumulation},
-                   {"jam", x.jam},
-                   {"restitution_law", x.restitution_law}});
+    out.push_back(
+        {{"t", x.t},
+         {"point", x.point},
+         {"approach_speed", x.approach_speed},
+         {"normal_impulse", x.normal_impulse},
+         {"energy_lost", x.energy_lost},
+         {"accumulation", x.accumulation},
+         {"jam", x.jam},
+         {"restitution_law", x.restitution_law ? RestitutionLawName(*x.restitution_law) : ""}});
     if (x.frictionless_fallback) out.back()["frictionless_fallback"] = true;
     if (x.accumulation) out.back()["rest_time"] = x.rest_time;
   }

@@ -1,4 +1,5 @@
 #include "chasles/report/simulation_text.h"
+#include "chasles/report/result_names.h"
 
 #include <algorithm>
 #include <cmath>
@@ -315,9 +316,10 @@ std::string StringEventsText(const StudyResult& r, const Show& u) {
 }
 
 std::string ImpactText(const StudyImpact& x, const Show& u) {
-  std::string out = fmt::format("  t = {}  {}: approach speed {}, energy lost {}{}\n", u.Time(x.t),
-                                x.point, u(x.approach_speed, kVelocity), u.Energy(x.energy_lost),
-                                x.jam ? "" : fmt::format(" ({} restitution)", x.restitution_law));
+  std::string out = fmt::format(
+      "  t = {}  {}: approach speed {}, energy lost {}{}\n", u.Time(x.t), x.point,
+      u(x.approach_speed, kVelocity), u.Energy(x.energy_lost),
+      x.jam ? "" : fmt::format(" ({} restitution)", RestitutionLawName(*x.restitution_law)));
   if (x.jam) {
     out +=
         "    a jam: the slip had no consistent contact forces (Painlevé) and was stopped "

@@ -399,12 +399,19 @@ TEST(FreeBodyBatch, RefusesModelsItCannotStepAndNamesWhy) {
   Model m;
   m.AddBody("a", MassProperties(1.0, Vec3::Zero(), RotationalInertia(1, 2, 3)));
   m.AddBody("rod", MassProperties(1.0, Vec3::Zero(), RotationalInertia(0, 1, 1)));
-  EXPECT_EQ(FreeBodyBatchObstacle(m),
-            "body 'rod' has a zero principal moment (a particle or a slender rod)");
+  const ModelObstacle rod = FreeBodyBatchObstacle(m);
+  EXPECT_EQ(rod.why, "body 'rod' has a zero principal moment (a particle or a slender rod)");
+  ASSERT_TRUE(rod.element.has_value());
+  EXPECT_EQ(rod.element->kind, ErrorElement::Kind::kBody);
+  EXPECT_EQ(rod.element->index, 1);
   Model n;
   n.AddBody("a", MassProperties(1.0, Vec3::Zero(), RotationalInertia(1, 2, 3)));
   n.AddForceElement(std::make_shared<CentralGravity>("sun", 1.0, Vec3(5, 0, 0)));
-  EXPECT_EQ(FreeBodyBatchObstacle(n), "force element 'sun' is not uniform gravity");
+  const ModelObstacle sun = FreeBodyBatchObstacle(n);
+  EXPECT_EQ(sun.why, "force element 'sun' is not uniform gravity");
+  ASSERT_TRUE(sun.element.has_value());
+  EXPECT_EQ(sun.element->kind, ErrorElement::Kind::kForceElement);
+  EXPECT_EQ(sun.element->index, 0);
   try {
     FreeBodyBatch batch(n);
     FAIL() << "expected an InputError";

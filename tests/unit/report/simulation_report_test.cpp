@@ -180,7 +180,7 @@ TEST(SimulationJson, CarriesTheHeaderAndThePlanarBlocksOnlyWhenPlanar) {
 TEST(SimulationJson, AJumpRecordsItsEnergyChange) {
   StudyResult r = OneBodyRun();
   StudyJump jump;
-  jump.kind = "impulse";
+  jump.kind = StudyJumpKind::kImpulse;
   jump.t = 0.5;
   jump.energy_before = 4.0;
   jump.energy_after = 1.5;

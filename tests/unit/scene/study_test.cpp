@@ -1,6 +1,7 @@
 // BuildStudy: a scene's dynamics as Model + initial State + SimulationOptions for Simulate;
 // MakeStudyDefinition: a definition whose run builds each Model once.
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 // Before gtest: <signal.h> (via gtest) defines a macro si_value, a parameter name in units.h.
 #include "chasles/analysis/study.h"
 #include "chasles/integrate/simulate.h"
+#include "chasles/scene/scene_error.h"
 #include "chasles/scene/study.h"
 // clang-format off
 #include <gtest/gtest.h>
@@ -79,6 +81,81 @@ simulation: {until: 1 s}
   };
   EXPECT_NO_THROW(RunStudy(free_flight));
   EXPECT_EQ(*builds, 1);
+}
+
+/// The 1-based number of the first line of `text` that contains `needle` (0: none).
+int LineOf(const std::string& text, const std::string& needle) {
+  const size_t at = text.find(needle);
+  if (at == std::string::npos) return 0;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+/// The SceneError RunStudy throws for `scene`; fails the test when it throws none.
+SceneError RunError(const Scene& scene) {
+  try {
+    RunStudy(scene);
+  } catch (const SceneError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "expected a SceneError";
+  return SceneError("", 0, 0, "", "");
+}
+
+// A force whose expression divides by zero stops the run at once; the error points at that
+// force's expression, whatever the force is called: a name found nowhere else, or one that is
+// part of another force's name (the error carries the element, no message is searched).
+TEST(RunStudy, NonFiniteForcePointsAtItsExpressionWhateverItsName) {
+  for (const std::string name : {"q9x", "push"}) {
+    const std::string text = R"(
+bodies:
+  - name: block
+    parts: [{shape: sphere, radius: 0.1 m, mass: 1 kg}]
+forces:
+  - {type: force, name: pushing, body: block, value: [1 N, 0 N, 0 N]}
+  - type: force
+    name: )" + name + R"(
+    body: block
+    value: [1 N*s / (t - t), 0 N, 0 N]
+simulation: {until: 1 s}
+)";
+    const Scene scene = LoadSceneText(text, "study");
+    const SceneSpot& at = scene.dynamics.forces[1].expression_where;
+    const SceneError e = RunError(scene);
+    EXPECT_EQ(e.line(), LineOf(text, "value: [1 N*s")) << name;
+    EXPECT_EQ(e.line(), at.line) << name;
+    EXPECT_EQ(e.column(), at.column) << name;
+    EXPECT_NE(e.message().find("force element '" + name + "' evaluated to infinite"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A rolling contact that cannot be assembled with a weld (the wheel is held 1 m above the
+// floor it rolls on) points at the rolling entry, called by a name found nowhere else, by a
+// name that is part of the weld's name, or by the wheel body's own name.
+TEST(RunStudy, UnassembledConstraintPointsAtItsEntryWhateverItsName) {
+  for (const std::string name : {"k2v", "road", "wheel"}) {
+    const std::string text = R"(
+bodies:
+  - name: wheel
+    parts: [{shape: disk, radius: 0.3 m, mass: 2 kg, axis: [0, 1, 0]}]
+    initial: {position: [0, 0, 1 m]}
+joints:
+  - {name: roadside, type: weld, parent: world, child: wheel, at: [0, 0, 1 m]}
+rolling:
+  - {name: )" + name + R"(, body: wheel, shape: disk, radius: 0.3 m, axis: [0, 1, 0],
+     plane: {point: [0, 0, 0], normal: [0, 0, 1]}}
+simulation: {until: 1 s}
+)";
+    const Scene scene = LoadSceneText(text, "study");
+    const SceneSpot& at = scene.dynamics.constraints.rolling[0].where;
+    const SceneError e = RunError(scene);
+    EXPECT_EQ(e.line(), LineOf(text, "{name: " + name + ","));
+    EXPECT_EQ(e.line(), at.line) << name;
+    EXPECT_EQ(e.column(), at.column) << name;
+    EXPECT_NE(e.message().find("constraint '" + name + "' cannot be satisfied"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
