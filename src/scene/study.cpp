@@ -26,6 +26,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/integrate/run_path.h"
 #include "chasles/model/bearing.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
@@ -1096,11 +1097,7 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
   const SceneSimulation& sim = d.simulation;
   if (sim.event_driven) {
     // Balls on a table only (the message names the body, contact or force that is not).
-    const std::string obstacle = SphereEventObstacle(first);
-    if (!obstacle.empty()) {
-      throw InputError(
-          fmt::format("'integrator: events' runs balls on a table only: {}", obstacle));
-    }
+    ChooseRunPath(first, def.options, EngineRequest::kEvents);
     SphereEventOptions events;
     events.collide_all_pairs = sim.collide_all_pairs;
     events.pair_law = sim.ball_collisions;
@@ -1108,10 +1105,7 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
     def.sphere_events = events;
   }
   if (sim.time_stepping) {
-    const std::string obstacle = TimeSteppingObstacle(first);
-    if (!obstacle.empty()) {
-      throw InputError(fmt::format("'integrator: stepping' cannot run this scene: {}", obstacle));
-    }
+    ChooseRunPath(first, def.options, EngineRequest::kStepping);
     // Moreau's law at every point at once (docs/contact.md, "Time stepping"): a contact that
     // asks for another law is told which one it gets.
     for (std::string& w : TimeSteppingLawWarnings(first)) def.warnings.push_back(std::move(w));
