@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -123,7 +124,7 @@ SimulationResult RunFreeBodyBatch(const Model& model, const State& initial,
     r.stats.function_evaluations += (stepper == FreeBodyStepper::kRk4 ? 4 : 1) * n;
     if (t_out < o.t_end) emit(state);
   }
-  r.final_state = state;
+  r.final_state = std::move(state);
   emit(r.final_state);
   return r;
 }
