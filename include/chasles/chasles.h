@@ -1,9 +1,9 @@
 #pragma once
 /// @file
 /// The whole chasles library in one include: every public header of the layers math, files,
-/// mass, model, dynamics, integrate, analysis and io, and the scene layer's entry points (loading a
-/// scene file, running its study). Link chasles::chasles (docs/cpp.md). tests/layering checks
-/// that every public header of those layers is listed here.
+/// mass, model, dynamics, integrate, analysis and report, and the scene layer's entry points
+/// (loading a scene file, running its study). Link chasles::chasles (docs/cpp.md).
+/// tests/layering checks that every public header of those layers is listed here.
 
 #include "chasles/analysis/audit.h"
 #include "chasles/analysis/balance.h"
@@ -15,8 +15,10 @@
 #include "chasles/analysis/momentum.h"
 #include "chasles/analysis/operating_point.h"
 #include "chasles/analysis/robot_mass.h"
+#include "chasles/analysis/solve.h"
 #include "chasles/analysis/solve_report.h"
 #include "chasles/analysis/study.h"
+#include "chasles/analysis/sweep.h"
 #include "chasles/analysis/whirl.h"
 #include "chasles/dynamics/constraint_modes.h"
 #include "chasles/dynamics/constraint_residual.h"
@@ -30,7 +32,11 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/files/atomic_file.h"
 #include "chasles/files/collada_reader.h"
+#include "chasles/files/input_file.h"
+#include "chasles/files/mesh_reader.h"
+#include "chasles/files/output_set.h"
 #include "chasles/files/robot_model.h"
 #include "chasles/files/robot_reader.h"
 #include "chasles/files/robot_writer.h"
@@ -47,17 +53,6 @@
 #include "chasles/integrate/sphere_events.h"
 #include "chasles/integrate/stats.h"
 #include "chasles/integrate/time_stepping.h"
-#include "chasles/io/atomic_file.h"
-#include "chasles/io/audit_json.h"
-#include "chasles/io/certificate_json.h"
-#include "chasles/io/csv_table.h"
-#include "chasles/io/input_file.h"
-#include "chasles/io/json_report.h"
-#include "chasles/io/mesh_reader.h"
-#include "chasles/io/modes_json.h"
-#include "chasles/io/output_set.h"
-#include "chasles/io/simulation_report.h"
-#include "chasles/io/solve_json.h"
 #include "chasles/mass/density_field.h"
 #include "chasles/mass/mass_properties.h"
 #include "chasles/mass/materials.h"
@@ -82,6 +77,23 @@
 #include "chasles/model/state.h"
 #include "chasles/model/string_constraint.h"
 #include "chasles/model/surface_rolling.h"
+#include "chasles/report/audit_json.h"
+#include "chasles/report/audit_text.h"
+#include "chasles/report/balance_text.h"
+#include "chasles/report/certificate_json.h"
+#include "chasles/report/certificate_text.h"
+#include "chasles/report/csv_table.h"
+#include "chasles/report/json_input.h"
+#include "chasles/report/json_report.h"
+#include "chasles/report/mass_text.h"
+#include "chasles/report/modes_json.h"
+#include "chasles/report/modes_text.h"
+#include "chasles/report/report_data.h"
+#include "chasles/report/simulation_report.h"
+#include "chasles/report/simulation_text.h"
+#include "chasles/report/solve_json.h"
+#include "chasles/report/solve_text.h"
+#include "chasles/report/text_format.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
 #include "chasles/suggest.h"

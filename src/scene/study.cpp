@@ -1093,7 +1093,9 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
   def.certificate = CertificateTolerancesFor(scene);
   def.progress = options.progress;
   def.record_row_snapshots = options.record_row_snapshots;
-  const Model first = BuildModel(scene, def.bodies, IdentityMap(scene));
+  // The first segment's Model, built once: the checks below read it and the run starts on it.
+  def.model = std::make_shared<const Model>(BuildModel(scene, def.bodies, IdentityMap(scene)));
+  const Model& first = *def.model;
   const SceneSimulation& sim = d.simulation;
   if (sim.event_driven) {
     // Balls on a table only (the message names the body, contact or force that is not).

@@ -139,12 +139,17 @@ struct StudyLimits {
   double timeout = 0.0;
 };
 
-/// Everything a study needs. `bodies`, `build_model`, `initial` and `options.t_end` are
-/// required; the rest has defaults.
+/// Everything a study needs. `bodies`, `model` or `build_model`, `initial` and `options.t_end`
+/// are required; the rest has defaults.
 struct StudyDefinition {
   /// The user bodies, one Model body each at the start.
   std::vector<NamedBody> bodies;
-  /// Builds the Model (see ModelBuilder).
+  /// The first segment's Model, when the caller has built it (one Model body per user body, in
+  /// their order); null: the run builds it with `build_model` and the identity map. A run
+  /// builds each Model once.
+  std::shared_ptr<const Model> model;
+  /// Builds the Model of each segment after an embedding, and the first when `model` is null
+  /// (see ModelBuilder). Optional when `model` is given and no impact embeds.
   ModelBuilder build_model;
   /// The initial state (on the constraints; the run chooses the contact modes, after any
   /// impact at the start).
