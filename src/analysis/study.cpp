@@ -18,6 +18,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/integrate/run_path.h"
 #include "chasles/integrate/sphere_events.h"
 #include "chasles/model/data.h"
 #include "internal/study_steps.h"
@@ -137,6 +138,8 @@ class StudyRun {
   /// far (and the projections at their handovers) [J], the last regime change of the current
   /// time-stepped segment [s], and whether the impact-law warnings were given.
   StudyEngine engine_ = StudyEngine::kAdaptive;
+  /// The run's path (ChooseRunPath at the start).
+  RunPath path_ = RunPath::kSmooth;
   double scheme_error_ = 0.0;
   double quiet_from_ = 0.0;
   bool law_warned_ = false;
@@ -220,9 +223,17 @@ void StudyRun::Start() {
   result_.warnings = def_.warnings;
   for (const StudyColumn& c : def_.columns) result_.columns.push_back(c.name);
   seg_ = study_internal::FirstSegment(def_);
-  if ((def_.sphere_events || def_.time_stepping) &&
-      ((def_.events && !def_.events(seg_.map).empty()) || !def_.impulses.empty() ||
-       !def_.impacts.empty())) {
+  // The path (ChooseRunPath): a hybrid run's own Simulate says again whether it split.
+  SimulationOptions chosen = def_.options;
+  if (def_.events) chosen.events = def_.events(seg_.map);
+  result_.run_path = ChooseRunPath(*seg_.model, chosen,
+                                   def_.sphere_events   ? EngineRequest::kEvents
+                                   : def_.time_stepping ? EngineRequest::kStepping
+                                   : def_.auto_engine   ? EngineRequest::kAuto
+                                                        : EngineRequest::kIntegrator);
+  path_ = result_.run_path.path;
+  if ((path_ == RunPath::kSphereEvents || path_ == RunPath::kTimeStepping) &&
+      (!chosen.events.empty() || !def_.impulses.empty() || !def_.impacts.empty())) {
     throw InputError(
         "an event-driven (sphere_events) or time-stepped run takes no events, impulses or "
         "impacts");
@@ -241,7 +252,7 @@ void StudyRun::Start() {
   const State as_given = state_;
   // The event-driven path settles its balls itself (a ball moving into the table lands at
   // once) and lists every point's initial mode (RecordSphereEvents).
-  if (model.num_contacts() > 0 && def_.time_stepping) {
+  if (model.num_contacts() > 0 && path_ == RunPath::kTimeStepping) {
     // Time stepping chooses the regimes in its first step; the timeline starts separated.
     for (int p = 0; p < model.num_contact_points(); ++p) {
       const std::string mode = ContactModeName(ContactMode::kSeparated);
@@ -249,7 +260,7 @@ void StudyRun::Start() {
                                         model.contact(model.contact_of_point(p)).name(), mode, mode,
                                         "initial"});
     }
-  } else if (model.num_contacts() > 0 && !def_.sphere_events) {
+  } else if (model.num_contacts() > 0 && path_ != RunPath::kSphereEvents) {
     SettleContacts("initial");
     // Every point's initial mode is part of the timeline, changed or not.
     for (int p = 0; p < model.num_contact_points(); ++p) {
@@ -329,14 +340,14 @@ void StudyRun::OnStep(double t) {
   if (def_.progress) def_.progress(t);
   const StudyLimits& limits = def_.limits;
   if (++steps_taken_ > limits.max_steps) {
-    throw LimitError(
-        LimitError::Limit::kSteps,
-        fmt::format("the run reached the limit of {} {} at t = {:.9g} s (of {:.9g} s)",
-                    limits.max_steps,
-                    def_.sphere_events ? "steps (events, and the pressing groups' integration "
-                                         "steps)"
-                                       : "integration steps",
-                    t, def_.options.t_end));
+    throw LimitError(LimitError::Limit::kSteps,
+                     fmt::format("the run reached the limit of {} {} at t = {:.9g} s (of {:.9g} s)",
+                                 limits.max_steps,
+                                 path_ == RunPath::kSphereEvents
+                                     ? "steps (events, and the pressing groups' integration "
+                                       "steps)"
+                                     : "integration steps",
+                                 t, def_.options.t_end));
   }
   if (limits.timeout > 0) {
     const std::chrono::duration<double> used = std::chrono::steady_clock::now() - started_;
@@ -353,11 +364,11 @@ void StudyRun::OnStep(double t) {
 // definition names, or (integrator: auto) on the one the run is on, each stretch handing over
 // to the other when its rule says so.
 void StudyRun::RunTo(double t_b) {
-  if (def_.sphere_events) {
+  if (path_ == RunPath::kSphereEvents) {
     RunEvents(t_b);
     return;
   }
-  if (def_.time_stepping) {
+  if (path_ == RunPath::kTimeStepping) {
     RunStepping(t_b);
     return;
   }
@@ -414,7 +425,7 @@ void StudyRun::RunAdaptiveStretch(double t_b) {
   };
   std::string stays;
   if (def_.auto_engine) {
-    stays = study_internal::SteppingObstacle(!o.events.empty(), *seg_.model);
+    stays = AutoHandoverObstacle(*seg_.model, !o.events.empty());
     if (stays.empty()) {
       o.contact.yield_changes = def_.auto_engine->rule.changes;
       o.contact.yield_window = def_.auto_engine->rule.window;
@@ -436,6 +447,7 @@ void StudyRun::RunAdaptiveStretch(double t_b) {
     throw InputError(why, e.element());
   }
   RecordSimulation(r, carried, o.events);
+  if (!def_.auto_engine) result_.run_path = r.run_path;
   state_ = r.final_state;
   if (r.stopped_by_event) stopped_ = true;
   if (def_.auto_engine) {

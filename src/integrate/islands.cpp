@@ -410,35 +410,8 @@ class IslandRun {
 
 }  // namespace
 
-SimulationResult RunHybridIslands(const Model& model, const State& initial,
-                                  const SimulationOptions& o) {
-  IslandPartition partition = FindIslands(model);
-  const int count = static_cast<int>(partition.bodies.size());
-  std::string reason;
-  if (!o.islands) {
-    reason = "islands turned off";
-  } else if (count <= 1) {
-    reason = "the bodies form one island";
-  } else if (o.on_transition) {
-    reason =
-        "the checks at each contact change (on_transition: energy, contact forces) need the "
-        "whole system's state at that instant";
-  } else if (!o.events.empty()) {
-    reason = "user events are functions of the whole state";
-  } else if (o.contact.yield_changes > 0) {
-    reason =
-        "the engine choice (integrator: auto) hands the whole model from one engine to the "
-        "other at once";
-  } else {
-    reason = IslandObstacle(model);
-  }
-  if (!reason.empty()) {
-    SimulationResult r = RunHybrid(model, initial, o);
-    r.islands.count = count;
-    r.islands.reason = std::move(reason);
-    return r;
-  }
-  return IslandRun(model, initial, o, std::move(partition)).Run();
+SimulationResult RunIslands(const Model& model, const State& initial, const SimulationOptions& o) {
+  return IslandRun(model, initial, o, FindIslands(model)).Run();
 }
 
 }  // namespace internal

@@ -353,6 +353,7 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
     j["integrator"]["islands"] = {
         {"count", r.islands.count}, {"split", r.islands.split}, {"reason", r.islands.reason}};
   }
+  j["run_path"] = {{"path", RunPathName(r.run_path.path)}, {"reason", r.run_path.reason}};
   j["notes"] = r.notes;
   std::vector<std::string> warnings = header.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());

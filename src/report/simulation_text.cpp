@@ -547,6 +547,7 @@ std::string SimulationText(const Scene& scene, const StudyResult& r, const TextO
                : fmt::format("Islands: {}, run as one hybrid system: {}\n", r.islands.count,
                              r.islands.reason);
   }
+  out += fmt::format("Run path: {}: {}\n", RunPathName(r.run_path.path), r.run_path.reason);
   for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);
   for (const auto& w : scene.warnings) out += fmt::format("warning: {}\n", w);
   for (const auto& w : r.warnings) out += fmt::format("warning: {}\n", w);

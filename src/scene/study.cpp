@@ -26,6 +26,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/integrate/run_path.h"
 #include "chasles/model/bearing.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
@@ -1105,12 +1106,7 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
   const SceneSimulation& sim = d.simulation;
   if (sim.event_driven) {
     // Balls on a table only (the message names the body, contact or force that is not).
-    const ModelObstacle obstacle = SphereEventObstacle(first);
-    if (!obstacle.empty()) {
-      throw InputError(
-          fmt::format("'integrator: events' runs balls on a table only: {}", obstacle.why),
-          obstacle.element);
-    }
+    ChooseRunPath(first, def.options, EngineRequest::kEvents);
     SphereEventOptions events;
     events.collide_all_pairs = sim.collide_all_pairs;
     events.pair_law = sim.ball_collisions;
@@ -1118,12 +1114,7 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
     def.sphere_events = events;
   }
   if (sim.time_stepping) {
-    const ModelObstacle obstacle = TimeSteppingObstacle(first);
-    if (!obstacle.empty()) {
-      throw InputError(
-          fmt::format("'integrator: stepping' cannot run this scene: {}", obstacle.why),
-          obstacle.element);
-    }
+    ChooseRunPath(first, def.options, EngineRequest::kStepping);
     // Moreau's law at every point at once (docs/contact.md, "Time stepping"): a contact that
     // asks for another law is told which one it gets.
     for (std::string& w : TimeSteppingLawWarnings(first)) def.warnings.push_back(std::move(w));

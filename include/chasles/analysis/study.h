@@ -503,6 +503,8 @@ struct StudyResult {
   IntegratorStats stats;
   /// How the last hybrid run was split into islands (count 0: no contacts or strings).
   IslandReport islands;
+  /// The run's path and why (ChooseRunPath; for a hybrid run, its last Simulate's).
+  RunPathChoice run_path;
   /// Set for an event-driven run (StudyDefinition::sphere_events); `stats` then counts its
   /// pressing groups' hybrid runs.
   std::optional<StudyEventDriven> event_driven;
