@@ -71,38 +71,36 @@ std::string ReadInputFile(const std::string& path, const std::string& what, size
   return text;
 }
 
+Utf8Lead DecodeUtf8Lead(unsigned char c) {
+  Utf8Lead lead;
+  if (c < 0x80) {
+    lead.length = 1;
+  } else if (c >= 0xC2 && c <= 0xDF) {
+    lead.length = 2;
+  } else if (c >= 0xE0 && c <= 0xEF) {
+    lead.length = 3;
+    if (c == 0xE0) lead.lo = 0xA0;  // no overlong forms
+    if (c == 0xED) lead.hi = 0x9F;  // no surrogates U+D800..U+DFFF
+  } else if (c >= 0xF0 && c <= 0xF4) {
+    lead.length = 4;
+    if (c == 0xF0) lead.lo = 0x90;  // no overlong forms
+    if (c == 0xF4) lead.hi = 0x8F;  // nothing above U+10FFFF
+  }
+  return lead;
+}
+
 size_t FindInvalidUtf8(std::string_view text) {
   const auto* s = reinterpret_cast<const unsigned char*>(text.data());
   const size_t n = text.size();
   size_t i = 0;
   while (i < n) {
-    const unsigned char c = s[i];
-    if (c < 0x80) {
-      ++i;
-      continue;
-    }
-    // RFC 3629, section 4: the lead byte gives the length and the range of the second byte.
-    size_t len = 0;
-    unsigned char lo = 0x80, hi = 0xBF;
-    if (c >= 0xC2 && c <= 0xDF) {
-      len = 2;
-    } else if (c >= 0xE0 && c <= 0xEF) {
-      len = 3;
-      if (c == 0xE0) lo = 0xA0;  // no overlong forms
-      if (c == 0xED) hi = 0x9F;  // no surrogates U+D800..U+DFFF
-    } else if (c >= 0xF0 && c <= 0xF4) {
-      len = 4;
-      if (c == 0xF0) lo = 0x90;  // no overlong forms
-      if (c == 0xF4) hi = 0x8F;  // nothing above U+10FFFF
-    } else {
-      return i;
-    }
-    if (i + len > n) return i;
-    for (size_t k = 1; k < len; ++k) {
+    const Utf8Lead lead = DecodeUtf8Lead(s[i]);
+    if (lead.length == 0 || i + lead.length > n) return i;
+    for (size_t k = 1; k < lead.length; ++k) {
       const unsigned char b = s[i + k];
-      if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) return i;
+      if (b < (k == 1 ? lead.lo : 0x80) || b > (k == 1 ? lead.hi : 0xBF)) return i;
     }
-    i += len;
+    i += lead.length;
   }
   return std::string_view::npos;
 }

@@ -25,6 +25,16 @@ inline constexpr size_t kDefaultMaxInputBytes = size_t{256} << 20;
 std::string ReadInputFile(const std::string& path, const std::string& what, size_t max_bytes,
                           const std::string& option);
 
+/// What a byte says as the first of a UTF-8 sequence (RFC 3629, section 4): the sequence's
+/// length in bytes (1 for ASCII, 0 when no sequence begins with it) and the range [lo, hi] its
+/// second byte must lie in (no overlong forms, no surrogates, nothing above U+10FFFF); the
+/// later bytes lie in [0x80, 0xBF].
+struct Utf8Lead {
+  size_t length = 0;
+  unsigned char lo = 0x80, hi = 0xBF;
+};
+Utf8Lead DecodeUtf8Lead(unsigned char c);
+
 /// The offset of the first byte of `text` that is not part of well-formed UTF-8 (RFC 3629: no
 /// overlong forms, no surrogates, nothing above U+10FFFF), or std::string_view::npos.
 size_t FindInvalidUtf8(std::string_view text);
