@@ -16,12 +16,22 @@
 // scene's Model, initial state and options. The two sticking points' six rows hold five
 // degrees of freedom, so every evaluation's contact system is singular: it is solved least-norm
 // (CompleteOrthogonalDecomposition) and again weighted (dynamics/contact_solve.cpp).
+//
+// Spinning balls (examples/problem-8.26-spinning-ball.yaml n times over, ball i at
+// w0 (1 + i/n), each its own stick event at t*_i = 2 R w_i / (7 mu_k g)): SceneSpinningBalls
+// runs the scene of 10 balls and the scene of 1,000 as `chasles simulate` does with no
+// integrator named (RunStudy: the certificate checks every transition, island by island), 60 ms
+// at tolerance 1e-12 with rows every ms. Counters: ms_10 and ms_1000 (CPU time, fastest of the
+// iterations), their ratio (the acceptance: at most 150), the islands of the 1,000-ball run and
+// the worst relative error of its t* from the event log.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <ctime>
 #include <string>
+
+#include <fmt/format.h>
 
 #include <benchmark/benchmark.h>
 
@@ -103,9 +113,59 @@ void LibraryCylinder(benchmark::State& st) {
   st.counters["evaluations"] = static_cast<double>(evaluations);
 }
 
+// n balls 1 m apart along y, set down spinning about y; one floor contact for all of them.
+constexpr double kMuK = 0.2;
+constexpr double kSpinRpm = 100.0;
+std::string SpinningBallsScene(int n) {
+  std::string text = "chasles: 2\nparameters: {R: 9/8 in, m: 0.17 kg}\nbodies:\n";
+  for (int i = 0; i < n; ++i) {
+    text += fmt::format(
+        "  - {{name: ball{}, parts: [{{shape: sphere, radius: R, mass: m}}], initial: {{position: "
+        "[0, {} m, R], angular_velocity: [0, {:.17g} rad/s, 0]}}}}\n",
+        i, i, kSpinRpm * 2 * M_PI / 60 * (1.0 + double(i) / n));
+  }
+  return text + fmt::format(
+                    "gravity: standard\ncontacts:\n  - {{name: floor, body: all, shape: sphere, "
+                    "radius: R, mu_s: 0.5, mu_k: {}, plane: {{point: [0, 0, 0], normal: [0, 0, "
+                    "1]}}}}\nsimulation: {{until: 60 ms, tolerance: 1e-12, output_interval: 1 "
+                    "ms}}\noutput:\n  columns: [position, velocity, angular_velocity, energy, "
+                    "contacts, ledger]\n",
+                    kMuK);
+}
+
+void SceneSpinningBalls(benchmark::State& st) {
+  const Scene ten = LoadSceneText(SpinningBallsScene(10), "balls-10.yaml");
+  const Scene thousand = LoadSceneText(SpinningBallsScene(1000), "balls-1000.yaml");
+  double ms_10 = 1e9, ms_1000 = 1e9, worst = 0.0;
+  int islands = 0;
+  for (auto _ : st) {
+    double t0 = CpuSeconds();
+    benchmark::DoNotOptimize(RunStudy(ten).rows.data());
+    ms_10 = std::min(ms_10, 1e3 * (CpuSeconds() - t0));
+    t0 = CpuSeconds();
+    const StudyResult r = RunStudy(thousand);
+    ms_1000 = std::min(ms_1000, 1e3 * (CpuSeconds() - t0));
+    islands = r.run_path.islands;
+    for (const StudyContactEvent& e : r.contact_events) {
+      if (e.reason != "slip stopped") continue;
+      const int i = std::stoi(e.point.substr(e.point.find("ball") + 4));
+      const double w0 = kSpinRpm * 2 * M_PI / 60 * (1.0 + i / 1000.0);
+      const double t_star = 2 * 0.028575 * w0 / (7 * kMuK * 9.80665);
+      worst = std::max(worst, std::abs(e.t - t_star) / t_star);
+    }
+    if (!r.certificate.passed()) st.SkipWithError("the certificate failed");
+  }
+  st.counters["ms_10"] = ms_10;
+  st.counters["ms_1000"] = ms_1000;
+  st.counters["ratio"] = ms_1000 / ms_10;
+  st.counters["islands"] = islands;
+  st.counters["worst_t_star_rel_error"] = worst;
+}
+
 BENCHMARK(LibraryDzhanibekov)->Unit(benchmark::kMillisecond)->Iterations(30);
 BENCHMARK(SceneDzhanibekov)->Unit(benchmark::kMillisecond)->Iterations(30);
 BENCHMARK(LibraryCylinder)->Unit(benchmark::kMillisecond)->Iterations(30);
+BENCHMARK(SceneSpinningBalls)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace
 }  // namespace chasles

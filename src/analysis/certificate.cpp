@@ -105,9 +105,29 @@ void CertificateBuilder::Add(int check, double value, Scale scale, double a, dou
 }
 
 void CertificateBuilder::CheckLedger(double t, double residual, double energy_scale,
-                                     CheckPhase phase) {
+                                     CheckPhase phase, const std::string& where) {
   energy_ = std::max(energy_, std::abs(energy_scale));
-  Add(kLedger, std::abs(residual), Scale::kEnergy, 1.0, 0.0, 0.0, "all bodies", t, phase);
+  Add(kLedger, std::abs(residual), Scale::kEnergy, 1.0, 0.0, 0.0, where, t, phase);
+}
+
+void CertificateBuilder::AddPart(const Certificate& part) {
+  if (parts_.empty()) {
+    parts_.resize(kNumChecks);
+    part_ratio_.assign(kNumChecks, -1.0);
+  }
+  for (size_t c = 0; c < parts_.size() && c < part.checks.size(); ++c) {
+    const CheckResult& x = part.checks[c];
+    if (x.count == 0) continue;
+    const long long count = parts_[c].count + x.count;
+    // As Ratio: a zero tolerance passes a zero value only.
+    const double ratio =
+        x.tolerance > 0.0 ? x.worst / x.tolerance : (x.worst > 0.0 ? HUGE_VAL : 0.0);
+    if (ratio > part_ratio_[c]) {
+      part_ratio_[c] = ratio;
+      parts_[c] = x;
+    }
+    parts_[c].count = count;
+  }
 }
 
 void CertificateBuilder::CheckImpulseBalance(double t,
@@ -500,6 +520,17 @@ Certificate CertificateBuilder::Finish() const {
       r.where = e.where;
       r.t = e.t;
       r.phase = e.phase;
+    }
+  }
+  for (size_t c = 0; c < parts_.size(); ++c) {
+    CheckResult& r = cert.checks[c];
+    r.count += parts_[c].count;
+    if (part_ratio_[c] > worst_ratio[c]) {
+      r.worst = parts_[c].worst;
+      r.tolerance = parts_[c].tolerance;
+      r.where = parts_[c].where;
+      r.t = parts_[c].t;
+      r.phase = parts_[c].phase;
     }
   }
   return cert;

@@ -21,6 +21,7 @@
 #include "chasles/integrate/run_path.h"
 #include "chasles/integrate/sphere_events.h"
 #include "chasles/model/data.h"
+#include "internal/island_checks.h"
 #include "internal/study_steps.h"
 
 namespace chasles {
@@ -423,6 +424,9 @@ void StudyRun::RunAdaptiveStretch(double t_b) {
     Certify(before, CheckPhase::kBeforeTransition);
     Certify(after, CheckPhase::kAfterTransition);
   };
+  // Split into islands, each island checks its own transitions (docs/contact.md, "Islands").
+  study_internal::IslandChecks island_checks(def_.certificate);
+  o.island_transition = island_checks.Hook();
   std::string stays;
   if (def_.auto_engine) {
     stays = AutoHandoverObstacle(*seg_.model, !o.events.empty());
@@ -446,6 +450,7 @@ void StudyRun::RunAdaptiveStretch(double t_b) {
     }
     throw InputError(why, e.element());
   }
+  island_checks.AddTo(certificate_);
   RecordSimulation(r, carried, o.events);
   if (!def_.auto_engine) result_.run_path = r.run_path;
   state_ = r.final_state;

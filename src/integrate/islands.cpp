@@ -269,10 +269,20 @@ class IslandRun {
 
   void RunIsland(size_t i) {
     const IslandModel im = BuildModel(i);
+    const State initial = InitialState(i, im);
     SimulationOptions o = o_;
     o.on_sample = nullptr;
     o.store_samples = true;
     o.islands = false;
+    // The transition checks in their island form (ChooseRunPath splits a run with on_transition
+    // only when it is given), on this island's own states.
+    o.island_transition = nullptr;
+    o.on_transition = nullptr;
+    if (o_.island_transition) {
+      o.on_transition =
+          o_.island_transition(IslandView{static_cast<int>(i), &im.model, &initial, p_.bodies[i],
+                                          im.forces, contents_[i].constraints, im.points});
+    }
     if (o_.on_step && o_.threads > 1) {
       o.on_step = [this](double t) {
         const std::lock_guard<std::mutex> lock(step_mutex_);
@@ -280,7 +290,7 @@ class IslandRun {
       };
     }
     try {
-      results_[i] = RunHybrid(im.model, InitialState(i, im), o);
+      results_[i] = RunHybrid(im.model, initial, o);
     } catch (const InputError& e) {
       RethrowForWholeModel(i, im, e);
     }

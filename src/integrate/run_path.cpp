@@ -17,7 +17,7 @@ namespace {
 std::string OneSystemReason(const Model& model, const SimulationOptions& o, int count) {
   if (!o.islands) return "islands turned off";
   if (count <= 1) return "the bodies form one island";
-  if (o.on_transition) {
+  if (o.on_transition && !o.island_transition) {
     return "the checks at each contact change (on_transition: energy, contact forces) need the "
            "whole system's state at that instant";
   }

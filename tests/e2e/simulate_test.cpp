@@ -367,10 +367,10 @@ TEST(SimulateCli, Rk4OnFreeBodiesUnderGravityNamesTheFreeBodyBatch) {
 }
 
 // The JSON summary names the run path (ChooseRunPath, docs/contact.md "Run paths") of each
-// kind of scene: a free body (smooth), a ball bouncing on a floor (hybrid; the report's checks
-// at every contact change keep it one system), balls on a table (event-driven spheres), a box
-// held on a slope time stepped, the tumbling cube under integrator: auto, and free bodies under
-// gravity stepped by rk4 (free-body batch); the text report has the same line.
+// kind of scene: a free body (smooth), a ball bouncing on a floor (hybrid: one body, one
+// island), balls on a table (event-driven spheres), a box held on a slope time stepped, the
+// tumbling cube under integrator: auto, and free bodies under gravity stepped by rk4 (free-body
+// batch); the text report has the same line.
 TEST(SimulateCli, TheSummaryNamesTheRunPath) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"examples/dzhanibekov.yaml", "smooth"},

@@ -135,8 +135,10 @@ class CertificateBuilder {
   void CheckState(const Model& model, const State& state, const Data& data, CheckPhase phase);
   /// Evaluates Data at `state` (CalcAccelerations in the modes it carries) and checks it.
   void CheckState(const Model& model, const State& state, CheckPhase phase);
-  /// Checks the ledger residual [J] against the energy scale [J] at time t.
-  void CheckLedger(double t, double residual, double energy_scale, CheckPhase phase);
+  /// Checks the ledger residual [J] against the energy scale [J] at time t; `where` names the
+  /// bodies whose ledger it is.
+  void CheckLedger(double t, double residual, double energy_scale, CheckPhase phase,
+                   const std::string& where = "all bodies");
   /// Checks every body's impulse-momentum balance over the impulsive instant at time t
   /// (BodyImpulseBalance), from the values given.
   void CheckImpulseBalance(double t, const std::vector<BodyImpulseBalance>& bodies);
@@ -144,6 +146,12 @@ class CertificateBuilder {
   /// scale (CertificateTolerances::gap_time): a run whose engine changes (integrator: auto)
   /// sets half its step for a time-stepped stretch and 0 for an event-driven one.
   void SetGapTime(double seconds) { gap_time_ = seconds; }
+  /// Adds a part of the run checked by a builder of its own, with its own scales (an island at
+  /// its contact transitions, docs/contact.md "Islands"): Finish adds its counts and takes its
+  /// worst value where it is further past its tolerance than any other (at equal ratios the
+  /// builder's own values, then the parts in the order added). The scales Finish reports stay
+  /// this builder's.
+  void AddPart(const Certificate& part);
 
   Certificate Finish() const;
 
@@ -218,6 +226,10 @@ class CertificateBuilder {
   double impulse_ = 0.0, angular_impulse_ = 0.0;
   /// Largest total mass of the models checked [kg].
   double mass_ = 0.0;
+  /// The parts added (AddPart), merged: per check their summed count and the worst of their
+  /// worst values, with its value / tolerance.
+  std::vector<CheckResult> parts_;
+  std::vector<double> part_ratio_;
 };
 
 }  // namespace chasles

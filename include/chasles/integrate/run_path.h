@@ -67,9 +67,9 @@ const char* RunPathName(RunPath path);
 ///  - kIntegrator: a model with contacts or strings that can let go runs hybrid (InputError
 ///    unless the integrator is Dormand–Prince), as islands when the bodies form several,
 ///    islands are on (SimulationOptions::islands), nothing needs the whole State at once
-///    (events, on_transition, the engine choice's yield) and IslandObstacle is empty; else
-///    kFreeBodyBatch for RK4 or splitting on free bodies under uniform gravity (InputError for
-///    splitting on a model that does not qualify); else kSmooth.
+///    (events, on_transition without its island form, the engine choice's yield) and IslandObstacle
+///    is empty; else kFreeBodyBatch for RK4 or splitting on free bodies under uniform gravity
+///    (InputError for splitting on a model that does not qualify); else kSmooth.
 RunPathChoice ChooseRunPath(const Model& model, const SimulationOptions& options,
                             EngineRequest request = EngineRequest::kIntegrator);
 

@@ -180,6 +180,24 @@ struct RegimeChangeYield {
   std::string where;
 };
 
+/// One island of a run split into islands (RunPath::kIslands), as the island form of the
+/// transition hook sees it: the island's own Model (its bodies, force elements, constraints and
+/// contacts renumbered, every name kept), its initial State (local indices; an element acting on
+/// each body alone, gravity, carries its integrals from zero in every island but the first),
+/// and the index in the whole Model of each of its bodies, force elements, constraints and
+/// contact points. Valid only during the call it is handed to.
+struct IslandView {
+  /// Island index (islands in order of their smallest body index).
+  int island = 0;
+  const Model* model = nullptr;
+  const State* initial = nullptr;
+  std::vector<BodyIndex> bodies;
+  std::vector<int> forces, constraints, points;
+};
+
+/// A check at a contact transition: the state just before it (old modes) and just after it.
+using TransitionCheck = std::function<void(const State& before, const State& after)>;
+
 struct SimulationOptions {
   IntegratorKind integrator = IntegratorKind::kDormandPrince5;
   /// End time [s] (> initial t).
@@ -200,7 +218,13 @@ struct SimulationOptions {
   std::function<void(const State&)> on_sample;
   /// Called at every contact transition during the run with the state just before it (old
   /// modes) and just after it (impacts applied, new modes) (optional; models with contacts).
-  std::function<void(const State& before, const State& after)> on_transition = nullptr;
+  TransitionCheck on_transition = nullptr;
+  /// The island form of on_transition, for a run split into islands: called once per island,
+  /// from the thread that runs it (so from several threads at once), with the island's view;
+  /// returns the check the island's transitions are given (its own States, local indices).
+  /// With it set, on_transition no longer keeps the run one system; a run that stays one system
+  /// calls on_transition.
+  std::function<TransitionCheck(const IslandView& island)> island_transition = nullptr;
   /// Contact handling (models with contacts).
   ContactOptions contact;
   /// Called after every accepted integration step with the time it reached (optional): the
@@ -209,8 +233,9 @@ struct SimulationOptions {
   /// Split a model with contacts into islands (bodies linked by constraints, sphere-sphere
   /// contacts or force elements between bodies), each run as its own hybrid system with its
   /// own integrator and events (docs/contact.md, "Islands"); false: always one system. Where a
-  /// run needs the whole State at arbitrary times (user events, on_transition) it is one
-  /// system anyway; SimulationResult::islands says which ran and why.
+  /// run needs the whole State at arbitrary times (user events, on_transition without
+  /// island_transition) it is one system anyway; SimulationResult::islands says which ran and
+  /// why.
   bool islands = true;
   /// Threads over the islands, or over the free-body batch's blocks of bodies (>= 1); the
   /// result is bitwise the same for any number. With islands on_step is then called from

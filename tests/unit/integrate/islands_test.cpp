@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -322,6 +323,40 @@ TEST(Islands, OnTransitionRunsAsOneSystem) {
   o.on_transition = nullptr;
   o.threads = 0;
   EXPECT_THROW(Simulate(m, SetDown(m, {kW0, kW0}), o), InputError);
+}
+
+// The island form of on_transition: one call per island with its view (its Model, its initial
+// state and the global index of each of its bodies, forces and points), and each island's
+// transitions checked on its own states; on_transition is not called.
+TEST(Islands, IslandTransitionChecksEachIslandOnItsOwnStates) {
+  const Model m = MakeBalls(2);
+  SimulationOptions o = Options(TStar(kW0));
+  o.threads = 2;
+  o.on_transition = [](const State&, const State&) { ADD_FAILURE() << "whole-model check"; };
+  std::mutex mutex;
+  std::vector<std::vector<BodyIndex>> bodies(2);
+  std::vector<std::vector<int>> points(2);
+  std::vector<int> transitions(2, 0);
+  o.island_transition = [&](const IslandView& v) -> TransitionCheck {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto i = static_cast<size_t>(v.island);
+    bodies[i] = v.bodies;
+    points[i] = v.points;
+    EXPECT_EQ(v.model->num_bodies(), 1);
+    EXPECT_EQ(v.initial->bodies.size(), 1u);
+    EXPECT_EQ(v.forces, std::vector<int>{0});  // gravity, in every island
+    return [&transitions, i](const State& before, const State& after) {
+      EXPECT_EQ(before.bodies.size(), 1u);
+      EXPECT_EQ(after.bodies.size(), 1u);
+      ++transitions[i];
+    };
+  };
+  const SimulationResult r = Simulate(m, SetDown(m, {2 * kW0, 0.5 * kW0}), o);
+  EXPECT_TRUE(r.islands.split) << r.islands.reason;
+  EXPECT_EQ(bodies, (std::vector<std::vector<BodyIndex>>{{0}, {1}}));
+  EXPECT_EQ(points, (std::vector<std::vector<int>>{{0}, {1}}));
+  // Ball 1 sticks at t*(w0/2) < t_end; ball 0 does not.
+  EXPECT_EQ(transitions, (std::vector<int>{0, 1}));
 }
 
 }  // namespace

@@ -77,6 +77,9 @@ TEST(RunPath, ContactsRunHybridAsIslandsWhereTheyCan) {
   const RunPathChoice watched = ChooseRunPath(three, o);
   EXPECT_EQ(watched.path, RunPath::kHybrid);
   EXPECT_THAT(watched.one_system, HasSubstr("on_transition"));
+  // With its island form the checks go island by island.
+  o.island_transition = [](const IslandView&) -> TransitionCheck { return nullptr; };
+  EXPECT_EQ(ChooseRunPath(three, o).path, RunPath::kIslands);
   EXPECT_THROW(ChooseRunPath(three, Options(IntegratorKind::kRk4)), InputError);
 }
 
