@@ -258,31 +258,97 @@ int HeldRows(const Model& model, const State& state, int p) {
   return 0;
 }
 
-// Solves A x = r, LDLᵀ / LU when well conditioned, (weighted) least-norm (COD) otherwise.
-bool SolveSquare(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, bool symmetric,
-                 ContactWorkspace& ws, Eigen::VectorXd& x, const Eigen::VectorXd* column_scale) {
-  const Eigen::Index n = A_in.rows();
-  if (n == 0) {
-    x.resize(0);
-    return false;
+namespace {
+
+// Least-norm solution of a singular symmetric positive semidefinite A x = r from its pivoted
+// LDLᵀ, P A Pᵀ = L D Lᵀ, when the first `rank` pivots carry A (Eigen picks the largest
+// remaining diagonal, so for A ⪰ 0 the pivots do not increase and the rest are round-off):
+//   the null space  span Pᵀ [-L11⁻ᵀ L21ᵀ; I]            ([L11ᵀ L21ᵀ] v = 0),
+//   made orthonormal (Q, n × k, modified Gram–Schmidt twice),
+//   a particular x  x_p = Pᵀ [L11⁻ᵀ D1⁻¹ L11⁻¹ (P r)_1; 0],
+//   and the least-norm x = x_p - Q (Qᵀ W Q)⁻¹ Qᵀ W x_p, which minimises xᵀ W x over x_p + Q z
+// (W = I: x = x_p - Q Qᵀ x_p; W = D⁻² for the weighted split: min Σ (x_i / D_i)²). Only the
+// columns of L before the first negligible pivot are read, so the round-off after it does no
+// harm. Q and x_p stay in `ws` for the weighted solve of the same A that may follow: one
+// factorisation serves both, where a complete orthogonal decomposition costs one QR each.
+// The workspace matrices keep n × n so that a change of k does not reallocate.
+template <typename Rows>
+void PermuteRows(const Eigen::Transpositions<Eigen::Dynamic>& t, bool transposed, Rows&& m) {
+  const Eigen::Index n = t.size();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Index k = transposed ? n - 1 - i : i;
+    if (t.coeff(k) != k) m.row(k).swap(m.row(t.coeff(k)));
   }
-  // With column scales the caller knows A is singular: straight to the least-norm branch.
-  const double a_max = A_in.cwiseAbs().maxCoeff();
-  if (a_max > 0.0 && column_scale == nullptr) {
-    if (symmetric) {
-      ws.ldlt.compute(A_in);
-      if (ws.ldlt.info() == Eigen::Success && ws.ldlt.vectorD().minCoeff() > 1e-10 * a_max) {
-        x = ws.ldlt.solve(r);
-        return false;
-      }
-    } else {
-      ws.lu.compute(A_in);
-      if (ws.lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-10 * a_max) {
-        x = ws.lu.solve(r);
-        return false;
-      }
+}
+
+void NullSpaceFromLdlt(ContactWorkspace& ws, const Eigen::VectorXd& r, Eigen::Index rank) {
+  const auto& ld = ws.ldlt.matrixLDLT();
+  const Eigen::Index n = ld.rows(), k = n - rank;
+  const auto L11 = ld.topLeftCorner(rank, rank).triangularView<Eigen::UnitLower>();
+  if (ws.null_basis.rows() != n || ws.null_basis.cols() != n) ws.null_basis.resize(n, n);
+  auto Q = ws.null_basis.leftCols(k);
+  Q.topRows(rank) = -ld.bottomLeftCorner(k, rank).transpose();
+  Q.bottomRows(k).setIdentity();
+  L11.transpose().solveInPlace(Q.topRows(rank));
+  PermuteRows(ws.ldlt.transpositionsP(), true, Q);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (Eigen::Index j = 0; j < k; ++j) {
+      for (Eigen::Index i = 0; i < j; ++i) Q.col(j) -= Q.col(i).dot(Q.col(j)) * Q.col(i);
+      Q.col(j).normalize();
     }
   }
+  Eigen::VectorXd& x_p = ws.null_particular;
+  x_p = r;
+  PermuteRows(ws.ldlt.transpositionsP(), false, x_p);
+  L11.solveInPlace(x_p.head(rank));
+  x_p.head(rank).array() /= ws.ldlt.vectorD().head(rank).array();
+  L11.transpose().solveInPlace(x_p.head(rank));
+  x_p.tail(k).setZero();
+  PermuteRows(ws.ldlt.transpositionsP(), true, x_p);
+  ws.null_rank = k;
+}
+
+// x = x_p - Q (Qᵀ W Q)⁻¹ Qᵀ W x_p with W = diag(1 / D²) (D = column_scale) or I.
+void LeastNormInNullSpace(ContactWorkspace& ws, const Eigen::VectorXd* column_scale,
+                          Eigen::VectorXd& x) {
+  const Eigen::Index n = ws.null_basis.rows(), k = ws.null_rank;
+  const auto Q = ws.null_basis.leftCols(k);
+  auto c = ws.cod_c.head(k);
+  x = ws.null_particular;
+  if (column_scale == nullptr) {
+    c.noalias() = Q.transpose() * x;
+    x.noalias() -= Q * c;
+    return;
+  }
+  if (ws.null_weighted.rows() != n || ws.null_weighted.cols() != n) ws.null_weighted.resize(n, n);
+  auto WQ = ws.null_weighted.leftCols(k);
+  WQ = Q;
+  WQ.array().colwise() /= column_scale->array().square();
+  Eigen::Ref<Eigen::MatrixXd> gram = ws.null_gram.topLeftCorner(k, k);
+  gram.noalias() = Q.transpose() * WQ;
+  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(gram);  // in place: no allocation
+  c.noalias() = WQ.transpose() * x;
+  llt.solveInPlace(c);
+  x.noalias() -= Q * c;
+}
+
+// The rank of a pivoted LDLᵀ whose pivots past it are all negligible; -1 when some pivot past
+// the first negligible one is not (A not semidefinite to round-off: no null space here).
+Eigen::Index LdltRank(const ContactWorkspace& ws, double negligible) {
+  const Eigen::VectorXd& d = ws.ldlt.vectorD();
+  Eigen::Index rank = 0;
+  while (rank < d.size() && d[rank] > negligible) ++rank;
+  for (Eigen::Index i = rank; i < d.size(); ++i) {
+    if (std::abs(d[i]) > negligible) return -1;
+  }
+  return rank;
+}
+
+// Least-norm (weighted with `column_scale`) by complete orthogonal decomposition: any square
+// A, the route of a singular system that is not symmetric positive semidefinite.
+void LeastNormCod(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, ContactWorkspace& ws,
+                  Eigen::VectorXd& x, const Eigen::VectorXd* column_scale) {
+  const Eigen::Index n = A_in.rows();
   // Weighted least norm: the same steps on A D (columns scaled), then x = D y.
   const Eigen::MatrixXd* A_ptr = &A_in;
   if (column_scale != nullptr) {
@@ -298,7 +364,7 @@ bool SolveSquare(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, bool sym
   x.resize(n);
   if (rank == 0) {
     x.setZero();
-    return true;
+    return;
   }
   // c = Qᵀ r = H_{k-1} ... H_0 r, one reflector at a time on a column segment (Eigen's
   // HouseholderSequence applies them to a dynamic-size block, whose product allocates).
@@ -326,6 +392,55 @@ bool SolveSquare(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, bool sym
   }
   x.noalias() = cod.colsPermutation() * y;
   if (column_scale != nullptr) x.array() *= column_scale->array();
+}
+
+}  // namespace
+
+// Solves A x = r, LDLᵀ / LU when well conditioned, (weighted) least-norm otherwise: from the
+// LDLᵀ's null space when A is symmetric semidefinite, by complete orthogonal decomposition
+// when not.
+bool SolveSquare(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, bool symmetric,
+                 ContactWorkspace& ws, Eigen::VectorXd& x, const Eigen::VectorXd* column_scale) {
+  const Eigen::Index n = A_in.rows();
+  if (n == 0) {
+    x.resize(0);
+    return false;
+  }
+  // The weighted solve after an unweighted one of the same symmetric A: its null space.
+  if (column_scale != nullptr && symmetric && ws.null_ready) {
+    LeastNormInNullSpace(ws, column_scale, x);
+    return true;
+  }
+  ws.null_ready = false;
+  // With column scales the caller knows A is singular: straight to the least-norm branch.
+  const double a_max = A_in.cwiseAbs().maxCoeff();
+  if (a_max > 0.0 && column_scale == nullptr) {
+    if (symmetric) {
+      ws.ldlt.compute(A_in);
+      if (ws.ldlt.info() == Eigen::Success) {
+        if (ws.ldlt.vectorD().minCoeff() > 1e-10 * a_max) {
+          x = ws.ldlt.solve(r);
+          return false;
+        }
+        const Eigen::Index rank = LdltRank(ws, 1e-10 * a_max);
+        if (rank > 0) {
+          if (ws.null_gram.rows() != n) ws.null_gram.resize(n, n);
+          if (ws.cod_c.size() != n) ws.cod_c.resize(n);
+          NullSpaceFromLdlt(ws, r, rank);
+          LeastNormInNullSpace(ws, nullptr, x);
+          ws.null_ready = true;
+          return true;
+        }
+      }
+    } else {
+      ws.lu.compute(A_in);
+      if (ws.lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-10 * a_max) {
+        x = ws.lu.solve(r);
+        return false;
+      }
+    }
+  }
+  LeastNormCod(A_in, r, ws, x, column_scale);
   return true;
 }
 
@@ -543,7 +658,7 @@ void SolveContactDense(const Model& model, const State& state, Data& data, bool 
   if (nc_rows > 0) internal::HoldReleasedRows(data.row_released, ws.A, ws.rhs);
   const bool redundant = internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda);
   if (redundant && CalcRedundantRowWeights(model, state, data, nc_rows, ws.lambda, ws.scale))
-    internal::SolveSquare(ws.A, ws.rhs, false, ws, ws.lambda, &ws.scale);
+    internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda, &ws.scale);
   data.u_dot.noalias() += ws.WMinv.transpose() * ws.lambda;
 }
 

@@ -161,6 +161,13 @@ struct ContactWorkspace {
   /// the modes stay).
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
   Eigen::VectorXd cod_c, cod_x, cod_temp;
+  /// A singular symmetric system's orthonormal null-space basis (its first null_rank
+  /// columns), a particular solution and the workspace of the weighted least-norm step
+  /// (dynamics/contact_solve.cpp: kept for the weighted solve of the same system).
+  Eigen::MatrixXd null_basis, null_weighted, null_gram;
+  Eigen::VectorXd null_particular;
+  Eigen::Index null_rank = 0;
+  bool null_ready = false;
   /// Column scales of a weighted least-norm solve (friction shared by capacity) and the
   /// column-scaled matrix A D.
   Eigen::VectorXd scale;

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <memory>
+#include <random>
 
 #include <gtest/gtest.h>
 #include <Eigen/QR>
@@ -157,22 +158,41 @@ TEST(ContactSolve, ProjectionDoesNotAllocateOnceSized) {
   EXPECT_EQ(n, 0);
 }
 
-// The least-norm path repeats Eigen's CompleteOrthogonalDecomposition::solve step by step in
-// the workspace: the same numbers, bit for bit.
+// The least-norm paths against Eigen's CompleteOrthogonalDecomposition::solve, the minimum-norm
+// solution of A x = r. A symmetric semidefinite A goes through its pivoted LDLᵀ's null space,
+// any other singular A through the decomposition step by step: both agree with it to round-off
+// (relative 1e-12 of |x|), and so does the weighted split, min Σ (x_i / D_i)², against the
+// decomposition of A D (x = D y, y its minimum-norm solution).
 TEST(ContactSolve, LeastNormSolveMatchesEigen) {
-  Eigen::MatrixXd B = Eigen::MatrixXd::Random(7, 4);
-  const Eigen::MatrixXd A = B * B.transpose();  // 7 x 7 of rank 4
-  const Eigen::VectorXd r = A * Eigen::VectorXd::Random(7);
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-  cod.setThreshold(1e-10);  // before compute: the Z reflectors are built for this rank
-  cod.compute(A);
-  const Eigen::VectorXd expected = cod.solve(r);
-  ContactWorkspace ws;
-  Eigen::VectorXd x;
-  internal::SolveSquare(A, r, true, ws, x);
-  ASSERT_EQ(x.size(), 7);
-  for (int i = 0; i < 7; ++i) EXPECT_EQ(x[i], expected[i]) << i;
-  ASSERT_EQ(cod.rank(), 4);
+  std::mt19937 rng(20261129);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.2, 3.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const int n = 2 + trial % 11, rank = 1 + trial % (n - 1);
+    Eigen::MatrixXd B(n, rank);
+    for (Eigen::Index i = 0; i < B.size(); ++i) B.data()[i] = u(rng);
+    const Eigen::MatrixXd A = B * B.transpose();  // n x n of the given rank, A ⪰ 0
+    Eigen::VectorXd y(n), D(n);
+    for (int i = 0; i < n; ++i) y[i] = u(rng), D[i] = pos(rng);
+    const Eigen::VectorXd r = A * y;
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+    cod.setThreshold(1e-10);  // before compute: the Z reflectors are built for this rank
+    cod.compute(A);
+    ASSERT_EQ(cod.rank(), rank);
+    const Eigen::VectorXd expected = cod.solve(r);
+    const Eigen::MatrixXd AD = A * D.asDiagonal();
+    cod.compute(AD);
+    const Eigen::VectorXd expected_weighted = D.asDiagonal() * cod.solve(r);
+    for (bool symmetric : {true, false}) {
+      SCOPED_TRACE(testing::Message() << "trial " << trial << (symmetric ? " LDLT" : " COD"));
+      ContactWorkspace ws;
+      Eigen::VectorXd x, xw;
+      EXPECT_TRUE(internal::SolveSquare(A, r, symmetric, ws, x));
+      EXPECT_TRUE(internal::SolveSquare(A, r, symmetric, ws, xw, &D));
+      EXPECT_LE((x - expected).norm(), 1e-12 * expected.norm());
+      EXPECT_LE((xw - expected_weighted).norm(), 1e-12 * expected_weighted.norm());
+      EXPECT_LE((A * xw - r).norm(), 1e-12 * r.norm());
+    }
+  }
 }
 
 }  // namespace
