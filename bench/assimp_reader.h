@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "chasles/io/mesh_reader.h"
+#include "chasles/files/mesh_reader.h"
 
 namespace chasles::bench {
 

@@ -4,6 +4,7 @@
 // array of per-body structs stepped by a hand-written RK4 (the same equations, q renormalised
 // once per step), and the engine's Rk4Integrator. Errors are reported as counters (benchmarks
 // never assert): the largest |q| − 1 and the largest relative change of |L_W| over the run.
+// SimulateRk4 times Simulate's run of the same bodies beside the batch's Advance.
 
 #include <cmath>
 #include <random>
@@ -14,6 +15,8 @@
 
 #include "chasles/integrate/free_body_batch.h"
 #include "chasles/integrate/rk4.h"
+#include "chasles/integrate/run_path.h"
+#include "chasles/integrate/simulate.h"
 #include "chasles/model/forces.h"
 #include "chasles/model/model.h"
 
@@ -152,9 +155,39 @@ void EngineRk4(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * n);
 }
 
+/// Simulate on the same bodies with the fixed-step RK4 (the free-body batch path, run_path.h),
+/// `steps` steps of kH from the same start per iteration, first and last state only: everything
+/// a run adds to the batch's Advance (validation, the batch's set-up, Load and Store, the
+/// gravity ledger). Compare with Batch/Rk4 at the same steps.
+void SimulateRk4(benchmark::State& st) {
+  const int n = static_cast<int>(st.range(0));
+  const long long steps = st.range(1);
+  State s0;
+  const Model m = MakeBodies(n, &s0);
+  SimulationOptions o;
+  o.integrator = IntegratorKind::kRk4;
+  o.fixed_step = kH;
+  o.t_end = static_cast<double>(steps) * kH;
+  o.output_interval = 0.0;
+  o.store_samples = false;
+  o.threads = static_cast<int>(st.range(2));
+  SimulationResult r;
+  for (auto _ : st) {
+    r = Simulate(m, s0, o);
+    benchmark::DoNotOptimize(r.final_state.bodies.data());
+  }
+  st.SetItemsProcessed(st.iterations() * n * steps);
+  st.counters["free_body_batch"] = r.run_path.path == RunPath::kFreeBodyBatch ? 1.0 : 0.0;
+  ErrorCounters(st, m, s0, r.final_state);
+}
+
 BENCHMARK(PlainLoop)->Name("PlainRk4Loop")->Arg(10000);
 BENCHMARK(EngineRk4)->Name("EngineRk4")->Arg(10000);
-BENCHMARK_CAPTURE(Batch, Rk4, FreeBodyStepper::kRk4)->Args({10000, 1, 1})->Args({10000, 10, 1});
+BENCHMARK_CAPTURE(Batch, Rk4, FreeBodyStepper::kRk4)
+    ->Args({10000, 1, 1})
+    ->Args({10000, 10, 1})
+    ->Args({10000, 100, 1});
+BENCHMARK(SimulateRk4)->Args({10000, 10, 1})->Args({10000, 100, 1});
 BENCHMARK_CAPTURE(Batch, Splitting, FreeBodyStepper::kSplitting)
     ->Args({10000, 1, 1})
     ->Args({10000, 10, 1});

@@ -19,11 +19,11 @@
 #include <vector>
 
 #include "assimp_reader.h"
-#include "chasles/io/mesh_reader.h"
+#include "chasles/files/mesh_reader.h"
 #include "chasles/mass/mesh_mass.h"
 #include "chasles/mass/triangle_mesh.h"
 #include "chasles/scene/mesh_file.h"
-#include "io/internal/mesh_readers.h"
+#include "files/internal/mesh_readers.h"
 
 namespace chasles {
 namespace {

@@ -1,4 +1,4 @@
-// Fuzz target: every mesh reader (src/io/) and the mesh mass pipeline behind it (weld, repair,
+// Fuzz target: every mesh reader (src/files/) and the mesh mass pipeline behind it (weld, repair,
 // integrate). Each input is read as every supported format, in memory, so one corpus of mesh
 // files serves all readers.
 // Promise: a malformed mesh is an InputError — never a crash, a hang, another exception, an
@@ -13,8 +13,8 @@
 
 #include "chasles/error.h"
 #include "chasles/mass/mesh_mass.h"
+#include "files/internal/mesh_readers.h"
 #include "fuzz_support.h"
-#include "io/internal/mesh_readers.h"
 
 namespace {
 

@@ -20,7 +20,8 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
-#include "chasles/io/input_file.h"
+#include "chasles/files/input_file.h"
+#include "chasles/report/json_input.h"
 #include "fuzz_support.h"
 #include "program.h"
 #include "scene_args.h"

@@ -15,8 +15,8 @@
 #include "chasles/files/collada_reader.h"
 #include "chasles/files/robot_reader.h"
 #include "chasles/files/robot_writer.h"
-#include "chasles/io/audit_json.h"
-#include "chasles/io/json_report.h"
+#include "chasles/report/audit_json.h"
+#include "chasles/report/json_report.h"
 #include "fuzz_support.h"
 
 namespace {

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The people's report of `chasles audit` (one block per link, findings first) and the data of
-/// its browser report (the mass report's page: each link drawn from its geometry, with the
-/// ellipsoids of its given and computed inertia, and the findings listed).
+/// The data of the browser report of `chasles audit` (the mass report's page: each link drawn
+/// from its geometry, with the ellipsoids of its given and computed inertia, and the findings
+/// listed); the text report is the report layer's AuditText (chasles/report/audit_text.h).
 
 #include <map>
 #include <string>
@@ -14,14 +14,6 @@
 #include "chasles/files/robot_model.h"
 
 namespace chasles::cli {
-
-/// The text report of every file audited.
-std::string AuditText(const std::vector<RobotAudit>& audits);
-
-/// "mass 1.219 kg, centre of mass [0, 0, 0] m, inertia [...] kg·m²".
-std::string AuditFixSummary(const MassProperties& values);
-/// "[Ixx .., Iyy .., Izz .., Ixy .., Ixz .., Iyz ..] kg·m²".
-std::string AuditTensorSummary(const Mat3& I);
 
 /// The browser report's data for the audited files: the mass report's (kind "mass"), one body
 /// per link with a valid given inertial at its pose in its robot's base frame at `joints`,

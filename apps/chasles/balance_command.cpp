@@ -17,9 +17,10 @@
 #include "chasles/analysis/balance.h"
 #include "chasles/analysis/whirl.h"
 #include "chasles/error.h"
-#include "chasles/io/json_report.h"
-#include "chasles/io/output_set.h"
+#include "chasles/files/output_set.h"
 #include "chasles/model/bearing.h"
+#include "chasles/report/balance_text.h"
+#include "chasles/report/json_report.h"
 #include "chasles/scene/expression.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/scene_error.h"
@@ -183,49 +184,6 @@ nlohmann::json ReportJson(const std::string& body, const BalanceReport& r, const
   return j;
 }
 
-std::string ReportText(const std::string& body, const BalanceReport& r, const RotorAxis& axis) {
-  std::string out = fmt::format("Rotor '{}': mass {:.9g} kg\n", body, r.mass);
-  out += fmt::format("  static unbalance  {:.9g} kg*m ({:.9g} g*mm)\n", r.static_unbalance_W.norm(),
-                     r.static_unbalance_W.norm() * 1e6);
-  out += fmt::format("  couple unbalance  {:.9g} kg*m^2\n", r.couple_unbalance_W.norm());
-  const char* names[2] = {"A", "B"};
-  const double z[2] = {axis.z_A, axis.z_B};
-  out += fmt::format(
-      "Corrections (angles from [{:.6g}, {:.6g}, {:.6g}] towards [{:.6g}, {:.6g}, "
-      "{:.6g}] about the axis):\n",
-      r.e1_W.x(), r.e1_W.y(), r.e1_W.z(), r.e2_W.x(), r.e2_W.y(), r.e2_W.z());
-  for (int k = 0; k < 2; ++k) {
-    const BalanceCorrection& c = r.corrections[static_cast<size_t>(k)];
-    if (c.mass == 0.0) {
-      out += fmt::format("  plane {} at {:.9g} m: none needed\n", names[k], z[k]);
-      continue;
-    }
-    out += fmt::format("  plane {} at {:.9g} m: {:.9g} kg at radius {:.9g} m, angle {:.6f} deg\n",
-                       names[k], z[k], c.mass, c.radius, c.angle * 180.0 / std::numbers::pi);
-  }
-  out += fmt::format("Residual after correction: {:.3g} kg*m static, {:.3g} kg*m^2 couple\n",
-                     r.residual_static, r.residual_couple);
-  if (std::isfinite(r.speed)) {
-    out +=
-        fmt::format("Bearing forces on the rotor at {:.9g} rad/s (rotating with it):\n", r.speed);
-    for (int k = 0; k < 2; ++k) {
-      out += fmt::format("  {}: {:.9g} N before, {:.3g} N after correction\n", names[k],
-                         r.bearing_forces_W[static_cast<size_t>(k)].norm(),
-                         r.bearing_forces_after_W[static_cast<size_t>(k)].norm());
-    }
-  }
-  if (std::isfinite(r.permissible)) {
-    out += fmt::format(
-        "ISO 21940-11 grade G {:.6g}: permissible residual unbalance {:.9g} g*mm ({:.9g} g*mm in "
-        "plane A, "
-        "{:.9g} g*mm in plane B); the static unbalance is {}\n",
-        r.grade, r.permissible * 1e6, r.permissible_per_plane[0] * 1e6,
-        r.permissible_per_plane[1] * 1e6,
-        r.static_unbalance_W.norm() <= r.permissible ? "within it" : "beyond it");
-  }
-  return out;
-}
-
 }  // namespace
 
 CLI::App* AddBalanceCommand(CLI::App& app, BalanceArgs& args) {
@@ -313,7 +271,7 @@ int RunBalance(const BalanceArgs& args) {
     report = DumpJson(j, "the balance report");
   } else {
     CheckFiniteJson(j, "the balance report");
-    report = ReportText(args.body, r, axis) + (whirl ? WhirlText(*whirl) : "");
+    report = BalanceText(args.body, r, axis) + (whirl ? WhirlText(*whirl) : "");
   }
   out.Add(ReportTarget(args.output), std::move(report));
   out.Commit();

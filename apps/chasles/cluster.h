@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "chasles/analysis/sweep.h"
 #include "chasles/scene/solve.h"
-#include "chasles/scene/sweep_share.h"
 
 namespace chasles::cli {
 

@@ -10,7 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "chasles/io/input_file.h"
+#include "chasles/files/input_file.h"
 #include "chasles/scene/scene.h"
 
 namespace chasles::cli {

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "chasles/error.h"
-#include "chasles/io/json_report.h"
+#include "chasles/report/json_report.h"
 #include "report_bundle.h"
 
 namespace chasles::cli {

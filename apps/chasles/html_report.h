@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The browser report (docs/report.md): one self-contained HTML file, the report's data
-/// (chasles/scene/report_data.h) and the page's script and style embedded. The script is
+/// (chasles/report/report_data.h) and the page's script and style embedded. The script is
 /// bundled at build time from report/ (three.js, uPlot, esbuild); a build without node has no
 /// report, and every --html says so.
 

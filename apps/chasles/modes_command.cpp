@@ -17,12 +17,13 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
-#include "chasles/io/json_report.h"
-#include "chasles/io/modes_json.h"
-#include "chasles/io/output_set.h"
+#include "chasles/files/output_set.h"
 #include "chasles/math/quaternion.h"
+#include "chasles/report/json_report.h"
+#include "chasles/report/modes_json.h"
+#include "chasles/report/modes_text.h"
+#include "chasles/report/report_data.h"
 #include "chasles/scene/modes.h"
-#include "chasles/scene/report_data.h"
 #include "chasles/scene/scene_dynamics.h"
 #include "chasles/scene/scene_error.h"
 #include "commands.h"
@@ -94,76 +95,6 @@ nlohmann::json SceneModesJson(const SceneModes& s) {
           {"stable", s.modes.stable}};
 }
 
-std::string ModeLine(const Mode& m) {
-  if (m.rigid) return fmt::format("  rigid     frees {}\n", m.rigid_coordinate);
-  // A neutral mode's Re λ and damping ratio are round-off (1e-16 of |λ|): printed as 0.
-  const double re = m.neutral ? 0.0 : m.eigenvalue.real(), im = m.eigenvalue.imag();
-  std::string what;
-  if (!m.stable) {
-    what = fmt::format("grows at {:.9g} 1/s{}", m.growth_rate,
-                       im > 0.0 ? fmt::format(", oscillating at {:.9g} Hz", m.frequency_hz) : "");
-  } else if (im > 0.0 && m.neutral) {
-    what = fmt::format("{:.9g} Hz, undamped", m.frequency_hz);
-  } else if (im > 0.0) {
-    what = fmt::format("{:.9g} Hz, damping ratio {:.6g}", m.frequency_hz, m.damping_ratio);
-  } else if (m.neutral) {
-    what = "neutral";
-  } else {
-    what = fmt::format("decays at {:.9g} 1/s", -re);
-  }
-  return fmt::format("  {:<9} λ = {:.12g} {} {:.12g}i 1/s: {}\n", m.stable ? "stable" : "UNSTABLE",
-                     re, im < 0.0 ? "-" : "+", std::abs(im), what);
-}
-
-std::string ShapeText(const Mode& m, const Linearization& lin) {
-  std::string out;
-  const auto n = static_cast<Eigen::Index>(lin.coordinates.size());
-  for (Eigen::Index i = 0; i < n && i < m.shape.size(); ++i) {
-    if (std::abs(m.shape[i]) < 1e-9) continue;
-    out +=
-        fmt::format("      {} {:.6g} at {:.1f}° {}\n", lin.coordinates[static_cast<size_t>(i)].name,
-                    std::abs(m.shape[i]), std::arg(m.shape[i]) * 180.0 / std::numbers::pi,
-                    lin.coordinates[static_cast<size_t>(i)].unit);
-  }
-  return out;
-}
-
-std::string Text(const Scene& scene, const SceneModes& s) {
-  const OperatingPoint& op = s.operating_point;
-  const Linearization& lin = s.modes.linearization;
-  std::string out = fmt::format("{}\n", scene.title.empty() ? scene.file : scene.title);
-  out += fmt::format(
-      "Operating point: {} (residual {:.3g}{})\n",
-      op.kind == OperatingPointKind::kEquilibrium ? "static equilibrium" : "steady motion",
-      op.residual, op.iterations > 0 ? fmt::format(", {} Newton steps", op.iterations) : "");
-  for (const std::string& w : op.warnings) out += fmt::format("  Warning: {}\n", w);
-  // Components below 1e-12 of the largest reaction are the solve's round-off: printed as 0
-  // (and + 0.0 turns a -0 into 0).
-  double largest = 0.0;
-  for (const ReactionReport& r : s.solution.reactions) {
-    largest = std::max(largest, r.F_Jc_W.cwiseAbs().maxCoeff());
-  }
-  const auto shown = [&](double x) { return std::abs(x) <= 1e-12 * largest ? 0.0 : x + 0.0; };
-  for (const ReactionReport& r : s.solution.reactions) {
-    out += fmt::format("  reaction {:<16} F = [{:.9g}, {:.9g}, {:.9g}] N\n", r.name,
-                       shown(r.F_Jc_W.x()), shown(r.F_Jc_W.y()), shown(r.F_Jc_W.z()));
-  }
-  out += "Coordinates:";
-  for (const LinearCoordinate& c : lin.coordinates) out += fmt::format(" {} [{}]", c.name, c.unit);
-  out += "\nSpeeds:";
-  for (const LinearCoordinate& c : lin.speeds) out += fmt::format(" {} [{}]", c.name, c.unit);
-  out += fmt::format(
-      "\nLinearisation: exact Jacobians; consistency {:.2g}; against finite "
-      "differences of the engine {:.2g}\nModes:\n",
-      lin.consistency, lin.finite_difference_check);
-  for (const Mode& m : s.modes.modes) {
-    out += ModeLine(m);
-    if (!m.rigid) out += ShapeText(m, lin);
-  }
-  out += fmt::format("Verdict: {}\n", s.modes.stable ? "stable (no mode grows)" : "UNSTABLE");
-  return out;
-}
-
 nlohmann::json SweepJson(const ModesSweep& w) {
   nlohmann::json points = nlohmann::json::array();
   for (size_t k = 0; k < w.values.size(); ++k) {
@@ -228,33 +159,6 @@ std::string SweepCsv(const ModesSweep& w) {
   return out;
 }
 
-std::string SweepText(const ModesSweep& w) {
-  std::string out =
-      fmt::format("Modes against {}{}\n", w.parameter, w.unit.empty() ? "" : " [" + w.unit + "]");
-  for (size_t k = 0; k < w.values.size(); ++k) {
-    out += fmt::format("{} = {:.9g}{}: {}\n", w.parameter, w.values[k],
-                       w.unit.empty() ? "" : " " + w.unit,
-                       w.points[k].modes.stable ? "stable" : "UNSTABLE");
-    for (const Mode& m : w.points[k].modes.modes) {
-      if (!m.rigid) out += ModeLine(m);
-    }
-  }
-  for (const CriticalSpeed& c : w.critical_speeds) {
-    out += fmt::format(
-        "Critical speed: {} = {:.15g} rad/s ({:.9g} rpm): mode {} whirls at the "
-        "spin\n",
-        w.parameter, c.speed, c.speed * 30.0 / std::numbers::pi, c.mode + 1);
-  }
-  out += "Stability changes:\n";
-  if (w.changes.empty()) out += "  none in the range\n";
-  for (const StabilityChange& c : w.changes) {
-    out += fmt::format("  {} = {:.15g}{}: {} ({})\n", w.parameter, c.value,
-                       w.unit.empty() ? "" : " " + w.unit,
-                       c.stable_after ? "stable above" : "unstable above", c.kind);
-  }
-  return out;
-}
-
 }  // namespace
 
 CLI::App* AddModesCommand(CLI::App& app, ModesArgs& args) {
@@ -303,7 +207,7 @@ int RunModes(const ModesArgs& args) {
     const SceneModes s = AnalyseSceneModes(scene);
     const nlohmann::json j = SceneModesJson(s);
     report = args.format == "json" ? DumpJson(j, "the modes report")
-                                   : (CheckFiniteJson(j, "the modes report"), Text(scene, s));
+                                   : (CheckFiniteJson(j, "the modes report"), ModesText(scene, s));
     if (!args.html.empty()) out.Add(args.html, HtmlReport(ModesReportData(scene, s)));
   } else {
     const SweepSpec spec = ParseSweep(args.sweep, "command line", "--sweep");
@@ -314,7 +218,7 @@ int RunModes(const ModesArgs& args) {
       report = DumpJson(j, "the modes sweep");
     } else {
       CheckFiniteJson(j, "the modes sweep");
-      report = args.format == "csv" ? SweepCsv(w) : SweepText(w);
+      report = args.format == "csv" ? SweepCsv(w) : ModesSweepText(w);
     }
   }
   out.Add(ReportTarget(args.output), std::move(report));

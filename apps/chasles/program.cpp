@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
-#include "chasles/io/output_set.h"
+#include "chasles/files/output_set.h"
 #include "cluster.h"
 
 namespace chasles::cli {

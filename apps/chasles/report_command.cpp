@@ -15,10 +15,12 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
-#include "chasles/io/csv_table.h"
-#include "chasles/io/input_file.h"
-#include "chasles/io/output_set.h"
-#include "chasles/scene/report_data.h"
+#include "chasles/files/input_file.h"
+#include "chasles/files/output_set.h"
+#include "chasles/report/csv_table.h"
+#include "chasles/report/json_input.h"
+#include "chasles/report/report_data.h"
+#include "chasles/report/result_names.h"
 #include "chasles/scene/scene.h"
 #include "commands.h"
 #include "html_report.h"
@@ -28,7 +30,7 @@ namespace chasles::cli {
 
 namespace {
 
-/// The run's table from its CSV (chasles/io/csv_table.h: columns by name, their units
+/// The run's table from its CSV (chasles/report/csv_table.h: columns by name, their units
 /// dropped). Errors name the file, line and column. A run's CSV has no failed rows (those are
 /// a sweep's): one is refused with its line and reason rather than drawn as NaN.
 void ReadCsv(const std::string& path, size_t max_bytes, StudyResult& r) {
@@ -107,7 +109,7 @@ void ReadTimeline(const nlohmann::json& j, const std::string& json, StudyResult&
     const std::string where = json + ": jumps";
     StudyJump x;
     x.t = Get<double>(e, "t", where);
-    x.kind = Get<std::string>(e, "kind", where);
+    x.kind = ParseStudyJumpKind(Get<std::string>(e, "kind", where), where);
     x.description = Get<std::string>(e, "description", where);
     r.jumps.push_back(x);
   }

@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
-#include "chasles/io/json_report.h"
-#include "chasles/io/solve_json.h"
+#include "chasles/report/json_report.h"
+#include "chasles/report/solve_json.h"
 #include "scene_args.h"
 
 namespace chasles::cli {

@@ -11,8 +11,8 @@
 #include <CLI/CLI.hpp>
 
 #include "chasles/analysis/solve_report.h"
-#include "chasles/io/csv_table.h"
-#include "chasles/io/output_set.h"
+#include "chasles/files/output_set.h"
+#include "chasles/report/csv_table.h"
 #include "chasles/scene/solve.h"
 
 namespace chasles::cli {

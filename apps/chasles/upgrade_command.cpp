@@ -5,8 +5,8 @@
 
 #include "certificate_report.h"
 #include "chasles/error.h"
-#include "chasles/io/atomic_file.h"
-#include "chasles/io/output_set.h"
+#include "chasles/files/atomic_file.h"
+#include "chasles/files/output_set.h"
 #include "chasles/scene/scene_upgrade.h"
 #include "commands.h"
 #include "scene_args.h"

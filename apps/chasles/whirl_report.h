@@ -1,7 +1,6 @@
 #pragma once
-// The whirl rows of `chasles balance` (analysis/whirl.h): JSON and text.
-
-#include <string>
+// The whirl rows of `chasles balance` (analysis/whirl.h) as JSON (the text is the report
+// layer's WhirlText, chasles/report/balance_text.h).
 
 #include <nlohmann/json.hpp>
 
@@ -12,8 +11,5 @@ namespace chasles::cli {
 /// {"speeds": [...] (rad/s), "points": [{"speed", "modes": [{"eigenvalue", "frequency_hz",
 /// "damping_ratio", "direction"}]}], "critical_speeds": [{"speed", "directions"}]}.
 nlohmann::json WhirlJson(const WhirlMap& w);
-
-/// One row per speed (forward and backward frequencies), then the critical speeds.
-std::string WhirlText(const WhirlMap& w);
 
 }  // namespace chasles::cli

@@ -1,13 +1,23 @@
 // Scenes: loading with overrides, mass properties, the instantaneous solve, the run
-// (RunStudy) and sweeps.
+// (RunStudy) and sweeps; a study of a Model built in Python, and a sweep of a Python function
+// of the parameters (no scene file).
 
 #include <cmath>
+#include <memory>
+#include <string>
+#include <tuple>
 #include <utility>
+#include <vector>
 
 #include "bindings.h"
-#include "chasles/io/json_report.h"
-#include "chasles/io/simulation_report.h"
-#include "chasles/io/solve_json.h"
+#include "chasles/analysis/study.h"
+#include "chasles/analysis/sweep.h"
+#include "chasles/report/json_report.h"
+#include "chasles/report/result_names.h"
+#include "chasles/report/simulation_report.h"
+#include "chasles/report/simulation_text.h"
+#include "chasles/report/solve_json.h"
+#include "chasles/report/solve_text.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/mesh_file.h"
 #include "chasles/scene/scene.h"
@@ -230,6 +240,43 @@ void BindSweeps(py::module_& m) {
       py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("jobs"),
       py::arg("max_runs"));
   m.def(
+      "_run_sweep",
+      [](const std::vector<std::string>& names, const std::vector<std::string>& units,
+         const std::vector<double>& start, const std::vector<double>& stop,
+         const std::vector<int>& counts, const std::vector<std::string>& quantities,
+         const std::vector<std::string>& quantity_units, const py::function& function, int jobs,
+         std::int64_t max_points, const py::object& input_error) {
+        const ParameterGrid grid{names, units, start, stop, counts};
+        CheckParameterGrid(grid, max_points);
+        // Each point calls the Python function with the GIL held; its chasles.InputError (a bad
+        // value at that point) fails that row alone, any other exception the sweep.
+        const SweepFunction point = [&](const std::vector<double>& values) {
+          py::gil_scoped_acquire acquire;
+          py::object out;
+          try {
+            out = function(*py::cast(values));
+          } catch (py::error_already_set& e) {
+            if (e.matches(input_error)) throw InputError(py::str(e.value()).cast<std::string>());
+            throw;
+          }
+          SweepRow row{values, ""};
+          const auto got = out.cast<std::vector<double>>();
+          if (got.size() != quantities.size()) {
+            throw UsageError("the sweep's function returned " + std::to_string(got.size()) +
+                             " values for " + std::to_string(quantities.size()) + " quantities");
+          }
+          row.values.insert(row.values.end(), got.begin(), got.end());
+          return row;
+        };
+        SweepRunOptions options;
+        options.jobs = jobs;
+        py::gil_scoped_release release;
+        return RunSweep(grid, quantities, quantity_units, point, options);
+      },
+      py::arg("names"), py::arg("units"), py::arg("start"), py::arg("stop"), py::arg("counts"),
+      py::arg("quantities"), py::arg("quantity_units"), py::arg("function"), py::arg("jobs"),
+      py::arg("max_points"), py::arg("input_error"));
+  m.def(
       "parse_sweep",
       [](const std::string& text) {
         const SweepSpec s = ParseSweep(text);
@@ -285,7 +332,9 @@ void BindSolve(py::module_& m) {
           .def_property_readonly("normal_W", [](const ContactPointReport& c) { return c.out.n_W; })
           .def_property_readonly("friction_needed", &ContactPointReport::FrictionRatio,
                                  "|f|/N (sticking: compare with mu_s)");
-  py::class_<SolveReport>(m, "Solution", "What `chasles solve` reports for a scene.")
+  // dynamic_attr: solve() keeps the scene beside its solution, for text().
+  py::class_<SolveReport>(m, "Solution", "What `chasles solve` reports for a scene.",
+                          py::dynamic_attr())
       .def_property_readonly("t", [](const SolveReport& s) { return s.solution.t; })
       .def_property_readonly("bodies", [](const SolveReport& s) { return s.solution.bodies; })
       .def_property_readonly("reactions", [](const SolveReport& s) { return s.solution.reactions; })
@@ -313,6 +362,14 @@ void BindSolve(py::module_& m) {
         SolutionTableRow(s, &names, &units, &values);
         return py::make_tuple(names, units, values);
       });
+  m.def(
+      "_solve_text",
+      [](const PyScene& s, const SolveReport& solution, const std::string& units) {
+        TextOptions options;
+        options.units = units;
+        return SolveText(s.scene, solution, options);
+      },
+      py::arg("scene"), py::arg("solution"), py::arg("units"));
   m.def(
       "_solve",
       [](const PyScene& s) {
@@ -369,14 +426,17 @@ void BindStudyParts(py::module_& m) {
       .def_readonly("angular_momentum_change", &BodyImpulseBalance::dH_Bcm_W, "[kg*m^2/s]")
           RO(BodyImpulseBalance, impulses, "");
   py::class_<StudyJump>(m, "Jump", "An impulse or impact applied during the run.")
-      RO(StudyJump, kind, "") RO(StudyJump, description, "") RO(StudyJump, t, "")
-          RO(StudyJump, energy_before, "[J]") RO(StudyJump, energy_after, "[J]")
-              .def_readonly("velocity_after", &StudyJump::v_after_W)
-              .def_readonly("angular_velocity_after", &StudyJump::w_after_W)
-                  RO(StudyJump, reactions,
-                     "The supports' impulsive reactions (Reaction records in N*s, N*m*s)")
-                      RO(StudyJump, bodies, "Every body's velocity jumps and impulses")
-                          RO(StudyJump, impacts, "Indices into run.impacts of this instant");
+      .def_property_readonly(
+          "kind", [](const StudyJump& x) { return StudyJumpKindName(x.kind); },
+          "\"impulse\", \"embedding\" or \"pass-through\"") RO(StudyJump, description, "")
+          RO(StudyJump, t, "") RO(StudyJump, energy_before, "[J]")
+              RO(StudyJump, energy_after, "[J]")
+      .def_readonly("velocity_after", &StudyJump::v_after_W)
+      .def_readonly("angular_velocity_after", &StudyJump::w_after_W)
+          RO(StudyJump, reactions,
+             "The supports' impulsive reactions (Reaction records in N*s, N*m*s)")
+              RO(StudyJump, bodies, "Every body's velocity jumps and impulses")
+                  RO(StudyJump, impacts, "Indices into run.impacts of this instant");
   py::class_<StudyContactEvent>(m, "StudyContactEvent", "A contact mode change.")
       RO(StudyContactEvent, t, "[s]") RO(StudyContactEvent, point, "")
           RO(StudyContactEvent, contact, "")
@@ -386,7 +446,13 @@ void BindStudyParts(py::module_& m) {
       RO(StudyImpact, point, "") RO(StudyImpact, approach_speed, "[m/s]")
           RO(StudyImpact, normal_impulse, "[N*s]") RO(StudyImpact, energy_lost, "[J]")
               RO(StudyImpact, accumulation, "") RO(StudyImpact, rest_time, "")
-                  RO(StudyImpact, jam, "") RO(StudyImpact, restitution_law, "");
+                  RO(StudyImpact, jam, "")
+                      .def_property_readonly(
+                          "restitution_law",
+                          [](const StudyImpact& x) {
+                            return x.restitution_law ? RestitutionLawName(*x.restitution_law) : "";
+                          },
+                          "\"energetic\", \"newton\" or \"poisson\"");
   py::class_<StudyLedger>(m, "Ledger", "The work-energy ledger at the end of the run.") RO(
       StudyLedger, kinetic_translational, "[J]") RO(StudyLedger, kinetic_rotational, "[J]")
       RO(StudyLedger, potential, "[J]") RO(StudyLedger, energy, "[J]") RO(
@@ -500,6 +566,13 @@ void BindStudy(py::module_& m) {
       },
       py::arg("scene"), py::arg("result"), py::arg("csv_path"));
   m.def(
+      "_run_text",
+      [](const PyScene& s, const StudyResult& r, const std::string& units, const std::string& out) {
+        const SimulationFiles files = SimulationFilesIn(out, s.scene.file);
+        return SimulationText(s.scene, r, TextOptions{units, files.csv, files.json});
+      },
+      py::arg("scene"), py::arg("result"), py::arg("units"), py::arg("out"));
+  m.def(
       "_run_study",
       [](const PyScene& s, double until, std::int64_t max_steps, std::int64_t max_rows,
          double timeout, double min_step) {
@@ -514,6 +587,37 @@ void BindStudy(py::module_& m) {
       },
       py::arg("scene"), py::arg("until"), py::arg("max_steps"), py::arg("max_rows"),
       py::arg("timeout"), py::arg("min_step"));
+  m.def(
+      "_run_definition",
+      [](const Model& model, const State& initial, const SimulationOptions& options,
+         const std::vector<std::tuple<std::string, int, std::string>>& columns,
+         std::int64_t max_steps, std::int64_t max_rows, double timeout) {
+        // A study of the caller's Model: its bodies are the study's, the run starts on a copy
+        // of it (a Python Model may change afterwards), no impact embeds, so no ModelBuilder.
+        StudyDefinition def;
+        for (int b = 0; b < model.num_bodies(); ++b) {
+          def.bodies.push_back({model.body(b).name(), model.body(b).mass_properties()});
+        }
+        def.model = std::make_shared<const Model>(model);
+        def.initial = initial;
+        def.options = options;
+        def.options.events.clear();
+        for (const auto& [name, body, quantity] : columns) {
+          StudyColumn c;
+          c.name = name;
+          c.body = body;
+          c.quantity = quantity;
+          c.group = body < 0 ? (name == "t" ? "time" : "energy") : "body";
+          def.columns.push_back(std::move(c));
+        }
+        def.limits = {max_steps, max_rows, timeout};
+        {
+          py::gil_scoped_release release;
+          return RunStudy(def);
+        }
+      },
+      py::arg("model"), py::arg("initial"), py::arg("options"), py::arg("columns"),
+      py::arg("max_steps"), py::arg("max_rows"), py::arg("timeout"));
 }
 
 }  // namespace

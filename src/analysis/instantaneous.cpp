@@ -45,12 +45,13 @@ void CheckFiniteForces(const Model& model, const State& state, const Data& data)
     if (o.force_W.allFinite() && o.moment_Wo_W.allFinite() && std::isfinite(o.power)) continue;
     const bool inf = o.force_W.array().isInf().any() || o.moment_Wo_W.array().isInf().any() ||
                      std::isinf(o.power);
-    throw InputError(fmt::format(
-        "force element '{}' evaluated to {} at t = {:.9g} s (force [{:.6g}, {:.6g}, {:.6g}] N): "
-        "check its expression or the bodies' positions (a body at a force centre, a logarithm "
-        "or a division by zero)",
-        model.force_element(e).name(), inf ? "infinite" : "NaN", state.t, o.force_W.x(),
-        o.force_W.y(), o.force_W.z()));
+    throw InputError(
+        fmt::format("force element '{}' evaluated to {} at t = {:.9g} s (force [{:.6g}, {:.6g}, "
+                    "{:.6g}] N): check its expression or the bodies' positions (a body at a force "
+                    "centre, a logarithm or a division by zero)",
+                    model.force_element(e).name(), inf ? "infinite" : "NaN", state.t, o.force_W.x(),
+                    o.force_W.y(), o.force_W.z()),
+        ErrorElement{ErrorElement::Kind::kForceElement, e, true});
   }
 }
 
@@ -59,11 +60,13 @@ InstantaneousSolution SolveInChosenModes(const Model& model, const State& state,
   Data data = MakeData(model);
   const ConstraintViolation v = CalcConstraintViolation(model, state, data);
   if (v.position > options.tolerance || v.velocity > options.tolerance) {
-    throw InputError(fmt::format(
-        "the state violates constraint '{}' (position error {:.3g}, velocity error {:.3g}; "
-        "tolerance {:.3g}): give positions and velocities that satisfy the constraints, or "
-        "project the state with ProjectOntoConstraints first",
-        model.constraint(v.worst).name(), v.position, v.velocity, options.tolerance));
+    throw InputError(
+        fmt::format(
+            "the state violates constraint '{}' (position error {:.3g}, velocity error {:.3g}; "
+            "tolerance {:.3g}): give positions and velocities that satisfy the constraints, or "
+            "project the state with ProjectOntoConstraints first",
+            model.constraint(v.worst).name(), v.position, v.velocity, options.tolerance),
+        ErrorElement{ErrorElement::Kind::kConstraint, v.worst});
   }
   CalcAccelerations(model, state, data);
   CheckFiniteForces(model, state, data);

@@ -241,10 +241,12 @@ void ForceElementForces(const Model& model, const LinearBase& base, const VecX<T
 void CheckLinearisable(const Model& model) {
   for (int b = 0; b < model.num_bodies(); ++b) {
     if (model.body(b).num_zero_moments() != 0) {
-      throw InputError(fmt::format(
-          "body '{}': a linearisation needs every body's rotational inertia (it has {} zero "
-          "principal moments); give it a shape or an inertia",
-          model.body(b).name(), model.body(b).num_zero_moments()));
+      throw InputError(
+          fmt::format(
+              "body '{}': a linearisation needs every body's rotational inertia (it has {} zero "
+              "principal moments); give it a shape or an inertia",
+              model.body(b).name(), model.body(b).num_zero_moments()),
+          ErrorElement{ErrorElement::Kind::kBody, b});
     }
   }
   for (int i = 0; i < model.num_force_elements(); ++i) {
@@ -253,11 +255,13 @@ void CheckLinearisable(const Model& model) {
         dynamic_cast<const SpringDamper*>(&e) == nullptr &&
         dynamic_cast<const Bearing*>(&e) == nullptr &&
         dynamic_cast<const LinearDrag*>(&e) == nullptr) {
-      throw InputError(fmt::format(
-          "force '{}': a linearisation handles uniform gravity, springs, dampers, bearings and "
-          "drag; "
-          "this force is a function of time and state whose derivatives are not known",
-          e.name()));
+      throw InputError(
+          fmt::format(
+              "force '{}': a linearisation handles uniform gravity, springs, dampers, bearings "
+              "and drag; this force is a function of time and state whose derivatives are not "
+              "known",
+              e.name()),
+          ErrorElement{ErrorElement::Kind::kForceElement, i});
     }
   }
   for (int c = 0; c < model.num_constraints(); ++c) {
@@ -265,16 +269,20 @@ void CheckLinearisable(const Model& model) {
     if (dynamic_cast<const Joint*>(&k) == nullptr &&
         dynamic_cast<const RollingContact*>(&k) == nullptr &&
         dynamic_cast<const SurfaceRolling*>(&k) == nullptr) {
-      throw InputError(fmt::format(
-          "constraint '{}': a linearisation handles joints and rolling; a {} is not linearised",
-          k.name(), k.kind()));
+      throw InputError(
+          fmt::format(
+              "constraint '{}': a linearisation handles joints and rolling; a {} is not linearised",
+              k.name(), k.kind()),
+          ErrorElement{ErrorElement::Kind::kConstraint, c});
     }
   }
   if (model.num_contacts() > 0) {
-    throw InputError(fmt::format(
-        "contact '{}': a linearisation holds bodies by joints and rolling only; state a "
-        "rolling contact instead of a unilateral one",
-        model.contact(0).name()));
+    throw InputError(
+        fmt::format(
+            "contact '{}': a linearisation holds bodies by joints and rolling only; state a "
+            "rolling contact instead of a unilateral one",
+            model.contact(0).name()),
+        ErrorElement{ErrorElement::Kind::kContact, 0});
   }
 }
 

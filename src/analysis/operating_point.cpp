@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -26,8 +28,9 @@ double Residual(const Model& model, const State& state, const SteadyGenerator& x
   return internal::ScaledResidual(r, internal::CalcRateScales(model, state, data));
 }
 
-/// The body whose acceleration is largest, for the message of a failed search.
-std::string WorstBody(const Model& model, const State& state) {
+/// The body whose acceleration is largest, for the message of a failed search, and that body
+/// as the error's element.
+std::pair<std::string, ErrorElement> WorstBody(const Model& model, const State& state) {
   Data data = MakeData(model);
   CalcAccelerations(model, state, data);
   int worst = 0;
@@ -39,10 +42,10 @@ std::string WorstBody(const Model& model, const State& state) {
   }
   const Vec3 a = data.a_WBcm_W[static_cast<size_t>(worst)];
   const Vec3 alpha = data.wdot_WB_B[static_cast<size_t>(worst)];
-  return fmt::format(
-      "body '{}' keeps an acceleration [{:.6g}, {:.6g}, {:.6g}] m/s² and an "
-      "angular acceleration of {:.6g} rad/s²",
-      model.body(worst).name(), a.x(), a.y(), a.z(), alpha.norm());
+  return {fmt::format("body '{}' keeps an acceleration [{:.6g}, {:.6g}, {:.6g}] m/s² and an "
+                      "angular acceleration of {:.6g} rad/s²",
+                      model.body(worst).name(), a.x(), a.y(), a.z(), alpha.norm()),
+          ErrorElement{ErrorElement::Kind::kBody, worst}};
 }
 
 State AtRest(const Model& model, const State& state) {
@@ -165,10 +168,12 @@ OperatingPoint FindEquilibrium(const Model& model, const State& guess,
   op.residual = Residual(model, op.state, op.generator);
   while (op.residual > options.tolerance) {
     if (op.iterations == options.max_iterations) {
-      throw InputError(fmt::format(
-          "no static equilibrium found in {} Newton steps from the initial state (residual "
-          "{:.3g}): {}",
-          options.max_iterations, op.residual, WorstBody(model, op.state)));
+      const auto [worst, body] = WorstBody(model, op.state);
+      throw InputError(
+          fmt::format("no static equilibrium found in {} Newton steps from the initial state "
+                      "(residual {:.3g}): {}",
+                      options.max_iterations, op.residual, worst),
+          body);
     }
     ++op.iterations;
     const Linearization lin = Linearize(model, op);
@@ -220,10 +225,11 @@ OperatingPoint FindEquilibrium(const Model& model, const State& guess,
       }
     }
     if (step <= 1e-6 * first) {
-      throw InputError(fmt::format(
-          "no static equilibrium near the initial state (no Newton step lowers the residual "
-          "{:.3g}): {}",
-          op.residual, WorstBody(model, op.state)));
+      const auto [worst, body] = WorstBody(model, op.state);
+      throw InputError(fmt::format("no static equilibrium near the initial state (no Newton "
+                                   "step lowers the residual {:.3g}): {}",
+                                   op.residual, worst),
+                       body);
     }
   }
   return op;

@@ -18,6 +18,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/integrate/run_path.h"
 #include "chasles/integrate/sphere_events.h"
 #include "chasles/model/data.h"
 #include "internal/study_steps.h"
@@ -45,11 +46,13 @@ void CheckFinite(const Model& model, const State& state) {
                     s.q_WB.coeffs().allFinite() && s.p_WBcm.norm() < kMotionScale &&
                     s.v_WBcm_W.norm() < kMotionScale && s.w_WB_B.norm() < kMotionScale;
     if (!ok) {
-      throw InputError(fmt::format(
-          "the motion of body '{}' diverged (non-finite or beyond 1e150 in SI) near t = {:.9g} s; "
-          "the run is stopped. Check the force expressions for a singularity, or use a smaller "
-          "'step' or the adaptive integrator",
-          model.body(b).name(), state.t));
+      throw InputError(
+          fmt::format(
+              "the motion of body '{}' diverged (non-finite or beyond 1e150 in SI) near "
+              "t = {:.9g} s; the run is stopped. Check the force expressions for a singularity, "
+              "or use a smaller 'step' or the adaptive integrator",
+              model.body(b).name(), state.t),
+          ErrorElement{ErrorElement::Kind::kBody, b});
     }
   }
 }
@@ -72,9 +75,14 @@ class StudyRun {
         slip_(def.rolling_watch),
         started_(std::chrono::steady_clock::now()) {}
 
+  /// The run; an InputError that names a body names a user body (an index into def.bodies).
   StudyResult Run();
 
  private:
+  StudyResult RunUnmapped();
+  /// Rethrows `e`, naming the first user body placed in the current segment's model body it
+  /// names (after an embedding a model body carries several).
+  [[noreturn]] void RethrowForUserBody(const InputError& e) const;
   const std::string& Label(int p) const { return labels_[static_cast<size_t>(p)]; }
   void Start();
   void RecordImpacts(const ImpactResult& r, double t);
@@ -130,12 +138,37 @@ class StudyRun {
   /// far (and the projections at their handovers) [J], the last regime change of the current
   /// time-stepped segment [s], and whether the impact-law warnings were given.
   StudyEngine engine_ = StudyEngine::kAdaptive;
+  /// The run's path (ChooseRunPath at the start).
+  RunPath path_ = RunPath::kSmooth;
   double scheme_error_ = 0.0;
   double quiet_from_ = 0.0;
   bool law_warned_ = false;
 };
 
 StudyResult StudyRun::Run() {
+  try {
+    return RunUnmapped();
+  } catch (const InputError& e) {
+    RethrowForUserBody(e);
+  }
+}
+
+void StudyRun::RethrowForUserBody(const InputError& e) const {
+  if (!e.element() || e.element()->kind != ErrorElement::Kind::kBody ||
+      typeid(e) != typeid(InputError)) {
+    throw;
+  }
+  for (size_t b = 0; b < seg_.map.place.size(); ++b) {
+    if (seg_.map.place[b].model_body == e.element()->index) {
+      ErrorElement element = *e.element();
+      element.index = static_cast<int>(b);
+      throw InputError(e.what(), element);
+    }
+  }
+  throw;
+}
+
+StudyResult StudyRun::RunUnmapped() {
   Start();
   // Impulses and impacts in time order (stable: the definition's order at equal times).
   std::vector<Jump> jumps;
@@ -190,9 +223,17 @@ void StudyRun::Start() {
   result_.warnings = def_.warnings;
   for (const StudyColumn& c : def_.columns) result_.columns.push_back(c.name);
   seg_ = study_internal::FirstSegment(def_);
-  if ((def_.sphere_events || def_.time_stepping) &&
-      ((def_.events && !def_.events(seg_.map).empty()) || !def_.impulses.empty() ||
-       !def_.impacts.empty())) {
+  // The path (ChooseRunPath): a hybrid run's own Simulate says again whether it split.
+  SimulationOptions chosen = def_.options;
+  if (def_.events) chosen.events = def_.events(seg_.map);
+  result_.run_path = ChooseRunPath(*seg_.model, chosen,
+                                   def_.sphere_events   ? EngineRequest::kEvents
+                                   : def_.time_stepping ? EngineRequest::kStepping
+                                   : def_.auto_engine   ? EngineRequest::kAuto
+                                                        : EngineRequest::kIntegrator);
+  path_ = result_.run_path.path;
+  if ((path_ == RunPath::kSphereEvents || path_ == RunPath::kTimeStepping) &&
+      (!chosen.events.empty() || !def_.impulses.empty() || !def_.impacts.empty())) {
     throw InputError(
         "an event-driven (sphere_events) or time-stepped run takes no events, impulses or "
         "impacts");
@@ -211,7 +252,7 @@ void StudyRun::Start() {
   const State as_given = state_;
   // The event-driven path settles its balls itself (a ball moving into the table lands at
   // once) and lists every point's initial mode (RecordSphereEvents).
-  if (model.num_contacts() > 0 && def_.time_stepping) {
+  if (model.num_contacts() > 0 && path_ == RunPath::kTimeStepping) {
     // Time stepping chooses the regimes in its first step; the timeline starts separated.
     for (int p = 0; p < model.num_contact_points(); ++p) {
       const std::string mode = ContactModeName(ContactMode::kSeparated);
@@ -219,7 +260,7 @@ void StudyRun::Start() {
                                         model.contact(model.contact_of_point(p)).name(), mode, mode,
                                         "initial"});
     }
-  } else if (model.num_contacts() > 0 && !def_.sphere_events) {
+  } else if (model.num_contacts() > 0 && path_ != RunPath::kSphereEvents) {
     SettleContacts("initial");
     // Every point's initial mode is part of the timeline, changed or not.
     for (int p = 0; p < model.num_contact_points(); ++p) {
@@ -245,8 +286,8 @@ void StudyRun::RecordImpacts(const ImpactResult& r, double t) {
   for (const ContactImpulse& imp : r.impulses) {
     result_.impacts.push_back({t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
                                r.kinetic_energy_before - r.kinetic_energy_after, false,
-                               std::numeric_limits<double>::quiet_NaN(), false,
-                               RestitutionLawName(imp.law), r.frictionless_fallback});
+                               std::numeric_limits<double>::quiet_NaN(), false, imp.law,
+                               r.frictionless_fallback});
   }
 }
 
@@ -275,7 +316,8 @@ void StudyRun::SettleContacts(const char* reason, std::vector<std::pair<int, Vec
   }
   for (const JamImpulse& j : notes.jams) {
     result_.impacts.push_back({state_.t, Label(j.point), 0.0, j.normal_impulse, j.energy_lost,
-                               false, std::numeric_limits<double>::quiet_NaN(), true, "", false});
+                               false, std::numeric_limits<double>::quiet_NaN(), true, std::nullopt,
+                               false});
     result_.warnings.push_back(fmt::format(
         "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces had no "
         "consistent solution (a Painlevé-type paradox); the slip was stopped by an impulsive "
@@ -298,14 +340,14 @@ void StudyRun::OnStep(double t) {
   if (def_.progress) def_.progress(t);
   const StudyLimits& limits = def_.limits;
   if (++steps_taken_ > limits.max_steps) {
-    throw LimitError(
-        LimitError::Limit::kSteps,
-        fmt::format("the run reached the limit of {} {} at t = {:.9g} s (of {:.9g} s)",
-                    limits.max_steps,
-                    def_.sphere_events ? "steps (events, and the pressing groups' integration "
-                                         "steps)"
-                                       : "integration steps",
-                    t, def_.options.t_end));
+    throw LimitError(LimitError::Limit::kSteps,
+                     fmt::format("the run reached the limit of {} {} at t = {:.9g} s (of {:.9g} s)",
+                                 limits.max_steps,
+                                 path_ == RunPath::kSphereEvents
+                                     ? "steps (events, and the pressing groups' integration "
+                                       "steps)"
+                                     : "integration steps",
+                                 t, def_.options.t_end));
   }
   if (limits.timeout > 0) {
     const std::chrono::duration<double> used = std::chrono::steady_clock::now() - started_;
@@ -322,11 +364,11 @@ void StudyRun::OnStep(double t) {
 // definition names, or (integrator: auto) on the one the run is on, each stretch handing over
 // to the other when its rule says so.
 void StudyRun::RunTo(double t_b) {
-  if (def_.sphere_events) {
+  if (path_ == RunPath::kSphereEvents) {
     RunEvents(t_b);
     return;
   }
-  if (def_.time_stepping) {
+  if (path_ == RunPath::kTimeStepping) {
     RunStepping(t_b);
     return;
   }
@@ -383,7 +425,7 @@ void StudyRun::RunAdaptiveStretch(double t_b) {
   };
   std::string stays;
   if (def_.auto_engine) {
-    stays = study_internal::SteppingObstacle(!o.events.empty(), *seg_.model);
+    stays = AutoHandoverObstacle(*seg_.model, !o.events.empty());
     if (stays.empty()) {
       o.contact.yield_changes = def_.auto_engine->rule.changes;
       o.contact.yield_window = def_.auto_engine->rule.window;
@@ -402,9 +444,10 @@ void StudyRun::RunAdaptiveStretch(double t_b) {
     if (!stays.empty()) {
       why += "; integrator auto cannot hand this run over to time stepping: " + stays;
     }
-    throw InputError(why);
+    throw InputError(why, e.element());
   }
   RecordSimulation(r, carried, o.events);
+  if (!def_.auto_engine) result_.run_path = r.run_path;
   state_ = r.final_state;
   if (r.stopped_by_event) stopped_ = true;
   if (def_.auto_engine) {
@@ -434,7 +477,8 @@ void StudyRun::RunSteppingStretch(double t_b) {
   } catch (const LimitError&) {
     throw;
   } catch (const InputError& e) {
-    throw InputError(fmt::format("the run stopped after t = {:.9g} s: {}", t_last_row_, e.what()));
+    throw InputError(fmt::format("the run stopped after t = {:.9g} s: {}", t_last_row_, e.what()),
+                     e.element());
   }
   RecordSteppingSamples(r);
   CheckFinite(*seg_.model, r.final_state);
@@ -618,8 +662,8 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
   std::vector<StudyImpact> impacts;
   for (const ImpactRecord& imp : r.plane_impacts) {
     impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
-                       imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam,
-                       RestitutionLawName(imp.law), imp.frictionless_fallback});
+                       imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam, imp.law,
+                       imp.frictionless_fallback});
   }
   for (const SphereCollision& c : r.collisions) {
     std::string point = fmt::format("{} | {}", m.body(c.body_a).name(), m.body(c.body_b).name());
@@ -632,8 +676,7 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
       }
     }
     impacts.push_back({c.t, point, c.approach_speed, c.normal_impulse, c.energy_lost, false,
-                       std::numeric_limits<double>::quiet_NaN(), false, RestitutionLawName(c.law),
-                       false});
+                       std::numeric_limits<double>::quiet_NaN(), false, c.law, false});
   }
   std::stable_sort(impacts.begin(), impacts.end(),
                    [](const StudyImpact& a, const StudyImpact& b) { return a.t < b.t; });
@@ -693,7 +736,7 @@ void StudyRun::RecordSimulation(const SimulationResult& r,
   for (const ImpactRecord& imp : r.impacts) {
     result_.impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
                                imp.energy_lost, imp.accumulation, imp.accumulation_time, imp.jam,
-                               RestitutionLawName(imp.law), imp.frictionless_fallback});
+                               imp.law, imp.frictionless_fallback});
   }
   result_.warnings.insert(result_.warnings.end(), r.warnings.begin(), r.warnings.end());
 }
@@ -745,7 +788,7 @@ void StudyRun::ApplyJump(const Jump& j) {
   int shown = 0;
   if (j.impulse) {
     shown = study_internal::ApplyStudyImpulse(*j.impulse, seg_, state_, &impulses);
-    rec.kind = "impulse";
+    rec.kind = StudyJumpKind::kImpulse;
     rec.description =
         fmt::format("impulse on {}", def_.bodies[static_cast<size_t>(j.impulse->body)].name);
   } else {
@@ -755,13 +798,16 @@ void StudyRun::ApplyJump(const Jump& j) {
       return seg_.map.place[static_cast<size_t>(b)].model_body;
     };
     if (model_body(j.impact->target) == model_body(j.impact->projectile)) {
-      throw InputError(fmt::format(
-          "impact at t = {:.6g} s: '{}' and '{}' are already one body (an earlier impact "
-          "embedded one in the other)",
-          j.impact->t, projectile, target));
+      throw InputError(
+          fmt::format(
+              "impact at t = {:.6g} s: '{}' and '{}' are already one body (an earlier impact "
+              "embedded one in the other)",
+              j.impact->t, projectile, target),
+          ErrorElement{ErrorElement::Kind::kBody, model_body(j.impact->projectile)});
     }
     shown = study_internal::ApplyStudyImpact(*j.impact, def_.build_model, seg_, state_, &impulses);
-    rec.kind = j.impact->exit_fraction > 0 ? "pass-through" : "embedding";
+    rec.kind =
+        j.impact->exit_fraction > 0 ? StudyJumpKind::kPassThrough : StudyJumpKind::kEmbedding;
     rec.description = j.impact->exit_fraction > 0
                           ? fmt::format("{} passes through {} keeping {:.4g} of its velocity",
                                         projectile, target, j.impact->exit_fraction)

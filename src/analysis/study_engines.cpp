@@ -35,13 +35,6 @@ const char* EngineSwitchName(EngineSwitch reason) {
 
 namespace study_internal {
 
-std::string SteppingObstacle(bool has_events, const Model& model) {
-  if (has_events) {
-    return "the run's events are located on the adaptive integrator's dense output";
-  }
-  return TimeSteppingObstacle(model);
-}
-
 void AddSteppingSummary(TimeSteppingSummary& into, const TimeSteppingSummary& add) {
   if (into.steps == 0) {
     into = add;

@@ -55,7 +55,9 @@ BodyMap EmbeddedMap(const BodyMap& map, int mt, int mp, const Mat3& R_WT, const 
 }  // namespace
 
 Segment FirstSegment(const StudyDefinition& definition) {
-  if (!definition.build_model) throw InputError("a study needs a ModelBuilder (build_model)");
+  if (!definition.model && !definition.build_model) {
+    throw InputError("a study needs its Model (model) or a ModelBuilder (build_model)");
+  }
   Segment seg;
   seg.bodies = definition.bodies;
   for (size_t b = 0; b < definition.bodies.size(); ++b) {
@@ -64,9 +66,13 @@ Segment FirstSegment(const StudyDefinition& definition) {
     seg.map.mass.push_back(definition.bodies[b].mass_properties.mass());
     seg.map.I_BBcm_B.push_back(definition.bodies[b].mass_properties.I_BBcm_B().matrix());
   }
-  seg.model = std::make_shared<const Model>(definition.build_model(seg.bodies, seg.map));
+  // The caller's Model when it has built it (the scene's definition checks its inputs on it):
+  // a run builds each Model once.
+  seg.model = definition.model
+                  ? definition.model
+                  : std::make_shared<const Model>(definition.build_model(seg.bodies, seg.map));
   if (seg.model->num_bodies() != static_cast<int>(seg.bodies.size())) {
-    throw InputError(fmt::format("the ModelBuilder made {} bodies for {} study bodies",
+    throw InputError(fmt::format("the study's Model has {} bodies for {} study bodies",
                                  seg.model->num_bodies(), seg.bodies.size()));
   }
   return seg;
@@ -100,7 +106,8 @@ int ApplyStudyImpact(const StudyImpactSpec& impact, const ModelBuilder& build, S
         fmt::format("impact at t = {:.6g} s: '{}' and '{}' are already one body (an earlier impact "
                     "embedded one in the other)",
                     impact.t, seg.bodies[static_cast<size_t>(mp)].name,
-                    seg.bodies[static_cast<size_t>(mt)].name));
+                    seg.bodies[static_cast<size_t>(mt)].name),
+        ErrorElement{ErrorElement::Kind::kBody, mp});
   }
   const BodyState& sp = state.bodies[static_cast<size_t>(mp)];
   if (impact.exit_fraction > 0) {
@@ -131,6 +138,13 @@ int ApplyStudyImpact(const StudyImpactSpec& impact, const ModelBuilder& build, S
     } else {
       next.bodies.push_back(body);
     }
+  }
+  if (!build) {
+    throw InputError(
+        fmt::format("impact at t = {:.6g} s: '{}' embeds in '{}', which needs a "
+                    "ModelBuilder (build_model) for the composite body's Model",
+                    impact.t, seg.bodies[static_cast<size_t>(mp)].name,
+                    seg.bodies[static_cast<size_t>(mt)].name));
   }
   next.model = std::make_shared<const Model>(build(next.bodies, next.map));
   State s2 = MakeRestState(*next.model);

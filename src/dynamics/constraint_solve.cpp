@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,17 +65,23 @@ int SolveSchur(const Model& model, const std::vector<int>* row_owner, const Matr
     const std::vector<int> all = row_owner ? std::vector<int>() : RowOwners(model);
     const std::vector<int>& owner = row_owner ? *row_owner : all;
     std::string names;
+    int first = -1;  // the first constraint named
     for (Eigen::Index k = 0; k < n; ++k) {
-      const std::string quoted = "'" + model.constraint(owner[static_cast<size_t>(k)]).name() + "'";
+      const int c = owner[static_cast<size_t>(k)];
+      const std::string quoted = "'" + model.constraint(c).name() + "'";
       if (std::abs(res[k]) > tol && names.find(quoted) == std::string::npos) {
         names += (names.empty() ? "" : ", ") + quoted;
+        if (first < 0) first = c;
       }
     }
-    throw InputError(fmt::format(
-        "constraints {} are inconsistent: no {} satisfies all of them (least-squares residual "
-        "{:.3g}); remove or change one of them (two drivers on the same coordinate, or a "
-        "joint that contradicts another)",
-        names, what, res.cwiseAbs().maxCoeff()));
+    throw InputError(
+        fmt::format(
+            "constraints {} are inconsistent: no {} satisfies all of them (least-squares residual "
+            "{:.3g}); remove or change one of them (two drivers on the same coordinate, or a "
+            "joint that contradicts another)",
+            names, what, res.cwiseAbs().maxCoeff()),
+        first >= 0 ? std::optional(ErrorElement{ErrorElement::Kind::kConstraint, first})
+                   : std::nullopt);
   }
   return static_cast<int>(cod.rank());
 }
@@ -137,7 +144,11 @@ void CalcConstraintRows(const Model& model, const State& state, Data& data) {
     for (int k = 0; k < e.num_extra; ++k)
       data.J.block(o, 6 * e.extra_body[static_cast<size_t>(k)], n, 6).setZero();
     e = ConstraintEval{};
-    con.Evaluate(model, state, data, e);
+    try {
+      con.Evaluate(model, state, data, e);
+    } catch (const InputError& x) {
+      RethrowForElement(x, {ErrorElement::Kind::kConstraint, c});
+    }
     // A constraint that can let go keeps its gap (its row's g) for the events; released, its
     // rows leave the system (zero in J, b, c, g; its multiplier is held at 0 by
     // internal::HoldReleasedRows) but `e` keeps its Jacobian rows for the gap rate.
@@ -263,12 +274,14 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
       // when the constraints cannot be assembled at all (wrong lengths, a closed loop that
       // does not close).
       if (g_max > options.assembly_tolerance) {
-        throw InputError(fmt::format(
-            "constraint '{}' cannot be satisfied: after {} Gauss-Newton steps its position "
-            "error is still {:.3g}; check its attachment points and axes against the other "
-            "constraints",
-            model.constraint(hol_owner[static_cast<size_t>(worst)]).name(), options.max_iterations,
-            g_max));
+        throw InputError(
+            fmt::format(
+                "constraint '{}' cannot be satisfied: after {} Gauss-Newton steps its position "
+                "error is still {:.3g}; check its attachment points and axes against the other "
+                "constraints",
+                model.constraint(hol_owner[static_cast<size_t>(worst)]).name(),
+                options.max_iterations, g_max),
+            ErrorElement{ErrorElement::Kind::kConstraint, hol_owner[static_cast<size_t>(worst)]});
       }
       break;
     }

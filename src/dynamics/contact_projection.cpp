@@ -173,12 +173,15 @@ void ProjectOntoContactModes(const Model& model, State& state, Data& data,
       // A constraint that cannot be assembled is an input error (as ProjectOntoConstraints);
       // contact gaps that cannot all close keep the least-squares remainder.
       if (worst < nh && g_max > options.assembly_tolerance) {
-        throw InputError(fmt::format(
-            "constraint '{}' cannot be satisfied: after {} Gauss-Newton steps its position "
-            "error is still {:.3g}; check its attachment points and axes against the other "
-            "constraints",
-            model.constraint(pw.holonomic_owner[static_cast<size_t>(worst)]).name(),
-            options.max_iterations, g_max));
+        throw InputError(
+            fmt::format(
+                "constraint '{}' cannot be satisfied: after {} Gauss-Newton steps its position "
+                "error is still {:.3g}; check its attachment points and axes against the other "
+                "constraints",
+                model.constraint(pw.holonomic_owner[static_cast<size_t>(worst)]).name(),
+                options.max_iterations, g_max),
+            ErrorElement{ErrorElement::Kind::kConstraint,
+                         pw.holonomic_owner[static_cast<size_t>(worst)]});
       }
       break;
     }

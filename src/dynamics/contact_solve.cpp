@@ -105,9 +105,11 @@ ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& s
     const Vec3 d = (p_cm + r_c) - (state.bodies[o].p_WBcm + r_cO);
     const double dn = d.norm();
     if (!(dn > 0.0)) {
-      throw InputError(fmt::format(
-          "contact '{}': the two sphere centres coincide; the contact normal is undefined",
-          con.name()));
+      throw InputError(
+          fmt::format(
+              "contact '{}': the two sphere centres coincide; the contact normal is undefined",
+              con.name()),
+          ErrorElement{ErrorElement::Kind::kContact, ci});
     }
     const double RO_rad = con.spec().other_radius;
     g.n = d / dn;
@@ -1357,13 +1359,15 @@ void ModeSelector::BookJams(State& state, const std::vector<PointPlan>& vplan,
     const double Pn = j.normal_impulse;
     const double Pt = (j.impulse_W - Pn * g.n).norm();
     if (Pn < 0.0 || Pt > con.mu_s() * Pn * (1.0 + tol_.cone) + tol_.cone * j.impulse_W.norm()) {
-      throw InputError(fmt::format(
-          "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces "
-          "have no consistent solution (a Painlevé-type paradox of rigid bodies with "
-          "friction), and the impulse that would stop the slip ({:.6g} N·s tangential, "
-          "{:.6g} N·s normal) lies outside the friction cone mu_s = {}: the rigid model "
-          "has no answer here. Lower the friction coefficient or soften the model",
-          model_.contact_point_name(j.point), state.t, j.slip_speed, Pt, Pn, con.mu_s()));
+      throw InputError(
+          fmt::format(
+              "contact point '{}' at t = {:.9g} s: sliding at {:.6g} m/s, the contact forces "
+              "have no consistent solution (a Painlevé-type paradox of rigid bodies with "
+              "friction), and the impulse that would stop the slip ({:.6g} N·s tangential, "
+              "{:.6g} N·s normal) lies outside the friction cone mu_s = {}: the rigid model "
+              "has no answer here. Lower the friction coefficient or soften the model",
+              model_.contact_point_name(j.point), state.t, j.slip_speed, Pt, Pn, con.mu_s()),
+          ErrorElement{ErrorElement::Kind::kContactPoint, j.point});
     }
   }
   if (notes != nullptr) notes->jams = std::move(jams);

@@ -70,17 +70,20 @@ namespace {
 // turn, so the slack could not be tracked), so a negative tension stops the run there (a
 // tolerance of 1e-9 of the largest force in play absorbs round-off). Strings without drums go
 // slack at an event instead (integrate/hybrid.cpp).
-void CheckStringTaut(const Constraint& con, double tension, const Data& data, double t) {
+void CheckStringTaut(const Model& model, int c, double tension, const Data& data, double t) {
+  const Constraint& con = model.constraint(c);
   if (dynamic_cast<const StringConstraint*>(&con) == nullptr || con.can_release()) return;
   double scale = data.lambda.size() > 0 ? data.lambda.cwiseAbs().maxCoeff() : 0.0;
   for (const Vec3& F : data.F_Bcm_W) scale = std::max(scale, F.norm());
   if (tension < -1e-9 * scale) {
-    throw InputError(fmt::format(
-        "string '{}' would go slack at t = {:.6g} s: its tension comes out {:.6g} N, and a "
-        "string can only pull; a string wound on a drum is held taut (how far the drum has "
-        "turned is known only modulo a turn, so its slack cannot be tracked): tie it to a "
-        "point of the body instead of a drum",
-        con.name(), t, tension));
+    throw InputError(
+        fmt::format(
+            "string '{}' would go slack at t = {:.6g} s: its tension comes out {:.6g} N, and a "
+            "string can only pull; a string wound on a drum is held taut (how far the drum has "
+            "turned is known only modulo a turn, so its slack cannot be tracked): tie it to a "
+            "point of the body instead of a drum",
+            con.name(), t, tension),
+        ErrorElement{ErrorElement::Kind::kConstraint, c});
   }
 }
 
@@ -120,7 +123,7 @@ void FillConstraintReactions(const Model& model, const State& state, Data& data)
     out.F_Jc_B = data.R_WB[bi].transpose() * out.F_Jc_W;
     out.M_Jc_B = data.R_WB[bi].transpose() * out.M_Jc_W;
     out.power = data.lambda.segment(o, n).dot(data.Ju.segment(o, n));
-    CheckStringTaut(con, out.lambda[0], data, state.t);
+    CheckStringTaut(model, c, out.lambda[0], data, state.t);
   }
 }
 

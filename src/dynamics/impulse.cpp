@@ -15,8 +15,9 @@ void ApplyImpulseAtWorldPoint(const Model& model, BodyIndex b, const Vec3& p_WP,
         fmt::format("impulse on body index {}: the model has {} bodies", b, model.num_bodies()));
   }
   if (!J_W.allFinite() || !p_WP.allFinite()) {
-    throw InputError(fmt::format("impulse on body '{}': impulse and point must be finite",
-                                 model.body(b).name()));
+    throw InputError(
+        fmt::format("impulse on body '{}': impulse and point must be finite", model.body(b).name()),
+        ErrorElement{ErrorElement::Kind::kBody, b});
   }
   const Body& body = model.body(b);
   BodyState& bs = state.bodies[static_cast<size_t>(b)];

@@ -2,6 +2,7 @@
 
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/contact_solve.h"
+#include "chasles/error.h"
 
 namespace chasles {
 
@@ -28,8 +29,12 @@ void CalcForces(const Model& model, const State& state, Data& data) {
     ForceElementOutput& out = data.elements[static_cast<size_t>(e)];
     acc.Begin(&out);
     const ForceElement& fe = model.force_element(e);
-    const double p_nc = fe.AddForces(model, state, data, acc);
-    out.power_nonconservative = fe.has_potential() ? p_nc : out.power;
+    try {
+      const double p_nc = fe.AddForces(model, state, data, acc);
+      out.power_nonconservative = fe.has_potential() ? p_nc : out.power;
+    } catch (const InputError& x) {
+      RethrowForElement(x, {ErrorElement::Kind::kForceElement, e});
+    }
   }
 }
 

@@ -68,10 +68,12 @@ void StepFreeRotation(const Mat3& I, const Mat3& I_inv, double h, Vec3& M, Quat&
 EnergyMomentumIntegrator::EnergyMomentumIntegrator(const Model& model)
     : model_(model), data_(MakeData(model)) {
   if (model.num_constraints() > 0) {
-    throw InputError(fmt::format(
-        "the energy-momentum integrator handles free bodies only, and this model has {} "
-        "constraints (first: '{}'); choose the Dormand-Prince or RK4 integrator",
-        model.num_constraints(), model.constraint(0).name()));
+    throw InputError(
+        fmt::format(
+            "the energy-momentum integrator handles free bodies only, and this model has {} "
+            "constraints (first: '{}'); choose the Dormand-Prince or RK4 integrator",
+            model.num_constraints(), model.constraint(0).name()),
+        ErrorElement{ErrorElement::Kind::kConstraint, 0});
   }
 }
 

@@ -185,28 +185,31 @@ void StepSplitting(const Arrays& s, int b, int e, double h, const double hg[3],
 
 }  // namespace
 
-std::string FreeBodyBatchObstacle(const Model& model) {
-  if (model.num_constraints() > 0) return "the model has constraints";
-  if (model.num_contacts() > 0) return "the model has contacts";
+ModelObstacle FreeBodyBatchObstacle(const Model& model) {
+  if (model.num_constraints() > 0) return {"the model has constraints", {}};
+  if (model.num_contacts() > 0) return {"the model has contacts", {}};
   for (int e = 0; e < model.num_force_elements(); ++e) {
     if (dynamic_cast<const UniformGravity*>(&model.force_element(e)) == nullptr) {
-      return fmt::format("force element '{}' is not uniform gravity",
-                         model.force_element(e).name());
+      return {
+          fmt::format("force element '{}' is not uniform gravity", model.force_element(e).name()),
+          ErrorElement{ErrorElement::Kind::kForceElement, e}};
     }
   }
   for (int b = 0; b < model.num_bodies(); ++b) {
     if (model.body(b).num_zero_moments() > 0) {
-      return fmt::format("body '{}' has a zero principal moment (a particle or a slender rod)",
-                         model.body(b).name());
+      return {fmt::format("body '{}' has a zero principal moment (a particle or a slender rod)",
+                          model.body(b).name()),
+              ErrorElement{ErrorElement::Kind::kBody, b}};
     }
   }
   return {};
 }
 
 FreeBodyBatch::FreeBodyBatch(const Model& model) : n_(model.num_bodies()), g_W_(Vec3::Zero()) {
-  const std::string obstacle = FreeBodyBatchObstacle(model);
+  const ModelObstacle obstacle = FreeBodyBatchObstacle(model);
   if (!obstacle.empty()) {
-    throw InputError(fmt::format("the free-body batch cannot step this model: {}", obstacle));
+    throw InputError(fmt::format("the free-body batch cannot step this model: {}", obstacle.why),
+                     obstacle.element);
   }
   for (int e = 0; e < model.num_force_elements(); ++e) {
     g_W_ += static_cast<const UniformGravity&>(model.force_element(e)).g_W();

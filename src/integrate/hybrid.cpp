@@ -501,13 +501,17 @@ class HybridRun {
       return true;
     }
     if (++switches_ > o_.contact.max_mode_switches) {
-      throw InputError(fmt::format(
-          "contacts and strings switched mode more than {} times (at t = {:.9g} s, {} '{}'); "
-          "the motion chatters: check the friction coefficients and the tolerances, or raise "
-          "max_mode_switches",
-          o_.contact.max_mode_switches, s.t, IsString(fn.fn) ? "string" : "point",
-          IsString(fn.fn) ? model_.constraint(fn.point).name()
-                          : model_.contact_point_name(fn.point)));
+      throw InputError(
+          fmt::format(
+              "contacts and strings switched mode more than {} times (at t = {:.9g} s, {} '{}'); "
+              "the motion chatters: check the friction coefficients and the tolerances, or raise "
+              "max_mode_switches",
+              o_.contact.max_mode_switches, s.t, IsString(fn.fn) ? "string" : "point",
+              IsString(fn.fn) ? model_.constraint(fn.point).name()
+                              : model_.contact_point_name(fn.point)),
+          ErrorElement{
+              IsString(fn.fn) ? ErrorElement::Kind::kConstraint : ErrorElement::Kind::kContactPoint,
+              fn.point});
     }
     return false;
   }

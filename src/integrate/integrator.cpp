@@ -11,7 +11,9 @@
 #include "chasles/integrate/energy_momentum.h"
 #include "chasles/integrate/free_body_batch.h"
 #include "chasles/integrate/rk4.h"
+#include "chasles/integrate/run_path.h"
 #include "chasles/integrate/simulate.h"
+#include "integrate/internal/free_body_run.h"
 
 namespace chasles {
 namespace {
@@ -98,34 +100,19 @@ std::unique_ptr<Integrator> MakeIntegrator(const Model& model, const SimulationO
   if (options.integrator == IntegratorKind::kDormandPrince5) {
     return std::make_unique<DormandPrince5Integrator>(model, options.adaptive);
   }
-  if (!(options.fixed_step > 0.0) || !std::isfinite(options.fixed_step)) {
-    throw InputError(fmt::format("fixed step {:.6g} s must be positive", options.fixed_step));
+  const double h = internal::FixedGridStep(options, t_start);
+  if (options.integrator == IntegratorKind::kEnergyMomentum) {
+    return std::make_unique<FixedGridIntegrator<EnergyMomentumIntegrator>>(model, h);
   }
-  // The step shortened to divide the output interval evenly: every output time is a step end.
-  const double span =
-      options.output_interval > 0.0 ? options.output_interval : options.t_end - t_start;
-  const auto n = static_cast<long long>(std::ceil(span / options.fixed_step - 1e-9));
-  const double h = span / static_cast<double>(std::max(1LL, n));
-  if (options.integrator == IntegratorKind::kRk4) {
-    // Free bodies under uniform gravity alone: the same RK4 on the structure-of-arrays batch.
-    if (FreeBodyBatchObstacle(model).empty()) {
-      return std::make_unique<FixedGridIntegrator<FreeBodyBatchIntegrator>>(model, h,
-                                                                            FreeBodyStepper::kRk4);
-    }
-    return std::make_unique<FixedGridIntegrator<Rk4Integrator>>(model, h);
-  }
-  if (options.integrator == IntegratorKind::kSplitting) {
-    const std::string obstacle = FreeBodyBatchObstacle(model);
-    if (!obstacle.empty()) {
-      throw InputError(fmt::format(
-          "the splitting integrator steps free bodies under uniform gravity only, and {}; "
-          "choose rk4 or the adaptive integrator",
-          obstacle));
-    }
+  // RK4 or the splitting: on the free-body batch where the run path is that (free bodies under
+  // uniform gravity alone; the splitting takes no other), else RK4 on the general equations.
+  if (ChooseRunPath(model, options).path == RunPath::kFreeBodyBatch) {
     return std::make_unique<FixedGridIntegrator<FreeBodyBatchIntegrator>>(
-        model, h, FreeBodyStepper::kSplitting);
+        model, h,
+        options.integrator == IntegratorKind::kRk4 ? FreeBodyStepper::kRk4
+                                                   : FreeBodyStepper::kSplitting);
   }
-  return std::make_unique<FixedGridIntegrator<EnergyMomentumIntegrator>>(model, h);
+  return std::make_unique<FixedGridIntegrator<Rk4Integrator>>(model, h);
 }
 
 }  // namespace chasles

@@ -6,10 +6,12 @@
 #include <mutex>
 #include <numeric>
 #include <stdexcept>
+#include <typeinfo>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "chasles/error.h"
 #include "chasles/integrate/parallel.h"
 #include "chasles/model/string_constraint.h"
 #include "integrate/internal/hybrid.h"
@@ -210,6 +212,34 @@ class IslandRun {
     return im;
   }
 
+  // Rethrows `e` from island i's run naming its element by its index in the whole Model.
+  [[noreturn]] void RethrowForWholeModel(size_t i, const IslandModel& im,
+                                         const InputError& e) const {
+    if (!e.element() || typeid(e) != typeid(InputError)) throw;
+    ErrorElement global = *e.element();
+    const auto local = static_cast<size_t>(global.index);
+    switch (global.kind) {
+      case ErrorElement::Kind::kBody:
+        global.index = p_.bodies[i][local];
+        break;
+      case ErrorElement::Kind::kForceElement:
+        global.index = im.forces[local];
+        break;
+      case ErrorElement::Kind::kConstraint:
+        global.index = contents_[i].constraints[local];
+        break;
+      case ErrorElement::Kind::kContact:
+        global.index = contents_[i].contacts[local];
+        break;
+      case ErrorElement::Kind::kContactPoint:
+        global.index = im.points[local];
+        break;
+      case ErrorElement::Kind::kEvent:  // every island watches all of the run's events
+        break;
+    }
+    throw InputError(e.what(), global);
+  }
+
   // The island's part of the initial state. An element acting on every body alone (gravity)
   // carries its integrals from the start in island 0 and from zero in the others (Merge sums).
   State InitialState(size_t i, const IslandModel& im) const {
@@ -249,7 +279,11 @@ class IslandRun {
         o_.on_step(t);
       };
     }
-    results_[i] = RunHybrid(im.model, InitialState(i, im), o);
+    try {
+      results_[i] = RunHybrid(im.model, InitialState(i, im), o);
+    } catch (const InputError& e) {
+      RethrowForWholeModel(i, im, e);
+    }
     points_[i] = im.points;
     forces_[i] = im.forces;
   }
@@ -376,35 +410,8 @@ class IslandRun {
 
 }  // namespace
 
-SimulationResult RunHybridIslands(const Model& model, const State& initial,
-                                  const SimulationOptions& o) {
-  IslandPartition partition = FindIslands(model);
-  const int count = static_cast<int>(partition.bodies.size());
-  std::string reason;
-  if (!o.islands) {
-    reason = "islands turned off";
-  } else if (count <= 1) {
-    reason = "the bodies form one island";
-  } else if (o.on_transition) {
-    reason =
-        "the checks at each contact change (on_transition: energy, contact forces) need the "
-        "whole system's state at that instant";
-  } else if (!o.events.empty()) {
-    reason = "user events are functions of the whole state";
-  } else if (o.contact.yield_changes > 0) {
-    reason =
-        "the engine choice (integrator: auto) hands the whole model from one engine to the "
-        "other at once";
-  } else {
-    reason = IslandObstacle(model);
-  }
-  if (!reason.empty()) {
-    SimulationResult r = RunHybrid(model, initial, o);
-    r.islands.count = count;
-    r.islands.reason = std::move(reason);
-    return r;
-  }
-  return IslandRun(model, initial, o, std::move(partition)).Run();
+SimulationResult RunIslands(const Model& model, const State& initial, const SimulationOptions& o) {
+  return IslandRun(model, initial, o, FindIslands(model)).Run();
 }
 
 }  // namespace internal

@@ -44,12 +44,14 @@ void CheckFiniteState(const Model& model, const State& state) {
                            : !s.w_WB_B.allFinite()        ? "angular velocity"
                                                           : nullptr;
     if (quantity == nullptr) continue;
-    throw InputError(fmt::format(
-        "the {} of body '{}' became {} at t = {:.9g} s (position {}, velocity {}, angular "
-        "velocity {})",
-        quantity, model.body(b).name(),
-        Kind({s.p_WBcm, s.v_WBcm_W, s.w_WB_B, Vec3(s.q_WB.coeffs().head<3>())}, {s.q_WB.w()}),
-        state.t, Show(s.p_WBcm), Show(s.v_WBcm_W), Show(s.w_WB_B)));
+    throw InputError(
+        fmt::format(
+            "the {} of body '{}' became {} at t = {:.9g} s (position {}, velocity {}, angular "
+            "velocity {})",
+            quantity, model.body(b).name(),
+            Kind({s.p_WBcm, s.v_WBcm_W, s.w_WB_B, Vec3(s.q_WB.coeffs().head<3>())}, {s.q_WB.w()}),
+            state.t, Show(s.p_WBcm), Show(s.v_WBcm_W), Show(s.w_WB_B)),
+        ErrorElement{ErrorElement::Kind::kBody, b});
   }
 }
 
@@ -62,22 +64,26 @@ void CheckFiniteEvaluation(const Model& model, const State& state, const Data& d
        ++e) {
     const ForceElementOutput& o = data.elements[static_cast<size_t>(e)];
     if (o.force_W.allFinite() && o.moment_Wo_W.allFinite() && std::isfinite(o.power)) continue;
-    throw InputError(fmt::format(
-        "force element '{}' evaluated to {} at t = {:.9g} s (force {} N, moment about the "
-        "origin {} N*m): check its expression or the bodies' positions "
-        "(a body at a force centre, a logarithm or a division by zero)",
-        model.force_element(e).name(), Kind({o.force_W, o.moment_Wo_W}, {o.power}), t,
-        Show(o.force_W), Show(o.moment_Wo_W)));
+    throw InputError(
+        fmt::format(
+            "force element '{}' evaluated to {} at t = {:.9g} s (force {} N, moment about the "
+            "origin {} N*m): check its expression or the bodies' positions "
+            "(a body at a force centre, a logarithm or a division by zero)",
+            model.force_element(e).name(), Kind({o.force_W, o.moment_Wo_W}, {o.power}), t,
+            Show(o.force_W), Show(o.moment_Wo_W)),
+        ErrorElement{ErrorElement::Kind::kForceElement, e, true});
   }
   for (int c = 0; c < model.num_constraints() && c < static_cast<int>(data.constraints.size());
        ++c) {
     const ConstraintOutput& o = data.constraints[static_cast<size_t>(c)];
     if (o.F_Jc_W.allFinite() && o.M_Jc_W.allFinite() && std::isfinite(o.power)) continue;
-    throw InputError(fmt::format(
-        "constraint '{}': its reaction evaluated to {} at t = {:.9g} s (force {} N, moment {} "
-        "N*m): check the masses and inertias it joins and its driver",
-        model.constraint(c).name(), Kind({o.F_Jc_W, o.M_Jc_W}, {o.power}), t, Show(o.F_Jc_W),
-        Show(o.M_Jc_W)));
+    throw InputError(
+        fmt::format(
+            "constraint '{}': its reaction evaluated to {} at t = {:.9g} s (force {} N, moment {} "
+            "N*m): check the masses and inertias it joins and its driver",
+            model.constraint(c).name(), Kind({o.F_Jc_W, o.M_Jc_W}, {o.power}), t, Show(o.F_Jc_W),
+            Show(o.M_Jc_W)),
+        ErrorElement{ErrorElement::Kind::kConstraint, c, true});
   }
   for (int p = 0;
        p < model.num_contact_points() && p < static_cast<int>(data.contact_points.size()); ++p) {
@@ -86,12 +92,14 @@ void CheckFiniteEvaluation(const Model& model, const State& state, const Data& d
         std::isfinite(o.friction_power) && std::isfinite(o.rolling_power)) {
       continue;
     }
-    throw InputError(fmt::format(
-        "contact point '{}': its force evaluated to {} at t = {:.9g} s (normal {:.6g} N, "
-        "friction {} N)",
-        model.contact_point_name(p),
-        Kind({o.friction_force_W}, {o.normal_force, o.friction_power, o.rolling_power}), t,
-        o.normal_force, Show(o.friction_force_W)));
+    throw InputError(
+        fmt::format(
+            "contact point '{}': its force evaluated to {} at t = {:.9g} s (normal {:.6g} N, "
+            "friction {} N)",
+            model.contact_point_name(p),
+            Kind({o.friction_force_W}, {o.normal_force, o.friction_power, o.rolling_power}), t,
+            o.normal_force, Show(o.friction_force_W)),
+        ErrorElement{ErrorElement::Kind::kContactPoint, p, true});
   }
   for (int b = 0; b < model.num_bodies(); ++b) {
     const auto i = static_cast<size_t>(b);
@@ -104,7 +112,8 @@ void CheckFiniteEvaluation(const Model& model, const State& state, const Data& d
         fmt::format("the {} of body '{}' became non-finite at t = {:.9g} s (mass {:.6g} kg): check "
                     "its mass and inertia against the forces on it",
                     forces ? "acceleration" : "resultant force", model.body(b).name(), t,
-                    model.body(b).mass()));
+                    model.body(b).mass()),
+        ErrorElement{ErrorElement::Kind::kBody, b});
   }
 }
 

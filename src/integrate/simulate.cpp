@@ -4,12 +4,15 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/error.h"
 #include "integrate/internal/event_root.h"
+#include "integrate/internal/free_body_run.h"
+#include "integrate/internal/hybrid.h"
 #include "integrate/internal/islands.h"
 
 namespace chasles {
@@ -39,13 +42,16 @@ void Validate(const Model& model, const State& initial, const SimulationOptions&
           "Dormand-Prince integrator for a run with events");
     }
   }
-  for (const EventSpec& e : o.events) {
+  for (size_t i = 0; i < o.events.size(); ++i) {
+    const EventSpec& e = o.events[i];
+    const ErrorElement element{ErrorElement::Kind::kEvent, static_cast<int>(i)};
     if (!e.g && !e.on_mode_change) {
-      throw InputError(fmt::format("event '{}' has no event function", e.name));
+      throw InputError(fmt::format("event '{}' has no event function", e.name), element);
     }
     if (!e.g && model.num_contacts() == 0) {
       throw InputError(
-          fmt::format("event '{}' watches contact modes, but the model has no contacts", e.name));
+          fmt::format("event '{}' watches contact modes, but the model has no contacts", e.name),
+          element);
     }
   }
   if (!(o.threads >= 1)) {
@@ -201,27 +207,33 @@ std::vector<ContactModeInterval> CalcModeTimeline(const SimulationResult& result
 SimulationResult Simulate(const Model& model, const State& initial,
                           const SimulationOptions& options) {
   Validate(model, initial, options);
-  bool switching = false;  // a constraint that can let go (a string without drums)
-  for (int c = 0; c < model.num_constraints(); ++c) {
-    switching = switching || model.constraint(c).can_release();
-  }
-  if (model.num_contacts() > 0 || switching) {
-    if (options.integrator != IntegratorKind::kDormandPrince5) {
-      throw InputError(
-          "contacts and strings switch modes at events located on the adaptive integrator's "
-          "dense output; choose the Dormand-Prince integrator for a model with contacts or "
-          "strings");
+  RunPathChoice path = ChooseRunPath(model, options);
+  SimulationResult r;
+  switch (path.path) {
+    case RunPath::kIslands:
+      r = internal::RunIslands(model, initial, options);
+      break;
+    case RunPath::kHybrid:
+      r = internal::RunHybrid(model, initial, options);
+      r.islands.count = path.islands;
+      r.islands.reason = path.one_system;
+      break;
+    case RunPath::kFreeBodyBatch:
+      r = internal::RunFreeBodyBatch(model, initial, options);
+      break;
+    default: {
+      // A constrained model starts on its constraints: the initial state is projected
+      // (positions, then velocities), so the first sample is the state actually integrated.
+      State start = initial;
+      if (model.num_constraints() > 0 && options.integrator != IntegratorKind::kEnergyMomentum) {
+        Data data = MakeData(model);
+        ProjectOntoConstraints(model, start, data);
+      }
+      r = RunSmooth(model, start, options);
     }
-    return internal::RunHybridIslands(model, initial, options);
   }
-  // A constrained model starts on its constraints: the initial state is projected (positions,
-  // then velocities), so the first sample is the state actually integrated.
-  State start = initial;
-  if (model.num_constraints() > 0 && options.integrator != IntegratorKind::kEnergyMomentum) {
-    Data data = MakeData(model);
-    ProjectOntoConstraints(model, start, data);
-  }
-  return RunSmooth(model, start, options);
+  r.run_path = std::move(path);
+  return r;
 }
 
 }  // namespace chasles

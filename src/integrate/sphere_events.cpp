@@ -12,18 +12,19 @@ namespace chasles {
 
 using namespace sphere_events_detail;
 
-std::string SphereEventObstacle(const Model& model) {
-  if (model.num_constraints() > 0) return "the model has constraints";
+ModelObstacle SphereEventObstacle(const Model& model) {
+  if (model.num_constraints() > 0) return {"the model has constraints", {}};
   Vec3 g = Vec3::Zero();
   for (int e = 0; e < model.num_force_elements(); ++e) {
     const auto* ug = dynamic_cast<const UniformGravity*>(&model.force_element(e));
     if (ug == nullptr) {
-      return fmt::format("force element '{}' is not uniform gravity",
-                         model.force_element(e).name());
+      return {
+          fmt::format("force element '{}' is not uniform gravity", model.force_element(e).name()),
+          ErrorElement{ErrorElement::Kind::kForceElement, e}};
     }
     g += ug->g_W();
   }
-  if (!(g.norm() > 0.0)) return "there is no gravity to press the balls on the plane";
+  if (!(g.norm() > 0.0)) return {"there is no gravity to press the balls on the plane", {}};
   std::vector<int> plane_of(static_cast<size_t>(model.num_bodies()), -1);
   Vec3 n = Vec3::Zero(), p0 = Vec3::Zero();
   bool have_plane = false;
@@ -33,15 +34,18 @@ std::string SphereEventObstacle(const Model& model) {
     const Body& body = model.body(s.body);
     if (s.shape == ContactShape::kSphereSphere) continue;
     if (s.shape != ContactShape::kSphere) {
-      return fmt::format("contact '{}' is a {}, not a sphere on the plane", con.name(),
-                         ContactShapeName(s.shape));
+      return {fmt::format("contact '{}' is a {}, not a sphere on the plane", con.name(),
+                          ContactShapeName(s.shape)),
+              ErrorElement{ErrorElement::Kind::kContact, c}};
     }
     if ((s.p_BoC_B - body.p_BoBcm_B()).norm() > 1e-12 * s.radius) {
-      return fmt::format("contact '{}': the sphere is not centred at body '{}''s centre of mass",
-                         con.name(), body.name());
+      return {fmt::format("contact '{}': the sphere is not centred at body '{}''s centre of mass",
+                          con.name(), body.name()),
+              ErrorElement{ErrorElement::Kind::kContact, c}};
     }
     if (plane_of[static_cast<size_t>(s.body)] >= 0) {
-      return fmt::format("body '{}' has two plane contacts", body.name());
+      return {fmt::format("body '{}' has two plane contacts", body.name()),
+              ErrorElement{ErrorElement::Kind::kBody, s.body}};
     }
     plane_of[static_cast<size_t>(s.body)] = c;
     const Vec3 nc = s.plane_normal_W.normalized();
@@ -50,31 +54,34 @@ std::string SphereEventObstacle(const Model& model) {
       p0 = s.plane_point_W;
       have_plane = true;
     } else if ((nc - n).norm() > 1e-12 || std::abs(n.dot(s.plane_point_W - p0)) > 1e-12) {
-      return fmt::format("contact '{}' is on another plane than the first contact's", con.name());
+      return {fmt::format("contact '{}' is on another plane than the first contact's", con.name()),
+              ErrorElement{ErrorElement::Kind::kContact, c}};
     }
   }
-  if (!have_plane) return "no body has a sphere contact with a plane";
+  if (!have_plane) return {"no body has a sphere contact with a plane", {}};
   if ((g / g.norm() + n).norm() > 1e-12) {
-    return "gravity is not normal to the plane (a tilted table)";
+    return {"gravity is not normal to the plane (a tilted table)", {}};
   }
   for (int b = 0; b < model.num_bodies(); ++b) {
     const Body& body = model.body(b);
     if (plane_of[static_cast<size_t>(b)] < 0) {
-      return fmt::format("body '{}' has no sphere contact with the plane", body.name());
+      return {fmt::format("body '{}' has no sphere contact with the plane", body.name()),
+              ErrorElement{ErrorElement::Kind::kBody, b}};
     }
     const Mat3& I = body.I_BBcm_B();
     const double i0 = I.trace() / 3.0;
     if (!(i0 > 0.0) || (I - i0 * Mat3::Identity()).norm() > 1e-12 * i0) {
-      return fmt::format("body '{}' has no isotropic inertia about its centre of mass (a ball)",
-                         body.name());
+      return {fmt::format("body '{}' has no isotropic inertia about its centre of mass (a ball)",
+                          body.name()),
+              ErrorElement{ErrorElement::Kind::kBody, b}};
     }
     const Contact& con = model.contact(plane_of[static_cast<size_t>(b)]);
     const double kappa = body.mass() * con.spec().radius * con.spec().radius / i0;
     if (con.mu_r() / (1.0 + 1.0 / kappa) > con.mu_s()) {
-      return fmt::format(
-          "contact '{}': rolling resistance mu_r = {} needs more friction than "
-          "mu_s = {} holds (it would roll and slip)",
-          con.name(), con.mu_r(), con.mu_s());
+      return {fmt::format("contact '{}': rolling resistance mu_r = {} needs more friction than "
+                          "mu_s = {} holds (it would roll and slip)",
+                          con.name(), con.mu_r(), con.mu_s()),
+              ErrorElement{ErrorElement::Kind::kContact, plane_of[static_cast<size_t>(b)]}};
     }
   }
   for (int c = 0; c < model.num_contacts(); ++c) {
@@ -86,10 +93,10 @@ std::string SphereEventObstacle(const Model& model) {
              std::abs(r - ps.radius) <= 1e-12 * r;
     };
     if (!fits(s.body, s.p_BoC_B, s.radius) || !fits(s.other_body, s.p_OoC_O, s.other_radius)) {
-      return fmt::format(
-          "contact '{}': its spheres are not the balls' own (same radius, centred "
-          "at the centres of mass)",
-          model.contact(c).name());
+      return {fmt::format("contact '{}': its spheres are not the balls' own (same radius, "
+                          "centred at the centres of mass)",
+                          model.contact(c).name()),
+              ErrorElement{ErrorElement::Kind::kContact, c}};
     }
   }
   return {};
@@ -98,10 +105,11 @@ std::string SphereEventObstacle(const Model& model) {
 namespace sphere_events_detail {
 
 void Runner::ReadModel() {
-  const std::string obstacle = SphereEventObstacle(model_);
+  const ModelObstacle obstacle = SphereEventObstacle(model_);
   if (!obstacle.empty()) {
     throw InputError(
-        fmt::format("the event-driven sphere path cannot run this model: {}", obstacle));
+        fmt::format("the event-driven sphere path cannot run this model: {}", obstacle.why),
+        obstacle.element);
   }
   for (int e = 0; e < model_.num_force_elements(); ++e) {
     w_.g_W += static_cast<const UniformGravity&>(model_.force_element(e)).g_W();
@@ -327,7 +335,8 @@ std::vector<Segment> Runner::InitialSegments(const State& initial) {
     const std::string& name = model_.body(b.body).name();
     const double gap = w_.n.dot(bs.p_WBcm - w_.p0) - b.R;
     if (gap < -w_.tol.gap) {
-      throw InputError(fmt::format("body '{}' starts {} m into the plane", name, -gap));
+      throw InputError(fmt::format("body '{}' starts {} m into the plane", name, -gap),
+                       ErrorElement{ErrorElement::Kind::kBody, b.body});
     }
     const Vec3 om = bs.q_WB * bs.w_WB_B;
     first[i] = Restart(static_cast<int>(i), t0, bs.p_WBcm, bs.v_WBcm_W, om, bs.q_WB);

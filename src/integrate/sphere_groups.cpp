@@ -121,7 +121,11 @@ Runner::Window Runner::RunWindow(int g, double t, const std::vector<int>* near) 
     };
     so.events.push_back(std::move(ev));
   }
-  w.r = RunGroup(*w.sub, st, so);
+  try {
+    w.r = RunGroup(*w.sub, st, so);
+  } catch (const InputError& e) {
+    RethrowForWholeModel(gr.members, e);
+  }
   return w;
 }
 

@@ -2,6 +2,9 @@
 // law on it, and the ledger of the works (docs/contact.md, "Event-driven spheres").
 #include "integrate/internal/sphere_runner.h"
 
+#include <optional>
+#include <typeinfo>
+
 #include <fmt/format.h>
 
 #include "chasles/error.h"
@@ -163,6 +166,35 @@ Model Runner::SubModel(const std::vector<int>& members,
   return sub;
 }
 
+void Runner::RethrowForWholeModel(const std::vector<int>& members, const InputError& e) const {
+  if (!e.element() || typeid(e) != typeid(InputError)) throw;
+  const ErrorElement& local = *e.element();
+  const auto k = static_cast<size_t>(local.index);
+  std::optional<ErrorElement> whole;
+  switch (local.kind) {
+    case ErrorElement::Kind::kBody:
+      whole = ErrorElement{local.kind, members[k], local.non_finite_output};
+      break;
+    case ErrorElement::Kind::kForceElement:
+      whole = ErrorElement{local.kind, gravity_elements_[k], local.non_finite_output};
+      break;
+    case ErrorElement::Kind::kContact:
+    case ErrorElement::Kind::kContactPoint:
+      if (k < members.size()) {
+        const int point = balls_[static_cast<size_t>(members[k])].point;
+        whole = ErrorElement{
+            local.kind,
+            local.kind == ErrorElement::Kind::kContact ? model_.contact_of_point(point) : point,
+            local.non_finite_output};
+      }
+      break;
+    case ErrorElement::Kind::kConstraint:
+    case ErrorElement::Kind::kEvent:
+      break;
+  }
+  throw InputError(e.what(), whole);
+}
+
 // An impact at t started by ball i (a landing, j < 0) or the pair (i, j): every ball touching
 // these at t (transitively) and their plane contacts form one small Model, resolved by
 // ResolveImpacts; each ball then starts a new chain.
@@ -185,7 +217,12 @@ void Runner::Impact(double t, int i, int j) {
     bs.v_WBcm_W = seg.Vel(t);
     bs.w_WB_B = seg.Omega(t);
   }
-  ImpactResult r = ResolveImpacts(sub, st, w_.tol);
+  ImpactResult r;
+  try {
+    r = ResolveImpacts(sub, st, w_.tol);
+  } catch (const InputError& e) {
+    RethrowForWholeModel(cluster, e);
+  }
   if (r.impulses.empty()) {
     if (j < 0) return;  // a landing below resting speed: the caller sets the ball down
     // Approaching slower than resting_speed. If the free motion would press them (the gap's
@@ -204,7 +241,11 @@ void Runner::Impact(double t, int i, int j) {
     }
     ContactTolerances tol = w_.tol;
     tol.resting_speed = 0.0;
-    r = ResolveImpacts(sub, st, tol);
+    try {
+      r = ResolveImpacts(sub, st, tol);
+    } catch (const InputError& e) {
+      RethrowForWholeModel(cluster, e);
+    }
     if (r.impulses.empty()) return;  // no approach at all: they part
   }
   RecordImpact(t, sub, r, st, cluster, np_plane);
@@ -254,9 +295,10 @@ void Runner::CheckNoOverlap(const State& initial) const {
           const double gap =
               Gap(static_cast<int>(i), r, j, initial.bodies[static_cast<size_t>(j)].p_WBcm);
           if (gap < -w_.tol.gap) {
-            throw InputError(fmt::format("bodies '{}' and '{}' start overlapping by {} m",
-                                         model_.body(static_cast<int>(i)).name(),
-                                         model_.body(j).name(), -gap));
+            throw InputError(
+                fmt::format("bodies '{}' and '{}' start overlapping by {} m",
+                            model_.body(static_cast<int>(i)).name(), model_.body(j).name(), -gap),
+                ErrorElement{ErrorElement::Kind::kBody, static_cast<int>(i)});
           }
         }
       }

@@ -332,10 +332,10 @@ void Stepper::Advance(const State& s, const std::vector<Vec6>& u_k, const std::v
     nb.v_WBcm_W = u[i].head<3>();
     nb.w_WB_B = nb.q_WB.toRotationMatrix().transpose() * u[i].tail<3>();
     if (!nb.v_WBcm_W.allFinite() || !nb.w_WB_B.allFinite()) {
-      throw InputError(
-          fmt::format("time stepping: the velocity of body '{}' became non-finite "
-                      "at t = {} s",
-                      model_.body(static_cast<BodyIndex>(i)).name(), next.t));
+      throw InputError(fmt::format("time stepping: the velocity of body '{}' became non-finite "
+                                   "at t = {} s",
+                                   model_.body(static_cast<BodyIndex>(i)).name(), next.t),
+                       ErrorElement{ErrorElement::Kind::kBody, static_cast<int>(i)});
     }
   }
 }
@@ -658,15 +658,17 @@ TimeSteppingResult Run::Finish() {
 
 }  // namespace
 
-std::string TimeSteppingObstacle(const Model& model) {
+ModelObstacle TimeSteppingObstacle(const Model& model) {
   if (model.num_constraints() > 0) {
-    return fmt::format("constraint '{}': time stepping takes free bodies with contacts only",
-                       model.constraint(0).name());
+    return {fmt::format("constraint '{}': time stepping takes free bodies with contacts only",
+                        model.constraint(0).name()),
+            ErrorElement{ErrorElement::Kind::kConstraint, 0}};
   }
   for (int c = 0; c < model.num_contacts(); ++c) {
     if (model.contact(c).mu_r() > 0) {
-      return fmt::format("contact '{}': time stepping does not model rolling resistance (mu_r)",
-                         model.contact(c).name());
+      return {fmt::format("contact '{}': time stepping does not model rolling resistance (mu_r)",
+                          model.contact(c).name()),
+              ErrorElement{ErrorElement::Kind::kContact, c}};
     }
   }
   return {};
@@ -689,7 +691,9 @@ std::vector<std::string> TimeSteppingLawWarnings(const Model& model) {
 
 TimeSteppingResult SimulateTimeStepping(const Model& model, const State& initial,
                                         const TimeSteppingOptions& options) {
-  if (const std::string why = TimeSteppingObstacle(model); !why.empty()) throw InputError(why);
+  if (const ModelObstacle why = TimeSteppingObstacle(model); !why.empty()) {
+    throw InputError(why.why, why.element);
+  }
   ValidateState(model, initial);
   if (!(options.t_end > initial.t) || !std::isfinite(options.t_end)) {
     throw InputError(

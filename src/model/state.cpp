@@ -27,10 +27,10 @@ State MakeRestState(const Model& model) {
 void SetBodyPose(const Model& model, int b, const Vec3& p_WBo, const Quat& q_WB, State& state) {
   const double n = q_WB.norm();
   if (!std::isfinite(n) || n == 0.0) {
-    throw InputError(
-        fmt::format("body '{}': orientation quaternion has no direction; give a "
-                    "non-zero (w, x, y, z)",
-                    model.body(b).name()));
+    throw InputError(fmt::format("body '{}': orientation quaternion has no direction; give a "
+                                 "non-zero (w, x, y, z)",
+                                 model.body(b).name()),
+                     ErrorElement{ErrorElement::Kind::kBody, b});
   }
   BodyState& bs = state.bodies[static_cast<size_t>(b)];
   bs.q_WB = q_WB.normalized();
@@ -80,13 +80,16 @@ void ValidateState(const Model& model, const State& state) {
     if (bad) {
       throw InputError(
           fmt::format("body '{}': {} is not finite at t = {:.9g} s; set every component",
-                      model.body(b).name(), bad, state.t));
+                      model.body(b).name(), bad, state.t),
+          ErrorElement{ErrorElement::Kind::kBody, b});
     }
     if (std::abs(bs.q_WB.norm() - 1.0) > 1e-6) {
-      throw InputError(fmt::format(
-          "body '{}': orientation quaternion has norm {:.9g}; it must be a unit quaternion "
-          "(within 1e-6): use SetBodyPose, which normalises it",
-          model.body(b).name(), bs.q_WB.norm()));
+      throw InputError(
+          fmt::format(
+              "body '{}': orientation quaternion has norm {:.9g}; it must be a unit quaternion "
+              "(within 1e-6): use SetBodyPose, which normalises it",
+              model.body(b).name(), bs.q_WB.norm()),
+          ErrorElement{ErrorElement::Kind::kBody, b});
     }
   }
 }

@@ -1,6 +1,7 @@
-// Units of a run's columns (chasles/scene/column_units.h), from the columns' groups and
-// quantities (scene/internal/study_columns.h): per body "<body>_<suffix>", ledger columns,
-// "W_<element>", per constraint "<name>_<component>", per contact point "<label>_<quantity>".
+// Units and groups of a run's columns (chasles/scene/column_units.h), from the columns' groups
+// and quantities (scene/internal/study_columns.h). Units: per body "<body>_<suffix>", ledger
+// columns, "W_<element>", per constraint "<name>_<component>", per contact point
+// "<label>_<quantity>".
 
 #include "chasles/scene/column_units.h"
 
@@ -64,6 +65,25 @@ std::vector<std::string> StudyColumnUnits(const Scene& scene,
     }
     out.push_back(UnitOf(*info));
   }
+  return out;
+}
+
+std::vector<std::string> StudyColumnGroups(const Scene& scene,
+                                           const std::vector<std::string>& columns) {
+  const scene_internal::ColumnIndex index(scene);
+  std::vector<std::string> out;
+  for (const std::string& c : columns) {
+    const std::optional<scene_internal::ColumnInfo> info = index.Find(c);
+    out.push_back(info ? info->group : std::string());
+  }
+  return out;
+}
+
+std::vector<std::string> ExpandStudyColumns(const Scene& scene,
+                                            const std::vector<std::string>& names) {
+  const scene_internal::ColumnIndex index(scene);
+  std::vector<std::string> out;
+  for (const std::string& name : names) index.ExpandInto(name, out);
   return out;
 }
 

@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "chasles/io/json_report.h"
 #include "chasles/mass/mass_properties.h"
 #include "chasles/mass/rotational_inertia.h"
 
@@ -17,6 +16,20 @@ const char* const kInertiaConvention =
     "Ixy = -∫xy dm, so that H = [I] ω.";
 
 namespace {
+
+// A vector and a matrix as every report writes them: the same form as VecJson and MatJson of
+// chasles/report/json_report.h, a layer above this one (the mass sweep, in this layer, reads
+// its quantities from this report).
+
+/// [x, y, z].
+nlohmann::json VecJson(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+/// Rows: [[m00, m01, m02], [m10, m11, m12], [m20, m21, m22]].
+nlohmann::json MatJson(const Mat3& m) {
+  return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
+}
 
 /// A value in `dim`, or null (NaN: not given).
 nlohmann::json OrNull(const UnitSystem& units, double v, const Dimension& dim) {

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "chasles/io/mesh_reader.h"
+#include "chasles/files/mesh_reader.h"
 
 namespace chasles {
 

@@ -38,7 +38,7 @@ ModesSweep SweepSceneModes(const std::function<Scene(const SceneOptions&)>& load
   const SweepGrid grid = MakeSweepGrid(base, {spec}, max_rows);
   ModesSweep out;
   out.parameter = spec.name;
-  out.unit = grid.units[0];
+  out.unit = grid.parameters.units[0];
   const auto at = [&](double value) {
     SceneOptions o = options;
     o.parameter_overrides.emplace_back(spec.name, out.unit.empty()
@@ -52,8 +52,8 @@ ModesSweep SweepSceneModes(const std::function<Scene(const SceneOptions&)>& load
                                    out.unit.empty() ? "" : " " + out.unit, e.message()));
     }
   };
-  for (std::int64_t k = 0; k < grid.size; ++k) {
-    out.values.push_back(grid.Values(k)[0]);
+  for (std::int64_t k = 0; k < grid.parameters.size(); ++k) {
+    out.values.push_back(grid.parameters.Values(k)[0]);
     out.points.push_back(at(out.values.back()));
   }
   // The grid's points are analysed already: bisection loads the scene only between them.

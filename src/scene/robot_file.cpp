@@ -11,7 +11,7 @@
 
 #include "chasles/analysis/robot_mass.h"
 #include "chasles/error.h"
-#include "chasles/io/mesh_reader.h"
+#include "chasles/files/mesh_reader.h"
 
 namespace chasles {
 

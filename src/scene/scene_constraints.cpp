@@ -24,22 +24,18 @@ std::vector<std::string> SceneConstraints::names() const {
   return n;
 }
 
-const SceneSpot* SceneConstraints::Find(const std::string& name) const {
-  for (const auto& j : joints) {
-    if (j.name == name) return &j.where;
-  }
-  for (const auto& r : rolling) {
-    if (r.name == name) return &r.where;
-  }
-  for (const auto& d : drivers) {
-    if (d.name == name) return &d.where;
-  }
-  for (const auto& g : gears) {
-    if (g.name == name) return &g.where;
-  }
-  for (const auto& st : strings) {
-    if (st.name == name) return &st.where;
-  }
+const SceneSpot* SceneConstraints::At(int i) const {
+  if (i < 0) return nullptr;
+  size_t k = static_cast<size_t>(i);
+  if (k < joints.size()) return &joints[k].where;
+  k -= joints.size();
+  if (k < rolling.size()) return &rolling[k].where;
+  k -= rolling.size();
+  if (k < drivers.size()) return &drivers[k].where;
+  k -= drivers.size();
+  if (k < gears.size()) return &gears[k].where;
+  k -= gears.size();
+  if (k < strings.size()) return &strings[k].where;
   return nullptr;
 }
 

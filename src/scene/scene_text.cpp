@@ -3,12 +3,14 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "chasles/files/input_file.h"
 #include "chasles/scene/scene_error.h"
 
 namespace chasles::scene_internal {
@@ -79,53 +81,33 @@ std::string ReadSceneFileText(const std::string& path, size_t max_bytes) {
 }
 
 void CheckSceneText(std::string_view text, const std::string& name) {
-  int line = 1;
-  size_t line_start = 0;
-  const auto fail = [&](size_t at, const std::string& what) {
+  // The first byte that is not UTF-8 (or a NUL, which is), with its line and column.
+  const size_t at = std::min(FindInvalidUtf8(text), text.find('\0'));
+  if (at == std::string_view::npos) return;
+  const size_t line_start = at == 0 ? 0 : text.rfind('\n', at - 1) + 1;  // npos + 1 = 0
+  const int line =
+      1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  const auto fail = [&](const std::string& what) {
     throw SceneError(name, line, static_cast<int>(at - line_start) + 1, "",
                      fmt::format("{}; a scene file must be UTF-8 text", what));
   };
   const auto* s = reinterpret_cast<const unsigned char*>(text.data());
-  const size_t n = text.size();
-  size_t i = 0;
-  while (i < n) {
-    const unsigned char c = s[i];
-    if (c < 0x80) {
-      if (c == 0) fail(i, "a NUL byte (0x00)");
-      if (c == '\n') {
-        ++line;
-        line_start = i + 1;
-      }
-      ++i;
-      continue;
-    }
-    // RFC 3629, section 4: the lead byte gives the length and the range of the second byte.
-    size_t len = 0;
-    unsigned char lo = 0x80, hi = 0xBF;
-    if (c >= 0xC2 && c <= 0xDF) {
-      len = 2;
-    } else if (c >= 0xE0 && c <= 0xEF) {
-      len = 3;
-      if (c == 0xE0) lo = 0xA0;  // no overlong forms
-      if (c == 0xED) hi = 0x9F;  // no surrogates U+D800..U+DFFF
-    } else if (c >= 0xF0 && c <= 0xF4) {
-      len = 4;
-      if (c == 0xF0) lo = 0x90;  // no overlong forms
-      if (c == 0xF4) hi = 0x8F;  // nothing above U+10FFFF
-    } else {
-      fail(i, fmt::format("the byte 0x{:02X} is not valid UTF-8", c));
-    }
-    if (i + len > n) fail(i, fmt::format("the text ends inside a UTF-8 character (0x{:02X})", c));
-    for (size_t k = 1; k < len; ++k) {
-      const unsigned char b = s[i + k];
-      if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) {
-        std::string bytes;
-        for (size_t m = 0; m <= k; ++m) bytes += fmt::format(" 0x{:02X}", s[i + m]);
-        fail(i, fmt::format("the bytes{} are not valid UTF-8", bytes));
-      }
-    }
-    i += len;
+  const unsigned char c = s[at];
+  if (c == 0) fail("a NUL byte (0x00)");
+  const Utf8Lead lead = DecodeUtf8Lead(c);
+  if (lead.length == 0) fail(fmt::format("the byte 0x{:02X} is not valid UTF-8", c));
+  if (at + lead.length > text.size()) {
+    fail(fmt::format("the text ends inside a UTF-8 character (0x{:02X})", c));
   }
+  // FindInvalidUtf8 stopped here: one of the later bytes is out of its range.
+  std::string bytes;
+  for (size_t k = 0; k < lead.length; ++k) {
+    bytes += fmt::format(" 0x{:02X}", s[at + k]);
+    if (k > 0 && (s[at + k] < (k == 1 ? lead.lo : 0x80) || s[at + k] > (k == 1 ? lead.hi : 0xBF))) {
+      break;
+    }
+  }
+  fail(fmt::format("the bytes{} are not valid UTF-8", bytes));
 }
 
 }  // namespace chasles::scene_internal

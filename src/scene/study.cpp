@@ -26,6 +26,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/integrate/run_path.h"
 #include "chasles/model/bearing.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
@@ -205,6 +206,20 @@ ScalarFunction MakeScalarFunction(std::shared_ptr<const SceneMap> map, const Exp
 
 State InitialState(const Scene& scene, const Model& model);
 
+/// Runs `add`, which adds the next element of `kind` (a force element or a constraint) to
+/// `model`. An element's own checks (its constructor's, the scene's while placing it) know it
+/// by its name only: their InputError is rethrown naming the element by its index to be.
+template <class Add>
+void AddElement(Model& model, ErrorElement::Kind kind, const Add& add) {
+  const int next = kind == ErrorElement::Kind::kForceElement ? model.num_force_elements()
+                                                             : model.num_constraints();
+  try {
+    add();
+  } catch (const InputError& e) {
+    RethrowForElement(e, {kind, next});
+  }
+}
+
 /// Name of the constraint that holds scene body `b` of a planar scene in its plane (after the
 /// scene's own constraints in Model order; reports of planar scenes leave these out).
 std::string PlaneConstraintName(const Scene& scene, int b) {
@@ -341,44 +356,55 @@ void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
   auto frame = [&](int b, const Vec3& p_WJ, const Mat3& R_WJ) {
     return AttachmentFrameAtWorldPose(model, s0, model_body(b), p_WJ, R_WJ);
   };
+  constexpr ErrorElement::Kind kConstraint = ErrorElement::Kind::kConstraint;
   for (const SceneJoint& j : c.joints) {
     Mat3 R_WJ = FrameWithZAxis(j.axis_W);
     if (j.kind == JointKind::kPrismaticInPlane || j.kind == JointKind::kPointOnLineInPlane) {
       // J's z is the plane's normal and x the sliding direction (the line).
       R_WJ << j.axis_W, Vec3::UnitZ().cross(j.axis_W), Vec3::UnitZ();
     }
-    model.AddConstraint(std::make_shared<Joint>(j.name, j.kind, model_body(j.parent),
-                                                frame(j.parent, j.p_WJ, R_WJ), model_body(j.child),
-                                                frame(j.child, j.p_WJ, R_WJ)));
+    AddElement(model, kConstraint, [&] {
+      model.AddConstraint(std::make_shared<Joint>(
+          j.name, j.kind, model_body(j.parent), frame(j.parent, j.p_WJ, R_WJ), model_body(j.child),
+          frame(j.child, j.p_WJ, R_WJ)));
+    });
   }
   for (const SceneRolling& r : c.rolling) {
-    if (r.on_surface) {
-      model.AddConstraint(MakeSurfaceRolling(r, model_body(r.body), model, s0));
-      continue;
-    }
-    // The plane is given in W at the initial configuration; on a body it is fixed in that
-    // body's frame from there on.
-    const AttachmentFrame X = frame(r.on, r.plane_point_W, FrameWithZAxis(r.plane_normal_W));
-    model.AddConstraint(std::make_shared<RollingContact>(
-        r.name, r.shape, model_body(r.on), X.p_BoJ_B, Vec3(X.R_BJ.col(2)), model_body(r.body),
-        r.p_BoC_B, r.axis_B, r.radius));
+    AddElement(model, kConstraint, [&] {
+      if (r.on_surface) {
+        model.AddConstraint(MakeSurfaceRolling(r, model_body(r.body), model, s0));
+        return;
+      }
+      // The plane is given in W at the initial configuration; on a body it is fixed in that
+      // body's frame from there on.
+      const AttachmentFrame X = frame(r.on, r.plane_point_W, FrameWithZAxis(r.plane_normal_W));
+      model.AddConstraint(std::make_shared<RollingContact>(
+          r.name, r.shape, model_body(r.on), X.p_BoJ_B, Vec3(X.R_BJ.col(2)), model_body(r.body),
+          r.p_BoC_B, r.axis_B, r.radius));
+    });
   }
   for (const SceneDriver& d : c.drivers) {
     const Mat3 R_WJ = FrameWithZAxis(d.axis_W);
-    model.AddConstraint(std::make_shared<PrescribedMotion>(
-        d.name, d.kind, model_body(d.parent), frame(d.parent, d.p_WJ, R_WJ), model_body(d.child),
-        frame(d.child, d.p_WJ, R_WJ), TimeFunction::Quadratic(d.f0, d.f1, d.f2)));
+    AddElement(model, kConstraint, [&] {
+      model.AddConstraint(std::make_shared<PrescribedMotion>(
+          d.name, d.kind, model_body(d.parent), frame(d.parent, d.p_WJ, R_WJ), model_body(d.child),
+          frame(d.child, d.p_WJ, R_WJ), TimeFunction::Quadratic(d.f0, d.f1, d.f2)));
+    });
   }
   for (const SceneGear& g : c.gears) {
     const auto circle = [&](int b, const ScenePitchCircle& pc) {
       const AttachmentFrame X = frame(b, pc.center_W, FrameWithZAxis(pc.axis_W));
       return PitchCircle{X.p_BoJ_B, Vec3(X.R_BJ.col(2)), pc.radius};
     };
-    model.AddConstraint(std::make_shared<GearMesh>(
-        g.name, g.kind, model_body(g.parent), circle(g.parent, g.parent_circle),
-        model_body(g.child), circle(g.child, g.child_circle), g.keep_contact));
+    AddElement(model, kConstraint, [&] {
+      model.AddConstraint(std::make_shared<GearMesh>(
+          g.name, g.kind, model_body(g.parent), circle(g.parent, g.parent_circle),
+          model_body(g.child), circle(g.child, g.child_circle), g.keep_contact));
+    });
   }
-  for (const SceneString& st : c.strings) AddSceneString(st, scene.planar, map, s0, model);
+  for (const SceneString& st : c.strings) {
+    AddElement(model, kConstraint, [&] { AddSceneString(st, scene.planar, map, s0, model); });
+  }
   if (scene.planar) {
     // Every body of a planar scene is held in its plane z = const by one kPlanar joint with
     // the world at its centre of mass (3 rows: v_z, w_x, w_y). The scene's joints contribute
@@ -387,10 +413,12 @@ void AddSceneConstraints(const Scene& scene, const BodyMap& map, Model& model) {
     for (size_t b = 0; b < scene.bodies.size(); ++b) {
       const int mb = model_body(static_cast<int>(b));
       const Vec3 p_WBcm = s0.bodies[static_cast<size_t>(mb)].p_WBcm;
-      model.AddConstraint(std::make_shared<Joint>(
-          PlaneConstraintName(scene, static_cast<int>(b)), JointKind::kPlanar, kWorld,
-          AttachmentFrame{p_WBcm, Mat3::Identity()}, mb,
-          frame(static_cast<int>(b), p_WBcm, Mat3::Identity())));
+      AddElement(model, kConstraint, [&] {
+        model.AddConstraint(std::make_shared<Joint>(
+            PlaneConstraintName(scene, static_cast<int>(b)), JointKind::kPlanar, kWorld,
+            AttachmentFrame{p_WBcm, Mat3::Identity()}, mb,
+            frame(static_cast<int>(b), p_WBcm, Mat3::Identity())));
+      });
     }
   }
 }
@@ -470,93 +498,98 @@ Model BuildModel(const Scene& scene, const std::vector<NamedBody>& bodies,
   auto point = [&](int b, const Vec3& p_BoP_B) { return map->map.PointInModelBody(b, p_BoP_B); };
   for (const SceneForce& f : d.forces) {
     const BodyPlacement* pl = f.body >= 0 ? &map->map.place[static_cast<size_t>(f.body)] : nullptr;
-    switch (f.type) {
-      case SceneForce::Type::kForce: {
-        const Vec3 p = f.point_frame == VectorFrame::kWorld ? f.p_BoP_B : point(f.body, f.p_BoP_B);
-        const Mat3 R = f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity();
-        VectorFunction value;
-        if (f.value.is_constant()) {
-          const Vec3 v = R * f.value.Evaluate(std::array{0.0});
-          value = [v](const Model&, const State&) { return v; };
-        } else {
-          value = MakeVectorFunction(map, f.value, R);
+    AddElement(model, ErrorElement::Kind::kForceElement, [&] {
+      switch (f.type) {
+        case SceneForce::Type::kForce: {
+          const Vec3 p =
+              f.point_frame == VectorFrame::kWorld ? f.p_BoP_B : point(f.body, f.p_BoP_B);
+          const Mat3 R = f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity();
+          VectorFunction value;
+          if (f.value.is_constant()) {
+            const Vec3 v = R * f.value.Evaluate(std::array{0.0});
+            value = [v](const Model&, const State&) { return v; };
+          } else {
+            value = MakeVectorFunction(map, f.value, R);
+          }
+          model.AddForceElement(std::make_shared<AppliedForce>(f.name, pl->model_body, p,
+                                                               f.point_frame, value, f.frame));
+          break;
         }
-        model.AddForceElement(std::make_shared<AppliedForce>(f.name, pl->model_body, p,
-                                                             f.point_frame, value, f.frame));
-        break;
-      }
-      case SceneForce::Type::kCable:
-        model.AddForceElement(std::make_shared<CableForce>(f.name, pl->model_body,
-                                                           point(f.body, f.p_BoP_B), f.p_WQ,
-                                                           MakeScalarFunction(map, f.scalar)));
-        break;
-      case SceneForce::Type::kStringPull:
-        // The drum's axis turns from the scene body's frame into the model body's.
-        model.AddForceElement(std::make_shared<StringPull>(
-            f.name, pl->model_body, point(f.body, f.p_BoP_B), pl->R_MB * f.drum_axis_B,
-            f.drum_radius, f.drum_sense, f.direction_W, MakeScalarFunction(map, f.scalar)));
-        break;
-      case SceneForce::Type::kJointTorque: {
-        // The joint's axis is given in W at the initial configuration; the torque turns it
-        // with the parent: a_P = R_WP(0)ᵀ a_W.
-        const SceneJoint& j = d.constraints.joints[static_cast<size_t>(f.joint)];
-        const int parent =
-            j.parent == kWorld ? kWorld : map->map.place[static_cast<size_t>(j.parent)].model_body;
-        Vec3 axis_P = j.axis_W;
-        if (parent != kWorld) {
+        case SceneForce::Type::kCable:
+          model.AddForceElement(std::make_shared<CableForce>(f.name, pl->model_body,
+                                                             point(f.body, f.p_BoP_B), f.p_WQ,
+                                                             MakeScalarFunction(map, f.scalar)));
+          break;
+        case SceneForce::Type::kStringPull:
+          // The drum's axis turns from the scene body's frame into the model body's.
+          model.AddForceElement(std::make_shared<StringPull>(
+              f.name, pl->model_body, point(f.body, f.p_BoP_B), pl->R_MB * f.drum_axis_B,
+              f.drum_radius, f.drum_sense, f.direction_W, MakeScalarFunction(map, f.scalar)));
+          break;
+        case SceneForce::Type::kJointTorque: {
+          // The joint's axis is given in W at the initial configuration; the torque turns it
+          // with the parent: a_P = R_WP(0)ᵀ a_W.
+          const SceneJoint& j = d.constraints.joints[static_cast<size_t>(f.joint)];
+          const int parent = j.parent == kWorld
+                                 ? kWorld
+                                 : map->map.place[static_cast<size_t>(j.parent)].model_body;
+          Vec3 axis_P = j.axis_W;
+          if (parent != kWorld) {
+            const State s0 = InitialState(scene, model);
+            axis_P = s0.bodies[static_cast<size_t>(parent)]
+                         .q_WB.normalized()
+                         .toRotationMatrix()
+                         .transpose() *
+                     j.axis_W;
+          }
+          model.AddForceElement(std::make_shared<JointTorque>(
+              f.name, parent, pl->model_body, axis_P, MakeScalarFunction(map, f.scalar)));
+          break;
+        }
+        case SceneForce::Type::kMoment:
+          if (f.value.is_constant()) {
+            const Vec3 v = f.value.Evaluate(std::array{0.0});
+            model.AddForceElement(AppliedMoment::Constant(
+                f.name, pl->model_body, f.frame == VectorFrame::kBody ? Vec3(pl->R_MB * v) : v,
+                f.frame));
+          } else {
+            model.AddForceElement(std::make_shared<AppliedMoment>(
+                f.name, pl->model_body,
+                MakeVectorFunction(map, f.value,
+                                   f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity()),
+                f.frame));
+          }
+          break;
+        case SceneForce::Type::kSpring: {
+          const int mb = f.body_b == kWorld
+                             ? kWorld
+                             : map->map.place[static_cast<size_t>(f.body_b)].model_body;
+          const Vec3 q = f.body_b == kWorld ? f.p_BoQ_B : point(f.body_b, f.p_BoQ_B);
+          model.AddForceElement(
+              std::make_shared<SpringDamper>(f.name, pl->model_body, point(f.body, f.p_BoP_B), mb,
+                                             q, f.rest_length, f.stiffness, f.damping));
+          break;
+        }
+        case SceneForce::Type::kDrag:
+          model.AddForceElement(
+              std::make_shared<LinearDrag>(f.name, pl->model_body, f.linear, f.angular));
+          break;
+        case SceneForce::Type::kCentralGravity:
+          model.AddForceElement(std::make_shared<CentralGravity>(f.name, f.mu, f.centre_W));
+          break;
+        case SceneForce::Type::kBearing: {
+          // The journal is the body's material point at `at` at the initial configuration.
           const State s0 = InitialState(scene, model);
-          axis_P = s0.bodies[static_cast<size_t>(parent)]
-                       .q_WB.normalized()
-                       .toRotationMatrix()
-                       .transpose() *
-                   j.axis_W;
+          const BodyState& bs = s0.bodies[static_cast<size_t>(pl->model_body)];
+          const Vec3 p_Bo = CalcBodyOriginPosition(model, s0, pl->model_body);
+          const Vec3 p_BoP_B = bs.q_WB.normalized().conjugate() * (f.bearing_at_W - p_Bo);
+          model.AddForceElement(std::make_shared<Bearing>(f.name, pl->model_body, p_BoP_B,
+                                                          f.bearing_at_W, f.bearing_axis_W,
+                                                          f.bearing_K, f.bearing_C));
+          break;
         }
-        model.AddForceElement(std::make_shared<JointTorque>(f.name, parent, pl->model_body, axis_P,
-                                                            MakeScalarFunction(map, f.scalar)));
-        break;
       }
-      case SceneForce::Type::kMoment:
-        if (f.value.is_constant()) {
-          const Vec3 v = f.value.Evaluate(std::array{0.0});
-          model.AddForceElement(AppliedMoment::Constant(
-              f.name, pl->model_body, f.frame == VectorFrame::kBody ? Vec3(pl->R_MB * v) : v,
-              f.frame));
-        } else {
-          model.AddForceElement(std::make_shared<AppliedMoment>(
-              f.name, pl->model_body,
-              MakeVectorFunction(map, f.value,
-                                 f.frame == VectorFrame::kBody ? pl->R_MB : Mat3::Identity()),
-              f.frame));
-        }
-        break;
-      case SceneForce::Type::kSpring: {
-        const int mb =
-            f.body_b == kWorld ? kWorld : map->map.place[static_cast<size_t>(f.body_b)].model_body;
-        const Vec3 q = f.body_b == kWorld ? f.p_BoQ_B : point(f.body_b, f.p_BoQ_B);
-        model.AddForceElement(
-            std::make_shared<SpringDamper>(f.name, pl->model_body, point(f.body, f.p_BoP_B), mb, q,
-                                           f.rest_length, f.stiffness, f.damping));
-        break;
-      }
-      case SceneForce::Type::kDrag:
-        model.AddForceElement(
-            std::make_shared<LinearDrag>(f.name, pl->model_body, f.linear, f.angular));
-        break;
-      case SceneForce::Type::kCentralGravity:
-        model.AddForceElement(std::make_shared<CentralGravity>(f.name, f.mu, f.centre_W));
-        break;
-      case SceneForce::Type::kBearing: {
-        // The journal is the body's material point at `at` at the initial configuration.
-        const State s0 = InitialState(scene, model);
-        const BodyState& bs = s0.bodies[static_cast<size_t>(pl->model_body)];
-        const Vec3 p_Bo = CalcBodyOriginPosition(model, s0, pl->model_body);
-        const Vec3 p_BoP_B = bs.q_WB.normalized().conjugate() * (f.bearing_at_W - p_Bo);
-        model.AddForceElement(std::make_shared<Bearing>(f.name, pl->model_body, p_BoP_B,
-                                                        f.bearing_at_W, f.bearing_axis_W,
-                                                        f.bearing_K, f.bearing_C));
-        break;
-      }
-    }
+    });
   }
   AddSceneConstraints(scene, body_map, model);
   AddSceneContacts(scene, body_map, model);
@@ -940,59 +973,42 @@ SimulationOptions BaseOptions(const Scene& scene, double t_end) {
 
 namespace {
 
-/// The entry of the scene element called `name`; `before` is the message's text before the
-/// quoted name, whose last words say the kind ("force element", "constraint", "contact point",
-/// "body", "event"). Any kind matches when that kind has no such name; null when none has.
-const SceneSpot* FindSceneEntry(const Scene& scene, const std::string& name,
-                                std::string_view before) {
+/// Where the Model element `e` stands in the file: BuildModel adds the force elements after
+/// the uniform gravity (when the scene has gravity: no entry of its own), the constraints in
+/// SceneConstraints order and then a planar scene's plane constraints (one per body, at the
+/// body's entry), the contacts and their points in scene order (AddSceneContacts); the events
+/// are BuildEvents' in scene order, the bodies the scene's (a run names its user bodies).
+/// Null when the element has no entry.
+const SceneSpot* SceneEntryOf(const Scene& scene, const ErrorElement& e) {
   const SceneDynamics& d = scene.dynamics;
-  const auto ends_with = [&](std::string_view w) {
-    return before.size() >= w.size() && before.substr(before.size() - w.size()) == w;
+  const auto at = [](const auto& entries, int i) -> const SceneSpot* {
+    return i >= 0 && static_cast<size_t>(i) < entries.size()
+               ? &entries[static_cast<size_t>(i)].where
+               : nullptr;
   };
-  const auto force = [&]() -> const SceneSpot* {
-    for (const SceneForce& f : d.forces) {
-      if (f.name == name) return &f.where;
+  switch (e.kind) {
+    case ErrorElement::Kind::kBody:
+      return at(scene.bodies, e.index);
+    case ErrorElement::Kind::kForceElement:
+      return at(d.forces, e.index - (d.has_gravity ? 1 : 0));
+    case ErrorElement::Kind::kConstraint: {
+      const int n = static_cast<int>(d.constraints.names().size());
+      return e.index < n ? d.constraints.At(e.index) : at(scene.bodies, e.index - n);
     }
-    return nullptr;
-  };
-  const auto constraint = [&]() { return d.constraints.Find(name); };
-  const auto contact = [&]() -> const SceneSpot* {
-    for (const SceneContact& c : d.contacts.contacts) {
-      if (c.name == name || name.rfind(c.name + "[", 0) == 0) return &c.where;
-      for (const std::string& label : ContactPointLabels(c)) {
-        if (label == name) return &c.where;
+    case ErrorElement::Kind::kContact:
+      return at(d.contacts.contacts, e.index);
+    case ErrorElement::Kind::kContactPoint: {
+      int first = 0;
+      for (const SceneContact& c : d.contacts.contacts) {
+        first += static_cast<int>(ContactPointLabels(c).size());
+        if (e.index < first) return &c.where;
       }
+      return nullptr;
     }
-    return nullptr;
-  };
-  const auto body = [&]() -> const SceneSpot* {
-    for (const SceneBody& b : scene.bodies) {
-      if (b.name == name) return &b.where;
-    }
-    return nullptr;
-  };
-  const auto event = [&]() -> const SceneSpot* {
-    for (const SceneEvent& e : d.events) {
-      if (e.name == name) return &e.where;
-    }
-    return nullptr;
-  };
-  const SceneSpot* spot = nullptr;
-  if (ends_with("force element ") || ends_with("spring ") || ends_with("force ")) {
-    spot = force();
-  } else if (ends_with("contact point ") || ends_with("contact ")) {
-    spot = contact();
-  } else if (ends_with("body ")) {
-    spot = body();
-  } else if (ends_with("event ")) {
-    spot = event();
+    case ErrorElement::Kind::kEvent:
+      return at(d.events, e.index);
   }
-  if (!spot) spot = constraint();
-  if (!spot) spot = force();
-  if (!spot) spot = contact();
-  if (!spot) spot = body();
-  if (!spot) spot = event();
-  return spot;
+  return nullptr;
 }
 
 }  // namespace
@@ -1000,29 +1016,21 @@ const SceneSpot* FindSceneEntry(const Scene& scene, const std::string& name,
 void ThrowAtSceneEntry(const Scene& scene, const InputError& error) {
   if (const auto* located = dynamic_cast<const SceneError*>(&error)) throw *located;
   const std::string what = error.what();
+  const SceneSpot* spot = error.element() ? SceneEntryOf(scene, *error.element()) : nullptr;
   // A force, moment or torque that is its expression and evaluated to NaN or an infinity (the
   // state is finite: that is checked first): the expression did, at its own value.
-  for (const SceneForce& f : scene.dynamics.forces) {
+  if (spot && error.element()->kind == ErrorElement::Kind::kForceElement &&
+      error.element()->non_finite_output) {
+    const SceneForce& f = scene.dynamics.forces[static_cast<size_t>(
+        error.element()->index - (scene.dynamics.has_gravity ? 1 : 0))];
     const SceneSpot& at = f.expression_where;
-    if (at.line == 0 ||
-        what.find(fmt::format("force element '{}' evaluated to ", f.name)) == std::string::npos) {
-      continue;
+    if (at.line != 0) {
+      throw SceneError(scene.file, at.line, at.column, at.key,
+                       fmt::format("the expression of force element '{}' produced a non-finite "
+                                   "value (a division by zero, a logarithm of 0, a root of a "
+                                   "negative number or an overflow): {}",
+                                   f.name, what));
     }
-    throw SceneError(scene.file, at.line, at.column, at.key,
-                     fmt::format("the expression of force element '{}' produced a non-finite "
-                                 "value (a division by zero, a logarithm of 0, a root of a "
-                                 "negative number or an overflow): {}",
-                                 f.name, what));
-  }
-  // The first quoted name in the message that is an element of the scene.
-  const SceneSpot* spot = nullptr;
-  size_t at = 0;
-  while (!spot && (at = what.find('\'', at)) != std::string::npos) {
-    const size_t end = what.find('\'', at + 1);
-    if (end == std::string::npos) break;
-    spot = FindSceneEntry(scene, what.substr(at + 1, end - at - 1),
-                          std::string_view(what).substr(0, at));
-    at = end + 1;
   }
   // Naming none, it is about the run as the `simulation` block sets it up.
   if (!spot) spot = &scene.dynamics.simulation.where;
@@ -1092,15 +1100,13 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
   def.certificate = CertificateTolerancesFor(scene);
   def.progress = options.progress;
   def.record_row_snapshots = options.record_row_snapshots;
-  const Model first = BuildModel(scene, def.bodies, IdentityMap(scene));
+  // The first segment's Model, built once: the checks below read it and the run starts on it.
+  def.model = std::make_shared<const Model>(BuildModel(scene, def.bodies, IdentityMap(scene)));
+  const Model& first = *def.model;
   const SceneSimulation& sim = d.simulation;
   if (sim.event_driven) {
     // Balls on a table only (the message names the body, contact or force that is not).
-    const std::string obstacle = SphereEventObstacle(first);
-    if (!obstacle.empty()) {
-      throw InputError(
-          fmt::format("'integrator: events' runs balls on a table only: {}", obstacle));
-    }
+    ChooseRunPath(first, def.options, EngineRequest::kEvents);
     SphereEventOptions events;
     events.collide_all_pairs = sim.collide_all_pairs;
     events.pair_law = sim.ball_collisions;
@@ -1108,10 +1114,7 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
     def.sphere_events = events;
   }
   if (sim.time_stepping) {
-    const std::string obstacle = TimeSteppingObstacle(first);
-    if (!obstacle.empty()) {
-      throw InputError(fmt::format("'integrator: stepping' cannot run this scene: {}", obstacle));
-    }
+    ChooseRunPath(first, def.options, EngineRequest::kStepping);
     // Moreau's law at every point at once (docs/contact.md, "Time stepping"): a contact that
     // asks for another law is told which one it gets.
     for (std::string& w : TimeSteppingLawWarnings(first)) def.warnings.push_back(std::move(w));

@@ -3,22 +3,18 @@
 #include "chasles/scene/sweep.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <map>
-#include <mutex>
 #include <optional>
-#include <thread>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
-#include "chasles/integrate/parallel.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/expression.h"
 #include "chasles/scene/mass_report.h"
@@ -32,19 +28,6 @@ namespace chasles {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-/// A reason on one line (a CSV field, a JSON string): line breaks become "; ".
-std::string OneLine(std::string text) {
-  std::string out;
-  for (const char c : text) {
-    if (c == '\n') {
-      if (!out.empty()) out += "; ";
-    } else if (c != '\r') {
-      out += c;
-    }
-  }
-  return out;
-}
 
 /// `text` with the white space around ( ) , - and at the ends removed, and each other run of
 /// it made one space: "event( leaves wall, 2 )" reads "event(leaves wall,2)".
@@ -69,48 +52,6 @@ std::vector<std::string> ParameterNames(const Scene& scene) {
   std::vector<std::string> names;
   for (const auto& [n, q] : scene.parameters) names.push_back(n);
   return names;
-}
-
-/// The row of one point: its parameters (the scene's values when it loaded), then the
-/// quantities; NaN for a quantity that could not be had (all of them when the point failed),
-/// and the reason.
-struct PointRow {
-  std::vector<double> values;
-  std::string error;
-};
-
-/// Runs `point` at every point of the grid that is `share`'s, in parallel, and assembles the
-/// table (the other points' rows empty).
-SweepTable RunGrid(const SweepGrid& grid, const std::vector<std::string>& quantity_names,
-                   const std::vector<std::string>& quantity_units, int jobs,
-                   const std::function<void(std::int64_t, std::int64_t)>& progress,
-                   const SweepShare& share, const std::function<PointRow(std::int64_t k)>& point) {
-  SweepTable table;
-  std::vector<std::string> names;
-  for (const SweepSpec& s : grid.specs) names.push_back(s.name);
-  table.parameter = fmt::format("{}", fmt::join(names, ", "));
-  table.parameters = names;
-  table.columns = names;
-  table.units = grid.units;
-  table.columns.insert(table.columns.end(), quantity_names.begin(), quantity_names.end());
-  table.units.insert(table.units.end(), quantity_units.begin(), quantity_units.end());
-  std::vector<PointRow> rows(static_cast<size_t>(grid.size));
-  const std::int64_t mine = share.Count(grid.size);
-  if (progress) progress(0, mine);
-  RunParallel(
-      mine, jobs,
-      [&](std::int64_t i) {
-        const std::int64_t k = share.Point(i);
-        rows[static_cast<size_t>(k)] = point(k);
-      },
-      [&](std::int64_t done) {
-        if (progress) progress(done, mine);
-      });
-  for (PointRow& r : rows) {
-    table.rows.push_back(std::move(r.values));
-    table.errors.push_back(std::move(r.error));
-  }
-  return table;
 }
 
 /// The parameters of point k: the loaded scene's values (what its run used).
@@ -157,28 +98,12 @@ double EventTime(const StudyResult& r, const std::string& name, int k) {
 
 }  // namespace
 
-std::vector<int> SweepGrid::Indices(std::int64_t k) const {
-  std::vector<int> i(specs.size());
-  for (size_t j = specs.size(); j-- > 0;) {
-    const auto n = static_cast<std::int64_t>(specs[j].count);
-    i[j] = static_cast<int>(k % n);
-    k /= n;
-  }
-  return i;
-}
-
-std::vector<double> SweepGrid::Values(std::int64_t k) const {
-  const std::vector<int> i = Indices(k);
-  std::vector<double> v;
-  for (size_t j = 0; j < specs.size(); ++j) {
-    v.push_back(start[j] + (stop[j] - start[j]) * i[j] / (specs[j].count - 1));
-  }
-  return v;
-}
-
-SceneOptions SweepGrid::PointOptions(const SceneOptions& base, std::int64_t k) const {
+SceneOptions SweepGrid::PointOptions(const SceneOptions& base,
+                                     const std::vector<double>& values) const {
+  const std::int64_t k = parameters.PointOf(values);
+  if (k < 0) throw std::logic_error("SweepGrid::PointOptions: the values are not a grid point");
   SceneOptions o = base;
-  const std::vector<int> i = Indices(k);
+  const std::vector<int> i = parameters.Indices(k);
   for (size_t j = 0; j < specs.size(); ++j) {
     const SweepSpec& s = specs[j];
     o.parameter_overrides.emplace_back(
@@ -198,7 +123,7 @@ SweepGrid MakeSweepGrid(const Scene& scene, const std::vector<SweepSpec>& specs,
     return std::nullopt;
   };
   SweepGrid grid;
-  grid.size = 1;
+  std::int64_t size = 1;
   for (const SweepSpec& s : specs) {
     const auto fail = [&s](const std::string& why) {
       throw SceneError(s.source, 0, 0, s.key, why);
@@ -229,23 +154,25 @@ SweepGrid MakeSweepGrid(const Scene& scene, const std::vector<SweepSpec>& specs,
       }
       ends[e] = v.value;
     }
-    if (grid.size > max_points / s.count) {
+    if (size > max_points / s.count) {
       fail(
           fmt::format("the grid has more points than the limit of {} runs; raise the limit with "
                       "--max-runs N (max_runs= from Python)",
                       max_points));
     }
-    grid.size *= s.count;
+    size *= s.count;
     grid.specs.push_back(s);
-    grid.start.push_back(ends[0]);
-    grid.stop.push_back(ends[1]);
-    grid.units.push_back(SweepParameterUnit(s, q.dim));
+    grid.parameters.names.push_back(s.name);
+    grid.parameters.units.push_back(SweepParameterUnit(s, q.dim));
+    grid.parameters.start.push_back(ends[0]);
+    grid.parameters.stop.push_back(ends[1]);
+    grid.parameters.counts.push_back(s.count);
   }
-  if (grid.size > max_points) {
+  if (size > max_points) {
     throw SceneError(specs.front().source, 0, 0, specs.front().key,
                      fmt::format("the grid's {} points are more than the limit of {} runs; raise "
                                  "the limit with --max-runs N (max_runs= from Python)",
-                                 grid.size, max_points));
+                                 size, max_points));
   }
   return grid;
 }
@@ -327,36 +254,6 @@ double SweepQuantityValue(const StudyResult& r, const SweepQuantity& q) {
   return v;
 }
 
-void RunParallel(std::int64_t count, int jobs, const std::function<void(std::int64_t k)>& run,
-                 const std::function<void(std::int64_t done)>& done) {
-  if (jobs < 1) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const auto threads =
-      static_cast<int>(std::min<std::int64_t>(jobs, std::max<std::int64_t>(count, 1)));
-  std::atomic<std::int64_t> next{0};
-  std::atomic<bool> stop{false};
-  std::mutex mutex;
-  std::int64_t finished = 0;
-  std::exception_ptr failure;
-  const auto work = [&]() {
-    for (std::int64_t k; !stop && (k = next++) < count;) {
-      try {
-        run(k);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        if (!failure) failure = std::current_exception();
-        stop = true;
-        return;
-      }
-      const std::lock_guard<std::mutex> lock(mutex);
-      ++finished;
-      if (done) done(finished);
-    }
-  };
-  // As many threads as the system starts (chasles/integrate/parallel.h); `work` catches its own.
-  RunOnThreads(threads, work);
-  if (failure) std::rethrow_exception(failure);
-}
-
 SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
                          const SceneOptions& options, const std::vector<SweepSpec>& specs,
                          const std::vector<SweepQuantity>& quantities,
@@ -406,11 +303,11 @@ SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
   }
   // --columns names no point can change: refused here, not at every row.
   SelectColumns(base, columns);
-  const auto point = [&](std::int64_t k) {
-    PointRow row;
-    row.values = grid.Values(k);
+  const SweepFunction point = [&](const std::vector<double>& values) {
+    SweepRow row;
+    row.values = values;
     try {
-      Scene scene = load(grid.PointOptions(options, k));
+      Scene scene = load(grid.PointOptions(options, values));
       row.values = SceneValues(grid, scene);
       scene.dynamics.columns = SelectColumns(scene, columns);
       StudyOptions study = sweep_options.study;
@@ -428,7 +325,7 @@ SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
         }
       }
       row.error = fmt::format("{}", fmt::join(missing, "; "));
-      if (sweep_options.on_run) sweep_options.on_run(k, scene, r);
+      if (sweep_options.on_run) sweep_options.on_run(grid.parameters.PointOf(values), scene, r);
     } catch (const InputError& e) {
       row.values.resize(grid.specs.size());
       row.values.resize(grid.specs.size() + quantities.size(), kNaN);
@@ -436,8 +333,8 @@ SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
     }
     return row;
   };
-  return RunGrid(grid, names, units, sweep_options.jobs, sweep_options.progress,
-                 sweep_options.share, point);
+  return RunSweep(grid.parameters, names, units, point,
+                  {sweep_options.jobs, sweep_options.progress, sweep_options.share});
 }
 
 std::vector<std::string> MassSweepQuantityNames() {
@@ -540,11 +437,11 @@ SweepTable MassSweep(const std::function<Scene(const SceneOptions&)>& load,
   }
   std::vector<std::string> names;
   for (const std::string& q : quantities) names.push_back(Normalized(q));
-  const auto point = [&](std::int64_t k) {
-    PointRow row;
-    row.values = grid.Values(k);
+  const SweepFunction point = [&](const std::vector<double>& values) {
+    SweepRow row;
+    row.values = values;
     try {
-      const Scene scene = load(grid.PointOptions(options, k));
+      const Scene scene = load(grid.PointOptions(options, values));
       row.values = SceneValues(grid, scene);
       const nlohmann::json report = MassReportJson(scene, UnitSystem::Parse("SI"));
       // A quantity the report does not give leaves its own cell empty, with the reason.
@@ -567,7 +464,7 @@ SweepTable MassSweep(const std::function<Scene(const SceneOptions&)>& load,
     }
     return row;
   };
-  return RunGrid(grid, names, units, jobs, progress, share, point);
+  return RunSweep(grid.parameters, names, units, point, {jobs, progress, share});
 }
 
 }  // namespace chasles

@@ -45,10 +45,11 @@ std::string WithAuto(const std::string& text) {
   return text.substr(0, at) + "\nsimulation:\n  integrator: auto" + text.substr(at + 12);
 }
 
-// The JSON summary without what names the engine or the files: the integrator section, the
-// ledger's time-stepping term (auto only), the scene and CSV paths.
+// The JSON summary without what names the engine or the files: the integrator section and run
+// path, the ledger's time-stepping term (auto only), the scene and CSV paths.
 nlohmann::json Answer(nlohmann::json j) {
   j.erase("integrator");
+  j.erase("run_path");
   j.erase("scene");
   j.erase("csv");
   j.at("ledger").erase("time_stepping_error");

@@ -7,6 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -361,6 +364,36 @@ TEST(SimulateCli, Rk4OnFreeBodiesUnderGravityNamesTheFreeBodyBatch) {
   const CliResult b = RunCli("simulate '" + pushed.string() + "' --out '" + dir.string() + "'");
   EXPECT_EQ(b.exit_code, 0) << b.err;
   EXPECT_THAT(b.out, ::testing::Not(::testing::HasSubstr(note)));
+}
+
+// The JSON summary names the run path (ChooseRunPath, docs/contact.md "Run paths") of each
+// kind of scene: a free body (smooth), a ball bouncing on a floor (hybrid; the report's checks
+// at every contact change keep it one system), balls on a table (event-driven spheres), a box
+// held on a slope time stepped, the tumbling cube under integrator: auto, and free bodies under
+// gravity stepped by rk4 (free-body batch); the text report has the same line.
+TEST(SimulateCli, TheSummaryNamesTheRunPath) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"examples/dzhanibekov.yaml", "smooth"},
+      {"examples/contact-bouncing-ball.yaml", "hybrid"},
+      {"examples/pool-head-on-events.yaml", "event-driven spheres"},
+      {"examples/contact-box-held-on-slope.yaml", "time stepping"},
+      {"examples/contact-cube-tumbles-auto.yaml", "auto"}};
+  for (const auto& [example, path] : cases) {
+    const nlohmann::json j = Simulate(example);
+    EXPECT_EQ(j.at("run_path").at("path"), path) << example;
+    EXPECT_FALSE(j.at("run_path").at("reason").get<std::string>().empty()) << example;
+  }
+  const auto dir = OutDir();
+  const auto free = dir / "run-path-free.yaml";
+  std::ofstream(free) << kSpinningBoxUnderGravity
+                      << "simulation: {until: 0.1 s, integrator: rk4, step: 1 ms}\n";
+  const nlohmann::json j = SimulateJson(free.string(), dir);
+  EXPECT_EQ(j.at("run_path").at("path"), "free-body batch");
+  EXPECT_THAT(j.at("run_path").at("reason").get<std::string>(),
+              ::testing::HasSubstr("free bodies under uniform gravity alone"));
+  const CliResult text = RunCli("simulate '" + free.string() + "' --out '" + dir.string() + "'");
+  EXPECT_THAT(text.out, ::testing::HasSubstr("Run path: free-body batch: free bodies under "
+                                             "uniform gravity alone, stepped by RK4"));
 }
 
 // `integrator: splitting` runs the batch's symplectic splitting and says so; a scene it cannot

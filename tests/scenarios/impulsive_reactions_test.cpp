@@ -248,7 +248,7 @@ TEST(ImpulsiveReactions, PassThroughAPinnedRodGivesThePinItsClosedFormImpulse) {
     const StudyResult r = RunStudy(h.Definition(f));
     ASSERT_EQ(r.jumps.size(), 1u);
     const StudyJump& j = r.jumps[0];
-    EXPECT_EQ(j.kind, "pass-through");
+    EXPECT_EQ(j.kind, StudyJumpKind::kPassThrough);
     EXPECT_TRUE(MatNear(Reaction(j, "pin").F_Jc_W, Vec3(0, h.PassThroughPin(f), 0), kImpulse, J))
         << "d = " << h.d;
     if (d_over_L == 2.0 / 3) {
@@ -273,7 +273,7 @@ TEST(ImpulsiveReactions, EmbeddingInAPinnedRodGivesThePinItsClosedFormImpulse) {
     const StudyResult r = RunStudy(h.Definition(0.0));
     ASSERT_EQ(r.jumps.size(), 1u);
     const StudyJump& j = r.jumps[0];
-    EXPECT_EQ(j.kind, "embedding");
+    EXPECT_EQ(j.kind, StudyJumpKind::kEmbedding);
     EXPECT_TRUE(MatNear(Reaction(j, "pin").F_Jc_W, Vec3(0, h.EmbeddingPin(), 0), kImpulse, P))
         << "d = " << h.d;
     if (d_over_L == 2.0 / 3) {

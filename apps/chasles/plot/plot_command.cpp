@@ -1,6 +1,6 @@
 // chasles plot RUN.json|RUN.csv|SWEEP.csv X Y [Y...] -o plot.svg|plot.png: columns of a table
 // the program wrote, drawn by PLplot (plot_render.h): axes labelled with the columns' names
-// and units from the CSV header (chasles/io/csv_table.h), one line per Y column, a legend.
+// and units from the CSV header (chasles/report/csv_table.h), one line per Y column, a legend.
 // Built only when PLplot is found (CMake option CHASLES_PLOT).
 
 #include <algorithm>
@@ -14,9 +14,10 @@
 #include <nlohmann/json.hpp>
 
 #include "chasles/error.h"
-#include "chasles/io/csv_table.h"
-#include "chasles/io/input_file.h"
-#include "chasles/io/output_set.h"
+#include "chasles/files/input_file.h"
+#include "chasles/files/output_set.h"
+#include "chasles/report/csv_table.h"
+#include "chasles/report/json_input.h"
 #include "commands.h"
 #include "plot/plot_render.h"
 #include "scene_args.h"

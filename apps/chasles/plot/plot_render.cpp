@@ -14,7 +14,7 @@
 #include <plplot.h>
 
 #include "chasles/error.h"
-#include "chasles/io/input_file.h"
+#include "chasles/files/input_file.h"
 
 namespace chasles::cli {
 

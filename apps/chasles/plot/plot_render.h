@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Drawing a plot with PLplot (svg and pngcairo drivers) into memory, so that the command's
-/// output set (chasles/io/output_set.h) writes it like every other file.
+/// output set (chasles/files/output_set.h) writes it like every other file.
 ///
 /// PLplot is guarded where it is fragile: its texts overflow fixed buffers past about 1000
 /// characters (and '#' starts an escape, doubling the text), invalid UTF-8 is dropped with a

@@ -2,8 +2,8 @@
 
 Load a scene (``load_scene``, ``load_scene_string``), read its mass properties, solve the
 instantaneous problem (``solve``), run it (``run``) or sweep a parameter (``sweep``); or build
-a ``Model`` of bodies, force elements, joints and contacts and call ``solve_instantaneous``
-and ``simulate``. Everything is SI; vectors and matrices are numpy arrays; quaternions are
+a ``Model`` of bodies, force elements, joints and contacts and call ``solve_instantaneous``,
+``simulate`` and ``run_study``; ``sweep_function`` sweeps any Python function of parameters. Everything is SI; vectors and matrices are numpy arrays; quaternions are
 ``[w, x, y, z]``. Tables (``Table``, ``Run``) carry column names and units and convert to
 pandas with ``to_pandas()``. Bad input raises ``InputError`` (a ``ValueError``) or its
 subclass ``SceneError`` with ``file``, ``line``, ``column`` and ``key``. See docs/python.md.
@@ -25,10 +25,14 @@ from ._chasles import (  # noqa: F401
     SimulationResult,
     StudyResult,
     SweepTable,
+    _run_definition,
     _run_json,
+    _run_text,
     _run_study,
+    _run_sweep,
     _simulate,
     _solve,
+    _solve_text,
     _sweep,
     _simulate_sweep,
     _mass_sweep,
@@ -108,7 +112,8 @@ class Run(Table):
     ``segments`` (``integrator: auto``: each engine's stretch of the run and why it took over;
     empty otherwise);
     ``result`` is the StudyResult itself. ``to_csv()`` and
-    ``to_json()`` give the two files ``chasles simulate`` writes.
+    ``to_json()`` give the two files ``chasles simulate`` writes; ``text()`` the report it
+    prints.
     """
 
     def __init__(self, scene, result):
@@ -132,6 +137,14 @@ class Run(Table):
         """The JSON summary, as ``chasles simulate`` writes it (text); ``csv_path`` is
         recorded under ``"csv"``."""
         return _run_json(self._scene, self.result, csv_path)
+
+    def text(self, units=None, out=None):
+        """The report ``chasles simulate SCENE`` prints (text), in ``units`` ("SI", "US", or a
+        list such as "mm,g"; None: the scene's own, as ``--units``); its last line names the
+        CSV and JSON files the program writes in the folder ``out`` (None: the current folder,
+        as ``--out``)."""
+        return _run_text(self._scene, self.result, _text_option("units", units),
+                         _text_option("out", out))
 
     def event(self, name):
         """The first event called ``name`` (KeyError when none fired)."""
@@ -180,9 +193,27 @@ def solve(scene):
     Returns a Solution: ``bodies`` (accelerations), ``reactions``, ``contacts``,
     ``motion`` / ``total`` (energy, momenta, dH/dt; per body ω, v, named points' velocity
     and acceleration), ``certificate``, ``warnings``; ``table()``
-    gives the sweep-table row as a one-row Table.
+    gives the sweep-table row as a one-row Table; ``text()`` the report ``chasles solve``
+    prints.
     """
-    return _solve(scene)
+    solution = _solve(scene)
+    solution._scene = scene
+    return solution
+
+
+def _text_option(name, value):
+    """A text option as the program's of that name takes it: a string, None for its default."""
+    if value is None:
+        return ""
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a string, got {type(value).__name__} {value!r}")
+    return value
+
+
+def _solution_text(self, units=None):
+    """The report ``chasles solve SCENE`` prints (text), in ``units`` ("SI", "US", or a list
+    such as "ft,slug"; None: the scene's own, as ``--units``)."""
+    return _solve_text(self._scene, self, _text_option("units", units))
 
 
 def _solution_table(self):
@@ -199,6 +230,7 @@ def _find(items, name, attr, what):
 
 
 Solution.table = _solution_table
+Solution.text = _solution_text
 Solution.body = lambda self, name: _find(self.bodies, name, "name", "body")
 Solution.body.__doc__ = "The accelerations of the body called ``name``."
 Solution.reaction = lambda self, name: _find(self.reactions, name, "name", "reaction")
@@ -304,6 +336,124 @@ def mass_sweep(scene, sweeps, quantities, jobs=0, max_runs=100_000):
     quantities = [quantities] if isinstance(quantities, str) else list(quantities)
     return Sweep(_mass_sweep(scene, sweeps, quantities, _whole("jobs", jobs, 0, _MAX_JOBS),
                              _whole("max_runs", max_runs, 1, _MAX_COUNT)))
+
+
+def sweep_function(function, parameters, quantities="value", units=None, jobs=1,
+                   max_points=100_000):
+    """Sweeps a Python function over a grid of parameter values, without a scene file
+    (docs/sweeps.md; the grid, the threads and the table are those of ``simulate_sweep``).
+
+    ``parameters``: a dict NAME -> (START, STOP, COUNT) of SI numbers, or NAME -> (START, STOP,
+    COUNT, UNIT) to name the column's unit; every combination is a point, the last parameter
+    varying fastest, its values START + (STOP - START) i / (COUNT - 1). ``function`` is called
+    with the parameters as keywords and returns a number, or a sequence with one number per
+    name in ``quantities`` (a name or a list; ``units`` the same length, or None). A
+    chasles.InputError it raises fails that point alone (NaN values, the reason in
+    ``errors``); any other exception stops the sweep. ``jobs`` threads call it (the GIL is held
+    while it runs; the table is the same for any number). Returns a Sweep.
+    """
+    if not isinstance(parameters, dict) or not parameters:
+        raise TypeError("parameters must be a non-empty dict NAME -> (START, STOP, COUNT)")
+    names, param_units, start, stop, counts = [], [], [], [], []
+    for name, spec in parameters.items():
+        spec = tuple(spec)
+        if len(spec) not in (3, 4):
+            raise TypeError(f"parameter {name!r}: give (START, STOP, COUNT) or (START, STOP, "
+                            f"COUNT, UNIT), got {spec!r}")
+        names.append(str(name))
+        start.append(_number(f"{name} START", spec[0]))
+        stop.append(_number(f"{name} STOP", spec[1]))
+        counts.append(_whole(f"{name} COUNT", spec[2], 2, _MAX_COUNT))
+        param_units.append(str(spec[3]) if len(spec) == 4 else "")
+    single = isinstance(quantities, str)
+    quantities = [quantities] if single else list(quantities)
+    units = [""] * len(quantities) if units is None else \
+        ([units] if isinstance(units, str) else list(units))
+    if len(units) != len(quantities):
+        raise TypeError(f"{len(units)} units for {len(quantities)} quantities")
+
+    def point(*values):
+        out = function(**dict(zip(names, values)))
+        return [out] if single or _np.ndim(out) == 0 else list(out)
+
+    return Sweep(_run_sweep(names, param_units, start, stop, counts, quantities, units, point,
+                            _whole("jobs", jobs, 0, _MAX_JOBS),
+                            _whole("max_points", max_points, 1, _MAX_COUNT), InputError))
+
+
+# Columns a study of a Model can record (``run_study``): per body BODY_Q, and the ledger's.
+_BODY_COLUMNS = {
+    "x": "m", "y": "m", "z": "m", "qw": "", "qx": "", "qy": "", "qz": "",
+    "vx": "m/s", "vy": "m/s", "vz": "m/s", "speed": "m/s",
+    "wx": "rad/s", "wy": "rad/s", "wz": "rad/s", "wbx": "rad/s", "wby": "rad/s",
+    "wbz": "rad/s", "ax": "m/s^2", "ay": "m/s^2", "az": "m/s^2", "alx": "rad/s^2",
+    "aly": "rad/s^2", "alz": "rad/s^2",
+}
+_LEDGER_COLUMNS = {"t": "s", "T_trans": "J", "T_rot": "J", "T": "J", "V": "J", "E": "J",
+                   "W_nc": "J", "dissipated": "J", "residual": "J"}
+
+
+def _study_column(model, name):
+    """(name, body index or -1, quantity) of a column ``run_study`` records, and its unit."""
+    if name in _LEDGER_COLUMNS:
+        return (name, -1, name), _LEDGER_COLUMNS[name]
+    for b in range(model.num_bodies):
+        body = model.body(b).name
+        q = name[len(body) + 1:]
+        if name.startswith(body + "_") and q in _BODY_COLUMNS:
+            return (name, b, q), _BODY_COLUMNS[q]
+    bodies = [model.body(b).name for b in range(model.num_bodies)]
+    raise InputError(f"column {name!r}: neither BODY_Q (bodies: {', '.join(bodies)}; Q one of "
+                     f"{', '.join(_BODY_COLUMNS)}) nor one of {', '.join(_LEDGER_COLUMNS)}")
+
+
+class Study(Table):
+    """The result of ``run_study``: the output table (``t`` and the columns asked for) plus
+    the StudyResult's ``events``, ``ledger`` (energy, work and momentum across the run),
+    ``certificate``, ``final_bodies``, ``final_reactions``, ``final_contacts``, ``notes``,
+    ``warnings``, ``t_end``, ``integrator`` and ``stats``; ``result`` is the StudyResult.
+    """
+
+    def __init__(self, result, units):
+        _instance("result", result, StudyResult)
+        super().__init__(result.columns, units, result.data)
+        self.result = result
+        for name in ("events", "ledger", "certificate", "final_bodies", "final_reactions",
+                     "final_contacts", "notes", "warnings", "t_end", "integrator", "stats"):
+            setattr(self, name, getattr(result, name))
+
+
+def run_study(model, initial, options=None, columns=None, max_steps=10_000_000,
+              max_rows=1_000_000, timeout=0.0, **kwargs):
+    """Runs a study of ``model`` from the State ``initial`` (the library's RunStudy, as
+    ``chasles simulate`` runs a scene's, without a scene file) and returns a Study.
+
+    Pass a SimulationOptions, or its fields as keywords (``t_end``, ``output_interval``,
+    ``integrator``, ``rtol``, ``atol``, ``fixed_step``); the study carries the energy ledger
+    and the certificate of its own checks across the run. ``columns``: names BODY_Q (``x``,
+    ``vz``, ``wz``, ``qw``, ``ax``, ...) and ledger names (``T``, ``V``, ``E``, ``W_nc``,
+    ``residual``, ...); None: every body's position and velocity, then T, V and E. The initial
+    state must satisfy the constraints (the run projects round-off only). ``max_steps``,
+    ``max_rows`` and ``timeout`` [s] (0: none) limit the work (LimitError when reached).
+    """
+    if options is None:
+        options = SimulationOptions(**kwargs)
+    elif kwargs:
+        raise TypeError("give either options or keywords, not both")
+    _instance("options", options, SimulationOptions)
+    if columns is None:
+        columns = [f"{model.body(b).name}_{q}" for b in range(model.num_bodies)
+                   for q in ("x", "y", "z", "vx", "vy", "vz")] + ["T", "V", "E"]
+    specs, units = [(("t", -1, "t"))], ["s"]
+    for name in columns:
+        spec, unit = _study_column(model, name)
+        specs.append(spec)
+        units.append(unit)
+    result = _run_definition(model, initial, options, specs,
+                             _whole("max_steps", max_steps, 1, _MAX_COUNT),
+                             _whole("max_rows", max_rows, 1, _MAX_COUNT),
+                             _seconds("timeout", timeout, positive=False))
+    return Study(result, units)
 
 
 def simulate(model, initial, options=None, max_rows=1_000_000, **kwargs):

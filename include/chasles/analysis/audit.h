@@ -141,8 +141,8 @@ struct RobotAudit {
   std::size_t Count(Severity severity) const;
 };
 
-/// Reads a mesh file's triangles, in the file's units (the caller's mesh readers: the io
-/// layer's, and the Collada reader for .dae).
+/// Reads a mesh file's triangles, in the file's units (the caller's mesh readers: the files
+/// layer's, the Collada reader for .dae among them).
 using MeshLoader = std::function<TriangleSoup(const std::string& path)>;
 
 /// Meshes read and integrated, by file and scale: kept across the audits that share it (the

@@ -4,8 +4,8 @@
 /// SolveScene): every body's acceleration and every constraint's reaction, the kinetic energy
 /// and momenta, each contact point in its chosen mode, and the solve's checks of its own
 /// answer; and the table a sweep of one parameter makes of such reports. Plain results: no
-/// scene, no units (SI throughout). The io layer writes them as the program's JSON and CSV
-/// (chasles/io/solve_json.h).
+/// scene, no units (SI throughout). The report layer writes them as the program's JSON and CSV
+/// (chasles/report/solve_json.h).
 
 #include <limits>
 #include <string>

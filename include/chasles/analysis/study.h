@@ -139,12 +139,17 @@ struct StudyLimits {
   double timeout = 0.0;
 };
 
-/// Everything a study needs. `bodies`, `build_model`, `initial` and `options.t_end` are
-/// required; the rest has defaults.
+/// Everything a study needs. `bodies`, `model` or `build_model`, `initial` and `options.t_end`
+/// are required; the rest has defaults.
 struct StudyDefinition {
   /// The user bodies, one Model body each at the start.
   std::vector<NamedBody> bodies;
-  /// Builds the Model (see ModelBuilder).
+  /// The first segment's Model, when the caller has built it (one Model body per user body, in
+  /// their order); null: the run builds it with `build_model` and the identity map. A run
+  /// builds each Model once.
+  std::shared_ptr<const Model> model;
+  /// Builds the Model of each segment after an embedding, and the first when `model` is null
+  /// (see ModelBuilder). Optional when `model` is given and no impact embeds.
   ModelBuilder build_model;
   /// The initial state (on the constraints; the run chooses the contact modes, after any
   /// impact at the start).
@@ -208,10 +213,16 @@ struct StudyDefinition {
 /// constraint stage's ConstraintOutput by MakeReactionReport.
 using StudyReaction = ReactionReport;
 
+/// What a jump of the state was.
+enum class StudyJumpKind {
+  kImpulse,      ///< an impulse applied to a body
+  kEmbedding,    ///< a projectile that stays in its target (one composite body after)
+  kPassThrough,  ///< a projectile that passes through its target, keeping part of its velocity
+};
+
 /// An impulse or impact applied during the run.
 struct StudyJump {
-  /// "impulse", "embedding" or "pass-through".
-  std::string kind;
+  StudyJumpKind kind = StudyJumpKind::kImpulse;
   /// What happened, for the report ("bullet embeds in block").
   std::string description;
   /// Time [s].
@@ -280,8 +291,8 @@ struct StudyImpact {
   /// True for a jam: a slip without consistent contact forces (Painlevé) stopped by an
   /// impulse at zero approach speed.
   bool jam = false;
-  /// The restitution law used ("energetic", "newton", "poisson").
-  std::string restitution_law;
+  /// The restitution law used; none for a jam.
+  std::optional<RestitutionLaw> restitution_law;
   /// True when the impulse with friction would have raised the kinetic energy and the
   /// frictionless one was used (ImpactResult::frictionless_fallback).
   bool frictionless_fallback = false;
@@ -492,6 +503,8 @@ struct StudyResult {
   IntegratorStats stats;
   /// How the last hybrid run was split into islands (count 0: no contacts or strings).
   IslandReport islands;
+  /// The run's path and why (ChooseRunPath; for a hybrid run, its last Simulate's).
+  RunPathChoice run_path;
   /// Set for an event-driven run (StudyDefinition::sphere_events); `stats` then counts its
   /// pressing groups' hybrid runs.
   std::optional<StudyEventDriven> event_driven;
@@ -525,7 +538,10 @@ struct StudyResult {
 
 /// Runs a study. Throws InputError for bad settings, and for a force, reaction, acceleration
 /// or state that becomes non-finite (naming the element, the quantity and the time: nothing
-/// non-finite is ever returned); LimitError when a limit on the work is reached.
+/// non-finite is ever returned); LimitError when a limit on the work is reached. An
+/// InputError's element (InputError::element) that is a body is a user body (an index into
+/// definition.bodies), whatever segment's Model the run was on; the other kinds are Model
+/// indices, the same in every segment (the ModelBuilder places them alike).
 StudyResult RunStudy(const StudyDefinition& definition);
 
 /// Mechanical energy T + V of the whole Model at `state` [J].

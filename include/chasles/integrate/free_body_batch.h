@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "chasles/integrate/obstacle.h"
 #include "chasles/integrate/stats.h"
 #include "chasles/math/types.h"
 #include "chasles/model/state.h"
@@ -35,7 +36,7 @@ enum class FreeBodyStepper { kRk4, kSplitting };
 /// Why FreeBodyBatch cannot step `model` (empty when it can): it needs only bodies with three
 /// positive principal moments, only UniformGravity force elements, and no constraints or
 /// contacts.
-std::string FreeBodyBatchObstacle(const Model& model);
+ModelObstacle FreeBodyBatchObstacle(const Model& model);
 
 class FreeBodyBatch {
  public:

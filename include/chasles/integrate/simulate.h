@@ -24,6 +24,7 @@
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/integrate/dormand_prince.h"
 #include "chasles/integrate/integrator.h"
+#include "chasles/integrate/run_path.h"
 #include "chasles/integrate/stats.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
@@ -211,8 +212,9 @@ struct SimulationOptions {
   /// run needs the whole State at arbitrary times (user events, on_transition) it is one
   /// system anyway; SimulationResult::islands says which ran and why.
   bool islands = true;
-  /// Threads over the islands (>= 1); the result is bitwise the same for any number.
-  /// on_step is then called from several threads, one call at a time.
+  /// Threads over the islands, or over the free-body batch's blocks of bodies (>= 1); the
+  /// result is bitwise the same for any number. With islands on_step is then called from
+  /// several threads, one call at a time.
   int threads = 1;
 };
 
@@ -250,8 +252,10 @@ struct SimulationResult {
   std::vector<ConstraintEvent> constraint_events;
   /// What the run had to decide or change that the user should know (jams, ...).
   std::vector<std::string> warnings;
-  /// Which path ran: islands or one system, and why.
+  /// How the hybrid paths split the bodies: islands or one system, and why.
   IslandReport islands;
+  /// The path that ran and why (ChooseRunPath).
+  RunPathChoice run_path;
   /// Set when the run yielded because its regime changes came faster than
   /// ContactOptions::yield_changes allows: final_state is the state just after the transition
   /// that exceeded the bound (not a sample: the caller goes on from it with another engine).
@@ -262,7 +266,8 @@ struct SimulationResult {
 /// sample's time to the final state's.
 std::vector<ContactModeInterval> CalcModeTimeline(const SimulationResult& result, int point);
 
-/// Runs the simulation. Throws InputError for an invalid initial state or options (the message
+/// Runs the simulation on the path ChooseRunPath picks (run_path.h; SimulationResult::run_path
+/// names it). Throws InputError for an invalid initial state or options (the message
 /// names the option and the fix), and when a force, an acceleration or the state becomes
 /// non-finite (the message names the force element, constraint, contact point or body and the
 /// time; see OdeSystem::Derivative). A model with contacts runs as a hybrid system (adaptive

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "chasles/dynamics/contact_solve.h"
+#include "chasles/integrate/obstacle.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
@@ -123,7 +124,7 @@ struct SphereEventResult {
 
 /// Why `model` cannot run event-driven: names the first body, contact or force element that
 /// does not fit (see the file comment); empty when it can.
-std::string SphereEventObstacle(const Model& model);
+ModelObstacle SphereEventObstacle(const Model& model);
 
 /// Runs the balls of `model` from `initial` to options.t_end. Throws InputError when the model
 /// does not fit (SphereEventObstacle), the initial state has a ball below the plane or two

@@ -31,6 +31,7 @@
 
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/integrate/contact_problem.h"
+#include "chasles/integrate/obstacle.h"
 #include "chasles/integrate/stats.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
@@ -168,7 +169,7 @@ struct TimeSteppingResult {
 
 /// Why `model` cannot be time stepped (constraints are not taken yet, nor rolling
 /// resistance): names the first element that does not fit; empty when it can.
-std::string TimeSteppingObstacle(const Model& model);
+ModelObstacle TimeSteppingObstacle(const Model& model);
 
 /// What a run of `model` by time stepping should tell the user about its impact law: for each
 /// contact with restitution whose restitution_law is not Newton's, that the scheme applies

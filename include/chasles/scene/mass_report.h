@@ -3,8 +3,10 @@
 /// The JSON report of `chasles mass`: every body's mass, centre of mass, central inertia
 /// tensor, principal moments and axes, radii of gyration, inertia about its named points (and
 /// any others asked for) and in a rotated frame, and every part's own mass properties, in the
-/// units asked for. It reads the Scene's bodies, parts and parameters (this layer); the
-/// finite-number check and the dump are the io layer's DumpJson (chasles/io/json_report.h).
+/// units asked for. It reads the Scene's bodies, parts and parameters, and the mass sweep
+/// (sweep.h) reads its quantities from it, so it is of this layer, below the report layer; the
+/// finite-number check and the dump are the report layer's DumpJson
+/// (chasles/report/json_report.h).
 
 #include <limits>
 #include <optional>

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Robot description files (URDF, MJCF, SDF) for the commands: their meshes read by the io
-/// layer's readers and the files layer's Collada reader, and a robot as a one-body scene for
+/// Robot description files (URDF, MJCF, SDF) for the commands: their meshes read by the files
+/// layer's readers (Collada among them), and a robot as a one-body scene for
 /// `chasles mass` (each link a part placed at its pose for the joint values given).
 
 #include <map>
@@ -16,7 +16,7 @@
 namespace chasles {
 
 /// The triangles of a mesh file in its own units: Collada (.dae) by ReadColladaFile, the
-/// others by ReadMeshFile (io/mesh_reader.h).
+/// others by ReadMeshFile (files/mesh_reader.h).
 TriangleSoup LoadMeshTriangles(const std::string& path);
 
 /// Parses `--package NAME=DIR` and `--joint NAME=VALUE` options (throws InputError naming the

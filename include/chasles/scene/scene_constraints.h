@@ -164,8 +164,9 @@ struct SceneConstraints {
   }
   /// Names in Model order (joints, rolling, drivers, gears, then strings).
   std::vector<std::string> names() const;
-  /// Where the entry named `name` stands in the file; null when there is none.
-  const SceneSpot* Find(const std::string& name) const;
+  /// Where the entry at `i` in Model order (that of names()) stands in the file; null past the
+  /// last.
+  const SceneSpot* At(int i) const;
 };
 
 }  // namespace chasles

@@ -5,19 +5,28 @@
 /// rolling needs against mu_s, each contact point's mode and forces, the kinetic energy and
 /// momenta, and the solve's checks of its own answer. A sweep repeats it over a range of one
 /// scene parameter and returns a table. The report types are the analysis layer's
-/// (chasles/analysis/solve_report.h); the io layer writes them (chasles/io/solve_json.h).
+/// (chasles/analysis/solve_report.h); the report layer writes them (chasles/report/solve_json.h).
 
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "chasles/analysis/solve.h"
 #include "chasles/analysis/solve_report.h"
+#include "chasles/analysis/sweep.h"
 #include "chasles/scene/scene.h"
 
 namespace chasles {
 
-/// Solves the scene's instantaneous problem at its initial state (projected onto the
+/// The scene's instantaneous problem for the analysis layer's SolveAtState: its Model and
+/// initial state (BuildStudy: on the constraints, projected when `project_initial: true`, each
+/// change a warning after the scene's own), its bodies' named points, the rolling contacts'
+/// mu_s and the contact point labels. Errors are SceneErrors at the scene entry they concern.
+SolveDefinition MakeSolveDefinition(const Scene& scene);
+
+/// Solves the scene's instantaneous problem at its initial state (SolveAtState of
+/// MakeSolveDefinition) (projected onto the
 /// constraints; contact modes chosen as a simulation starts, impacts not applied). Errors are
 /// SceneErrors at the scene entry they concern (ThrowAtSceneEntry).
 SolveReport SolveScene(const Scene& scene);
@@ -42,21 +51,6 @@ SweepSpec ParseSweep(const std::string& text, const std::string& source = "sweep
 /// "rad" ("rad/s", ...) when the dimension can carry an angle and START or STOP is written
 /// with an angle unit (rad, deg, rev, rpm, cps), e.g. 'theta=10 deg:50 deg:5' -> "rad".
 std::string SweepParameterUnit(const SweepSpec& spec, const Dimension& dim);
-
-/// The points of a sweep that one of several processes runs (a rank of `mpirun -np N chasles
-/// ... --sweep`, docs/sweeps.md): point k when k % size == rank. Dealt out in turn, the points
-/// of a grid whose cost grows along it spread evenly, and rank 0 always has point 0.
-struct SweepShare {
-  int rank = 0;
-  int size = 1;
-  bool Has(std::int64_t k) const { return k % size == rank; }
-  /// How many of the points 0 .. total-1 are this share's.
-  std::int64_t Count(std::int64_t total) const {
-    return total > rank ? (total - rank + size - 1) / size : 0;
-  }
-  /// The i-th point of this share.
-  std::int64_t Point(std::int64_t i) const { return rank + i * size; }
-};
 
 struct SweepOptions {
   /// Called before value k of count is solved (e.g. for a progress display).

@@ -77,9 +77,11 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
 StudyResult RunStudy(const Scene& scene, const StudyOptions& options = {});
 
 /// Rethrows an InputError found after the scene was read (building the Model, assembling or
-/// solving the constraints, during the run) as a SceneError at the entry of the first scene
-/// element it names in quotes: a force element, constraint, contact (or contact point), body
-/// or event; at the `simulation` key when it names none. A SceneError is rethrown as it is.
+/// solving the constraints, during the run) as a SceneError at the entry of the Model element
+/// it carries (InputError::element: a body, force element, constraint, contact, contact point
+/// or event, mapped to the scene entry it was built from), at a force's expression when that
+/// evaluated to a non-finite value; at the `simulation` key when it carries none. A SceneError
+/// is rethrown as it is.
 [[noreturn]] void ThrowAtSceneEntry(const Scene& scene, const InputError& error);
 
 /// The CSV columns named on the command line (groups or single columns, as in the scene's

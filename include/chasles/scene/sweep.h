@@ -1,10 +1,11 @@
 #pragma once
 /// @file
 /// Sweeps of a scene's parameters over a grid, for `chasles simulate --sweep` and `chasles
-/// mass --sweep` (docs/sweeps.md): every combination of the values of one or several
-/// parameters, each point loaded and run on its own (in parallel, results in grid order and
-/// the same for any number of threads), and one table of parameters and asked-for quantities.
-/// A point whose run fails gives a row with the reason, never a crash or a silent NaN.
+/// mass --sweep` (docs/sweeps.md): the specifications read against a scene's parameters, the
+/// scene's options at a point, and the quantities of a run. The grid, the thread pool and the
+/// table are the analysis layer's generic sweep (chasles/analysis/sweep.h): each point is
+/// loaded and run on its own, and a point whose run fails gives a row with the reason, never a
+/// crash or a silent NaN.
 
 #include <cstdint>
 #include <functional>
@@ -13,28 +14,22 @@
 
 #include "chasles/analysis/solve_report.h"
 #include "chasles/analysis/study.h"
+#include "chasles/analysis/sweep.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/solve.h"
 #include "chasles/scene/study.h"
 
 namespace chasles {
 
-/// The combinations of the values of several swept parameters, the last varying fastest:
-/// point k has index i_j of parameter j with k = ((i_0 n_1 + i_1) n_2 + i_2) ...
+/// A grid of a scene's parameters: the specifications as given, and the grid of their SI
+/// values (names, SI units: "" for pure numbers, START and STOP, counts).
 struct SweepGrid {
   std::vector<SweepSpec> specs;
-  /// SI value of each parameter's START and STOP, and its SI unit ("" for pure numbers).
-  std::vector<double> start, stop;
-  std::vector<std::string> units;
-  /// Number of points (the product of the counts).
-  std::int64_t size = 0;
-  /// The index of each parameter at point k.
-  std::vector<int> Indices(std::int64_t k) const;
-  /// The SI value of each parameter at point k: START + (STOP - START) i / (COUNT - 1).
-  std::vector<double> Values(std::int64_t k) const;
-  /// `base` with one override per parameter for point k: the value as the expression
-  /// (START) + ((STOP) - (START)) * i / (COUNT - 1), so START and STOP keep their units.
-  SceneOptions PointOptions(const SceneOptions& base, std::int64_t k) const;
+  ParameterGrid parameters;
+  /// `base` with one override per parameter for the point of `values` (a point of the grid):
+  /// the value as the expression (START) + ((STOP) - (START)) * i / (COUNT - 1), so START and
+  /// STOP keep their units. Throws std::logic_error for values that are not a point of it.
+  SceneOptions PointOptions(const SceneOptions& base, const std::vector<double>& values) const;
 };
 
 /// Checks the specs against `scene` (each names one of its parameters, once; START and STOP
@@ -66,13 +61,6 @@ SweepQuantity ParseSweepQuantity(const std::string& text, const std::string& sou
 /// The quantity's value in run `r` [SI]. Throws InputError when the run has no such column or
 /// the event did not fire that many times.
 double SweepQuantityValue(const StudyResult& r, const SweepQuantity& q);
-
-/// Calls run(k) for k = 0 .. count-1 on `jobs` threads (< 1: the hardware's concurrency),
-/// each k once; `done` (may be empty) is called after each, one call at a time, with the
-/// number finished. An exception thrown by run stops the others from starting and is thrown
-/// again here once all threads have ended.
-void RunParallel(std::int64_t count, int jobs, const std::function<void(std::int64_t k)>& run,
-                 const std::function<void(std::int64_t done)>& done = {});
 
 struct SimulateSweepOptions {
   /// End time and limits of each run (its `progress` is not used).

@@ -152,11 +152,6 @@ void RecordJumpImpulses(const Model& model, const State& before, const State& af
 StudyLedger FinalLedger(const StudyDefinition& definition, const Model& model, const State& state,
                         const LedgerCarry& carry, double energy_initial);
 
-/// Why a run on `model` cannot hand over to time stepping (integrator: auto): events
-/// (`has_events`: located on the adaptive integrator's dense output), or TimeSteppingObstacle;
-/// empty when it can.
-std::string SteppingObstacle(bool has_events, const Model& model);
-
 /// Adds the certificate of a later stretch of time stepping to `into` (the worst of the two and
 /// the totals; the initial energy stays `into`'s, the final is `add`'s). `into` with no steps
 /// takes `add` as it is.

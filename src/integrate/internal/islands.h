@@ -8,10 +8,8 @@
 
 namespace chasles::internal {
 
-/// Runs `model` (with contacts or strings) from `initial`: as islands when it has several and
-/// nothing needs the whole State at once, else as one system (RunHybrid). The result's
-/// `islands` says which and why.
-SimulationResult RunHybridIslands(const Model& model, const State& initial,
-                                  const SimulationOptions& o);
+/// Runs `model` (with contacts or strings) from `initial` as separate islands, each its own
+/// hybrid system (the path ChooseRunPath calls kIslands); the result's `islands` lists them.
+SimulationResult RunIslands(const Model& model, const State& initial, const SimulationOptions& o);
 
 }  // namespace chasles::internal

@@ -188,6 +188,11 @@ class Runner {
   void Impact(double t, int i, int j);
   Model SubModel(const std::vector<int>& members,
                  const std::vector<std::pair<int, int>>& pairs) const;
+  // Rethrows `e` from a run on SubModel(members, ...) naming its element in the whole Model:
+  // a member, a gravity element, a member's plane contact or point; no element for a
+  // ball-ball contact or a window's own event.
+  [[noreturn]] void RethrowForWholeModel(const std::vector<int>& members,
+                                         const InputError& e) const;
   void FindCluster(double t, std::vector<int>& cluster,
                    std::vector<std::pair<int, int>>& pairs) const;
   void RecordImpact(double t, const Model& sub, const ImpactResult& r, const State& after,

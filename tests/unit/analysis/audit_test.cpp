@@ -10,8 +10,8 @@
 
 #include "chasles/analysis/audit.h"
 #include "chasles/files/collada_reader.h"
+#include "chasles/files/mesh_reader.h"
 #include "chasles/files/robot_reader.h"
-#include "chasles/io/mesh_reader.h"
 #include "chasles/mass/mesh_mass.h"
 #include "chasles/scene/robot_file.h"
 #include "test_paths.h"

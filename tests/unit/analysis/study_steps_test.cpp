@@ -223,8 +223,8 @@ TEST(RunStudy, ImpulseThenEmbeddingOnFreeBodiesMatchesMomentumAndTheLedger) {
   def.columns = {{"t", "t", -1, "t", "", -1}, {"Py", "momentum", -1, "Py", "", -1}};
   const StudyResult r = RunStudy(def);
   ASSERT_EQ(r.jumps.size(), 2u);
-  EXPECT_EQ(r.jumps[0].kind, "impulse");
-  EXPECT_EQ(r.jumps[1].kind, "embedding");
+  EXPECT_EQ(r.jumps[0].kind, StudyJumpKind::kImpulse);
+  EXPECT_EQ(r.jumps[1].kind, StudyJumpKind::kEmbedding);
   EXPECT_EQ(r.jumps[1].description, "bullet embeds in block");
   EXPECT_TRUE(Near(r.jumps[0].energy_after - r.jumps[0].energy_before, 0.5 * J * J / M, 1e-12));
   // The plastic loss of the embedding: ½ m v² + ½ M Vy² before, ½ (m + M) |V|² after.

@@ -328,6 +328,41 @@ TEST(FreeBodyBatch, SimulateTakesTheBatchAndAgreesWithTheGenericPath) {
   }
 }
 
+// Simulate's batch path keeps the bodies in the batch from output to output: on a grid whose
+// step h = 2⁻¹⁰ s divides the output interval 50 h exactly (no shortening), its samples are
+// the batch's own Advance bit for bit, for both steppers and two threads.
+TEST(FreeBodyBatch, SimulateIsTheBatchBitForBit) {
+  std::mt19937_64 rng(5);
+  State s0;
+  const Model m = RandomBodies(150, rng, true, Vec3(0.2, 0, -9.81), &s0);
+  const double h = std::ldexp(1.0, -10);
+  for (const IntegratorKind kind : {IntegratorKind::kRk4, IntegratorKind::kSplitting}) {
+    SimulationOptions o = FixedStep(kind, 50 * h, 200 * h);
+    o.fixed_step = h;
+    o.threads = 2;
+    const SimulationResult r = Simulate(m, s0, o);
+    ASSERT_EQ(r.samples.size(), 5u);
+    EXPECT_EQ(r.stats.steps, 200);
+    FreeBodyBatch batch(m);
+    batch.Load(s0);
+    State e = s0;
+    for (size_t k = 1; k < r.samples.size(); ++k) {
+      batch.Advance(
+          kind == IntegratorKind::kRk4 ? FreeBodyStepper::kRk4 : FreeBodyStepper::kSplitting, h,
+          50);
+      batch.Store(e);
+      const State& x = r.samples[k];
+      EXPECT_EQ(x.t, static_cast<double>(k) * 50 * h);
+      for (size_t b = 0; b < e.bodies.size(); ++b) {
+        const BodyState &p = x.bodies[b], &q = e.bodies[b];
+        ASSERT_TRUE(p.p_WBcm == q.p_WBcm && p.v_WBcm_W == q.v_WBcm_W &&
+                    p.q_WB.coeffs() == q.q_WB.coeffs() && p.w_WB_B == q.w_WB_B)
+            << k << " " << b;
+      }
+    }
+  }
+}
+
 // The `splitting` integrator is the batch's splitting stepper on the fixed grid: Simulate's
 // samples are the batch advanced by hand, to round-off (the grid cuts each output stretch
 // t_k+1 − t_k into equal steps, which differ from 1e-3 s in the last bits). Gravity's ledger is
@@ -399,12 +434,19 @@ TEST(FreeBodyBatch, RefusesModelsItCannotStepAndNamesWhy) {
   Model m;
   m.AddBody("a", MassProperties(1.0, Vec3::Zero(), RotationalInertia(1, 2, 3)));
   m.AddBody("rod", MassProperties(1.0, Vec3::Zero(), RotationalInertia(0, 1, 1)));
-  EXPECT_EQ(FreeBodyBatchObstacle(m),
-            "body 'rod' has a zero principal moment (a particle or a slender rod)");
+  const ModelObstacle rod = FreeBodyBatchObstacle(m);
+  EXPECT_EQ(rod.why, "body 'rod' has a zero principal moment (a particle or a slender rod)");
+  ASSERT_TRUE(rod.element.has_value());
+  EXPECT_EQ(rod.element->kind, ErrorElement::Kind::kBody);
+  EXPECT_EQ(rod.element->index, 1);
   Model n;
   n.AddBody("a", MassProperties(1.0, Vec3::Zero(), RotationalInertia(1, 2, 3)));
   n.AddForceElement(std::make_shared<CentralGravity>("sun", 1.0, Vec3(5, 0, 0)));
-  EXPECT_EQ(FreeBodyBatchObstacle(n), "force element 'sun' is not uniform gravity");
+  const ModelObstacle sun = FreeBodyBatchObstacle(n);
+  EXPECT_EQ(sun.why, "force element 'sun' is not uniform gravity");
+  ASSERT_TRUE(sun.element.has_value());
+  EXPECT_EQ(sun.element->kind, ErrorElement::Kind::kForceElement);
+  EXPECT_EQ(sun.element->index, 0);
   try {
     FreeBodyBatch batch(n);
     FAIL() << "expected an InputError";

@@ -339,9 +339,9 @@ TEST(SphereEvents, TightRackWithRollingResistanceRunsThroughItsPressingGroups) {
 TEST(SphereEvents, RefusesWhatItCannotRun) {
   Model tilted = reference::MakeBallsOnFloor(1, kBall, kG);
   tilted.AddForceElement(std::make_shared<UniformGravity>("wind", Vec3(0.1, 0, 0)));
-  EXPECT_NE(SphereEventObstacle(tilted).find("tilted"), std::string::npos);
+  EXPECT_NE(SphereEventObstacle(tilted).why.find("tilted"), std::string::npos);
   const Model m = reference::MakeBallsOnFloor(2, kBall, kG);
-  EXPECT_EQ(SphereEventObstacle(m), "");
+  EXPECT_TRUE(SphereEventObstacle(m).empty());
   State s = MakeRestState(m);
   Place(m, s, 0, 0, 0, Vec3::Zero(), Vec3::Zero());
   Place(m, s, 1, kBall.radius, 0, Vec3::Zero(), Vec3::Zero());

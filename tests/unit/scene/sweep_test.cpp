@@ -1,13 +1,10 @@
 // The pieces of a sweep (chasles/scene/sweep.h): the grid's order and values, the quantities'
-// grammar and values, and the thread pool.
+// grammar and values.
 
 #include "chasles/scene/sweep.h"
 
-#include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <random>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -34,20 +31,21 @@ TEST(SweepGrid, LastParameterVariesFastestAndValuesAreEvenlySpaced) {
   const Scene scene = LoadSceneText(kScene, "grid.yaml");
   const SweepGrid grid =
       MakeSweepGrid(scene, {ParseSweep("a=1 m:3 m:3"), ParseSweep("b=0 deg:90 deg:4")}, 100);
-  ASSERT_EQ(grid.size, 12);
-  EXPECT_EQ(grid.units[0], "m");
-  EXPECT_EQ(grid.units[1], "rad");  // swept in deg: an angle, its column SI rad
+  ASSERT_EQ(grid.parameters.size(), 12);
+  EXPECT_EQ(grid.parameters.units[0], "m");
+  EXPECT_EQ(grid.parameters.units[1], "rad");  // swept in deg: an angle, its column SI rad
   // Point k = 4 i_a + i_b.
-  for (std::int64_t k = 0; k < grid.size; ++k) {
-    const std::vector<int> i = grid.Indices(k);
+  for (std::int64_t k = 0; k < grid.parameters.size(); ++k) {
+    const std::vector<int> i = grid.parameters.Indices(k);
     EXPECT_EQ(i[0], k / 4);
     EXPECT_EQ(i[1], k % 4);
-    const std::vector<double> v = grid.Values(k);
+    const std::vector<double> v = grid.parameters.Values(k);
+    EXPECT_EQ(grid.parameters.PointOf(v), k);
     // START + (STOP - START) i / (COUNT - 1), with 90 deg = pi/2 rad.
     EXPECT_DOUBLE_EQ(v[0], 1.0 + i[0]);
     EXPECT_NEAR(v[1], 3.14159265358979323846 / 2 * i[1] / 3, 1e-15);
     // The loaded scene's values are the grid's.
-    const Scene at = LoadSceneText(kScene, "grid.yaml", grid.PointOptions({}, k));
+    const Scene at = LoadSceneText(kScene, "grid.yaml", grid.PointOptions({}, v));
     EXPECT_EQ(at.parameters[0].second.value, v[0]);
     EXPECT_EQ(at.parameters[1].second.value, v[1]);
   }
@@ -150,36 +148,6 @@ simulation: {until: 1 s, tolerance: 1e-12}
           << h;
     }
   }
-}
-
-// Every index runs once whatever the thread count; results land by index; an exception stops
-// the pool and comes back to the caller.
-TEST(RunParallel, EachIndexOnceAndErrorsPropagate) {
-  std::mt19937 random(7);
-  for (int trial = 0; trial < 5; ++trial) {
-    const auto count = static_cast<std::int64_t>(random() % 200);
-    const int jobs = 1 + static_cast<int>(random() % 4);
-    std::vector<std::atomic<int>> seen(static_cast<size_t>(count));
-    std::vector<double> out(static_cast<size_t>(count));
-    std::int64_t last_done = 0;
-    RunParallel(
-        count, jobs,
-        [&](std::int64_t k) {
-          ++seen[static_cast<size_t>(k)];
-          out[static_cast<size_t>(k)] = 0.5 * static_cast<double>(k);
-        },
-        [&](std::int64_t done) { last_done = done; });
-    EXPECT_EQ(last_done, count);
-    for (std::int64_t k = 0; k < count; ++k) {
-      EXPECT_EQ(seen[static_cast<size_t>(k)], 1);
-      EXPECT_EQ(out[static_cast<size_t>(k)], 0.5 * static_cast<double>(k));
-    }
-  }
-  EXPECT_THROW(RunParallel(50, 3,
-                           [](std::int64_t k) {
-                             if (k == 17) throw std::runtime_error("point 17");
-                           }),
-               std::runtime_error);
 }
 
 }  // namespace
