@@ -5,6 +5,7 @@
 // Allocations are counted by interposing malloc in this test program (Eigen and operator new
 // both allocate through it). Not under AddressSanitizer, which owns malloc.
 
+#include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <memory>
@@ -193,6 +194,74 @@ TEST(ContactSolve, LeastNormSolveMatchesEigen) {
       EXPECT_LE((A * xw - r).norm(), 1e-12 * r.norm());
     }
   }
+}
+
+// The rank decision against Eigen's CompleteOrthogonalDecomposition (threshold 1e-10 of its
+// largest pivot) on A = U diag(s) Uᵀ ⪰ 0, U a seeded random orthogonal matrix, n from 2 to 60,
+// every rank from 1 to n - 1. The rank used (the null space's when the LDLᵀ decided, else the
+// decomposition's) is COD's in every case, for A and for the weighted A D. Where the rank is
+// clear (kept s in [1e-3, 1], dropped s = 0, so κ <= 1e3 bounds the round-off of both answers
+// by 1e3 ε) the LDLᵀ decides and both solutions agree with COD's to 1e-12 relative. Nearly
+// singular cases put one kept or one dropped s at 1e-10 · 10^(±e), e from 0.3 to 6: nearer
+// than kRankMargin (1e3) the decomposition decides, farther the LDLᵀ does.
+TEST(ContactSolve, LeastNormRankDecisionMatchesEigen) {
+  std::mt19937 rng(29112026);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.2, 3.0), expo(-3.0, 0.0);
+  const double near_exponents[] = {0.0, 0.3, 1.0, 2.0, 4.0, 6.0, -0.3, -1.0, -2.0, -4.0, -6.0};
+  int decided_by_ldlt_near = 0, clear_cases = 0, regular = 0;
+  for (int trial = 0; trial < 240; ++trial) {
+    const int n = 2 + trial % 59, rank = 1 + (7 * trial) % (n - 1);
+    const double e = near_exponents[trial % 11];
+    Eigen::MatrixXd G(n, n);
+    for (Eigen::Index i = 0; i < G.size(); ++i) G.data()[i] = u(rng);
+    const Eigen::MatrixXd U = Eigen::HouseholderQR<Eigen::MatrixXd>(G).householderQ();
+    Eigen::VectorXd s = Eigen::VectorXd::Zero(n), y(n), D(n);
+    for (int i = 0; i < rank; ++i) s[i] = i == 0 ? 1.0 : std::pow(10.0, expo(rng));
+    // e > 0: the smallest kept s 10^e above the threshold; e < 0: a dropped one 10^|e| below.
+    if (e > 0.0) s[rank - 1] = 1e-10 * std::pow(10.0, e);
+    if (e < 0.0) s[rank] = 1e-10 * std::pow(10.0, e);
+    const bool clear = e == 0.0;
+    const Eigen::MatrixXd A = U * s.asDiagonal() * U.transpose();
+    for (int i = 0; i < n; ++i) y[i] = u(rng), D[i] = pos(rng);
+    const Eigen::VectorXd r = A * y;
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod, cod_weighted;
+    cod.setThreshold(1e-10);
+    cod.compute(A);
+    cod_weighted.setThreshold(1e-10);
+    Eigen::MatrixXd AD = A;
+    for (int j = 0; j < n; ++j) AD.col(j) *= D[j];  // the columns scaled as SolveSquare does
+    cod_weighted.compute(AD);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << ", n " << n << ", rank " << rank
+                                    << ", e " << e << ", COD rank " << cod.rank());
+    ContactWorkspace ws;
+    Eigen::VectorXd x, xw;
+    // The regular solve's gate, unchanged (every pivot of Eigen's LDLT above 1e-10 max |a_ij|),
+    // may pass a dropped s just under COD's threshold: no least-norm solve then, as before.
+    const bool least_norm = internal::SolveSquare(A, r, true, ws, x);
+    if (!least_norm) {
+      ASSERT_FALSE(clear);
+      ++regular;
+      continue;
+    }
+    const bool by_ldlt = ws.null_ready;
+    EXPECT_EQ(by_ldlt ? n - ws.null_rank : ws.cod.rank(), cod.rank());
+    ASSERT_TRUE(internal::SolveSquare(A, r, true, ws, xw, &D));
+    EXPECT_EQ(ws.null_ready ? n - ws.null_rank : ws.cod.rank(), cod_weighted.rank());
+    if (clear) {
+      ++clear_cases;
+      EXPECT_TRUE(by_ldlt);
+      EXPECT_EQ(cod.rank(), rank);
+      const Eigen::VectorXd expected = cod.solve(r);
+      const Eigen::VectorXd expected_weighted = D.asDiagonal() * cod_weighted.solve(r);
+      EXPECT_LE((x - expected).norm(), 1e-12 * expected.norm());
+      EXPECT_LE((xw - expected_weighted).norm(), 1e-12 * expected_weighted.norm());
+    } else if (by_ldlt) {
+      ++decided_by_ldlt_near;
+    }
+  }
+  EXPECT_GT(clear_cases, 20);
+  EXPECT_GT(decided_by_ldlt_near, 20);  // the LDLᵀ's own decisions near the threshold, checked
+  EXPECT_LE(regular, 5);
 }
 
 }  // namespace
