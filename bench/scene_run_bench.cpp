@@ -15,7 +15,7 @@
 // its two rim points sticking, 0.5 s at tolerance 1e-12): LibraryCylinder is Simulate on the
 // scene's Model, initial state and options. The two sticking points' six rows hold five
 // degrees of freedom, so every evaluation's contact system is singular: it is solved least-norm
-// (CompleteOrthogonalDecomposition) and again weighted (dynamics/contact_solve.cpp).
+// and again weighted from one pivoted LDLᵀ's null space (dynamics/contact_solve.cpp).
 //
 // Spinning balls (examples/problem-8.26-spinning-ball.yaml n times over, ball i at
 // w0 (1 + i/n), each its own stick event at t*_i = 2 R w_i / (7 mu_k g)): SceneSpinningBalls

@@ -260,31 +260,149 @@ int HeldRows(const Model& model, const State& state, int p) {
   return 0;
 }
 
-// Solves A x = r, LDLᵀ / LU when well conditioned, (weighted) least-norm (COD) otherwise.
-bool SolveSquare(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, bool symmetric,
-                 ContactWorkspace& ws, Eigen::VectorXd& x, const Eigen::VectorXd* column_scale) {
-  const Eigen::Index n = A_in.rows();
-  if (n == 0) {
-    x.resize(0);
-    return false;
-  }
-  // With column scales the caller knows A is singular: straight to the least-norm branch.
-  const double a_max = A_in.cwiseAbs().maxCoeff();
-  if (a_max > 0.0 && column_scale == nullptr) {
-    if (symmetric) {
-      ws.ldlt.compute(A_in);
-      if (ws.ldlt.info() == Eigen::Success && ws.ldlt.vectorD().minCoeff() > 1e-10 * a_max) {
-        x = ws.ldlt.solve(r);
-        return false;
-      }
-    } else {
-      ws.lu.compute(A_in);
-      if (ws.lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 1e-10 * a_max) {
-        x = ws.lu.solve(r);
-        return false;
-      }
+namespace {
+
+// The rank decision. A complete orthogonal decomposition keeps the columns of its pivoted QR
+// with |R_kk| > 1e-10 |R_00| (Eigen's ColPivHouseholderQR::rank, the threshold set in
+// LeastNormCod). A pivoted LDLᵀ of the same A ⪰ 0 whose pivot at each step is the largest
+// diagonal of the Schur complement left (Higham, Accuracy and Stability of Numerical
+// Algorithms, 2nd ed., §10.3, Cholesky with complete pivoting; Eigen's LDLT pivots on A's own
+// diagonal and is not rank revealing) estimates the same numbers. Its pivots are A's (not those
+// of a factor B of A = B Bᵀ, whose QR would give d_k = R_kk²): d_0 = max a_ii = max |a_ij|
+// within √n of |R_00|, and after k steps the Schur complement S ⪰ 0 has |s_ij| <= d_k, so
+// σ_{k+1}(A) <= ‖S‖₂ <= (n - k) d_k, while |R_kk| >= σ_k(A) / √(n - k + 1) (Golub & Van Loan,
+// Matrix Computations, 4th ed., §5.4.2); both track σ_k(A) within factors of order n in
+// practice, though neither is bound to it in the worst case. So the LDLᵀ decides only when its
+// pivots leave the threshold τ = 1e-10 d_0 by kRankMargin (factors n, √n for the systems solved
+// densely) on both sides; a pivot nearer τ, or a Schur complement not ⪰ 0 to round-off, leaves
+// the system to the decomposition, whose decision is then COD's by construction.
+constexpr double kRankThreshold = 1e-10;
+constexpr double kRankMargin = 1e3;
+
+// min(d_{rank-1} / τ, τ / max |s_ij|) with S the Schur complement left after `rank` steps of
+// the factor in ws.null_gram (below: its trailing block).
+double RankMargin(const ContactWorkspace& ws, Eigen::Index rank) {
+  const Eigen::Index n = ws.null_gram.rows();
+  const double tau = kRankThreshold * ws.null_gram(0, 0);
+  const double dropped = ws.null_gram.bottomRightCorner(n - rank, n - rank).cwiseAbs().maxCoeff();
+  return std::min(ws.null_gram(rank - 1, rank - 1) / tau,
+                  dropped > 0.0 ? tau / dropped : std::numeric_limits<double>::infinity());
+}
+
+// Right-looking LDLᵀ of A with complete (diagonal) pivoting, P A Pᵀ = L D Lᵀ, stopped at the
+// first step whose largest remaining diagonal is at or below τ: the unit lower L below the
+// diagonal of ws.null_gram, D on it (the first `rank` entries), the Schur complement left in
+// its trailing block, and the order P (position i holds row P[i] of A) in ws.cod_x, which the
+// decomposition route alone uses otherwise. Returns the rank when it is clear, else -1.
+Eigen::Index PivotedLdlt(const Eigen::MatrixXd& A, ContactWorkspace& ws) {
+  const Eigen::Index n = A.rows();
+  Eigen::MatrixXd& F = ws.null_gram;
+  Eigen::VectorXd& order = ws.cod_x;
+  F = A;
+  for (Eigen::Index i = 0; i < n; ++i) order[i] = static_cast<double>(i);
+  Eigen::Index p = 0;
+  const double tau = kRankThreshold * F.diagonal().maxCoeff();
+  Eigen::Index rank = 0;
+  for (; rank < n; ++rank) {
+    const double d = F.diagonal().tail(n - rank).maxCoeff(&p);
+    if (!(d > tau)) break;
+    p += rank;
+    if (p != rank) {  // symmetric swap of rows and columns rank and p
+      F.row(rank).swap(F.row(p));
+      F.col(rank).swap(F.col(p));
+      std::swap(order[rank], order[p]);
+    }
+    const Eigen::Index m = n - rank - 1;
+    auto l = F.col(rank).tail(m);
+    l /= d;
+    // S ← S - d l lᵀ on the lower triangle and the diagonal, kept symmetric for the pivots.
+    for (Eigen::Index j = 0; j < m; ++j) {
+      F.col(rank + 1 + j).tail(m - j) -= (d * l[j]) * l.tail(m - j);
+      F.row(rank + 1 + j).tail(m - j) = F.col(rank + 1 + j).tail(m - j).transpose();
     }
   }
+  if (rank == 0 || rank == n) return -1;
+  return RankMargin(ws, rank) >= kRankMargin ? rank : -1;
+}
+
+// Least-norm solution of a singular A ⪰ 0 from the factor of PivotedLdlt, P A Pᵀ = L D Lᵀ of
+// rank r (L11 r × r, L21 below it, S ≈ 0 dropped):
+//   the null space  span Pᵀ [-L11⁻ᵀ L21ᵀ; I]            ([L11ᵀ L21ᵀ] v = 0),
+//   made orthonormal (Q, n × k, k = n - r, modified Gram–Schmidt twice),
+//   a particular x  x_p = Pᵀ [L11⁻ᵀ D1⁻¹ L11⁻¹ (P r)_1; 0],
+//   and the least-norm x = x_p - Q (Qᵀ W Q)⁻¹ Qᵀ W x_p, which minimises xᵀ W x over x_p + Q z
+// (W = I: x = x_p - Q Qᵀ x_p; W = D⁻² for the weighted split: min Σ (x_i / D_i)²). Q and x_p
+// stay in `ws` for the weighted solve of the same A that may follow: one factorisation serves
+// both, where a complete orthogonal decomposition costs one QR each.
+void NullSpaceFromLdlt(ContactWorkspace& ws, const Eigen::VectorXd& r, Eigen::Index rank) {
+  const Eigen::MatrixXd& F = ws.null_gram;
+  const Eigen::VectorXd& order = ws.cod_x;
+  const Eigen::Index n = F.rows(), k = n - rank;
+  const auto L11 = F.topLeftCorner(rank, rank).triangularView<Eigen::UnitLower>();
+  auto V = ws.null_weighted.leftCols(k);  // in pivot order, then scattered into Q
+  V.topRows(rank) = -F.bottomLeftCorner(k, rank).transpose();
+  V.bottomRows(k).setIdentity();
+  L11.transpose().solveInPlace(V.topRows(rank));
+  auto Q = ws.null_basis.leftCols(k);
+  for (Eigen::Index i = 0; i < n; ++i) Q.row(static_cast<Eigen::Index>(order[i])) = V.row(i);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (Eigen::Index j = 0; j < k; ++j) {
+      for (Eigen::Index i = 0; i < j; ++i) Q.col(j) -= Q.col(i).dot(Q.col(j)) * Q.col(i);
+      Q.col(j).normalize();
+    }
+  }
+  auto y = ws.cod_temp.head(rank);
+  for (Eigen::Index i = 0; i < rank; ++i) y[i] = r[static_cast<Eigen::Index>(order[i])];
+  L11.solveInPlace(y);
+  y.array() /= F.diagonal().head(rank).array();
+  L11.transpose().solveInPlace(y);
+  Eigen::VectorXd& x_p = ws.null_particular;
+  x_p.setZero();
+  for (Eigen::Index i = 0; i < rank; ++i) x_p[static_cast<Eigen::Index>(order[i])] = y[i];
+  ws.null_rank = k;
+}
+
+// x = x_p - Q (Qᵀ W Q)⁻¹ Qᵀ W x_p (NullSpaceFromLdlt) with W = diag(1 / D²) (D = column_scale) or
+// I.
+void LeastNormInNullSpace(ContactWorkspace& ws, const Eigen::VectorXd* column_scale,
+                          Eigen::VectorXd& x) {
+  const Eigen::Index k = ws.null_rank;
+  const auto Q = ws.null_basis.leftCols(k);
+  auto c = ws.cod_c.head(k);
+  x = ws.null_particular;
+  if (column_scale == nullptr) {
+    c.noalias() = Q.transpose() * x;
+    x.noalias() -= Q * c;
+    return;
+  }
+  auto WQ = ws.null_weighted.leftCols(k);
+  for (Eigen::Index j = 0; j < k; ++j) {  // column by column: colwise() would allocate D²
+    WQ.col(j) = Q.col(j).cwiseQuotient(column_scale->cwiseAbs2());
+  }
+  Eigen::Ref<Eigen::MatrixXd> gram = ws.null_gram.topLeftCorner(k, k);
+  gram.noalias() = Q.transpose() * WQ;
+  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(gram);  // in place: no allocation
+  c.noalias() = WQ.transpose() * x;
+  llt.solveInPlace(c);
+  x.noalias() -= Q * c;
+}
+
+// The null-space basis Q checked against A: the k smallest singular values of A are at most
+// ‖A Q‖₂ (Courant–Fischer, Q orthonormal), so every ‖A q‖ should be of round-off size; one at
+// or above the threshold τ means the pivots misled, and the decomposition decides.
+bool NullSpaceHolds(const Eigen::MatrixXd& A, ContactWorkspace& ws) {
+  const Eigen::Index k = ws.null_rank;
+  const double tau = kRankThreshold * ws.null_gram(0, 0);
+  auto AQ = ws.null_weighted.leftCols(k);
+  AQ.noalias() = A * ws.null_basis.leftCols(k);
+  return AQ.colwise().norm().maxCoeff() < tau;
+}
+
+// Least-norm (weighted with `column_scale`) by complete orthogonal decomposition: any square
+// A, the route of a singular system that is not symmetric positive semidefinite.
+void LeastNormCod(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, ContactWorkspace& ws,
+                  Eigen::VectorXd& x, const Eigen::VectorXd* column_scale) {
+  const Eigen::Index n = A_in.rows();
   // Weighted least norm: the same steps on A D (columns scaled), then x = D y.
   const Eigen::MatrixXd* A_ptr = &A_in;
   if (column_scale != nullptr) {
@@ -300,7 +418,7 @@ bool SolveSquare(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, bool sym
   x.resize(n);
   if (rank == 0) {
     x.setZero();
-    return true;
+    return;
   }
   // c = Qᵀ r = H_{k-1} ... H_0 r, one reflector at a time on a column segment (Eigen's
   // HouseholderSequence applies them to a dynamic-size block, whose product allocates).
@@ -328,6 +446,86 @@ bool SolveSquare(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, bool sym
   }
   x.noalias() = cod.colsPermutation() * y;
   if (column_scale != nullptr) x.array() *= column_scale->array();
+}
+
+// Sizes the least-norm members of `ws` for n × n systems, all at once when n changes, so that
+// an evaluation taking the null-space route after one that took the decomposition (or the
+// other way round) allocates nothing.
+void SizeLeastNormWorkspace(ContactWorkspace& ws, Eigen::Index n) {
+  if (ws.null_basis.rows() == n && ws.null_basis.cols() == n) return;
+  ws.null_basis.resize(n, n);
+  ws.null_weighted.resize(n, n);
+  ws.null_gram.resize(n, n);
+  ws.null_particular.resize(n);
+  ws.cod_c.resize(n);
+  ws.cod_x.resize(n);
+  ws.cod_temp.resize(n);
+  ws.cod = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(n, n);
+}
+
+// The least-norm solution of a singular A ⪰ 0 from its pivoted LDLᵀ when its rank is clear
+// (PivotedLdlt) and its null space checked; false leaves A to the decomposition.
+bool LeastNormFromLdlt(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, ContactWorkspace& ws,
+                       Eigen::VectorXd& x) {
+  const Eigen::Index rank = PivotedLdlt(A, ws);
+  if (rank < 0) return false;
+  NullSpaceFromLdlt(ws, r, rank);
+  if (!NullSpaceHolds(A, ws)) return false;
+  LeastNormInNullSpace(ws, nullptr, x);
+  ws.null_ready = true;
+  return true;
+}
+
+// The weighted solve may keep the unweighted one's null space when the rank of A D is as clear
+// as A's: σ_k(A D) / σ_0(A D) is within D_max / D_min of σ_k(A) / σ_0(A) either way, so the
+// margin of A's pivots must exceed kRankMargin by that ratio too (read before the weighted
+// step overwrites the factor with its Gram matrix).
+bool WeightedRankAsClear(const ContactWorkspace& ws, const Eigen::VectorXd& column_scale) {
+  const double spread = column_scale.maxCoeff() / column_scale.minCoeff();
+  return RankMargin(ws, ws.null_basis.rows() - ws.null_rank) >= kRankMargin * spread;
+}
+
+}  // namespace
+
+// Solves A x = r, LDLᵀ / LU when well conditioned, (weighted) least-norm otherwise: from the
+// LDLᵀ's null space when A is symmetric semidefinite with a clear rank, by complete orthogonal
+// decomposition when not.
+bool SolveSquare(const Eigen::MatrixXd& A_in, const Eigen::VectorXd& r, bool symmetric,
+                 ContactWorkspace& ws, Eigen::VectorXd& x, const Eigen::VectorXd* column_scale) {
+  const Eigen::Index n = A_in.rows();
+  if (n == 0) {
+    x.resize(0);
+    return false;
+  }
+  // The weighted solve after an unweighted one of the same symmetric A: its null space.
+  if (column_scale != nullptr && symmetric && ws.null_ready &&
+      WeightedRankAsClear(ws, *column_scale)) {
+    LeastNormInNullSpace(ws, column_scale, x);
+    return true;
+  }
+  ws.null_ready = false;
+  // With column scales the caller knows A is singular: straight to the least-norm branch.
+  const double a_max = A_in.cwiseAbs().maxCoeff();
+  if (a_max > 0.0 && column_scale == nullptr) {
+    if (symmetric) {
+      ws.ldlt.compute(A_in);
+      if (ws.ldlt.info() == Eigen::Success &&
+          ws.ldlt.vectorD().minCoeff() > kRankThreshold * a_max) {
+        x = ws.ldlt.solve(r);
+        return false;
+      }
+      SizeLeastNormWorkspace(ws, n);
+      if (LeastNormFromLdlt(A_in, r, ws, x)) return true;
+    } else {
+      ws.lu.compute(A_in);
+      if (ws.lu.matrixLU().diagonal().cwiseAbs().minCoeff() > kRankThreshold * a_max) {
+        x = ws.lu.solve(r);
+        return false;
+      }
+    }
+  }
+  SizeLeastNormWorkspace(ws, n);
+  LeastNormCod(A_in, r, ws, x, column_scale);
   return true;
 }
 
@@ -545,7 +743,7 @@ void SolveContactDense(const Model& model, const State& state, Data& data, bool 
   if (nc_rows > 0) internal::HoldReleasedRows(data.row_released, ws.A, ws.rhs);
   const bool redundant = internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda);
   if (redundant && CalcRedundantRowWeights(model, state, data, nc_rows, ws.lambda, ws.scale))
-    internal::SolveSquare(ws.A, ws.rhs, false, ws, ws.lambda, &ws.scale);
+    internal::SolveSquare(ws.A, ws.rhs, symmetric, ws, ws.lambda, &ws.scale);
   data.u_dot.noalias() += ws.WMinv.transpose() * ws.lambda;
 }
 

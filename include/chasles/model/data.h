@@ -158,9 +158,16 @@ struct ContactWorkspace {
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
   /// Least-norm solve of redundant rows and its vectors (sized with A: no allocation while
-  /// the modes stay).
+  /// the modes stay; cod_x also holds the pivot order of the pivoted LDLᵀ below).
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
   Eigen::VectorXd cod_c, cod_x, cod_temp;
+  /// A singular symmetric system's orthonormal null-space basis (its first null_rank columns,
+  /// kept for the weighted solve of the same system), a particular solution, the pivoted LDLᵀ
+  /// (null_gram, then the weighted step's Gram matrix), a scratch (dynamics/contact_solve.cpp).
+  Eigen::MatrixXd null_basis, null_weighted, null_gram;
+  Eigen::VectorXd null_particular;
+  Eigen::Index null_rank = 0;
+  bool null_ready = false;
   /// Column scales of a weighted least-norm solve (friction shared by capacity) and the
   /// column-scaled matrix A D.
   Eigen::VectorXd scale;

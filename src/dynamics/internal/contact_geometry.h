@@ -89,12 +89,14 @@ int HeldRows(const Model& model, const State& state, int p);
 ContactPointGeometry CalcContactPointGeometry(const Model& model, const State& state,
                                               const Data& data, int point);
 
-/// A x = r: LDLᵀ (symmetric) or LU, least-norm by complete orthogonal decomposition when
-/// singular; with `column_scale` D the singular case is the weighted least-norm solution
-/// x = D y, y the least-norm solution of (A D) y = r (it minimises Σ (x_i / D_i)²). Uses the
-/// factorisations and vectors of `ws`: no allocation once they have A's size. Returns true
-/// when the least-norm branch was taken (A singular, or `column_scale` given: the caller
-/// knows A is singular).
+/// A x = r: LDLᵀ (symmetric) or LU; when singular the least-norm solution, from the LDLᵀ's
+/// null space when A is symmetric semidefinite (the null space kept in `ws`), by complete
+/// orthogonal decomposition otherwise. With `column_scale` D the singular case is the weighted
+/// least-norm solution, which minimises Σ (x_i / D_i)²: on the null space kept by the
+/// unweighted solve of the same symmetric A just before, else x = D y with y the least-norm
+/// solution of (A D) y = r. Uses the factorisations and vectors of `ws`: no allocation once
+/// they have A's size. Returns true when the least-norm branch was taken (A singular, or
+/// `column_scale` given: the caller knows A is singular).
 bool SolveSquare(const Eigen::MatrixXd& A, const Eigen::VectorXd& r, bool symmetric,
                  ContactWorkspace& ws, Eigen::VectorXd& x,
                  const Eigen::VectorXd* column_scale = nullptr);

@@ -5,9 +5,11 @@
 // Allocations are counted by interposing malloc in this test program (Eigen and operator new
 // both allocate through it). Not under AddressSanitizer, which owns malloc.
 
+#include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <memory>
+#include <random>
 
 #include <gtest/gtest.h>
 #include <Eigen/QR>
@@ -157,22 +159,113 @@ TEST(ContactSolve, ProjectionDoesNotAllocateOnceSized) {
   EXPECT_EQ(n, 0);
 }
 
-// The least-norm path repeats Eigen's CompleteOrthogonalDecomposition::solve step by step in
-// the workspace: the same numbers, bit for bit.
+// The least-norm paths against Eigen's CompleteOrthogonalDecomposition::solve, the minimum-norm
+// solution of A x = r. A symmetric semidefinite A goes through its pivoted LDLᵀ's null space,
+// any other singular A through the decomposition step by step: both agree with it to round-off
+// (relative 1e-12 of |x|), and so does the weighted split, min Σ (x_i / D_i)², against the
+// decomposition of A D (x = D y, y its minimum-norm solution).
 TEST(ContactSolve, LeastNormSolveMatchesEigen) {
-  Eigen::MatrixXd B = Eigen::MatrixXd::Random(7, 4);
-  const Eigen::MatrixXd A = B * B.transpose();  // 7 x 7 of rank 4
-  const Eigen::VectorXd r = A * Eigen::VectorXd::Random(7);
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-  cod.setThreshold(1e-10);  // before compute: the Z reflectors are built for this rank
-  cod.compute(A);
-  const Eigen::VectorXd expected = cod.solve(r);
-  ContactWorkspace ws;
-  Eigen::VectorXd x;
-  internal::SolveSquare(A, r, true, ws, x);
-  ASSERT_EQ(x.size(), 7);
-  for (int i = 0; i < 7; ++i) EXPECT_EQ(x[i], expected[i]) << i;
-  ASSERT_EQ(cod.rank(), 4);
+  std::mt19937 rng(20261129);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.2, 3.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const int n = 2 + trial % 11, rank = 1 + trial % (n - 1);
+    Eigen::MatrixXd B(n, rank);
+    for (Eigen::Index i = 0; i < B.size(); ++i) B.data()[i] = u(rng);
+    const Eigen::MatrixXd A = B * B.transpose();  // n x n of the given rank, A ⪰ 0
+    Eigen::VectorXd y(n), D(n);
+    for (int i = 0; i < n; ++i) y[i] = u(rng), D[i] = pos(rng);
+    const Eigen::VectorXd r = A * y;
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+    cod.setThreshold(1e-10);  // before compute: the Z reflectors are built for this rank
+    cod.compute(A);
+    ASSERT_EQ(cod.rank(), rank);
+    const Eigen::VectorXd expected = cod.solve(r);
+    const Eigen::MatrixXd AD = A * D.asDiagonal();
+    cod.compute(AD);
+    const Eigen::VectorXd expected_weighted = D.asDiagonal() * cod.solve(r);
+    for (bool symmetric : {true, false}) {
+      SCOPED_TRACE(testing::Message() << "trial " << trial << (symmetric ? " LDLT" : " COD"));
+      ContactWorkspace ws;
+      Eigen::VectorXd x, xw;
+      EXPECT_TRUE(internal::SolveSquare(A, r, symmetric, ws, x));
+      EXPECT_TRUE(internal::SolveSquare(A, r, symmetric, ws, xw, &D));
+      EXPECT_LE((x - expected).norm(), 1e-12 * expected.norm());
+      EXPECT_LE((xw - expected_weighted).norm(), 1e-12 * expected_weighted.norm());
+      EXPECT_LE((A * xw - r).norm(), 1e-12 * r.norm());
+      // The decomposition's route repeats Eigen's steps: the same numbers, bit for bit.
+      if (!symmetric) {
+        EXPECT_TRUE(x == expected);
+      }
+    }
+  }
+}
+
+// The rank decision against Eigen's CompleteOrthogonalDecomposition (threshold 1e-10 of its
+// largest pivot) on A = U diag(s) Uᵀ ⪰ 0, U a seeded random orthogonal matrix, n from 2 to 60,
+// every rank from 1 to n - 1. The rank used (the null space's when the LDLᵀ decided, else the
+// decomposition's) is COD's in every case, for A and for the weighted A D. Where the rank is
+// clear (kept s in [1e-3, 1], dropped s = 0, so κ <= 1e3 bounds the round-off of both answers
+// by 1e3 ε) the LDLᵀ decides and both solutions agree with COD's to 1e-12 relative. Nearly
+// singular cases put one kept or one dropped s at 1e-10 · 10^(±e), e from 0.3 to 6: nearer
+// than kRankMargin (1e3) the decomposition decides, farther the LDLᵀ does.
+TEST(ContactSolve, LeastNormRankDecisionMatchesEigen) {
+  std::mt19937 rng(29112026);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.2, 3.0), expo(-3.0, 0.0);
+  const double near_exponents[] = {0.0, 0.3, 1.0, 2.0, 4.0, 6.0, -0.3, -1.0, -2.0, -4.0, -6.0};
+  int decided_by_ldlt_near = 0, clear_cases = 0, regular = 0;
+  for (int trial = 0; trial < 240; ++trial) {
+    const int n = 2 + trial % 59, rank = 1 + (7 * trial) % (n - 1);
+    const double e = near_exponents[trial % 11];
+    Eigen::MatrixXd G(n, n);
+    for (Eigen::Index i = 0; i < G.size(); ++i) G.data()[i] = u(rng);
+    const Eigen::MatrixXd U = Eigen::HouseholderQR<Eigen::MatrixXd>(G).householderQ();
+    Eigen::VectorXd s = Eigen::VectorXd::Zero(n), y(n), D(n);
+    for (int i = 0; i < rank; ++i) s[i] = i == 0 ? 1.0 : std::pow(10.0, expo(rng));
+    // e > 0: the smallest kept s 10^e above the threshold; e < 0: a dropped one 10^|e| below.
+    if (e > 0.0) s[rank - 1] = 1e-10 * std::pow(10.0, e);
+    if (e < 0.0) s[rank] = 1e-10 * std::pow(10.0, e);
+    const bool clear = e == 0.0;
+    const Eigen::MatrixXd A = U * s.asDiagonal() * U.transpose();
+    for (int i = 0; i < n; ++i) y[i] = u(rng), D[i] = pos(rng);
+    const Eigen::VectorXd r = A * y;
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod, cod_weighted;
+    cod.setThreshold(1e-10);
+    cod.compute(A);
+    cod_weighted.setThreshold(1e-10);
+    Eigen::MatrixXd AD = A;
+    for (int j = 0; j < n; ++j) AD.col(j) *= D[j];  // the columns scaled as SolveSquare does
+    cod_weighted.compute(AD);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << ", n " << n << ", rank " << rank
+                                    << ", e " << e << ", COD rank " << cod.rank());
+    ContactWorkspace ws;
+    Eigen::VectorXd x, xw;
+    // The regular solve's gate, unchanged (every pivot of Eigen's LDLT above 1e-10 max |a_ij|),
+    // may pass a dropped s just under COD's threshold: no least-norm solve then, as before.
+    const bool least_norm = internal::SolveSquare(A, r, true, ws, x);
+    if (!least_norm) {
+      ASSERT_FALSE(clear);
+      ++regular;
+      continue;
+    }
+    const bool by_ldlt = ws.null_ready;
+    EXPECT_EQ(by_ldlt ? n - ws.null_rank : ws.cod.rank(), cod.rank());
+    ASSERT_TRUE(internal::SolveSquare(A, r, true, ws, xw, &D));
+    EXPECT_EQ(ws.null_ready ? n - ws.null_rank : ws.cod.rank(), cod_weighted.rank());
+    if (clear) {
+      ++clear_cases;
+      EXPECT_TRUE(by_ldlt);
+      EXPECT_EQ(cod.rank(), rank);
+      const Eigen::VectorXd expected = cod.solve(r);
+      const Eigen::VectorXd expected_weighted = D.asDiagonal() * cod_weighted.solve(r);
+      EXPECT_LE((x - expected).norm(), 1e-12 * expected.norm());
+      EXPECT_LE((xw - expected_weighted).norm(), 1e-12 * expected_weighted.norm());
+    } else if (by_ldlt) {
+      ++decided_by_ldlt_near;
+    }
+  }
+  EXPECT_GT(clear_cases, 20);
+  EXPECT_GT(decided_by_ldlt_near, 20);  // the LDLᵀ's own decisions near the threshold, checked
+  EXPECT_LE(regular, 5);
 }
 
 }  // namespace
