@@ -526,6 +526,18 @@ std::string IntegratorText(const StudyResult& r, const Show& u) {
                      r.stats.rejected_steps, r.stats.function_evaluations);
 }
 
+// The run path and why, with the islands where they add to it: a hybrid run of several
+// islands as one system says how many (its reason says why one; a run split into islands
+// counts them in its own reason).
+std::string RunPathText(const StudyResult& r) {
+  std::string line =
+      fmt::format("Run path: {}: {}", RunPathName(r.run_path.path), r.run_path.reason);
+  if (r.islands.count > 1 && !r.islands.split && r.run_path.path != RunPath::kIslands) {
+    line += fmt::format(" (the bodies form {} islands)", r.islands.count);
+  }
+  return line + "\n";
+}
+
 }  // namespace
 
 std::string SimulationText(const Scene& scene, const StudyResult& r, const TextOptions& options) {
@@ -546,13 +558,7 @@ std::string SimulationText(const Scene& scene, const StudyResult& r, const TextO
   out += EndContactsText(scene, r, u, k);
   out += LedgerText(scene, r, u);
   out += IntegratorText(r, u);
-  if (r.islands.count > 0) {
-    out += r.islands.split
-               ? fmt::format("Islands: {}, each run as its own hybrid system\n", r.islands.count)
-               : fmt::format("Islands: {}, run as one hybrid system: {}\n", r.islands.count,
-                             r.islands.reason);
-  }
-  out += fmt::format("Run path: {}: {}\n", RunPathName(r.run_path.path), r.run_path.reason);
+  out += RunPathText(r);
   for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);
   for (const auto& w : scene.warnings) out += fmt::format("warning: {}\n", w);
   for (const auto& w : r.warnings) out += fmt::format("warning: {}\n", w);
