@@ -13,6 +13,7 @@
 #include "chasles/analysis/study.h"
 #include "chasles/analysis/sweep.h"
 #include "chasles/report/json_report.h"
+#include "chasles/report/mass_text.h"
 #include "chasles/report/result_names.h"
 #include "chasles/report/simulation_report.h"
 #include "chasles/report/simulation_text.h"
@@ -519,11 +520,32 @@ void BindEngineSegments(py::module_& m) {
               "A time-stepped segment's certificate (None otherwise)");
 }
 
+// A run's path, and the text report of a scene's mass properties.
+void BindRunPathAndMassText(py::module_& m) {
+  py::class_<RunPathChoice>(m, "RunPath", "The path a run took and why (docs/contact.md).")
+      .def_property_readonly(
+          "path", [](const RunPathChoice& c) { return RunPathName(c.path); },
+          "'smooth', 'free-body batch', 'hybrid', 'islands', 'event-driven spheres', 'time "
+          "stepping' or 'auto' (the JSON's run_path.path)")
+          RO(RunPathChoice, reason, "Why this path, in words (the JSON's run_path.reason)")
+              RO(RunPathChoice, islands, "Islands the bodies form (0 where not looked for)");
+  m.def(
+      "_mass_text",
+      [](const PyScene& s, const std::string& units) {
+        MassTextOptions options;
+        options.text.units = units;
+        return MassText(s.scene, options);
+      },
+      py::arg("scene"), py::arg("units"));
+}
+
 void BindStudy(py::module_& m) {
   BindEngineSegments(m);
+  BindRunPathAndMassText(m);
   py::class_<StudyResult>(m, "StudyResult", "The result of a scene's run (RunStudy).")
       RO(StudyResult, columns, "") RO(StudyResult, events, "") RO(StudyResult, jumps, "")
           RO(StudyResult, contact_events, "") RO(StudyResult, impacts, "")
+              RO(StudyResult, run_path, "The path the run took and why")
               RO(StudyResult, final_contacts, "") RO(StudyResult, t_end, "")
                   RO(StudyResult, stopped_by_event, "") RO(StudyResult, final_bodies, "")
                       RO(StudyResult, final_reactions, "") RO(StudyResult, ledger, "")
