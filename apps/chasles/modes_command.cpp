@@ -23,6 +23,7 @@
 #include "chasles/report/modes_json.h"
 #include "chasles/report/modes_text.h"
 #include "chasles/report/report_data.h"
+#include "chasles/report/result_names.h"
 #include "chasles/scene/modes.h"
 #include "chasles/scene/scene_dynamics.h"
 #include "chasles/scene/scene_error.h"
@@ -106,7 +107,7 @@ nlohmann::json SweepJson(const ModesSweep& w) {
   for (const StabilityChange& c : w.changes) {
     changes.push_back({{"parameter", w.parameter},
                        {"value", c.value},
-                       {"kind", c.kind},
+                       {"kind", StabilityChangeKindName(c.kind)},
                        {"stable_after", c.stable_after}});
   }
   nlohmann::json critical = nlohmann::json::array();

@@ -94,8 +94,10 @@ void ReadTimeline(const nlohmann::json& j, const std::string& json, StudyResult&
     const std::string where = json + ": contact_events";
     r.contact_events.push_back(
         {Get<double>(e, "t", where), Get<std::string>(e, "point", where),
-         Get<std::string>(e, "contact", where), Get<std::string>(e, "from", where),
-         Get<std::string>(e, "to", where), Get<std::string>(e, "reason", where)});
+         Get<std::string>(e, "contact", where),
+         ParseStudyContactMode(Get<std::string>(e, "from", where), where + ": from"),
+         ParseStudyContactMode(Get<std::string>(e, "to", where), where + ": to"),
+         ParseContactEventReason(Get<std::string>(e, "reason", where), where + ": reason")});
   }
   for (const auto& e : Array(j, "impacts", false, json)) {
     const std::string where = json + ": impacts";

@@ -3,7 +3,10 @@
 #include <complex>
 
 #include "bindings.h"
+#include "chasles/report/modes_text.h"
 #include "chasles/scene/modes.h"
+#include "chasles/scene/scene_dynamics.h"
+#include "chasles/scene/sweep.h"
 
 namespace chasles::python {
 
@@ -73,6 +76,30 @@ void BindModes(py::module_& m) {
       "linearisation x' = A x, x = [coordinates; speeds]), and per mode 'eigenvalues' (complex, "
       "1/s), 'frequency_hz', 'damping_ratio', 'growth_rate', 'stable_modes', 'rigid', 'shapes' "
       "(modes x entries of x, complex); 'stable' the verdict.");
+  m.def(
+      "_modes_text",
+      [](const PyScene& s) {
+        SceneModes r;
+        {
+          py::gil_scoped_release release;
+          r = AnalyseSceneModes(s.scene);
+        }
+        return ModesText(s.scene, r);
+      },
+      py::arg("scene"));
+  m.def(
+      "_modes_sweep_text",
+      [](const PyScene& s, const std::string& sweep) {
+        const SweepSpec spec = ParseSweep(sweep);
+        ModesSweep w;
+        {
+          py::gil_scoped_release release;
+          w = SweepSceneModes([&s](const SceneOptions& o) { return s.Load(o); }, s.options, spec,
+                              kDefaultMaxRows);
+        }
+        return ModesSweepText(w);
+      },
+      py::arg("scene"), py::arg("sweep"));
 }
 
 }  // namespace chasles::python

@@ -13,6 +13,7 @@
 #include "chasles/analysis/study.h"
 #include "chasles/analysis/sweep.h"
 #include "chasles/report/json_report.h"
+#include "chasles/report/mass_text.h"
 #include "chasles/report/result_names.h"
 #include "chasles/report/simulation_report.h"
 #include "chasles/report/simulation_text.h"
@@ -394,13 +395,15 @@ void BindStudyParts(py::module_& m) {
   // A run's reactions are the same records as solve's (StudyReaction is ReactionReport,
   // bound as chasles.Reaction in bind_simulate.cpp).
   py::class_<StudyContactPoint>(m, "StudyContactPoint", "A contact point at an instant.")
-      RO(StudyContactPoint, point, "") RO(StudyContactPoint, mode, "")
-          RO(StudyContactPoint, normal_force, "[N]")
-              .def_readonly("friction", &StudyContactPoint::friction_force_W, "[N]")
-              .def_readonly("slip_velocity", &StudyContactPoint::slip_velocity_W, "[m/s]")
-                  RO(StudyContactPoint, gap, "[m]") RO(StudyContactPoint, friction_work, "[J]")
-                      RO(StudyContactPoint, rolling_work, "[J]")
-                          RO(StudyContactPoint, impact_work, "[J]");
+      RO(StudyContactPoint, point, "")
+          .def_property_readonly(
+              "mode", [](const StudyContactPoint& c) { return StudyContactModeName(c.mode); })
+              RO(StudyContactPoint, normal_force, "[N]")
+          .def_readonly("friction", &StudyContactPoint::friction_force_W, "[N]")
+          .def_readonly("slip_velocity", &StudyContactPoint::slip_velocity_W, "[m/s]")
+              RO(StudyContactPoint, gap, "[m]") RO(StudyContactPoint, friction_work, "[J]")
+                  RO(StudyContactPoint, rolling_work, "[J]")
+                      RO(StudyContactPoint, impact_work, "[J]");
   py::class_<StudySnapshot>(m, "Snapshot", "Bodies, reactions and contacts at an instant.") RO(
       StudySnapshot, bodies, "") RO(StudySnapshot, reactions, "") RO(StudySnapshot, contacts, "");
   py::class_<StudyEvent>(m, "Event", "A scene event located during the run.")
@@ -438,10 +441,15 @@ void BindStudyParts(py::module_& m) {
               RO(StudyJump, bodies, "Every body's velocity jumps and impulses")
                   RO(StudyJump, impacts, "Indices into run.impacts of this instant");
   py::class_<StudyContactEvent>(m, "StudyContactEvent", "A contact mode change.")
-      RO(StudyContactEvent, t, "[s]") RO(StudyContactEvent, point, "")
-          RO(StudyContactEvent, contact, "")
-              .def_readonly("from_mode", &StudyContactEvent::from)
-              .def_readonly("to_mode", &StudyContactEvent::to) RO(StudyContactEvent, reason, "");
+      RO(StudyContactEvent, t, "[s]") RO(StudyContactEvent, point, "") RO(StudyContactEvent,
+                                                                          contact, "")
+          .def_property_readonly(
+              "from_mode", [](const StudyContactEvent& e) { return StudyContactModeName(e.from); })
+          .def_property_readonly(
+              "to_mode", [](const StudyContactEvent& e) { return StudyContactModeName(e.to); })
+          .def_property_readonly("reason", [](const StudyContactEvent& e) {
+            return ContactEventReasonName(e.reason);
+          });
   py::class_<StudyImpact>(m, "StudyImpact", "An impact at a contact point.") RO(StudyImpact, t, "")
       RO(StudyImpact, point, "") RO(StudyImpact, approach_speed, "[m/s]")
           RO(StudyImpact, normal_impulse, "[N*s]") RO(StudyImpact, energy_lost, "[J]")
@@ -482,6 +490,11 @@ py::dict SteppingSummaryDict(const TimeSteppingSummary& c) {
   return d;
 }
 
+// The run's integrator as the JSON names it ("RK4 (fixed step)", "events", ...).
+const char* RunIntegratorName(const StudyResult& r) {
+  return StudyIntegratorName(r.engine, r.integrator);
+}
+
 void BindEngineSegments(py::module_& m) {
   py::class_<StudyEngineSegment>(m, "EngineSegment",
                                  "One stretch of an `integrator: auto` run on one engine, and why "
@@ -507,15 +520,37 @@ void BindEngineSegments(py::module_& m) {
               "A time-stepped segment's certificate (None otherwise)");
 }
 
+// A run's path, and the text report of a scene's mass properties.
+void BindRunPathAndMassText(py::module_& m) {
+  py::class_<RunPathChoice>(m, "RunPath", "The path a run took and why (docs/contact.md).")
+      .def_property_readonly(
+          "path", [](const RunPathChoice& c) { return RunPathName(c.path); },
+          "'smooth', 'free-body batch', 'hybrid', 'islands', 'event-driven spheres', 'time "
+          "stepping' or 'auto' (the JSON's run_path.path)")
+          RO(RunPathChoice, reason, "Why this path, in words (the JSON's run_path.reason)")
+              RO(RunPathChoice, islands, "Islands the bodies form (0 where not looked for)");
+  m.def(
+      "_mass_text",
+      [](const PyScene& s, const std::string& units) {
+        MassTextOptions options;
+        options.text.units = units;
+        return MassText(s.scene, options);
+      },
+      py::arg("scene"), py::arg("units"));
+}
+
 void BindStudy(py::module_& m) {
   BindEngineSegments(m);
+  BindRunPathAndMassText(m);
   py::class_<StudyResult>(m, "StudyResult", "The result of a scene's run (RunStudy).")
       RO(StudyResult, columns, "") RO(StudyResult, events, "") RO(StudyResult, jumps, "")
           RO(StudyResult, contact_events, "") RO(StudyResult, impacts, "")
+              RO(StudyResult, run_path, "The path the run took and why")
               RO(StudyResult, final_contacts, "") RO(StudyResult, t_end, "")
                   RO(StudyResult, stopped_by_event, "") RO(StudyResult, final_bodies, "")
                       RO(StudyResult, final_reactions, "") RO(StudyResult, ledger, "")
-                          RO(StudyResult, integrator, "") RO(StudyResult, stats, "")
+                          .def_property_readonly("integrator", &RunIntegratorName)
+                              RO(StudyResult, stats, "")
                               RO(StudyResult, notes, "") RO(StudyResult, segments, "")
                                   RO(StudyResult, warnings, "")
                                       RO(StudyResult, certificate, "")

@@ -122,8 +122,7 @@ ReactionReport MakeReactionReport(const Model& model, const Data& data, int c) {
   for (int k = 0; k < con.num_rows(); ++k) r.lambda.push_back(o.lambda[k]);
   if (con.can_release()) {
     const bool slack = data.row_released[static_cast<size_t>(model.constraint_row_offset(c))] != 0;
-    r.mode =
-        ConstraintModeName(model, c, slack ? ConstraintMode::kReleased : ConstraintMode::kEngaged);
+    r.mode = slack ? ConstraintMode::kReleased : ConstraintMode::kEngaged;
     r.gap = data.constraint_gap[static_cast<size_t>(c)];
   }
   if (const auto* roll = dynamic_cast<const RollingContact*>(&con)) {

@@ -286,7 +286,7 @@ std::vector<StabilityChange> FindStabilityChanges(
       }
       const bool oscillatory =
           crossing && crossing->eigenvalue.imag() > kNeutral * std::abs(crossing->eigenvalue);
-      c.kind = oscillatory ? "oscillatory" : "divergent";
+      c.kind = oscillatory ? StabilityChangeKind::kOscillatory : StabilityChangeKind::kDivergent;
       out.push_back(c);
     }
     before = std::move(after);

@@ -87,11 +87,13 @@ class StudyRun {
   const std::string& Label(int p) const { return labels_[static_cast<size_t>(p)]; }
   void Start();
   void RecordImpacts(const ImpactResult& r, double t);
-  void RecordChanges(const std::vector<ContactModeChange>& changes, double t, const char* reason);
+  void RecordChanges(const std::vector<ContactModeChange>& changes, double t,
+                     ContactEventReason reason);
   /// Impacts of the contacts driven into their planes, then every point's mode; appends each
   /// impact's and jam's impulse on its body (contact point, impulse in W) to `impulses` when
   /// given.
-  void SettleContacts(const char* reason, std::vector<std::pair<int, Vec3>>* impulses = nullptr);
+  void SettleContacts(ContactEventReason reason,
+                      std::vector<std::pair<int, Vec3>>* impulses = nullptr);
   void Certify(const State& s, CheckPhase phase);
   void OnStep(double t);
   void RunTo(double t_b);
@@ -199,10 +201,11 @@ void StudyRun::Start() {
   if (!(def_.options.output_interval > 0)) {
     throw InputError("a study needs a positive output interval (options.output_interval)");
   }
-  result_.integrator = def_.sphere_events   ? "events"
-                       : def_.time_stepping ? "stepping"
-                       : def_.auto_engine   ? "auto"
-                                            : IntegratorName(def_.options.integrator);
+  result_.engine = def_.sphere_events   ? EngineRequest::kEvents
+                   : def_.time_stepping ? EngineRequest::kStepping
+                   : def_.auto_engine   ? EngineRequest::kAuto
+                                        : EngineRequest::kIntegrator;
+  result_.integrator = def_.options.integrator;
   if (def_.auto_engine) {
     if (def_.sphere_events || def_.time_stepping) {
       throw InputError("a run chooses its engine (auto_engine) or names one, not both");
@@ -256,13 +259,15 @@ void StudyRun::Start() {
   if (model.num_contacts() > 0 && path_ == RunPath::kTimeStepping) {
     // Time stepping chooses the regimes in its first step; the timeline starts separated.
     for (int p = 0; p < model.num_contact_points(); ++p) {
-      const std::string mode = ContactModeName(ContactMode::kSeparated);
-      result_.contact_events.push_back({state_.t, Label(p),
-                                        model.contact(model.contact_of_point(p)).name(), mode, mode,
-                                        "initial"});
+      result_.contact_events.push_back({state_.t,
+                                        Label(p),
+                                        model.contact(model.contact_of_point(p)).name(),
+                                        {},
+                                        {},
+                                        ContactEventReason::kInitial});
     }
   } else if (model.num_contacts() > 0 && path_ != RunPath::kSphereEvents) {
-    SettleContacts("initial");
+    SettleContacts(ContactEventReason::kInitial);
     // Every point's initial mode is part of the timeline, changed or not.
     for (int p = 0; p < model.num_contact_points(); ++p) {
       const bool listed =
@@ -270,10 +275,10 @@ void StudyRun::Start() {
                       [&](const StudyContactEvent& e) { return e.point == Label(p); });
       if (listed) continue;
       const ContactPointState& ps = state_.contacts[static_cast<size_t>(p)];
-      const std::string regime = ContactRegimeName(ps.mode, ps.rolling_held);
+      const StudyContactMode regime{ps.mode, ps.rolling_held};
       result_.contact_events.push_back({state_.t, Label(p),
                                         model.contact(model.contact_of_point(p)).name(), regime,
-                                        regime, "initial"});
+                                        regime, ContactEventReason::kInitial});
     }
   }
   carry_.segment_initial = as_given;
@@ -293,18 +298,22 @@ void StudyRun::RecordImpacts(const ImpactResult& r, double t) {
 }
 
 void StudyRun::RecordChanges(const std::vector<ContactModeChange>& changes, double t,
-                             const char* reason) {
+                             ContactEventReason reason) {
   const Model& m = *seg_.model;
   for (const ContactModeChange& c : changes) {
-    result_.contact_events.push_back(
-        {t, Label(c.point), m.contact(m.contact_of_point(c.point)).name(),
-         ContactRegimeName(c.from, c.held_from), ContactRegimeName(c.to, c.held_to), reason});
+    result_.contact_events.push_back({t,
+                                      Label(c.point),
+                                      m.contact(m.contact_of_point(c.point)).name(),
+                                      {c.from, c.held_from},
+                                      {c.to, c.held_to},
+                                      reason});
   }
 }
 
 // Contacts that approach take their impact first; then every contact point gets a consistent
 // mode, so that the next output row already shows it.
-void StudyRun::SettleContacts(const char* reason, std::vector<std::pair<int, Vec3>>* impulses) {
+void StudyRun::SettleContacts(ContactEventReason reason,
+                              std::vector<std::pair<int, Vec3>>* impulses) {
   if (seg_.model->num_contacts() == 0) return;
   const ContactTolerances tol;
   const ImpactResult impacts = ResolveImpacts(*seg_.model, state_, tol);
@@ -537,7 +546,7 @@ void StudyRun::SwitchToEvents() {
   seg.engine = StudyEngine::kAdaptive;
   seg.reason = EngineSwitch::kQuiet;
   seg.quiet = state_.t - quiet_from_;
-  SettleContacts("engine switch");
+  SettleContacts(ContactEventReason::kEngineSwitch);
   const study_internal::EventsHandover handover = study_internal::ProjectForEvents(model, state_);
   CheckFinite(model, state_);
   seg.projection_depth = handover.depth;
@@ -586,8 +595,12 @@ void StudyRun::RecordSteppingSamples(const TimeSteppingResult& r) {
       const ContactMode a = before.contacts[static_cast<size_t>(p)].mode;
       const ContactMode b = after.contacts[static_cast<size_t>(p)].mode;
       if (a == b) continue;
-      result_.contact_events.push_back({after.t, Label(p), m.contact(m.contact_of_point(p)).name(),
-                                        ContactModeName(a), ContactModeName(b), "time step"});
+      result_.contact_events.push_back({after.t,
+                                        Label(p),
+                                        m.contact(m.contact_of_point(p)).name(),
+                                        {a, false},
+                                        {b, false},
+                                        ContactEventReason::kTimeStep});
     }
   };
   for (size_t k = 1; k < r.samples.size(); ++k) {  // the first is the start, already a row
@@ -650,14 +663,16 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
     const std::string& contact = m.contact(m.contact_of_point(e.point)).name();
     if (e.reason == ContactEventReason::kInitial) listed[static_cast<size_t>(e.point)] = true;
     result_.contact_events.push_back(
-        {e.t, Label(e.point), contact, ContactRegimeName(e.from, e.held_from),
-         ContactRegimeName(e.to, e.held_to), ContactEventReasonName(e.reason)});
+        {e.t, Label(e.point), contact, {e.from, e.held_from}, {e.to, e.held_to}, e.reason});
   }
   for (int p = 0; p < m.num_contact_points(); ++p) {
     if (listed[static_cast<size_t>(p)]) continue;
-    const std::string mode = ContactModeName(ContactMode::kSeparated);
-    result_.contact_events.push_back(
-        {state_.t, Label(p), m.contact(m.contact_of_point(p)).name(), mode, mode, "initial"});
+    result_.contact_events.push_back({state_.t,
+                                      Label(p),
+                                      m.contact(m.contact_of_point(p)).name(),
+                                      {},
+                                      {},
+                                      ContactEventReason::kInitial});
   }
   std::stable_sort(
       result_.contact_events.begin(), result_.contact_events.end(),
@@ -723,20 +738,24 @@ void StudyRun::RecordSimulation(const SimulationResult& r,
       held_from = p < carried.size() && carried[p].rolling_held;
       if (from == e.to && held_from == e.held_to) continue;
     }
-    result_.contact_events.push_back(
-        {e.t, Label(e.point), m.contact(m.contact_of_point(e.point)).name(),
-         ContactRegimeName(from, held_from), ContactRegimeName(e.to, e.held_to),
-         ContactEventReasonName(e.reason)});
+    result_.contact_events.push_back({e.t,
+                                      Label(e.point),
+                                      m.contact(m.contact_of_point(e.point)).name(),
+                                      {from, held_from},
+                                      {e.to, e.held_to},
+                                      e.reason});
   }
   for (const ConstraintEvent& e : r.constraint_events) {
     const std::string& name = m.constraint(e.constraint).name();
     // A later segment lists its strings' modes again as "initial": only news is kept.
     const bool known = std::any_of(result_.string_events.begin(), result_.string_events.end(),
                                    [&](const StudyStringEvent& x) { return x.string == name; });
-    if (e.reason == "initial" && known && e.from == e.to && e.impulse == 0.0) continue;
-    result_.string_events.push_back({e.t, name, ConstraintModeName(m, e.constraint, e.from),
-                                     ConstraintModeName(m, e.constraint, e.to), e.reason,
-                                     e.approach_speed, e.impulse, e.energy_lost});
+    if (e.reason == ConstraintEventReason::kInitial && known && e.from == e.to &&
+        e.impulse == 0.0) {
+      continue;
+    }
+    result_.string_events.push_back(
+        {e.t, name, e.from, e.to, e.reason, e.approach_speed, e.impulse, e.energy_lost});
   }
   for (const ImpactRecord& imp : r.impacts) {
     result_.impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
@@ -767,7 +786,7 @@ double StudyRun::AnswerJump(const State& before, std::vector<study_internal::Jum
   const State projected = state_;
   const size_t first_impact = result_.impacts.size();
   std::vector<std::pair<int, Vec3>> contact_impulses;
-  SettleContacts("impulse", &contact_impulses);
+  SettleContacts(ContactEventReason::kImpulse, &contact_impulses);
   CheckFinite(model, state_);
   for (size_t i = first_impact; i < result_.impacts.size(); ++i) {
     rec.impacts.push_back(static_cast<int>(i));

@@ -377,7 +377,7 @@ StudySnapshot MakeSnapshot(const Model& model, const State& state, int num_repor
       const ContactPointOutput& o = outputs[i];
       const ContactPointState& ps = state.contacts[i];
       out.contacts.push_back({i < labels.size() ? labels[i] : model.contact_point_name(p),
-                              ContactRegimeName(ps.mode, ps.rolling_held), o.p_WC, o.n_W,
+                              StudyContactMode{ps.mode, ps.rolling_held}, o.p_WC, o.n_W,
                               o.normal_force, o.friction_force_W, o.slip_velocity_W, o.gap,
                               ps.friction_work, ps.rolling_work, ps.impact_work,
                               o.rolling_moment_W});

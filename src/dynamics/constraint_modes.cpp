@@ -9,7 +9,6 @@
 #include "chasles/dynamics/constraint_solve.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
-#include "chasles/model/string_constraint.h"
 #include "dynamics/internal/generalized.h"
 
 namespace chasles {
@@ -44,12 +43,6 @@ void SetMode(State& state, int c, ConstraintMode m) {
 }
 
 }  // namespace
-
-std::string ConstraintModeName(const Model& model, int c, ConstraintMode mode) {
-  const bool string = dynamic_cast<const StringConstraint*>(&model.constraint(c)) != nullptr;
-  if (mode == ConstraintMode::kEngaged) return string ? "taut" : "engaged";
-  return string ? "slack" : "released";
-}
 
 void EnsureConstraintModes(const Model& model, State& state) {
   state.constraint_modes.resize(static_cast<size_t>(model.num_constraints()));

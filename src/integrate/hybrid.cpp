@@ -287,7 +287,8 @@ class HybridRun {
     for (int c = 0; c < model_.num_constraints(); ++c) {
       if (!model_.constraint(c).can_release()) continue;
       ConstraintEvent ev{s.t, c, given[static_cast<size_t>(c)],
-                         s.constraint_modes[static_cast<size_t>(c)].mode, "initial"};
+                         s.constraint_modes[static_cast<size_t>(c)].mode,
+                         ConstraintEventReason::kInitial};
       for (const ConstraintEvent& x : snaps) {
         if (x.constraint == c && x.impulse != 0.0) {
           ev.reason = x.reason, ev.approach_speed = x.approach_speed, ev.impulse = x.impulse;
@@ -596,19 +597,19 @@ class HybridRun {
       if (!model_.constraint(c).can_release()) continue;
       const ConstraintMode from = strings_before[static_cast<size_t>(c)];
       const ConstraintMode to = s.constraint_modes[static_cast<size_t>(c)].mode;
-      ConstraintEvent ev{s.t, c, from, to, "other"};
+      ConstraintEvent ev{s.t, c, from, to,
+                         to == ConstraintMode::kReleased ? ConstraintEventReason::kWentSlack
+                                                         : ConstraintEventReason::kWentTaut};
+      bool snapped = false;
       for (const ConstraintImpulse& ci : snaps) {
         if (ci.constraint != c) continue;
-        ev.reason = "snapped taut";
+        snapped = true;
+        ev.reason = ConstraintEventReason::kSnappedTaut;
         ev.approach_speed = ci.approach_speed;
         ev.impulse = ci.impulse;
         ev.energy_lost = ci.energy_lost;
       }
-      if (ev.reason == "other") {
-        if (from == to && c != string) continue;
-        if (to == ConstraintMode::kReleased) ev.reason = "went slack";
-        if (to == ConstraintMode::kEngaged) ev.reason = "went taut";
-      }
+      if (!snapped && from == to && c != string) continue;
       r_.constraint_events.push_back(ev);
     }
   }

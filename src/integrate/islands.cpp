@@ -385,7 +385,8 @@ class IslandRun {
       }
       for (ConstraintEvent c : x.constraint_events) {
         c.constraint = cons[static_cast<size_t>(c.constraint)];
-        (c.reason == "initial" ? initial_strings : r.constraint_events).push_back(c);
+        (c.reason == ConstraintEventReason::kInitial ? initial_strings : r.constraint_events)
+            .push_back(c);
       }
       r.warnings.insert(r.warnings.end(), x.warnings.begin(), x.warnings.end());
       r.stats.steps += x.stats.steps;

@@ -186,6 +186,12 @@ const char* ContactEventReasonName(ContactEventReason reason) {
       return "collision";
     case ContactEventReason::kOther:
       return "re-selection";
+    case ContactEventReason::kImpulse:
+      return "impulse";
+    case ContactEventReason::kEngineSwitch:
+      return "engine switch";
+    case ContactEventReason::kTimeStep:
+      return "time step";
   }
   return "unknown";
 }

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "chasles/report/result_names.h"
 #include "chasles/report/text_format.h"
 
 namespace chasles {
@@ -107,9 +108,9 @@ std::string ModesSweepText(const ModesSweep& w) {
   out += "Stability changes:\n";
   if (w.changes.empty()) out += "  none in the range\n";
   for (const StabilityChange& c : w.changes) {
-    out += fmt::format("  {} = {:.15g}{}: {} ({})\n", w.parameter, c.value,
-                       w.unit.empty() ? "" : " " + w.unit,
-                       c.stable_after ? "stable above" : "unstable above", c.kind);
+    out += fmt::format(
+        "  {} = {:.15g}{}: {} ({})\n", w.parameter, c.value, w.unit.empty() ? "" : " " + w.unit,
+        c.stable_after ? "stable above" : "unstable above", StabilityChangeKindName(c.kind));
   }
   return out;
 }

@@ -313,9 +313,9 @@ nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r) {
     changes.push_back({{"t", e.t},
                        {"point", e.point},
                        {"contact", e.contact},
-                       {"from", e.from},
-                       {"to", e.to},
-                       {"reason", e.reason}});
+                       {"from", StudyContactModeName(e.from)},
+                       {"to", StudyContactModeName(e.to)},
+                       {"reason", ContactEventReasonName(e.reason)}});
   }
   j["contact_events"] = changes;
   nlohmann::json impacts = nlohmann::json::array();
@@ -358,7 +358,9 @@ nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r) {
         for (int a = 0; a < 3; ++a) v.push_back(p.normal_force * p.n_W[a]);
         for (int a = 0; a < 3; ++a) v.push_back(p.friction_force_W[a]);
         // 0 separated, 1 sliding, 2 sticking: as the CSV's mode columns.
-        modes += !has || p.mode == "separated" ? '0' : p.mode == "sliding" ? '1' : '2';
+        modes += !has || p.mode.mode == ContactMode::kSeparated ? '0'
+                 : p.mode.mode == ContactMode::kSliding         ? '1'
+                                                                : '2';
       }
       contacts.push_back({{"name", first.contacts[k].point}, {"data", F4(v)}, {"modes", modes}});
     }

@@ -59,7 +59,7 @@ nlohmann::json SnapshotJson(const StudySnapshot& snap, bool planar) {
   nlohmann::json contacts = nlohmann::json::array();
   for (const auto& c : snap.contacts) {
     contacts.push_back({{"point", c.point},
-                        {"mode", c.mode},
+                        {"mode", StudyContactModeName(c.mode)},
                         {"normal_force", c.normal_force},
                         {"friction_force", VecJson(c.friction_force_W)},
                         {"slip_velocity", VecJson(c.slip_velocity_W)},
@@ -152,9 +152,9 @@ nlohmann::json ContactEventsJson(const std::vector<StudyContactEvent>& events) {
     out.push_back({{"t", e.t},
                    {"point", e.point},
                    {"contact", e.contact},
-                   {"from", e.from},
-                   {"to", e.to},
-                   {"reason", e.reason}});
+                   {"from", StudyContactModeName(e.from)},
+                   {"to", StudyContactModeName(e.to)},
+                   {"reason", ContactEventReasonName(e.reason)}});
   }
   return out;
 }
@@ -162,9 +162,12 @@ nlohmann::json ContactEventsJson(const std::vector<StudyContactEvent>& events) {
 nlohmann::json StringEventsJson(const std::vector<StudyStringEvent>& events) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& e : events) {
-    out.push_back(
-        {{"t", e.t}, {"string", e.string}, {"from", e.from}, {"to", e.to}, {"reason", e.reason}});
-    if (e.reason == "snapped taut") {
+    out.push_back({{"t", e.t},
+                   {"string", e.string},
+                   {"from", StringModeName(e.from)},
+                   {"to", StringModeName(e.to)},
+                   {"reason", ConstraintEventReasonName(e.reason)}});
+    if (e.reason == ConstraintEventReason::kSnappedTaut) {
       out.back()["approach_speed"] = e.approach_speed;
       out.back()["impulse"] = e.impulse;
       out.back()["energy_lost"] = e.energy_lost;
@@ -309,7 +312,7 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
   j["impacts"] = ImpactsJson(r.impacts);
   j["string_events"] = StringEventsJson(r.string_events);
   j["ledger"] = LedgerJson(r.ledger);
-  j["integrator"] = {{"name", r.integrator},
+  j["integrator"] = {{"name", StudyIntegratorName(r.engine, r.integrator)},
                      {"steps", r.stats.steps},
                      {"rejected_steps", r.stats.rejected_steps},
                      {"function_evaluations", r.stats.function_evaluations}};

@@ -80,7 +80,7 @@ std::string SnapshotText(const Scene& scene, const StudySnapshot& snap, const Sh
                        show(x.M_Jc_W, kMoment, Angular::kNo, k.moment));
   }
   for (const auto& c : snap.contacts) {
-    out += fmt::format("    {}: {}, N = {}, friction {}\n", c.point, c.mode,
+    out += fmt::format("    {}: {}, N = {}, friction {}\n", c.point, StudyContactModeName(c.mode),
                        show(c.normal_force, kForce),
                        scene.planar ? show.Xy(c.friction_force_W, kForce, k.force)
                                     : show(c.friction_force_W, kForce, Angular::kNo, k.force));
@@ -278,19 +278,20 @@ std::string ContactEventsText(const StudyResult& r, const Show& u) {
   if (r.contact_events.empty()) return "";
   return "\nContact modes (time, contact point: from -> to, why)\n" +
          Abridged(r.contact_events, 20, 5, "change", [&](const StudyContactEvent& e) {
-           if (e.from == e.to && e.reason == "rolling stopped") {  // and rolls on, turned
+           const char* from = StudyContactModeName(e.from);
+           const char* to = StudyContactModeName(e.to);
+           const char* why = ContactEventReasonName(e.reason);
+           if (e.from == e.to && e.reason == ContactEventReason::kRollingStopped) {  // turned
              return fmt::format("  t = {}  {}: {} (rolling stopped and rolls on the other way)\n",
-                                u.Time(e.t), e.point, e.to);
+                                u.Time(e.t), e.point, to);
            }
-           if (e.from == e.to && e.reason != "initial") {  // a bounce: touch-down, apart at once
-             return fmt::format("  t = {}  {}: stays {} ({})\n", u.Time(e.t), e.point, e.to,
-                                e.reason);
+           if (e.from == e.to && e.reason != ContactEventReason::kInitial) {  // a bounce
+             return fmt::format("  t = {}  {}: stays {} ({})\n", u.Time(e.t), e.point, to, why);
            }
            if (e.from == e.to) {
-             return fmt::format("  t = {}  {}: {} ({})\n", u.Time(e.t), e.point, e.to, e.reason);
+             return fmt::format("  t = {}  {}: {} ({})\n", u.Time(e.t), e.point, to, why);
            }
-           return fmt::format("  t = {}  {}: {} -> {} ({})\n", u.Time(e.t), e.point, e.from, e.to,
-                              e.reason);
+           return fmt::format("  t = {}  {}: {} -> {} ({})\n", u.Time(e.t), e.point, from, to, why);
          });
 }
 
@@ -298,15 +299,18 @@ std::string StringEventsText(const StudyResult& r, const Show& u) {
   if (r.string_events.empty()) return "";
   return "\nString modes (time, string: from -> to, why)\n" +
          Abridged(r.string_events, 20, 5, "change", [&](const StudyStringEvent& e) {
-           std::string line = e.from == e.to
-                                  ? fmt::format("  t = {}  string '{}': {} ({})\n", u.Time(e.t),
-                                                e.string, e.to, e.reason)
-                                  : fmt::format("  t = {}  string '{}': {} -> {} ({})\n",
-                                                u.Time(e.t), e.string, e.from, e.to, e.reason);
-           if (e.reason == "snapped taut" && e.to == "slack") {
+           const char* why = ConstraintEventReasonName(e.reason);
+           std::string line =
+               e.from == e.to
+                   ? fmt::format("  t = {}  string '{}': {} ({})\n", u.Time(e.t), e.string,
+                                 StringModeName(e.to), why)
+                   : fmt::format("  t = {}  string '{}': {} -> {} ({})\n", u.Time(e.t), e.string,
+                                 StringModeName(e.from), StringModeName(e.to), why);
+           const bool snapped = e.reason == ConstraintEventReason::kSnappedTaut;
+           if (snapped && e.to == ConstraintMode::kReleased) {
              line += "    it rebounded (restitution): taut for an instant, slack again at once\n";
            }
-           if (e.reason == "snapped taut") {
+           if (snapped) {
              line += fmt::format("    approach speed {}, impulse {}, energy lost {}\n",
                                  u(e.approach_speed, kVelocity), u(e.impulse, kMomentum),
                                  u.Energy(e.energy_lost));
@@ -401,8 +405,8 @@ std::string EndContactsText(const Scene& scene, const StudyResult& r, const Show
   if (r.final_contacts.empty()) return "";
   std::string out = "\nContacts at the end (forces on the body, world frame)\n";
   for (const auto& c : r.final_contacts) {
-    out += fmt::format("  {}: {}, N = {}, friction {}, slip {}, gap {}\n", c.point, c.mode,
-                       show(c.normal_force, kForce),
+    out += fmt::format("  {}: {}, N = {}, friction {}, slip {}, gap {}\n", c.point,
+                       StudyContactModeName(c.mode), show(c.normal_force, kForce),
                        scene.planar ? show.Xy(c.friction_force_W, kForce, k.force)
                                     : show(c.friction_force_W, kForce, Angular::kNo, k.force),
                        scene.planar ? show.Xy(c.slip_velocity_W, kVelocity, k.speed)
@@ -517,8 +521,21 @@ std::string IntegratorText(const StudyResult& r, const Show& u) {
   }
   if (r.time_stepping) return SteppingText(r, u);
   if (r.engine_rule) return EnginesText(r, u);
-  return fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n", r.integrator,
-                     r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
+  return fmt::format("\nIntegrator: {}: {} steps, {} rejected, {} evaluations\n",
+                     StudyIntegratorName(r.engine, r.integrator), r.stats.steps,
+                     r.stats.rejected_steps, r.stats.function_evaluations);
+}
+
+// The run path and why, with the islands where they add to it: a hybrid run of several
+// islands as one system says how many (its reason says why one; a run split into islands
+// counts them in its own reason).
+std::string RunPathText(const StudyResult& r) {
+  std::string line =
+      fmt::format("Run path: {}: {}", RunPathName(r.run_path.path), r.run_path.reason);
+  if (r.islands.count > 1 && !r.islands.split && r.run_path.path != RunPath::kIslands) {
+    line += fmt::format(" (the bodies form {} islands)", r.islands.count);
+  }
+  return line + "\n";
 }
 
 }  // namespace
@@ -541,13 +558,7 @@ std::string SimulationText(const Scene& scene, const StudyResult& r, const TextO
   out += EndContactsText(scene, r, u, k);
   out += LedgerText(scene, r, u);
   out += IntegratorText(r, u);
-  if (r.islands.count > 0) {
-    out += r.islands.split
-               ? fmt::format("Islands: {}, each run as its own hybrid system\n", r.islands.count)
-               : fmt::format("Islands: {}, run as one hybrid system: {}\n", r.islands.count,
-                             r.islands.reason);
-  }
-  out += fmt::format("Run path: {}: {}\n", RunPathName(r.run_path.path), r.run_path.reason);
+  out += RunPathText(r);
   for (const auto& n : r.notes) out += fmt::format("note: {}\n", n);
   for (const auto& w : scene.warnings) out += fmt::format("warning: {}\n", w);
   for (const auto& w : r.warnings) out += fmt::format("warning: {}\n", w);

@@ -11,6 +11,7 @@
 #include "chasles/model/contact.h"
 #include "chasles/report/certificate_json.h"
 #include "chasles/report/json_report.h"
+#include "chasles/report/result_names.h"
 
 namespace chasles {
 
@@ -46,8 +47,8 @@ nlohmann::json SolveJson(const SolveReport& s) {
     if (s.planar) {
       x["planar"] = {{"Fx", r.F_Jc_W.x()}, {"Fy", r.F_Jc_W.y()}, {"Mz", r.M_Jc_W.z()}};
     }
-    if (!r.mode.empty()) {
-      x["mode"] = r.mode;
+    if (r.mode) {
+      x["mode"] = StringModeName(*r.mode);
       x["tension"] = r.lambda[0];
       x["slack"] = r.gap;
     }

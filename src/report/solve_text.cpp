@@ -12,6 +12,7 @@
 
 #include "chasles/report/certificate_text.h"
 #include "chasles/report/json_report.h"
+#include "chasles/report/result_names.h"
 #include "chasles/report/solve_json.h"
 
 namespace chasles {
@@ -149,11 +150,11 @@ std::string ReactionsText(const SolveReport& s, const ReportScales& k, const Sho
                            u(r.M_Jc_P, kMoment, Angular::kNo, k.moment));
       }
     }
-    if (!r.mode.empty()) {
+    if (r.mode) {
       out += fmt::format(
           "    {}: tension {}, slack {} (chosen by T >= 0, slack acceleration >= 0, "
           "T * slack acceleration = 0)\n",
-          r.mode, u(u.Clean(r.lambda[0], k.force), kForce), u(r.gap, kLength));
+          StringModeName(*r.mode), u(u.Clean(r.lambda[0], k.force), kForce), u(r.gap, kLength));
     }
     if (r.is_rolling) {
       out +=

@@ -2,6 +2,7 @@
 prints on standard output for the same scene and options: the report layer makes both
 (docs/python.md, "Reports")."""
 
+import json
 import os
 import subprocess
 
@@ -74,3 +75,53 @@ def test_text_refuses_a_unit_it_does_not_know_and_a_units_that_is_not_text(chasl
         solution.text(units="furlong")
     with pytest.raises(TypeError, match="units must be a string"):
         solution.text(units=3)
+
+
+# A body of parts with a hole, a mesh assembly, and a scene's own units with --units over them.
+MASS = [
+    ("example-8.1-cylinder.yaml", []),
+    ("plate-with-hole.yaml", []),
+    ("mesh-bracket-assembly.yaml", ["--units", "mm,g"]),
+]
+# A marble in a trough (oscillatory modes), a sleeping top (gyroscopic), a pendulum.
+MODES = [
+    ("cylinder-in-trough.yaml", []),
+    ("sleeping-top.yaml", []),
+    ("pendulum.yaml", []),
+]
+
+
+@needs_cli
+@pytest.mark.parametrize("name,options", MASS)
+def test_mass_text_is_what_mass_prints(chasles, tmp_path, name, options):
+    scene = example(name)
+    printed = cli("mass", scene, *options, cwd=tmp_path)
+    assert chasles.mass_text(chasles.load_scene(scene), units=units_of(options)) == printed
+
+
+@needs_cli
+@pytest.mark.parametrize("name,options", MODES)
+def test_modes_text_is_what_modes_prints(chasles, tmp_path, name, options):
+    scene = example(name)
+    printed = cli("modes", scene, *options, cwd=tmp_path)
+    assert chasles.modes_text(chasles.load_scene(scene)) == printed
+
+
+@needs_cli
+def test_modes_sweep_text_is_what_modes_sweep_prints(chasles, tmp_path):
+    scene = example("sleeping-top.yaml")
+    sweep = "spin=20 rad/s:80 rad/s:7"
+    printed = cli("modes", scene, "--sweep", sweep, cwd=tmp_path)
+    assert chasles.modes_text(chasles.load_scene(scene), sweep=sweep) == printed
+
+
+@needs_cli
+@pytest.mark.parametrize("name", ["pendulum.yaml", "contact-bouncing-ball.yaml",
+                                  "pool-head-on-events.yaml"])
+def test_run_path_is_what_the_json_names(chasles, tmp_path, name):
+    scene = example(name)
+    cli("simulate", scene, "--quiet", "--out", ".", cwd=tmp_path)
+    summary = json.loads((tmp_path / (name[:-5] + ".json")).read_text())
+    run = chasles.run(chasles.load_scene(scene))
+    assert run.run_path.path == summary["run_path"]["path"]
+    assert run.run_path.reason == summary["run_path"]["reason"]

@@ -148,7 +148,7 @@ TEST(EngineChoice, ZenoBouncesNotSummedSwitchToSteppingAndRest) {
   EXPECT_NEAR(b.p_WBcm.z(), ball.R, kProjected * ball.R);
   EXPECT_LT(b.v_WBcm_W.norm(), kProjected * std::sqrt(kG * ball.R));
   EXPECT_TRUE(Near(NormalForce(r), ball.m * kG, kProjected));
-  EXPECT_EQ(r.final_contacts[0].mode, "sticking");
+  EXPECT_EQ(r.final_contacts[0].mode.mode, ContactMode::kSticking);
   // The ledger closes once time stepping's own term is taken out; all of m g h0 went into the
   // impacts (the ball ends h0 lower, at rest) and friction took nothing (no slip).
   EXPECT_LT(std::abs(r.ledger.residual - r.ledger.time_stepping_error),
@@ -202,9 +202,9 @@ TEST(EngineChoice, BallKickedAfterSettlingSlidesThenRollsEventDriven) {
   EXPECT_LT(r.segments[2].t_begin, t_kick);
   const double v0 = J / ball.m;
   const double tau = 2 * v0 / (7 * ball.mu * kG);
-  const auto slip_stop =
-      std::find_if(r.contact_events.begin(), r.contact_events.end(),
-                   [](const StudyContactEvent& e) { return e.reason == "slip stopped"; });
+  const auto slip_stop = std::find_if(
+      r.contact_events.begin(), r.contact_events.end(),
+      [](const StudyContactEvent& e) { return e.reason == ContactEventReason::kSlipStopped; });
   ASSERT_NE(slip_stop, r.contact_events.end());
   EXPECT_NEAR(slip_stop->t, t_kick + tau, kEventTime);
   const StudyBodyState& b = r.final_bodies[0];

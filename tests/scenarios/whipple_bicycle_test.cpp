@@ -105,10 +105,10 @@ TEST(WhippleBicycle, WeaveAndCapsizeSpeedsByRootFinding) {
   const std::vector<StabilityChange> changes = FindStabilityChanges(AtSpeed, grid, 1e-13);
   ASSERT_EQ(changes.size(), 2u);
   EXPECT_NEAR(changes[0].value, 4.29238253634111, 1e-10 * 4.29238253634111);
-  EXPECT_EQ(changes[0].kind, "oscillatory");
+  EXPECT_EQ(changes[0].kind, StabilityChangeKind::kOscillatory);
   EXPECT_TRUE(changes[0].stable_after);
   EXPECT_NEAR(changes[1].value, 6.02426201538837, 1e-10 * 6.02426201538837);
-  EXPECT_EQ(changes[1].kind, "divergent");
+  EXPECT_EQ(changes[1].kind, StabilityChangeKind::kDivergent);
   EXPECT_FALSE(changes[1].stable_after);
 }
 

@@ -28,6 +28,9 @@ from ._chasles import (  # noqa: F401
     _run_definition,
     _run_json,
     _run_text,
+    _mass_text,
+    _modes_text,
+    _modes_sweep_text,
     _run_study,
     _run_sweep,
     _simulate,
@@ -107,7 +110,8 @@ class Run(Table):
     Attributes besides the table: ``events``, ``jumps``, ``contact_events`` (the contact
     timeline), ``impacts``, ``final_contacts``, ``final_bodies``, ``final_reactions``,
     ``ledger``, ``certificate``, ``notes``, ``warnings``, ``t_end``, ``stopped_by_event``,
-    ``integrator``, ``stats``, ``event_driven`` (``integrator: events``: collisions, impacts,
+    ``integrator``, ``stats``, ``run_path`` (the path the run took: ``path``, its name as the
+    JSON's ``run_path.path``, and ``reason``), ``event_driven`` (``integrator: events``: collisions, impacts,
     regime changes, pressing groups and the closed-form energy balance; None otherwise),
     ``segments`` (``integrator: auto``: each engine's stretch of the run and why it took over;
     empty otherwise);
@@ -125,7 +129,7 @@ class Run(Table):
         for name in ("events", "jumps", "contact_events", "impacts", "final_contacts",
                      "final_bodies", "final_reactions", "ledger", "certificate", "notes",
                      "warnings", "t_end", "stopped_by_event", "integrator", "stats",
-                     "event_driven", "segments"):
+                     "run_path", "event_driven", "segments"):
             setattr(self, name, getattr(result, name))
 
     def to_csv(self, full_precision=False):
@@ -214,6 +218,22 @@ def _solution_text(self, units=None):
     """The report ``chasles solve SCENE`` prints (text), in ``units`` ("SI", "US", or a list
     such as "ft,slug"; None: the scene's own, as ``--units``)."""
     return _solve_text(self._scene, self, _text_option("units", units))
+
+
+def mass_text(scene, units=None):
+    """The report ``chasles mass SCENE`` prints (text), in ``units`` ("SI", "US", or a list
+    such as "mm,g"; None: the scene's own, as ``--units``)."""
+    _instance("scene", scene, Scene)
+    return _mass_text(scene, _text_option("units", units))
+
+
+def modes_text(scene, sweep=None):
+    """The report ``chasles modes SCENE`` prints (text); with ``sweep`` ("NAME=START:STOP:N",
+    as ``--sweep``), the report of the modes over that parameter's grid."""
+    _instance("scene", scene, Scene)
+    if sweep is None:
+        return _modes_text(scene)
+    return _modes_sweep_text(scene, _text_option("sweep", sweep))
 
 
 def _solution_table(self):
@@ -440,6 +460,7 @@ def run_study(model, initial, options=None, columns=None, max_steps=10_000_000,
         options = SimulationOptions(**kwargs)
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
+    _instance("model", model, Model)
     _instance("options", options, SimulationOptions)
     if columns is None:
         columns = [f"{model.body(b).name}_{q}" for b in range(model.num_bodies)

@@ -5,6 +5,7 @@
 /// force does the support exert?" (chapter 8.2-8.3). For rolling contacts also the friction
 /// force the rolling needs against the normal force, to compare with μ_s N.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,10 +56,10 @@ struct ReactionReport {
   double normal_force = 0.0;
   Vec3 friction_W = Vec3::Zero();
   double friction_needed = 0.0;
-  /// Constraints that can let go (strings): "taut" or "slack" (empty for the others), chosen
-  /// by the complementarity T >= 0, g̈ >= 0, T g̈ = 0 (SelectConstraintModes), and the gap (the
-  /// slack L0 - L) [m].
-  std::string mode;
+  /// Constraints that can let go (strings): taut (kEngaged) or slack (kReleased) (none for the
+  /// others), chosen by the complementarity T >= 0, g̈ >= 0, T g̈ = 0 (SelectConstraintModes),
+  /// and the gap (the slack L0 - L) [m].
+  std::optional<ConstraintMode> mode;
   double gap = 0.0;
 };
 

@@ -90,13 +90,17 @@ ModalAnalysis AnalyseModes(const Model& model, const OperatingPoint& op,
 
 namespace chasles {
 
+/// How the stability changes.
+enum class StabilityChangeKind {
+  kOscillatory,  ///< a complex pair crosses Re λ = 0: a flutter or Hopf boundary
+  kDivergent,    ///< a real eigenvalue crosses 0
+};
+
 /// A parameter value where the stability of a family of operating points changes.
 struct StabilityChange {
   /// The parameter's value [its SI unit].
   double value = 0.0;
-  /// "oscillatory" (a complex pair crosses Re λ = 0: a flutter or Hopf boundary) or
-  /// "divergent" (a real eigenvalue crosses 0).
-  std::string kind;
+  StabilityChangeKind kind = StabilityChangeKind::kDivergent;
   /// Whether the family is stable above the value (towards the grid's end).
   bool stable_after = false;
 };

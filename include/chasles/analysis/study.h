@@ -29,6 +29,8 @@
 #include "chasles/analysis/certificate.h"
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/integrate/engine_choice.h"
+#include "chasles/integrate/integrator.h"
+#include "chasles/integrate/run_path.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/integrate/sphere_events.h"
 #include "chasles/integrate/time_stepping.h"
@@ -250,26 +252,39 @@ struct StudyJump {
   std::vector<int> impacts;
 };
 
+/// A contact point's regime: its mode and, when sticking, whether its rolling is held by
+/// rolling resistance (ContactPointState::rolling_held; ContactRegimeName names the pair).
+struct StudyContactMode {
+  ContactMode mode = ContactMode::kSeparated;
+  bool rolling_held = false;
+  /// The same regime: the same mode, and when sticking the same held rolling (a point that
+  /// does not stick has no held rolling, whatever the flag says).
+  bool operator==(const StudyContactMode& o) const {
+    return mode == o.mode && (mode != ContactMode::kSticking || rolling_held == o.rolling_held);
+  }
+};
+
 /// A mode change of one contact point (the mode timeline; the initial modes come first, with
-/// reason "initial").
+/// reason kInitial).
 struct StudyContactEvent {
   /// Time [s] (located to 1e-12 s).
   double t = 0.0;
   /// Contact point label (ContactPointLabels) and its contact's name.
   std::string point;
   std::string contact;
-  /// Modes before and after ("separated", "sliding", "sticking") and why ("slip stopped", ...).
-  std::string from, to, reason;
+  /// Modes before and after, and why.
+  StudyContactMode from, to;
+  ContactEventReason reason = ContactEventReason::kInitial;
 };
 
 /// A string's mode: its initial mode, going slack, snapping taut (an impact along it).
 struct StudyStringEvent {
   double t = 0.0;
   std::string string;
-  /// "taut" / "slack" before and after, and why ("initial", "went slack", "snapped taut",
-  /// "went taut").
-  std::string from, to, reason;
-  /// For "snapped taut": closing speed before [m/s], impulse [N·s], kinetic energy lost [J].
+  /// Taut (kEngaged) or slack (kReleased) before and after, and why.
+  ConstraintMode from = ConstraintMode::kEngaged, to = ConstraintMode::kEngaged;
+  ConstraintEventReason reason = ConstraintEventReason::kInitial;
+  /// For kSnappedTaut: closing speed before [m/s], impulse [N·s], kinetic energy lost [J].
   double approach_speed = 0.0;
   double impulse = 0.0;
   double energy_lost = 0.0;
@@ -301,7 +316,7 @@ struct StudyImpact {
 /// One contact point at the end of the run.
 struct StudyContactPoint {
   std::string point;
-  std::string mode;
+  StudyContactMode mode;
   /// The contact point on the body and the contact normal (towards the body), in W [m].
   Vec3 p_WC = Vec3::Zero();
   Vec3 n_W = Vec3::UnitZ();
@@ -498,8 +513,11 @@ struct StudyResult {
   /// Reaction of every joint, rolling contact and driver at the final state (Model order).
   std::vector<StudyReaction> final_reactions;
   StudyLedger ledger;
-  /// Integrator name and work counters summed over the segments.
-  std::string integrator;
+  /// The engine the run was asked for (a scene's `integrator: events`, `stepping`, `auto`, or
+  /// the integrator of its options), that integrator, and the work counters summed over the
+  /// segments.
+  EngineRequest engine = EngineRequest::kIntegrator;
+  IntegratorKind integrator = IntegratorKind::kDormandPrince5;
   IntegratorStats stats;
   /// How the last hybrid run was split into islands (count 0: no contacts or strings).
   IslandReport islands;

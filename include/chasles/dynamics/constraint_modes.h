@@ -42,9 +42,6 @@ struct ConstraintImpulse {
   double energy_lost = 0.0;
 };
 
-/// "taut" / "slack" for a string; "engaged" / "released" for another kind.
-std::string ConstraintModeName(const Model& model, int c, ConstraintMode mode);
-
 /// Sizes state.constraint_modes for `model` (an empty list: every constraint engaged).
 void EnsureConstraintModes(const Model& model, State& state);
 

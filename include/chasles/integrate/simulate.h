@@ -49,6 +49,9 @@ enum class ContactEventReason {
   kAccumulation,    ///< bounces shrinking geometrically summed to rest (Zeno limit)
   kCollision,       ///< a collision between balls changed the velocities (SimulateSphereEvents)
   kOther,           ///< re-selection after another point's event changed the forces
+  kImpulse,         ///< an impulse on a body, applied by a study between its segments
+  kEngineSwitch,    ///< a study's run handing over from time stepping to the hybrid engine
+  kTimeStep,        ///< a step of time stepping (SimulateTimeStepping) changed the regime
 };
 
 /// Name of a reason ("touch-down", "lift-off", ...).
@@ -94,6 +97,14 @@ struct EventRecord {
 
 /// A mode change of a constraint that can let go (a string going slack or snapping taut), or
 /// its initial mode (reason "initial").
+/// Why a constraint that can let go (a string) changed mode.
+enum class ConstraintEventReason {
+  kInitial,      ///< mode chosen at the start of the run
+  kWentSlack,    ///< the tension fell through 0
+  kSnappedTaut,  ///< an impact: the gap closed while closing
+  kWentTaut,     ///< the gap closed at zero speed
+};
+
 struct ConstraintEvent {
   /// Time [s] (located to the event time tolerance).
   double t = 0.0;
@@ -101,9 +112,7 @@ struct ConstraintEvent {
   int constraint = -1;
   ConstraintMode from = ConstraintMode::kEngaged;
   ConstraintMode to = ConstraintMode::kEngaged;
-  /// "initial", "went slack" (the tension fell through 0), "snapped taut" (an impact: the
-  /// gap closed while closing), "went taut" (the gap closed at zero speed) or "other".
-  std::string reason;
+  ConstraintEventReason reason = ConstraintEventReason::kInitial;
   /// For "snapped taut": closing speed before [m/s], impulse [N·s], kinetic energy lost [J].
   double approach_speed = 0.0;
   double impulse = 0.0;

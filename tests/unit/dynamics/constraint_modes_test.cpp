@@ -95,14 +95,14 @@ TEST(ConstraintModes, PendulumGoesSlackFliesAndSnapsTaut) {
   const SimulationResult r = Simulate(t.model, t.s, o);
   ASSERT_GE(r.constraint_events.size(), 3u);
   const ConstraintEvent& start = r.constraint_events[0];
-  EXPECT_EQ(start.reason, "initial");
+  EXPECT_EQ(start.reason, ConstraintEventReason::kInitial);
   EXPECT_EQ(start.to, ConstraintMode::kEngaged);
   const ConstraintEvent& slack = r.constraint_events[1];
-  EXPECT_EQ(slack.reason, "went slack");
+  EXPECT_EQ(slack.reason, ConstraintEventReason::kWentSlack);
   EXPECT_EQ(slack.to, ConstraintMode::kReleased);
   EXPECT_TRUE(Near(slack.t, t_s, 1e-9));
   const ConstraintEvent& snap = r.constraint_events[2];
-  EXPECT_EQ(snap.reason, "snapped taut");
+  EXPECT_EQ(snap.reason, ConstraintEventReason::kSnappedTaut);
   EXPECT_TRUE(Near(snap.t, t_s + tau, 1e-9));
   EXPECT_TRUE(Near(snap.approach_speed, v_radial, 1e-8));
   EXPECT_TRUE(Near(snap.impulse, m * v_radial, 1e-8));
@@ -139,11 +139,11 @@ TEST(ConstraintModes, BlockThrownUpSlackensAndSnapsTaut) {
     o.on_transition = [&](const State&, const State& a) { after.push_back(a); };
     const SimulationResult r = Simulate(t.model, t.s, o);
     ASSERT_EQ(r.constraint_events.size(), e > 0.0 ? 3u : 2u) << e;
-    EXPECT_EQ(r.constraint_events[0].reason, "initial");
+    EXPECT_EQ(r.constraint_events[0].reason, ConstraintEventReason::kInitial);
     EXPECT_EQ(r.constraint_events[0].from, ConstraintMode::kEngaged);
     EXPECT_EQ(r.constraint_events[0].to, ConstraintMode::kReleased);
     const ConstraintEvent& snap = r.constraint_events[1];
-    EXPECT_EQ(snap.reason, "snapped taut");
+    EXPECT_EQ(snap.reason, ConstraintEventReason::kSnappedTaut);
     EXPECT_TRUE(Near(snap.t, t1, 1e-9)) << e;
     EXPECT_TRUE(Near(snap.approach_speed, v0, 1e-9));
     EXPECT_TRUE(Near(snap.impulse, m * (1 + e) * v0, 1e-9));
@@ -158,7 +158,7 @@ TEST(ConstraintModes, BlockThrownUpSlackensAndSnapsTaut) {
       EXPECT_TRUE(Near(r.final_state.bodies[0].p_WBcm.y(), -l, 1e-12, l));
       EXPECT_TRUE(Near(r.final_state.bodies[0].v_WBcm_W.y(), 0.0, 1e-9, v0));
       const InstantaneousSolution sol = SolveInstantaneous(t.model, r.final_state);
-      EXPECT_EQ(sol.reactions[0].mode, "taut");
+      EXPECT_EQ(sol.reactions[0].mode, ConstraintMode::kEngaged);
       EXPECT_TRUE(Near(sol.reactions[0].lambda[0], m * kG, 1e-9));
     }
     const LedgerSample L = CalcLedgerSample(t.model, r.final_state, t.s);
@@ -183,12 +183,12 @@ TEST(ConstraintModes, SolveChoosesTautOrSlackByTheSignOfTheTension) {
     const InstantaneousSolution sol = SolveInstantaneous(t.model, t.s);
     const double T = m * (v * v / l + kG * std::cos(phi));
     if (T > 0.0) {
-      EXPECT_EQ(sol.reactions[0].mode, "taut");
+      EXPECT_EQ(sol.reactions[0].mode, ConstraintMode::kEngaged);
       EXPECT_TRUE(Near(sol.reactions[0].lambda[0], T, 1e-7));
       // Centripetal: a = -(v²/l) r̂ + tangential gravity.
       EXPECT_TRUE(Near(sol.bodies[0].a_WBcm_W.dot(p / l), -v * v / l, 1e-9));
     } else {
-      EXPECT_EQ(sol.reactions[0].mode, "slack");
+      EXPECT_EQ(sol.reactions[0].mode, ConstraintMode::kReleased);
       EXPECT_EQ(sol.reactions[0].lambda[0], 0.0);
       EXPECT_TRUE(test::MatNear(sol.bodies[0].a_WBcm_W, Vec3(0, -kG, 0), 1e-15, kG));
     }
@@ -196,7 +196,7 @@ TEST(ConstraintModes, SolveChoosesTautOrSlackByTheSignOfTheTension) {
   // Longer than the path: slack whatever the forces.
   Tether loose = MakeTether(m, l, 0.0, Vec3(0, -0.5 * l, 0), Vec3::Zero());
   const InstantaneousSolution sol = SolveInstantaneous(loose.model, loose.s);
-  EXPECT_EQ(sol.reactions[0].mode, "slack");
+  EXPECT_EQ(sol.reactions[0].mode, ConstraintMode::kReleased);
   EXPECT_TRUE(Near(sol.reactions[0].gap, 0.5 * l, 1e-15));
 }
 
@@ -225,16 +225,16 @@ TEST(ConstraintModes, TwoStringsShareTheLoadOrOneGoesSlack) {
     const InstantaneousSolution sol = SolveInstantaneous(model, st);
     const double TB = 0.5 * m * s * (g / h - gx / a);
     if (TB >= 0.0) {
-      EXPECT_EQ(sol.reactions[0].mode, "taut");
-      EXPECT_EQ(sol.reactions[1].mode, "taut");
+      EXPECT_EQ(sol.reactions[0].mode, ConstraintMode::kEngaged);
+      EXPECT_EQ(sol.reactions[1].mode, ConstraintMode::kEngaged);
       EXPECT_TRUE(Near(sol.reactions[1].lambda[0], TB, 1e-9, m * g));
       EXPECT_TRUE(Near(sol.reactions[0].lambda[0], m * g * s / h - TB, 1e-9));
       EXPECT_TRUE(test::MatNear(sol.bodies[0].a_WBcm_W, Vec3::Zero(), 1e-12, g));
     } else {
       const Vec3 eA = Vec3(-a, h, 0) / s, eB = Vec3(a, h, 0) / s;
       const double TA = m * (gx * a + g * h) / s;
-      EXPECT_EQ(sol.reactions[0].mode, "taut");
-      EXPECT_EQ(sol.reactions[1].mode, "slack");
+      EXPECT_EQ(sol.reactions[0].mode, ConstraintMode::kEngaged);
+      EXPECT_EQ(sol.reactions[1].mode, ConstraintMode::kReleased);
       EXPECT_TRUE(Near(sol.reactions[0].lambda[0], TA, 1e-9));
       EXPECT_EQ(sol.reactions[1].lambda[0], 0.0);
       const Vec3 acc = Vec3(gx, -g, 0) + TA * eA / m;

@@ -137,7 +137,7 @@ StudyResult OneBodyRun() {
   r.ledger.residual = 1e-11;
   r.ledger.work_by_force = {{"drag", -0.25}};
   r.warnings = {"the run's own"};
-  r.integrator = "rk4";
+  r.integrator = IntegratorKind::kRk4;
   return r;
 }
 
@@ -162,7 +162,7 @@ TEST(SimulationJson, CarriesTheHeaderAndThePlanarBlocksOnlyWhenPlanar) {
   // relative_residual = residual / energy_scale.
   EXPECT_DOUBLE_EQ(j["ledger"]["relative_residual"].get<double>(), 1e-11 / 10.0);
   EXPECT_EQ(j["ledger"]["work_by_force"]["drag"].get<double>(), -0.25);
-  EXPECT_EQ(j["integrator"]["name"], "rk4");
+  EXPECT_EQ(j["integrator"]["name"], "RK4 (fixed step)");
 
   header.planar = true;
   j = SimulationJson(r, header, "out/spin.csv");
