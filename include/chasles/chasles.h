@@ -9,6 +9,7 @@
 #include "chasles/analysis/balance.h"
 #include "chasles/analysis/certificate.h"
 #include "chasles/analysis/error_locator.h"
+#include "chasles/analysis/initial_state.h"
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/analysis/ledger.h"
 #include "chasles/analysis/linearize.h"
