@@ -7,6 +7,7 @@
 #include <unistd.h>
 #include <cerrno>
 #include <cstring>
+#include <stdexcept>
 #include <vector>
 
 #include <fmt/format.h>
@@ -16,10 +17,6 @@
 namespace chasles {
 
 namespace {
-
-std::string SizeText(unsigned long long bytes) {
-  return fmt::format("{} bytes ({:.1f} MiB)", bytes, static_cast<double>(bytes) / (1 << 20));
-}
 
 /// Closes the descriptor however the read ends.
 struct Fd {
@@ -31,28 +28,25 @@ struct Fd {
 
 }  // namespace
 
-std::string ReadInputFile(const std::string& path, const std::string& what, size_t max_bytes,
-                          const std::string& option) {
-  const auto too_large = [&](const std::string& size) {
-    throw InputError(fmt::format(
-        "{}: {} is {} the limit of {}; it is refused before it is parsed (raise the limit with "
-        "{} if it is meant to be read)",
-        path, what, size, SizeText(max_bytes), option));
+std::string FormatByteSize(unsigned long long bytes) {
+  return fmt::format("{} bytes ({:.1f} MiB)", bytes, static_cast<double>(bytes) / (1 << 20));
+}
+
+std::string ReadCappedFile(const std::string& path, size_t max_bytes,
+                           const std::function<void(const CappedReadFailure&)>& fail) {
+  using Kind = CappedReadFailure::Kind;
+  const auto stop = [&](Kind kind, int error, std::optional<unsigned long long> size = {}) {
+    fail(CappedReadFailure{kind, error, size});
+    throw std::logic_error("ReadCappedFile: the failure handler returned");
   };
   Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
-  if (f.fd < 0) {
-    throw InputError(fmt::format("{}: cannot open {}: {}", path, what, std::strerror(errno)));
-  }
+  if (f.fd < 0) stop(Kind::kOpen, errno);
   struct stat st {};
-  if (::fstat(f.fd, &st) != 0) {
-    throw InputError(fmt::format("{}: cannot read {}: {}", path, what, std::strerror(errno)));
-  }
-  if (S_ISDIR(st.st_mode)) {
-    throw InputError(fmt::format("{}: this is a folder, not {}", path, what));
-  }
+  if (::fstat(f.fd, &st) != 0) stop(Kind::kRead, errno);
+  if (S_ISDIR(st.st_mode)) stop(Kind::kFolder, 0);
   const bool regular = S_ISREG(st.st_mode);
   if (regular && static_cast<unsigned long long>(st.st_size) > max_bytes) {
-    too_large(fmt::format("{}, more than", SizeText(static_cast<unsigned long long>(st.st_size))));
+    stop(Kind::kTooLarge, 0, static_cast<unsigned long long>(st.st_size));
   }
   std::string text;
   if (regular) text.reserve(static_cast<size_t>(st.st_size));
@@ -61,14 +55,36 @@ std::string ReadInputFile(const std::string& path, const std::string& what, size
     const ssize_t n = ::read(f.fd, buffer.data(), buffer.size());
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw InputError(fmt::format("{}: cannot read {}: {}", path, what, std::strerror(errno)));
+      stop(Kind::kRead, errno);
     }
     if (n == 0) break;
     text.append(buffer.data(), static_cast<size_t>(n));
     // A pipe or a device (/dev/zero) may never end: stop one byte past the limit.
-    if (text.size() > max_bytes) too_large("longer than");
+    if (text.size() > max_bytes) stop(Kind::kTooLarge, 0);
   }
   return text;
+}
+
+std::string ReadInputFile(const std::string& path, const std::string& what, size_t max_bytes,
+                          const std::string& option) {
+  return ReadCappedFile(path, max_bytes, [&](const CappedReadFailure& f) {
+    switch (f.kind) {
+      case CappedReadFailure::Kind::kOpen:
+        throw InputError(fmt::format("{}: cannot open {}: {}", path, what, std::strerror(f.error)));
+      case CappedReadFailure::Kind::kRead:
+        throw InputError(fmt::format("{}: cannot read {}: {}", path, what, std::strerror(f.error)));
+      case CappedReadFailure::Kind::kFolder:
+        throw InputError(fmt::format("{}: this is a folder, not {}", path, what));
+      case CappedReadFailure::Kind::kTooLarge:
+        throw InputError(fmt::format(
+            "{}: {} is {} the limit of {}; it is refused before it is parsed (raise the limit "
+            "with {} if it is meant to be read)",
+            path, what,
+            f.size ? fmt::format("{}, more than", FormatByteSize(*f.size))
+                   : std::string("longer than"),
+            FormatByteSize(max_bytes), option));
+    }
+  });
 }
 
 Utf8Lead DecodeUtf8Lead(unsigned char c) {

@@ -1,12 +1,8 @@
 #include "internal/scene_text.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <vector>
 
 #include <fmt/format.h>
 
@@ -15,69 +11,29 @@
 
 namespace chasles::scene_internal {
 
-namespace {
-
-std::string SizeText(size_t bytes) {
-  return fmt::format("{} bytes ({:.1f} MiB)", bytes, static_cast<double>(bytes) / (1 << 20));
-}
-
-/// `size` is the file's size, or "" when it has none (a pipe or a device read past the limit).
-[[noreturn]] void TooLarge(const std::string& path, const std::string& size, size_t max_bytes) {
-  throw SceneError(
-      path, 0, 0, "",
-      fmt::format("the scene is {} the maximum scene size of {}; a scene that "
-                  "large is refused before it is parsed (raise the limit with "
-                  "--max-scene-bytes N if it is meant to be read)",
-                  size.empty() ? std::string("longer than") : fmt::format("{}, more than", size),
-                  SizeText(max_bytes)));
-}
-
-/// Closes the descriptor however the read ends.
-struct Fd {
-  int fd;
-  ~Fd() {
-    if (fd >= 0) ::close(fd);
-  }
-};
-
-}  // namespace
-
 std::string ReadSceneFileText(const std::string& path, size_t max_bytes) {
-  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
-  if (f.fd < 0) {
-    const int error = errno;
-    throw SceneError(path, 0, 0, "",
-                     error == ENOENT
-                         ? std::string("cannot open the file (does it exist?)")
-                         : fmt::format("cannot open the file: {}", std::strerror(error)));
-  }
-  struct stat st {};
-  if (::fstat(f.fd, &st) != 0) {
-    throw SceneError(path, 0, 0, "", fmt::format("cannot read the file: {}", std::strerror(errno)));
-  }
-  if (S_ISDIR(st.st_mode)) {
-    throw SceneError(path, 0, 0, "", "this is a folder, not a scene file");
-  }
-  const bool regular = S_ISREG(st.st_mode);
-  if (regular && static_cast<unsigned long long>(st.st_size) > max_bytes) {
-    TooLarge(path, SizeText(static_cast<size_t>(st.st_size)), max_bytes);
-  }
-  std::string text;
-  if (regular) text.reserve(static_cast<size_t>(st.st_size));
-  std::vector<char> buffer(1 << 16);
-  for (;;) {
-    const ssize_t n = ::read(f.fd, buffer.data(), buffer.size());
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw SceneError(path, 0, 0, "",
-                       fmt::format("cannot read the file: {}", std::strerror(errno)));
+  return ReadCappedFile(path, max_bytes, [&](const CappedReadFailure& f) {
+    switch (f.kind) {
+      case CappedReadFailure::Kind::kOpen:
+        throw SceneError(path, 0, 0, "",
+                         f.error == ENOENT
+                             ? std::string("cannot open the file (does it exist?)")
+                             : fmt::format("cannot open the file: {}", std::strerror(f.error)));
+      case CappedReadFailure::Kind::kRead:
+        throw SceneError(path, 0, 0, "",
+                         fmt::format("cannot read the file: {}", std::strerror(f.error)));
+      case CappedReadFailure::Kind::kFolder:
+        throw SceneError(path, 0, 0, "", "this is a folder, not a scene file");
+      case CappedReadFailure::Kind::kTooLarge:
+        throw SceneError(path, 0, 0, "",
+                         fmt::format("the scene is {} the maximum scene size of {}; a scene that "
+                                     "large is refused before it is parsed (raise the limit with "
+                                     "--max-scene-bytes N if it is meant to be read)",
+                                     f.size ? fmt::format("{}, more than", FormatByteSize(*f.size))
+                                            : std::string("longer than"),
+                                     FormatByteSize(max_bytes)));
     }
-    if (n == 0) break;
-    text.append(buffer.data(), static_cast<size_t>(n));
-    // A pipe or a device (/dev/zero) may never end: stop one byte past the limit.
-    if (text.size() > max_bytes) TooLarge(path, "", max_bytes);
-  }
-  return text;
+  });
 }
 
 void CheckSceneText(std::string_view text, const std::string& name) {

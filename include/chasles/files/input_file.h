@@ -8,6 +8,8 @@
 /// chasles/files/mesh_reader.h.)
 
 #include <cstddef>
+#include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -16,6 +18,26 @@ namespace chasles {
 /// The most bytes of a table or a summary read unless --max-input-bytes says otherwise:
 /// 256 MiB, some 4 million rows of a 10-column run.
 inline constexpr size_t kDefaultMaxInputBytes = size_t{256} << 20;
+
+/// A byte count for messages: "1048577 bytes (1.0 MiB)".
+std::string FormatByteSize(unsigned long long bytes);
+
+/// Why a capped read stopped (ReadCappedFile): the file could not be opened or read (with the
+/// errno), it is a folder, or it is longer than the cap (`size`: a regular file's size, known
+/// before a byte is read; none for a pipe or a device read one byte past the cap).
+struct CappedReadFailure {
+  enum class Kind { kOpen, kRead, kFolder, kTooLarge };
+  Kind kind = Kind::kOpen;
+  int error = 0;
+  std::optional<unsigned long long> size;
+};
+
+/// The whole file at `path`, read with a cap of `max_bytes`: a regular file is refused by its
+/// size before a byte is read, a pipe or a device (which may never end) after max_bytes + 1
+/// bytes. Each reader words its own errors: `fail` is called with why the read stopped and must
+/// throw (std::logic_error if it returns).
+std::string ReadCappedFile(const std::string& path, size_t max_bytes,
+                           const std::function<void(const CappedReadFailure&)>& fail);
 
 /// The whole file at `path` (`what` names it in errors: "the table to plot"). Throws InputError
 /// "PATH: ..." for a folder, a file that cannot be opened or read, and one larger than
