@@ -9,12 +9,14 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "chasles/analysis/balance.h"
+#include "chasles/analysis/initial_state.h"
 #include "chasles/analysis/whirl.h"
 #include "chasles/error.h"
 #include "chasles/files/output_set.h"
@@ -251,7 +253,10 @@ int RunBalance(const BalanceArgs& args) {
   BalanceReport r;
   std::optional<WhirlMap> whirl;
   try {
-    const Study study = BuildStudy(scene, 1.0);
+    Study study = BuildStudy(scene, 1.0);
+    // On the constraints as a run starts (its warnings are the run's, not the balance's).
+    std::vector<std::string> warnings;
+    study.initial = SettleInitialState(*study.model, study.initial, study.settling, warnings);
     const Model& model = *study.model;
     const BodyIndex b = model.FindBody(args.body);
     const BodyState& s = study.initial.bodies[static_cast<size_t>(b)];

@@ -27,6 +27,8 @@
 #include "chasles/scene/modes.h"
 #include "chasles/scene/scene_dynamics.h"
 #include "chasles/scene/scene_error.h"
+#include "chasles/scene/solve.h"
+#include "chasles/scene/sweep.h"
 #include "commands.h"
 #include "html_report.h"
 #include "scene_args.h"
@@ -50,7 +52,7 @@ nlohmann::json CoordinatesJson(const std::vector<LinearCoordinate>& c) {
   return out;
 }
 
-nlohmann::json SceneModesJson(const SceneModes& s) {
+nlohmann::json SceneModesJson(const OperatingPointModes& s) {
   const OperatingPoint& op = s.operating_point;
   nlohmann::json state = nlohmann::json::array();
   for (size_t b = 0; b < s.bodies.size(); ++b) {
@@ -141,7 +143,8 @@ std::vector<std::complex<double>> AllEigenvalues(const ModalAnalysis& a) {
 /// (a rigid mode more) leaves its last cells empty.
 std::string SweepCsv(const ModesSweep& w) {
   size_t most = 0;
-  for (const SceneModes& p : w.points) most = std::max(most, AllEigenvalues(p.modes).size());
+  for (const OperatingPointModes& p : w.points)
+    most = std::max(most, AllEigenvalues(p.modes).size());
   const bool spin = w.unit == "rad/s";
   std::string out = w.parameter + (spin ? ",spin_hz" : "");
   for (size_t k = 1; k <= most; ++k) out += fmt::format(",re_{0},im_{0},f_{0}", k);
@@ -205,15 +208,19 @@ int RunModes(const ModesArgs& args) {
   if (args.sweep.empty()) {
     if (args.format == "csv") throw InputError("--format csv is a sweep's table: give --sweep");
     const Scene scene = LoadScene(args.scene);
-    const SceneModes s = AnalyseSceneModes(scene);
+    const OperatingPointModes s = AnalyseOperatingPointModes(MakeModesDefinition(scene));
     const nlohmann::json j = SceneModesJson(s);
     report = args.format == "json" ? DumpJson(j, "the modes report")
                                    : (CheckFiniteJson(j, "the modes report"), ModesText(scene, s));
     if (!args.html.empty()) out.Add(args.html, HtmlReport(ModesReportData(scene, s)));
   } else {
     const SweepSpec spec = ParseSweep(args.sweep, "command line", "--sweep");
-    const ModesSweep w = SweepSceneModes(SceneLoader(args.scene), SceneOptionsFrom(args.scene),
-                                         spec, kDefaultMaxRows);
+    const auto load = SceneLoader(args.scene);
+    const SceneOptions options = SceneOptionsFrom(args.scene);
+    const SweepGrid grid = MakeSweepGrid(load(options), {spec}, kDefaultMaxRows);
+    const ModesSweep w = SweepModes(grid.parameters, [&](double value) {
+      return MakeModesDefinitionAt(load, options, spec.name, grid.parameters.units[0], value);
+    });
     const nlohmann::json j = SweepJson(w);
     if (args.format == "json") {
       report = DumpJson(j, "the modes sweep");

@@ -134,14 +134,15 @@ int RunSimulateSweep(const SimulateArgs& args) {
   for (const std::string& q : args.quantity) {
     quantities.push_back(ParseSweepQuantity(q, "command line", "--quantity"));
   }
-  SimulateSweepOptions options;
+  StudySweepOptions options;
   if (!std::isnan(args.until)) options.study.until = args.until;
   ApplyRunLimitOptions(args, options.study);
   options.columns = args.columns;
-  options.jobs = args.jobs;
+  SweepRunOptions run_options;
+  run_options.jobs = args.jobs;
   // Under mpirun: this rank's points; rank 0 gathers the rows and alone writes (cluster.h).
   const Cluster& cluster = Cluster::Get();
-  options.share = cluster.share();
+  run_options.share = cluster.share();
   const std::string stem =
       args.scene.scene.empty() ? "demo" : std::filesystem::path(args.scene.scene).stem().string();
   const std::int64_t max_runs = args.max_runs > 0 ? args.max_runs : kDefaultMaxRuns;
@@ -187,11 +188,13 @@ int RunSimulateSweep(const SimulateArgs& args) {
   {
     Progress progress("simulate --sweep", "", args.quiet || cluster.rank() != 0,
                       args.progress_interval);
-    options.progress = [&progress](std::int64_t done, std::int64_t total) {
+    run_options.progress = [&progress](std::int64_t done, std::int64_t total) {
       progress.Update(static_cast<double>(done), static_cast<double>(total));
     };
-    table = SimulateSweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), specs, quantities,
-                          options, max_runs);
+    const SceneStudySweep sweep =
+        MakeStudySweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), specs, quantities,
+                       options, max_runs);
+    table = SimulateSweep(sweep.grid.parameters, quantities, sweep.units, sweep.point, run_options);
   }
   if (!GatherSweep(&table, &warnings, &check_failed)) return 0;
   for (const auto& [k, list] : warnings) {
@@ -260,7 +263,7 @@ int RunSimulate(const SimulateArgs& args) {
   {
     Progress progress("simulating", "s", args.quiet, args.progress_interval);
     options.progress = [&](double t) { progress.Update(t, t_end); };
-    r = RunStudy(scene, options);
+    r = RunStudy(MakeStudyDefinition(scene, options));
   }
 
   // Every output is made and checked (no non-finite number) before any file appears; then

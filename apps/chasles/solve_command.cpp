@@ -102,7 +102,7 @@ int RunSolve(const SolveArgs& args) {
     TextOptions text;
     text.units = args.units;
     TextUnits(scene, text);
-    const SolveReport s = SolveScene(scene);
+    const SolveReport s = SolveAtState(MakeSolveDefinition(scene));
     // Every value of the JSON and the text is checked by name first (DumpJson, SolveText).
     std::string report;
     if (args.format == "json") report = DumpJson(SolveJson(s), "the solve report");
@@ -132,7 +132,7 @@ int RunSolve(const SolveArgs& args) {
   // Under mpirun: this rank's values; rank 0 gathers the rows and alone writes (cluster.h).
   Cluster& cluster = Cluster::Get();
   Progress progress("solve --sweep", "", args.quiet || cluster.rank() != 0, args.progress_interval);
-  SweepOptions options;
+  SolveSweepOptions options;
   options.share = cluster.share();
   options.progress = [&progress, &cluster](int k, int count) {
     cluster.set_point(k);  // where this rank stopped, if the solve fails
@@ -150,8 +150,12 @@ int RunSolve(const SolveArgs& args) {
       }
     }
   };
-  SweepTable table =
-      SolveSweep(SceneLoader(args.scene), SceneOptionsFrom(args.scene), sweep, options);
+  const auto load = SceneLoader(args.scene);
+  const SceneOptions scene_options = SceneOptionsFrom(args.scene);
+  const std::string unit = SolveSweepUnit(load, scene_options, sweep);
+  SweepTable table = SolveSweep(
+      sweep.name, unit, sweep.count,
+      [&](int k) { return MakeSolveSweepPoint(load, scene_options, sweep, k); }, options);
   bool check_failed = false;
   if (!GatherSweep(&table, &warnings, &check_failed)) return 0;
   if (cluster.distributed()) {

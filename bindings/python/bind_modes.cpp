@@ -12,7 +12,7 @@ namespace chasles::python {
 
 namespace {
 
-py::dict ModesDict(const SceneModes& s) {
+py::dict ModesDict(const OperatingPointModes& s) {
   const Linearization& lin = s.modes.linearization;
   const auto n = static_cast<py::ssize_t>(s.modes.modes.size());
   const auto d = static_cast<py::ssize_t>(lin.A.rows());
@@ -63,10 +63,10 @@ void BindModes(py::module_& m) {
   m.def(
       "modes",
       [](const PyScene& s) {
-        SceneModes r;
+        OperatingPointModes r;
         {
           py::gil_scoped_release release;
-          r = AnalyseSceneModes(s.scene);
+          r = AnalyseOperatingPointModes(MakeModesDefinition(s.scene));
         }
         return ModesDict(r);
       },

@@ -206,7 +206,10 @@ void BindSweeps(py::module_& m) {
         spec.stop = stop;
         spec.count = count;
         py::gil_scoped_release release;
-        return SolveSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, spec);
+        const auto load = [&s](const SceneOptions& o) { return s.Load(o); };
+        const std::string unit = SolveSweepUnit(load, s.options, spec);
+        return SolveSweep(spec.name, unit, spec.count,
+                          [&](int k) { return MakeSolveSweepPoint(load, s.options, spec, k); });
       },
       py::arg("scene"), py::arg("parameter"), py::arg("start"), py::arg("stop"), py::arg("count"));
   m.def(
@@ -219,12 +222,15 @@ void BindSweeps(py::module_& m) {
         std::vector<SweepQuantity> qs;
         for (const std::string& q : quantities)
           qs.push_back(ParseSweepQuantity(q, "python", "quantities"));
-        SimulateSweepOptions options;
+        StudySweepOptions options;
         if (!std::isnan(until)) options.study.until = until;
-        options.jobs = jobs;
         py::gil_scoped_release release;
-        return SimulateSweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, specs,
-                             qs, options, max_runs);
+        const SceneStudySweep sweep =
+            MakeStudySweep([&s](const SceneOptions& o) { return s.Load(o); }, s.options, specs, qs,
+                           options, max_runs);
+        SweepRunOptions run_options;
+        run_options.jobs = jobs;
+        return SimulateSweep(sweep.grid.parameters, qs, sweep.units, sweep.point, run_options);
       },
       py::arg("scene"), py::arg("sweeps"), py::arg("quantities"), py::arg("until"), py::arg("jobs"),
       py::arg("max_runs"));
@@ -375,7 +381,7 @@ void BindSolve(py::module_& m) {
       "_solve",
       [](const PyScene& s) {
         py::gil_scoped_release release;
-        return SolveScene(s.scene);
+        return SolveAtState(MakeSolveDefinition(s.scene));
       },
       py::arg("scene"));
   BindSweeps(m);
@@ -618,7 +624,7 @@ void BindStudy(py::module_& m) {
         o.timeout = timeout;
         o.min_step = min_step;
         py::gil_scoped_release release;
-        return RunStudy(s.scene, o);
+        return RunStudy(MakeStudyDefinition(s.scene, o));
       },
       py::arg("scene"), py::arg("until"), py::arg("max_steps"), py::arg("max_rows"),
       py::arg("timeout"), py::arg("min_step"));

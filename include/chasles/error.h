@@ -25,6 +25,7 @@ struct ErrorElement {
     kContact,       ///< Model::contact(index)
     kContactPoint,  ///< the Model's contact point `index` (Model::contact_point_name)
     kEvent,         ///< SimulationOptions::events[index]
+    kInitialState,  ///< the initial state given for body `index` (a study's user body)
   };
   Kind kind = Kind::kBody;
   int index = -1;

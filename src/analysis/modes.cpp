@@ -339,3 +339,57 @@ std::vector<CriticalSpeed> FindCriticalSpeeds(const std::function<ModalAnalysis(
 }
 
 }  // namespace chasles
+
+namespace chasles {
+
+OperatingPointModes AnalyseOperatingPointModes(const ModesDefinition& definition) {
+  try {
+    if (!definition.model)
+      throw InputError("a modes analysis needs its Model (ModesDefinition::model)");
+    const Model& model = *definition.model;
+    OperatingPointModes out;
+    for (int b = 0; b < model.num_bodies(); ++b) out.bodies.push_back(model.body(b).name());
+    std::vector<std::string> warnings;
+    const State initial =
+        definition.settle_initial
+            ? SettleInitialState(model, definition.initial, *definition.settle_initial, warnings)
+            : definition.initial;
+    out.operating_point = FindOperatingPoint(model, initial);
+    LinearizeOptions options;
+    options.finite_difference_check = true;
+    out.modes = AnalyseModes(model, out.operating_point, options);
+    out.solution = SolveInstantaneous(model, out.operating_point.state);
+    return out;
+  } catch (const InputError& e) {
+    if (!definition.locate_error) throw;
+    definition.locate_error(e);
+    throw;  // a locator that returns leaves the error as it is
+  }
+}
+
+ModesSweep SweepModes(const ParameterGrid& grid,
+                      const std::function<ModesDefinition(double value)>& point) {
+  if (grid.names.size() != 1) throw UsageError("a modes sweep is over one parameter");
+  ModesSweep out;
+  out.parameter = grid.names[0];
+  out.unit = grid.units[0];
+  const auto at = [&](double value) { return AnalyseOperatingPointModes(point(value)); };
+  for (std::int64_t k = 0; k < grid.size(); ++k) {
+    out.values.push_back(grid.Values(k)[0]);
+    out.points.push_back(at(out.values.back()));
+  }
+  // The grid's points are analysed already: the narrowing analyses only between them.
+  const auto analyse = [&](double value) {
+    for (size_t k = 0; k < out.values.size(); ++k) {
+      if (out.values[k] == value) return out.points[k].modes;
+    }
+    return at(value).modes;
+  };
+  out.changes = FindStabilityChanges(analyse, out.values);
+  if (out.unit == "rad/s" || out.unit == "1/s") {
+    out.critical_speeds = FindCriticalSpeeds(analyse, out.values);
+  }
+  return out;
+}
+
+}  // namespace chasles

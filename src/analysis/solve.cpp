@@ -2,8 +2,12 @@
 
 #include "chasles/analysis/solve.h"
 
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "chasles/analysis/certificate.h"
 #include "chasles/analysis/instantaneous.h"
@@ -96,10 +100,29 @@ std::vector<ContactPointReport> ContactReports(const SolveDefinition& def, const
 
 }  // namespace
 
+namespace {
+SolveReport SolveUnlocated(const SolveDefinition& definition);
+}  // namespace
+
 SolveReport SolveAtState(const SolveDefinition& definition) {
+  try {
+    return SolveUnlocated(definition);
+  } catch (const InputError& e) {
+    if (!definition.locate_error) throw;
+    definition.locate_error(e);
+    throw;  // a locator that returns leaves the error as it is
+  }
+}
+
+namespace {
+
+SolveReport SolveUnlocated(const SolveDefinition& definition) {
   if (!definition.model) throw InputError("a solve needs its Model (SolveDefinition::model)");
   const Model& model = *definition.model;
-  State state = definition.initial;
+  std::vector<std::string> warnings = definition.warnings;
+  State state = definition.settle_initial ? SettleInitialState(model, definition.initial,
+                                                               *definition.settle_initial, warnings)
+                                          : definition.initial;
   Data data = MakeData(model);
   ProjectOntoConstraints(model, state, data);
   if (model.num_contacts() > 0) {
@@ -113,8 +136,7 @@ SolveReport SolveAtState(const SolveDefinition& definition) {
   SolveReport s;
   s.solution = SolveInstantaneous(model, state);
   s.planar = definition.planar;
-  s.solution.warnings.insert(s.solution.warnings.begin(), definition.warnings.begin(),
-                             definition.warnings.end());
+  s.solution.warnings.insert(s.solution.warnings.begin(), warnings.begin(), warnings.end());
   CertificateBuilder certificate;
   certificate.CheckState(model, state, CheckPhase::kSolve);
   s.certificate = certificate.Finish();
@@ -125,6 +147,39 @@ SolveReport SolveAtState(const SolveDefinition& definition) {
   s.mu_s = definition.mu_s;
   if (model.num_contacts() > 0) s.contacts = ContactReports(definition, model, state);
   return s;
+}
+
+}  // namespace
+
+SweepTable SolveSweep(const std::string& name, const std::string& unit, int count,
+                      const std::function<SolveSweepPoint(int k)>& point,
+                      const SolveSweepOptions& options) {
+  SweepTable table;
+  table.parameter = name;
+  for (int k = 0; k < count; ++k) {
+    if (!options.share.Has(k)) {
+      table.rows.emplace_back();
+      continue;
+    }
+    if (options.progress) options.progress(k, count);
+    const SolveSweepPoint p = point(k);
+    const SolveReport s = SolveAtState(p.definition);
+    if (options.on_solution) options.on_solution(k, p.value, s);
+    for (const std::string& w : s.certificate.FailureMessages()) {
+      table.warnings.push_back(fmt::format("{} = {:.12g}: {}", name, p.value, w));
+      table.failed = true;
+    }
+    std::vector<double> row = {p.value};
+    if (k == 0) {
+      table.columns.push_back(name);
+      table.units.push_back(unit);
+      SolutionTableRow(s, &table.columns, &table.units, &row);
+    } else {
+      SolutionTableRow(s, nullptr, nullptr, &row);
+    }
+    table.rows.push_back(std::move(row));
+  }
+  return table;
 }
 
 }  // namespace chasles

@@ -900,8 +900,33 @@ void StudyRun::Finish() {
 
 }  // namespace
 
+namespace {
+
+/// The definition with its initial state settled onto the constraints (settle_initial).
+StudyDefinition Settled(const StudyDefinition& definition) {
+  if (!definition.model) {
+    throw InputError("settling the initial state needs the first Model (StudyDefinition::model)");
+  }
+  StudyDefinition settled = definition;
+  settled.initial = SettleInitialState(*definition.model, definition.initial,
+                                       *definition.settle_initial, settled.warnings);
+  settled.settle_initial.reset();
+  return settled;
+}
+
+}  // namespace
+
 StudyResult RunStudy(const StudyDefinition& definition) {
-  return StudyRun(definition).Run();
+  try {
+    StudyResult r = definition.settle_initial ? StudyRun(Settled(definition)).Run()
+                                              : StudyRun(definition).Run();
+    if (definition.column_units) r.units = definition.column_units(r.columns);
+    return r;
+  } catch (const InputError& e) {
+    if (!definition.locate_error) throw;
+    definition.locate_error(e);
+    throw;  // a locator that returns leaves the error as it is
+  }
 }
 
 }  // namespace chasles

@@ -220,6 +220,7 @@ class IslandRun {
     const auto local = static_cast<size_t>(global.index);
     switch (global.kind) {
       case ErrorElement::Kind::kBody:
+      case ErrorElement::Kind::kInitialState:
         global.index = p_.bodies[i][local];
         break;
       case ErrorElement::Kind::kForceElement:

@@ -173,6 +173,7 @@ void Runner::RethrowForWholeModel(const std::vector<int>& members, const InputEr
   std::optional<ErrorElement> whole;
   switch (local.kind) {
     case ErrorElement::Kind::kBody:
+    case ErrorElement::Kind::kInitialState:
       whole = ErrorElement{local.kind, members[k], local.non_finite_output};
       break;
     case ErrorElement::Kind::kForceElement:

@@ -39,7 +39,7 @@ double MassRadius(const MassProperties& m) {
 
 /// The scene's size at the operating point: the diagonal of the box around the bodies' centres
 /// of mass and the reaction points (joints, rolling contacts), plus the largest body's 2ρ.
-double SceneSize(const SceneModes& s, const std::vector<double>& rho) {
+double SceneSize(const OperatingPointModes& s, const std::vector<double>& rho) {
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   const auto add = [&](const Vec3& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); };
   for (const BodyState& b : s.operating_point.state.bodies) add(b.p_WBcm);
@@ -136,7 +136,7 @@ nlohmann::json CoordinatesJson(const std::vector<LinearCoordinate>& c) {
 
 }  // namespace
 
-nlohmann::json ModesReportData(const Scene& scene, const SceneModes& s) {
+nlohmann::json ModesReportData(const Scene& scene, const OperatingPointModes& s) {
   nlohmann::json j = ReportSceneJson(scene, "modes");
   const OperatingPoint& op = s.operating_point;
   // The bodies at the operating point: frame origin Bo = Bcm - R_WB p_BoBcm_B, orientation and

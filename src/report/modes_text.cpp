@@ -51,7 +51,7 @@ std::string ShapeText(const Mode& m, const Linearization& lin) {
 
 }  // namespace
 
-std::string ModesText(const Scene& scene, const SceneModes& s) {
+std::string ModesText(const Scene& scene, const OperatingPointModes& s) {
   const OperatingPoint& op = s.operating_point;
   const Linearization& lin = s.modes.linearization;
   std::string out = fmt::format("{}\n", scene.title.empty() ? scene.file : scene.title);

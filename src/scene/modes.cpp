@@ -1,73 +1,52 @@
 #include "chasles/scene/modes.h"
 
-#include <cmath>
+#include <memory>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "chasles/error.h"
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/study.h"
-#include "chasles/scene/sweep.h"
 
 namespace chasles {
 
-SceneModes AnalyseSceneModes(const Scene& scene) {
-  try {
-    // The end time plays no part in small motions.
-    const Study study = BuildStudy(scene, 1.0);
-    const Model& model = *study.model;
-    SceneModes out;
-    for (int b = 0; b < model.num_bodies(); ++b) out.bodies.push_back(model.body(b).name());
-    out.operating_point = FindOperatingPoint(model, study.initial);
-    LinearizeOptions options;
-    options.finite_difference_check = true;
-    out.modes = AnalyseModes(model, out.operating_point, options);
-    out.solution = SolveInstantaneous(model, out.operating_point.state);
-    return out;
-  } catch (const SceneError&) {
-    throw;
-  } catch (const InputError& e) {
-    ThrowAtSceneEntry(scene, e);
-  }
+ModesDefinition MakeModesDefinition(const Scene& scene) {
+  // The end time plays no part in small motions.
+  const Study study = BuildStudy(scene, 1.0);
+  ModesDefinition def;
+  def.model = study.model;
+  def.initial = study.initial;
+  def.settle_initial = study.settling;
+  const auto shared = std::make_shared<const Scene>(scene);
+  def.locate_error = [shared](const InputError& e) { ThrowAtSceneEntry(*shared, e); };
+  return def;
 }
 
-ModesSweep SweepSceneModes(const std::function<Scene(const SceneOptions&)>& load,
-                           const SceneOptions& options, const SweepSpec& spec,
-                           std::int64_t max_rows) {
-  const Scene base = load(options);
-  const SweepGrid grid = MakeSweepGrid(base, {spec}, max_rows);
-  ModesSweep out;
-  out.parameter = spec.name;
-  out.unit = grid.parameters.units[0];
-  const auto at = [&](double value) {
-    SceneOptions o = options;
-    o.parameter_overrides.emplace_back(spec.name, out.unit.empty()
-                                                      ? fmt::format("{:.17g}", value)
-                                                      : fmt::format("{:.17g} {}", value, out.unit));
-    try {
-      return AnalyseSceneModes(load(o));
-    } catch (const SceneError& e) {
-      throw SceneError(e.file(), e.line(), e.column(), e.key(),
-                       fmt::format("at {} = {:.12g}{}: {}", spec.name, value,
-                                   out.unit.empty() ? "" : " " + out.unit, e.message()));
-    }
+ModesDefinition MakeModesDefinitionAt(const std::function<Scene(const SceneOptions&)>& load,
+                                      const SceneOptions& options, const std::string& name,
+                                      const std::string& unit, double value) {
+  SceneOptions o = options;
+  o.parameter_overrides.emplace_back(
+      name, unit.empty() ? fmt::format("{:.17g}", value) : fmt::format("{:.17g} {}", value, unit));
+  const auto at_value = [name, unit, value](const SceneError& e) {
+    return SceneError(e.file(), e.line(), e.column(), e.key(),
+                      fmt::format("at {} = {:.12g}{}: {}", name, value,
+                                  unit.empty() ? "" : " " + unit, e.message()));
   };
-  for (std::int64_t k = 0; k < grid.parameters.size(); ++k) {
-    out.values.push_back(grid.parameters.Values(k)[0]);
-    out.points.push_back(at(out.values.back()));
+  try {
+    ModesDefinition def = MakeModesDefinition(load(o));
+    def.locate_error = [locate = std::move(def.locate_error), at_value](const InputError& e) {
+      try {
+        locate(e);
+      } catch (const SceneError& located) {
+        throw at_value(located);
+      }
+    };
+    return def;
+  } catch (const SceneError& e) {
+    throw at_value(e);
   }
-  // The grid's points are analysed already: bisection loads the scene only between them.
-  const auto analyse = [&](double value) {
-    for (size_t k = 0; k < out.values.size(); ++k) {
-      if (out.values[k] == value) return out.points[k].modes;
-    }
-    return at(value).modes;
-  };
-  out.changes = FindStabilityChanges(analyse, out.values);
-  if (out.unit == "rad/s" || out.unit == "1/s") {
-    out.critical_speeds = FindCriticalSpeeds(analyse, out.values);
-  }
-  return out;
 }
 
 }  // namespace chasles

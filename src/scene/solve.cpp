@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,11 @@ SolveDefinition MakeSolveDefinition(const Scene& scene) {
   SolveDefinition def;
   def.model = study.model;
   def.initial = study.initial;
+  def.settle_initial = study.settling;
   def.planar = scene.planar;
-  // The scene's own warnings (version-1 spellings, mesh repairs) come first, then the
-  // initial values the projection changed (`project_initial: true`).
+  // The scene's own warnings (version-1 spellings, mesh repairs) come first, then a string
+  // modelled the other way round; the solve adds the initial values its projection changes
+  // (`project_initial: true`).
   def.warnings = scene.warnings;
   def.warnings.insert(def.warnings.end(), study.warnings.begin(), study.warnings.end());
   // A scene body is Model body b, frames alike: BuildStudy starts from the identity map.
@@ -40,15 +43,9 @@ SolveDefinition MakeSolveDefinition(const Scene& scene) {
   def.mu_s.assign(c.names().size(), std::numeric_limits<double>::quiet_NaN());
   for (size_t i = 0; i < c.rolling.size(); ++i) def.mu_s[c.joints.size() + i] = c.rolling[i].mu_s;
   def.contact_point_labels = scene.dynamics.contacts.point_labels();
+  const auto shared = std::make_shared<const Scene>(scene);
+  def.locate_error = [shared](const InputError& e) { ThrowAtSceneEntry(*shared, e); };
   return def;
-}
-
-SolveReport SolveScene(const Scene& scene) {
-  try {
-    return SolveAtState(MakeSolveDefinition(scene));
-  } catch (const InputError& e) {
-    ThrowAtSceneEntry(scene, e);
-  }
 }
 
 std::string SweepParameterUnit(const SweepSpec& spec, const Dimension& dim) {
@@ -101,62 +98,38 @@ SweepSpec ParseSweep(const std::string& text, const std::string& source, const s
   return s;
 }
 
-SweepTable SolveSweep(const std::function<Scene(const SceneOptions&)>& load,
-                      const SceneOptions& options, const SweepSpec& spec,
-                      const SweepOptions& sweep_options) {
+std::string SolveSweepUnit(const std::function<Scene(const SceneOptions&)>& load,
+                           const SceneOptions& options, const SweepSpec& spec) {
   if (spec.count < 2) {
     throw SceneError(spec.source, 0, 0, spec.key,
                      fmt::format("COUNT must be a whole number >= 2, got {}", spec.count));
   }
-  SweepTable table;
-  table.parameter = spec.name;
-  std::string parameter_unit;
-  {
-    const Scene scene = load(options);
-    std::vector<std::string> known;
-    for (const auto& [n, q] : scene.parameters) {
-      known.push_back(n);
-      if (n == spec.name) parameter_unit = SweepParameterUnit(spec, q.dim);
-    }
-    if (std::find(known.begin(), known.end(), spec.name) == known.end()) {
-      throw SceneError(spec.source, 0, 0, spec.key,
-                       fmt::format("the scene has no parameter '{}'{}; parameters: {}", spec.name,
-                                   DidYouMean(spec.name, known), fmt::join(known, ", ")));
-    }
+  const Scene scene = load(options);
+  std::vector<std::string> known;
+  for (const auto& [n, q] : scene.parameters) {
+    known.push_back(n);
+    if (n == spec.name) return SweepParameterUnit(spec, q.dim);
   }
-  for (int k = 0; k < spec.count; ++k) {
-    if (!sweep_options.share.Has(k)) {
-      table.rows.emplace_back();
-      continue;
-    }
-    if (sweep_options.progress) sweep_options.progress(k, spec.count);
-    // The k-th value as an expression, so START and STOP keep their units.
-    SceneOptions o = options;
-    o.parameter_overrides.emplace_back(
-        spec.name, fmt::format("({}) + (({}) - ({})) * {} / {}", spec.start, spec.stop, spec.start,
-                               k, spec.count - 1));
-    const Scene scene = load(o);
-    double value = std::numeric_limits<double>::quiet_NaN();
-    for (const auto& [n, q] : scene.parameters) {
-      if (n == spec.name) value = q.value;
-    }
-    const SolveReport s = SolveScene(scene);
-    if (sweep_options.on_solution) sweep_options.on_solution(k, value, s);
-    for (const std::string& w : s.certificate.FailureMessages()) {
-      table.warnings.push_back(fmt::format("{} = {:.12g}: {}", spec.name, value, w));
-      table.failed = true;
-    }
-    std::vector<double> row = {value};
-    if (k == 0) {
-      table.columns.push_back(spec.name);
-      table.units.push_back(parameter_unit);
-      SolutionTableRow(s, &table.columns, &table.units, &row);
-    } else {
-      SolutionTableRow(s, nullptr, nullptr, &row);
-    }
-    table.rows.push_back(std::move(row));
+  throw SceneError(spec.source, 0, 0, spec.key,
+                   fmt::format("the scene has no parameter '{}'{}; parameters: {}", spec.name,
+                               DidYouMean(spec.name, known), fmt::join(known, ", ")));
+}
+
+SolveSweepPoint MakeSolveSweepPoint(const std::function<Scene(const SceneOptions&)>& load,
+                                    const SceneOptions& options, const SweepSpec& spec, int k) {
+  // The k-th value as an expression, so START and STOP keep their units.
+  SceneOptions o = options;
+  o.parameter_overrides.emplace_back(
+      spec.name, fmt::format("({}) + (({}) - ({})) * {} / {}", spec.start, spec.stop, spec.start, k,
+                             spec.count - 1));
+  const Scene scene = load(o);
+  SolveSweepPoint point;
+  point.value = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& [n, q] : scene.parameters) {
+    if (n == spec.name) point.value = q.value;
   }
-  return table;
+  point.definition = MakeSolveDefinition(scene);
+  return point;
 }
 
 }  // namespace chasles

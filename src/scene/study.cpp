@@ -20,11 +20,7 @@
 
 #include "chasles/analysis/ledger.h"
 #include "chasles/analysis/momentum.h"
-#include "chasles/dynamics/constraint_solve.h"
-#include "chasles/dynamics/contact_solve.h"
-#include "chasles/dynamics/impulse.h"
 #include "chasles/dynamics/newton_euler.h"
-#include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
 #include "chasles/integrate/run_path.h"
 #include "chasles/model/bearing.h"
@@ -35,7 +31,6 @@
 #include "chasles/model/surface_rolling.h"
 #include "chasles/scene/column_units.h"
 #include "chasles/scene/scene_error.h"
-#include "internal/initial_state.h"
 #include "internal/study_columns.h"
 
 namespace chasles {
@@ -957,6 +952,34 @@ State InitialState(const Scene& scene, const Model& model) {
   return s;
 }
 
+/// How the run settles the scene's initial state (SettleInitialState): projected when the scene
+/// says `project_initial: true`, its values named as the scene gives them.
+InitialSettling Settling(const Scene& scene) {
+  InitialSettling s;
+  s.project = scene.dynamics.project_initial;
+  s.planar = scene.planar;
+  for (const SceneInitialState& in : scene.dynamics.initial) {
+    s.theta.push_back(in.theta);
+    s.p_BoP_B.push_back(in.p_BoP_B);
+  }
+  return s;
+}
+
+/// Nothing silent: a string given from a body to the world is modelled the other way round.
+std::vector<std::string> StringWarnings(const Scene& scene) {
+  std::vector<std::string> warnings;
+  for (const SceneString& st : scene.dynamics.constraints.strings) {
+    if (st.to.body != kWorld) continue;
+    const std::string& body = scene.bodies[static_cast<size_t>(st.from.body)].name;
+    warnings.push_back(fmt::format(
+        "string '{}' is given from body '{}' to the world; it is modelled from its world end to "
+        "'{}' (the same string followed the other way, every sense flipped), so its reaction is "
+        "reported on '{}'",
+        st.name, body, body, body));
+  }
+  return warnings;
+}
+
 SimulationOptions BaseOptions(const Scene& scene, double t_end) {
   const SceneSimulation& sim = scene.dynamics.simulation;
   SimulationOptions o;
@@ -977,8 +1000,8 @@ namespace {
 /// the uniform gravity (when the scene has gravity: no entry of its own), the constraints in
 /// SceneConstraints order and then a planar scene's plane constraints (one per body, at the
 /// body's entry), the contacts and their points in scene order (AddSceneContacts); the events
-/// are BuildEvents' in scene order, the bodies the scene's (a run names its user bodies).
-/// Null when the element has no entry.
+/// are BuildEvents' in scene order, the bodies the scene's (a run names its user bodies), an
+/// initial state the body's `initial` entry. Null when the element has no entry.
 const SceneSpot* SceneEntryOf(const Scene& scene, const ErrorElement& e) {
   const SceneDynamics& d = scene.dynamics;
   const auto at = [](const auto& entries, int i) -> const SceneSpot* {
@@ -1007,6 +1030,8 @@ const SceneSpot* SceneEntryOf(const Scene& scene, const ErrorElement& e) {
     }
     case ErrorElement::Kind::kEvent:
       return at(d.events, e.index);
+    case ErrorElement::Kind::kInitialState:
+      return at(d.initial, e.index);
   }
   return nullptr;
 }
@@ -1045,9 +1070,9 @@ Study BuildStudy(const Scene& scene, double until) {
     study.model =
         std::make_shared<const Model>(BuildModel(scene, StudyBodies(scene), IdentityMap(scene)));
     study.options = BaseOptions(scene, t_end);
-    // On the constraints, or an error, or projected with each change a warning.
-    study.initial = scene_internal::SettleInitialState(
-        scene, *study.model, InitialState(scene, *study.model), study.warnings);
+    study.initial = InitialState(scene, *study.model);
+    study.settling = Settling(scene);
+    study.warnings = StringWarnings(scene);
     study.options.events = BuildEvents(scene, IdentityMap(scene));
     return study;
   } catch (const InputError& e) {
@@ -1055,7 +1080,16 @@ Study BuildStudy(const Scene& scene, double until) {
   }
 }
 
-StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& options) {
+namespace {
+
+/// A run's error at its scene entry: a limit reached at the `simulation` key that sets it, any
+/// other as ThrowAtSceneEntry.
+[[noreturn]] void ThrowRunErrorAtSceneEntry(const Scene& scene, const InputError& e) {
+  if (const auto* limit = dynamic_cast<const LimitError*>(&e)) ThrowLimitReached(scene, *limit);
+  ThrowAtSceneEntry(scene, e);
+}
+
+StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOptions& options) {
   const SceneDynamics& d = scene.dynamics;
   const double t_end = EndTime(scene, options.until);
   CheckPhysicalInputs(scene, t_end);
@@ -1073,6 +1107,10 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
     return BuildModel(*shared, bodies, map);
   };
   def.events = [shared](const BodyMap& map) { return BuildEvents(*shared, map); };
+  def.locate_error = [shared](const InputError& e) { ThrowRunErrorAtSceneEntry(*shared, e); };
+  def.column_units = [shared](const std::vector<std::string>& columns) {
+    return StudyColumnUnits(*shared, columns);
+  };
   const scene_internal::ColumnIndex columns(scene);
   for (const std::string& name : d.columns) {
     if (std::optional<scene_internal::ColumnInfo> c = columns.Find(name)) {
@@ -1129,37 +1167,22 @@ StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& opti
         std::isfinite(sim.step) ? sim.step : DefaultEngineStep(first, def.options.output_interval));
     def.auto_engine = engines;
   }
-  // On the constraints, or an error, or projected with each change a warning.
-  def.initial =
-      scene_internal::SettleInitialState(scene, first, InitialState(scene, first), def.warnings);
+  // The run settles it: on the constraints, or an error, or projected with each change a
+  // warning.
+  def.initial = InitialState(scene, first);
+  def.settle_initial = Settling(scene);
+  for (std::string& w : StringWarnings(scene)) def.warnings.push_back(std::move(w));
   return def;
 }
 
-namespace {
-StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options);
 }  // namespace
 
-StudyResult RunStudy(const Scene& scene, const StudyOptions& options) {
+StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& options) {
   try {
-    return RunStudyUnlocated(scene, options);
+    return MakeUnlocatedStudyDefinition(scene, options);
   } catch (const InputError& e) {
     ThrowAtSceneEntry(scene, e);
   }
 }
-
-namespace {
-
-StudyResult RunStudyUnlocated(const Scene& scene, const StudyOptions& options) {
-  const StudyDefinition definition = MakeStudyDefinition(scene, options);
-  try {
-    StudyResult r = RunStudy(definition);
-    r.units = StudyColumnUnits(scene, r.columns);
-    return r;
-  } catch (const LimitError& e) {
-    ThrowLimitReached(scene, e);
-  }
-}
-
-}  // namespace
 
 }  // namespace chasles

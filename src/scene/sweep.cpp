@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -82,18 +83,6 @@ bool ParseEventTerm(const std::string& t, std::string* name, int* k) {
     *k = std::stoi(count);
   }
   return !name->empty() && *k >= 1;
-}
-
-/// The time of the k-th firing of event `name` in `r`.
-double EventTime(const StudyResult& r, const std::string& name, int k) {
-  int seen = 0;
-  for (const StudyEvent& e : r.events) {
-    if (e.name == name && ++seen == k) return e.t;
-  }
-  throw InputError(
-      fmt::format("event '{}' fired {} time{} by the run's end at t = {:.9g} s; "
-                  "event({}, {}) needs {}",
-                  name, seen, seen == 1 ? "" : "s", r.t_end, name, k, k));
 }
 
 }  // namespace
@@ -225,39 +214,10 @@ SweepQuantity ParseSweepQuantity(const std::string& text, const std::string& sou
   return q;
 }
 
-double SweepQuantityValue(const StudyResult& r, const SweepQuantity& q) {
-  using Kind = SweepQuantity::Kind;
-  switch (q.kind) {
-    case Kind::kTEnd:
-      return r.t_end;
-    case Kind::kEvent:
-      return EventTime(r, q.event, q.k);
-    case Kind::kEventDifference:
-      return EventTime(r, q.event, q.k) - EventTime(r, q.event2, q.k2);
-    case Kind::kFinal:
-    case Kind::kMax:
-    case Kind::kMin:
-      break;
-  }
-  const auto c = std::find(r.columns.begin(), r.columns.end(), q.column);
-  if (c == r.columns.end()) throw InputError(fmt::format("the run has no column '{}'", q.column));
-  const auto i = static_cast<size_t>(c - r.columns.begin());
-  if (r.rows.empty()) throw InputError("the run recorded no rows");
-  if (q.kind == Kind::kFinal) return r.rows.back()[i];
-  // Extremes over the samples and the events' states (an event may fall between samples).
-  double v = r.rows.front()[i];
-  const auto take = [&](double x) { v = q.kind == Kind::kMax ? std::max(v, x) : std::min(v, x); };
-  for (const auto& row : r.rows) take(row[i]);
-  for (const StudyEvent& e : r.events) {
-    if (i < e.row.size()) take(e.row[i]);
-  }
-  return v;
-}
-
-SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
-                         const SceneOptions& options, const std::vector<SweepSpec>& specs,
-                         const std::vector<SweepQuantity>& quantities,
-                         const SimulateSweepOptions& sweep_options, std::int64_t max_points) {
+SceneStudySweep MakeStudySweep(const std::function<Scene(const SceneOptions&)>& load,
+                               const SceneOptions& options, const std::vector<SweepSpec>& specs,
+                               const std::vector<SweepQuantity>& quantities,
+                               const StudySweepOptions& sweep_options, std::int64_t max_points) {
   if (specs.empty()) throw InputError("a sweep needs at least one --sweep");
   if (quantities.empty()) {
     throw SceneError(specs.front().source, 0, 0, "--quantity",
@@ -267,17 +227,16 @@ SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
   // Everything a point cannot change is checked once, on the scene as written: the grid, the
   // columns and the events the quantities name.
   const Scene base = load(options);
-  const SweepGrid grid = MakeSweepGrid(base, specs, max_points);
+  SceneStudySweep sweep;
+  sweep.grid = MakeSweepGrid(base, specs, max_points);
   std::vector<std::string> columns =
       sweep_options.columns.empty() ? base.dynamics.columns : sweep_options.columns;
   std::vector<std::string> event_names;
   for (const SceneEvent& e : base.dynamics.events) event_names.push_back(e.name);
-  std::vector<std::string> names, units;
   for (const SweepQuantity& q : quantities) {
     const auto fail = [&](const std::string& why) {
       throw SceneError(specs.front().source, 0, 0, "--quantity", why);
     };
-    names.push_back(q.text);
     if (!q.column.empty()) {
       std::string why;
       const std::vector<std::string> expanded = scene_internal::ExpandColumn(base, q.column, &why);
@@ -287,10 +246,10 @@ SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
                          fmt::join(expanded, ", ")));
       }
       columns.push_back(q.column);
-      units.push_back(StudyColumnUnit(base, q.column));
+      sweep.units.push_back(StudyColumnUnit(base, q.column));
       continue;
     }
-    units.push_back("s");
+    sweep.units.push_back("s");
     for (const std::string* e : {&q.event, &q.event2}) {
       if (e->empty()) continue;
       if (std::find(event_names.begin(), event_names.end(), *e) == event_names.end()) {
@@ -303,38 +262,28 @@ SweepTable SimulateSweep(const std::function<Scene(const SceneOptions&)>& load,
   }
   // --columns names no point can change: refused here, not at every row.
   SelectColumns(base, columns);
-  const SweepFunction point = [&](const std::vector<double>& values) {
-    SweepRow row;
-    row.values = values;
+  StudyOptions study = sweep_options.study;
+  study.progress = nullptr;
+  sweep.point = [load, options, grid = sweep.grid, columns, study,
+                 on_run = sweep_options.on_run](const std::vector<double>& values) {
+    const auto scene = std::make_shared<Scene>(load(grid.PointOptions(options, values)));
+    StudySweepPoint point;
+    point.values = SceneValues(grid, *scene);
     try {
-      Scene scene = load(grid.PointOptions(options, values));
-      row.values = SceneValues(grid, scene);
-      scene.dynamics.columns = SelectColumns(scene, columns);
-      StudyOptions study = sweep_options.study;
-      study.progress = nullptr;
-      const StudyResult r = RunStudy(scene, study);
-      // A quantity the run cannot give (an event that fired too few times) leaves its own
-      // cell empty, with the reason; the others are the run's.
-      std::vector<std::string> missing;
-      for (const SweepQuantity& q : quantities) {
-        try {
-          row.values.push_back(SweepQuantityValue(r, q));
-        } catch (const InputError& e) {
-          row.values.push_back(kNaN);
-          missing.push_back(fmt::format("{}: {}", q.text, OneLine(e.what())));
-        }
-      }
-      row.error = fmt::format("{}", fmt::join(missing, "; "));
-      if (sweep_options.on_run) sweep_options.on_run(grid.parameters.PointOf(values), scene, r);
+      scene->dynamics.columns = SelectColumns(*scene, columns);
+      point.definition = MakeStudyDefinition(*scene, study);
     } catch (const InputError& e) {
-      row.values.resize(grid.specs.size());
-      row.values.resize(grid.specs.size() + quantities.size(), kNaN);
-      row.error = OneLine(e.what());
+      point.error = e.what();  // the row keeps the values the scene was read with
+      return point;
     }
-    return row;
+    if (on_run) {
+      point.on_run = [on_run, k = grid.parameters.PointOf(values), scene](const StudyResult& r) {
+        on_run(k, *scene, r);
+      };
+    }
+    return point;
   };
-  return RunSweep(grid.parameters, names, units, point,
-                  {sweep_options.jobs, sweep_options.progress, sweep_options.share});
+  return sweep;
 }
 
 std::vector<std::string> MassSweepQuantityNames() {

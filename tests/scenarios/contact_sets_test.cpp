@@ -69,8 +69,8 @@ void ExpectSameRun(const std::string& simulation) {
   const Scene set = LoadSceneText(WithSets(simulation), "sets.yaml");
   const Scene listed = LoadSceneText(OneByOne(simulation), "listed.yaml");
   ASSERT_EQ(set.dynamics.contacts.contacts.size(), size_t{kBalls + kBalls * (kBalls - 1) / 2});
-  const StudyResult a = RunStudy(set);
-  const StudyResult b = RunStudy(listed);
+  const StudyResult a = RunStudy(MakeStudyDefinition(set));
+  const StudyResult b = RunStudy(MakeStudyDefinition(listed));
   EXPECT_EQ(a.columns, b.columns);
   ASSERT_EQ(a.rows.size(), b.rows.size());
   for (size_t r = 0; r < a.rows.size(); ++r) EXPECT_EQ(a.rows[r], b.rows[r]) << "row " << r;

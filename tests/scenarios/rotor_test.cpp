@@ -16,6 +16,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "chasles/analysis/balance.h"
+#include "chasles/analysis/initial_state.h"
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/analysis/modes.h"
 #include "chasles/analysis/whirl.h"
@@ -24,6 +25,14 @@
 
 namespace chasles {
 namespace {
+
+/// The scene's study with its initial state settled on the constraints (SettleInitialState),
+/// as a run or a solve starts from it.
+Study Settled(Study s) {
+  std::vector<std::string> warnings;
+  s.initial = SettleInitialState(*s.model, s.initial, s.settling, warnings);
+  return s;
+}
 
 constexpr double kTol = 1e-10;
 // Sums of a few products: a few ulps of the largest term.
@@ -99,7 +108,7 @@ joints:
 TEST(Rotor, CorrectionZeroesTheBearingReactionsAtSpeed) {
   const TiltedDisk d;
   const double w = 300.0;
-  const Study s = BuildStudy(LoadSceneText(DiskRotorScene(d, w, ""), "rotor.yaml"), 1.0);
+  const Study s = Settled(BuildStudy(LoadSceneText(DiskRotorScene(d, w, ""), "rotor.yaml"), 1.0));
   const Model& model = *s.model;
   const BodyState& b = s.initial.bodies[0];
   const Mat3 R = b.q_WB.toRotationMatrix();
@@ -119,7 +128,8 @@ TEST(Rotor, CorrectionZeroesTheBearingReactionsAtSpeed) {
         "      - {{shape: point, mass: {:.17g}, position: [{:.17g}, {:.17g}, {:.17g}]}}\n", c.mass,
         c.p_W.x(), c.p_W.y(), c.p_W.z());
   }
-  const Study t = BuildStudy(LoadSceneText(DiskRotorScene(d, w, parts), "rotor.yaml"), 1.0);
+  const Study t =
+      Settled(BuildStudy(LoadSceneText(DiskRotorScene(d, w, parts), "rotor.yaml"), 1.0));
   const InstantaneousSolution after = SolveInstantaneous(*t.model, t.initial);
   for (const ReactionReport& rr : after.reactions) {
     EXPECT_LT(rr.F_Jc_W.norm(), 1e-12 * scale) << rr.name;
@@ -202,7 +212,7 @@ forces:
 };
 
 ModalAnalysis RotorModes(const RotorOnBearings& r, double W) {
-  const Study s = BuildStudy(LoadSceneText(r.Scene(W), "rotor.yaml"), 1.0);
+  const Study s = Settled(BuildStudy(LoadSceneText(r.Scene(W), "rotor.yaml"), 1.0));
   return AnalyseModes(*s.model, FindOperatingPoint(*s.model, s.initial));
 }
 
@@ -267,7 +277,7 @@ std::vector<double> Whirling(const WhirlPoint& p, WhirlDirection d) {
 }
 
 void ExpectDirections(const RotorOnBearings& r, const std::vector<double>& spins) {
-  const Study s = BuildStudy(LoadSceneText(r.Scene(0.0), "rotor.yaml"), 1.0);
+  const Study s = Settled(BuildStudy(LoadSceneText(r.Scene(0.0), "rotor.yaml"), 1.0));
   const WhirlMap map = CalcWhirl(*s.model, s.initial, 0, Vec3::UnitZ(), spins);
   ASSERT_EQ(map.points.size(), spins.size());
   for (size_t k = 0; k < spins.size(); ++k) {
@@ -322,7 +332,7 @@ TEST(Rotor, SeededRandomRotorsWhirlInTheQuarticsDirections) {
 // in K2 - I_t ω² + I_p Ω ω = 0).
 TEST(Rotor, CriticalSpeedsWithTheirDirections) {
   const RotorOnBearings r;
-  const Study s = BuildStudy(LoadSceneText(r.Scene(0.0), "rotor.yaml"), 1.0);
+  const Study s = Settled(BuildStudy(LoadSceneText(r.Scene(0.0), "rotor.yaml"), 1.0));
   std::vector<double> grid;
   for (int i = 0; i <= 20; ++i) grid.push_back(20.0 * i);
   const WhirlMap map = CalcWhirl(*s.model, s.initial, 0, Vec3::UnitZ(), grid);

@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "chasles/analysis/initial_state.h"
 #include "chasles/analysis/modes.h"
 #include "chasles/scene/scene.h"
 #include "chasles/scene/study.h"
@@ -23,13 +24,21 @@
 namespace chasles {
 namespace {
 
+/// The scene's study with its initial state settled on the constraints (SettleInitialState),
+/// as a run or a solve starts from it.
+Study Settled(Study s) {
+  std::vector<std::string> warnings;
+  s.initial = SettleInitialState(*s.model, s.initial, s.settling, warnings);
+  return s;
+}
+
 const std::string kScene =
     std::string(chasles::test::SourceDir()) + "/examples/whipple-bicycle.yaml";
 
 ModalAnalysis AtSpeed(double v) {
   SceneOptions options;
   options.parameter_overrides = {{"v", fmt::format("{:.17g} m/s", v)}};
-  const Study s = BuildStudy(LoadSceneFile(kScene, options), 1.0);
+  const Study s = Settled(BuildStudy(LoadSceneFile(kScene, options), 1.0));
   return AnalyseModes(*s.model, FindOperatingPoint(*s.model, s.initial));
 }
 

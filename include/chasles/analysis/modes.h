@@ -13,12 +13,20 @@
 
 #include <complex>
 #include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "chasles/analysis/error_locator.h"
+#include "chasles/analysis/initial_state.h"
+#include "chasles/analysis/instantaneous.h"
 #include "chasles/analysis/linearize.h"
+#include "chasles/analysis/sweep.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
 
 namespace chasles {
 
@@ -133,5 +141,59 @@ struct CriticalSpeed {
 std::vector<CriticalSpeed> FindCriticalSpeeds(const std::function<ModalAnalysis(double)>& analyse,
                                               const std::vector<double>& grid,
                                               double tolerance = 1e-12);
+
+}  // namespace chasles
+
+namespace chasles {
+
+/// The small motions of a Model from a state (`chasles modes`): the scene layer makes one from
+/// a scene (MakeModesDefinition), a program in code.
+struct ModesDefinition {
+  std::shared_ptr<const Model> model;
+  /// The state the operating point is found from (a static equilibrium near it, or the steady
+  /// motion it begins).
+  State initial;
+  /// Settle `initial` onto the constraints first (SettleInitialState; its warnings are not
+  /// kept); none: as it is.
+  std::optional<InitialSettling> settle_initial;
+  /// Places the analysis's errors at their source (the scene layer's file:line:col); null:
+  /// they are thrown as they are.
+  ErrorLocator locate_error;
+};
+
+struct OperatingPointModes {
+  /// Body names, Model order (for the operating point's state).
+  std::vector<std::string> bodies;
+  OperatingPoint operating_point;
+  /// The modes (their linearisation inside, with the finite-difference check done).
+  ModalAnalysis modes;
+  /// The reactions at the operating point (chapter 8.2: what the supports exert there).
+  InstantaneousSolution solution;
+};
+
+/// The definition's operating point (FindOperatingPoint), its modes (AnalyseModes with the
+/// finite-difference check) and the reactions there. Throws InputError for a Model or state it
+/// cannot analyse, through the definition's `locate_error` when it has one.
+OperatingPointModes AnalyseOperatingPointModes(const ModesDefinition& definition);
+
+struct ModesSweep {
+  /// The swept parameter and its SI unit ("" for a number).
+  std::string parameter, unit;
+  /// The grid's SI values and each point's modes.
+  std::vector<double> values;
+  std::vector<OperatingPointModes> points;
+  /// Where the stability changes, to 1e-12 of the span.
+  std::vector<StabilityChange> changes;
+  /// When the parameter is an angular speed (rad/s): the critical speeds, where a whirl
+  /// frequency equals it (a rotor's Campbell diagram), to 1e-12 of the span.
+  std::vector<CriticalSpeed> critical_speeds;
+};
+
+/// The modes over a grid of one parameter, each point analysed from `point`'s definition at the
+/// parameter's value (SI); the changes of stability between points narrowed by
+/// FindStabilityChanges, and the critical speeds (FindCriticalSpeeds) when the parameter's unit
+/// is "rad/s" or "1/s" (each step analyses a new definition). The errors are the points'.
+ModesSweep SweepModes(const ParameterGrid& grid,
+                      const std::function<ModesDefinition(double value)>& point);
 
 }  // namespace chasles

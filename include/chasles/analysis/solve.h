@@ -6,11 +6,16 @@
 /// solve's checks of its own answer. A SolveDefinition says what to solve and how to name it;
 /// the scene layer makes one from a scene (MakeSolveDefinition), a program in code.
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "chasles/analysis/error_locator.h"
+#include "chasles/analysis/initial_state.h"
 #include "chasles/analysis/solve_report.h"
+#include "chasles/analysis/sweep.h"
 #include "chasles/math/types.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
@@ -28,6 +33,9 @@ struct SolveDefinition {
   std::shared_ptr<const Model> model;
   /// The state to solve at (on the constraints up to round-off: the solve projects it).
   State initial;
+  /// Settle `initial` onto the constraints first (SettleInitialState: an error, or the nearest
+  /// consistent state with each change a warning after `warnings`); none: as it is.
+  std::optional<InitialSettling> settle_initial;
   /// A planar problem: reports in x, y and about z.
   bool planar = false;
   /// Warnings to list first (e.g. the scene's, then initial values changed by a projection).
@@ -39,11 +47,40 @@ struct SolveDefinition {
   std::vector<double> mu_s;
   /// Contact point labels in Model order (empty: Model::contact_point_name).
   std::vector<std::string> contact_point_labels;
+  /// Places the solve's errors at their source (the scene layer's file:line:col); null: they
+  /// are thrown as they are.
+  ErrorLocator locate_error;
 };
 
 /// Solves the instantaneous problem at the definition's state, projected onto the constraints,
 /// in the contact modes chosen as a simulation starts (impacts not applied). Throws InputError
-/// for a state or Model it cannot solve.
+/// for a state or Model it cannot solve, through the definition's `locate_error` when it has
+/// one.
 SolveReport SolveAtState(const SolveDefinition& definition);
+
+/// One value of a solve sweep: the parameter's SI value and the definition to solve there.
+struct SolveSweepPoint {
+  double value = 0.0;
+  SolveDefinition definition;
+};
+
+struct SolveSweepOptions {
+  /// Called before value k of count is solved (e.g. for a progress display).
+  std::function<void(int k, int count)> progress;
+  /// Called after each value is solved, with its index, the parameter's SI value and the
+  /// solution.
+  std::function<void(int k, double value, const SolveReport& solution)> on_solution;
+  /// The values solved here; the rows of the others are left empty (no values) and no
+  /// warnings are made for them. Row 0, with the columns' names, is always rank 0's.
+  SweepShare share;
+};
+
+/// Solves `count` values of one parameter (`name`, SI unit `unit`: "" for a number), value k
+/// at `point(k)`'s definition, in order, into a table: the parameter's value then the solution
+/// (SolutionTableRow) per row, each failed check of a solve a warning naming the value (and
+/// the table failed). The errors are the points' (a point's definition locates its own).
+SweepTable SolveSweep(const std::string& name, const std::string& unit, int count,
+                      const std::function<SolveSweepPoint(int k)>& point,
+                      const SolveSweepOptions& options = {});
 
 }  // namespace chasles

@@ -27,6 +27,8 @@
 #include <vector>
 
 #include "chasles/analysis/certificate.h"
+#include "chasles/analysis/error_locator.h"
+#include "chasles/analysis/initial_state.h"
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/integrate/engine_choice.h"
 #include "chasles/integrate/integrator.h"
@@ -153,9 +155,14 @@ struct StudyDefinition {
   /// Builds the Model of each segment after an embedding, and the first when `model` is null
   /// (see ModelBuilder). Optional when `model` is given and no impact embeds.
   ModelBuilder build_model;
-  /// The initial state (on the constraints; the run chooses the contact modes, after any
-  /// impact at the start).
+  /// The initial state (on the constraints, or settled onto them by `settle_initial`; the run
+  /// chooses the contact modes, after any impact at the start).
   State initial;
+  /// Settle `initial` onto the constraints before the run (SettleInitialState, on `model`,
+  /// which is then required): within round-off silently, else an error or, when asked, the
+  /// nearest consistent state with each change a warning after `warnings`. None: `initial` is
+  /// used as it is.
+  std::optional<InitialSettling> settle_initial;
   /// Integrator, end time (t_end), output interval, fixed step, adaptive tolerances and the
   /// smallest step (options.adaptive.min_step). Its events are ignored: use `events`.
   SimulationOptions options;
@@ -202,6 +209,12 @@ struct StudyDefinition {
   StudyLimits limits;
   /// Called with the time of every output sample and every accepted step (optional).
   std::function<void(double t)> progress;
+  /// Places the run's errors at their source (the scene layer's file:line:col); null: they
+  /// are thrown as they are.
+  ErrorLocator locate_error;
+  /// The SI unit of each result column by its name, for StudyResult::units (the scene layer's
+  /// StudyColumnUnits); null: no units.
+  std::function<std::vector<std::string>(const std::vector<std::string>& columns)> column_units;
   /// Warnings about the initial state (e.g. values projected onto the constraints), passed
   /// on into the result.
   std::vector<std::string> warnings;
@@ -492,9 +505,9 @@ struct StudyEventDriven {
 struct StudyResult {
   /// CSV column names and one row per output sample (plus the states just after jumps).
   std::vector<std::string> columns;
-  /// SI unit of each column ("s", "m/s^2", "rad"; "" for a pure number), filled by the scene
-  /// layer's RunStudy (chasles/scene/column_units.h); empty when the program ran a
-  /// StudyDefinition itself (the CSV header then has no units).
+  /// SI unit of each column ("s", "m/s^2", "rad"; "" for a pure number), from the
+  /// definition's `column_units` (a scene's: chasles/scene/column_units.h); empty when it has
+  /// none (the CSV header then has no units).
   std::vector<std::string> units;
   std::vector<std::vector<double>> rows;
   std::vector<StudyEvent> events;
@@ -559,7 +572,9 @@ struct StudyResult {
 /// non-finite is ever returned); LimitError when a limit on the work is reached. An
 /// InputError's element (InputError::element) that is a body is a user body (an index into
 /// definition.bodies), whatever segment's Model the run was on; the other kinds are Model
-/// indices, the same in every segment (the ModelBuilder places them alike).
+/// indices, the same in every segment (the ModelBuilder places them alike). Every error goes
+/// through the definition's `locate_error` when it has one (a scene's: a SceneError at the
+/// file:line:col of the entry it concerns, a limit at the `simulation` key that sets it).
 StudyResult RunStudy(const StudyDefinition& definition);
 
 /// Mechanical energy T + V of the whole Model at `state` [J].

@@ -13,7 +13,7 @@
 namespace chasles {
 
 /// The small motions about `scene`'s operating point.
-std::string ModesText(const Scene& scene, const SceneModes& modes);
+std::string ModesText(const Scene& scene, const OperatingPointModes& modes);
 
 /// The modes at each value of a sweep, its critical speeds and its stability changes.
 std::string ModesSweepText(const ModesSweep& sweep);

@@ -66,7 +66,7 @@ nlohmann::json SweepReportData(const Scene& scene, const SweepTable& table,
 /// frequency, damping, stability, shape and, when the page animates it (not a rigid mode), the
 /// stretch of time it loops over, the scale ε of the shape and each body's complex
 /// displacement and rotation times ε (CalcBodyModeShapes; docs/report.md, "Modes").
-nlohmann::json ModesReportData(const Scene& scene, const SceneModes& modes);
+nlohmann::json ModesReportData(const Scene& scene, const OperatingPointModes& modes);
 
 /// `bytes` as base64 (RFC 4648, with padding).
 std::string Base64(const void* bytes, size_t size);

@@ -3,9 +3,10 @@
 /// The instantaneous problem of a scene (what `chasles solve` reports, chapter 8.2-8.3): at the
 /// scene's initial state, every body's acceleration, every constraint's reaction, the friction
 /// rolling needs against mu_s, each contact point's mode and forces, the kinetic energy and
-/// momenta, and the solve's checks of its own answer. A sweep repeats it over a range of one
-/// scene parameter and returns a table. The report types are the analysis layer's
-/// (chasles/analysis/solve_report.h); the report layer writes them (chasles/report/solve_json.h).
+/// momenta, and the solve's checks of its own answer. A sweep (the analysis layer's SolveSweep)
+/// repeats it over a range of one scene parameter, each value's definition made here. The report
+/// types are the analysis layer's (chasles/analysis/solve_report.h); the report layer writes them
+/// (chasles/report/solve_json.h).
 
 #include <cstdint>
 #include <functional>
@@ -20,16 +21,12 @@
 namespace chasles {
 
 /// The scene's instantaneous problem for the analysis layer's SolveAtState: its Model and
-/// initial state (BuildStudy: on the constraints, projected when `project_initial: true`, each
-/// change a warning after the scene's own), its bodies' named points, the rolling contacts'
-/// mu_s and the contact point labels. Errors are SceneErrors at the scene entry they concern.
+/// initial state (BuildStudy; the solve settles it on the constraints, projected when
+/// `project_initial: true`, each change a warning after the scene's own), its bodies' named
+/// points, the rolling contacts'
+/// mu_s, the contact point labels and the locator of the solve's errors. Errors, here or in
+/// SolveAtState of it, are SceneErrors at the scene entry they concern (ThrowAtSceneEntry).
 SolveDefinition MakeSolveDefinition(const Scene& scene);
-
-/// Solves the scene's instantaneous problem at its initial state (SolveAtState of
-/// MakeSolveDefinition) (projected onto the
-/// constraints; contact modes chosen as a simulation starts, impacts not applied). Errors are
-/// SceneErrors at the scene entry they concern (ThrowAtSceneEntry).
-SolveReport SolveScene(const Scene& scene);
 
 /// A sweep of one scene parameter: COUNT values from START to STOP, both expressions with
 /// units as in a scene file ("0 deg", "60 deg").
@@ -52,23 +49,16 @@ SweepSpec ParseSweep(const std::string& text, const std::string& source = "sweep
 /// with an angle unit (rad, deg, rev, rpm, cps), e.g. 'theta=10 deg:50 deg:5' -> "rad".
 std::string SweepParameterUnit(const SweepSpec& spec, const Dimension& dim);
 
-struct SweepOptions {
-  /// Called before value k of count is solved (e.g. for a progress display).
-  std::function<void(int k, int count)> progress;
-  /// Called after each value is solved, with its index, the parameter's SI value and the
-  /// solution.
-  std::function<void(int k, double value, const SolveReport& solution)> on_solution;
-  /// The values solved here; the rows of the others are left empty (no values) and no
-  /// warnings are made for them. Row 0, with the columns' names, is always rank 0's.
-  SweepShare share;
-};
+/// Checks `spec` against the scene `load` reads with `options` (COUNT >= 2, a parameter of the
+/// scene) and returns the parameter's SI unit (SweepParameterUnit), for SolveSweep. Throws
+/// SceneError at the spec's source and key when the scene has no such parameter or COUNT < 2.
+std::string SolveSweepUnit(const std::function<Scene(const SceneOptions&)>& load,
+                           const SceneOptions& options, const SweepSpec& spec);
 
-/// Loads the scene once per value with `options` plus the override NAME = START + (STOP -
-/// START) k / (COUNT - 1) (so START and STOP keep their units) and solves it. `load` reads the
-/// scene with the options it is given (from a file or from text). Throws SceneError at the
-/// spec's source and key when the scene has no such parameter or COUNT < 2.
-SweepTable SolveSweep(const std::function<Scene(const SceneOptions&)>& load,
-                      const SceneOptions& options, const SweepSpec& spec,
-                      const SweepOptions& sweep_options = {});
+/// Value k of `spec` for the analysis layer's SolveSweep: the scene `load` reads with `options`
+/// plus the override NAME = START + (STOP - START) k / (COUNT - 1) (so START and STOP keep
+/// their units), its parameter's SI value and its solve definition (MakeSolveDefinition).
+SolveSweepPoint MakeSolveSweepPoint(const std::function<Scene(const SceneOptions&)>& load,
+                                    const SceneOptions& options, const SweepSpec& spec, int k);
 
 }  // namespace chasles

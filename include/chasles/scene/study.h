@@ -4,7 +4,8 @@
 /// (include/chasles/analysis/study.h, where the run and its result types live), or a Model, an
 /// initial State and SimulationOptions for Simulate (docs/scene-format.md, "Dynamics"). This
 /// layer only translates: the scene's bodies, forces (expressions), joints, contacts, events,
-/// impulses, impacts, columns and limits; errors come back at their file:line:col.
+/// impulses, impacts, columns and limits; the definition locates its run's errors, which come
+/// back at their file:line:col.
 
 #include <cstdint>
 #include <functional>
@@ -14,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "chasles/analysis/initial_state.h"
 #include "chasles/analysis/study.h"
 #include "chasles/error.h"
 #include "chasles/integrate/simulate.h"
@@ -27,17 +29,21 @@ namespace chasles {
 struct Study {
   /// Held by pointer: the force and event functions read it, so its address must not change.
   std::shared_ptr<const Model> model;
+  /// The initial state as the scene gives it: on the constraints once settled with
+  /// `settling` (the analysis layer's SettleInitialState; `project_initial: true` projects it).
   State initial;
+  InitialSettling settling;
   /// Integrator, end time, output interval, tolerances and events from the scene.
   SimulationOptions options;
-  /// Initial values changed to satisfy the constraints (`project_initial: true`), one each.
+  /// What the scene models otherwise than it reads (a string given from a body to the world).
   std::vector<std::string> warnings;
 };
 
 /// Builds the Model (one body per scene body, gravity, the scene's force elements, and its
 /// joints, rolling contacts and drivers with attachment frames taken from their world poses at
-/// the initial State), the initial State and the options. `until` [s] overrides the scene's end
-/// time when finite. Throws InputError when there is no end time or a value is invalid.
+/// the initial State), the initial State and how to settle it, and the options. `until` [s]
+/// overrides the scene's end time when finite. Throws SceneError at the entry concerned when
+/// there is no end time or a value is invalid.
 Study BuildStudy(const Scene& scene, double until = std::numeric_limits<double>::quiet_NaN());
 
 struct StudyOptions {
@@ -59,22 +65,19 @@ struct StudyOptions {
 };
 
 /// The scene's study for the library's RunStudy: bodies, a ModelBuilder and an EventBuilder
-/// (holding their own copy of the scene), the initial state on the constraints (projected
-/// when `project_initial: true`, each change a warning), options, columns, impulses, impacts,
-/// limits (the command line's `options`, else the scene's) and the certificate's tolerances.
-/// Refuses, as SceneErrors at their entries, inputs no run can integrate and limits the run
-/// would exceed for sure. Errors from building the Model are InputErrors without a location
-/// (see ThrowAtSceneEntry).
+/// (holding their own copy of the scene), the initial state as given and how the run settles
+/// it on the constraints (projected when `project_initial: true`, each change a warning; an
+/// error at the body's `initial` entry otherwise), options, columns, impulses, impacts,
+/// limits (the command line's `options`, else the scene's), the certificate's tolerances, the
+/// columns' units (StudyColumnUnits) and the locator of the run's errors. Every error, here or
+/// in the analysis layer's RunStudy of it, is a SceneError with the scene file's line and
+/// column (ThrowAtSceneEntry): bad settings; inputs no run can integrate; limits the run would
+/// exceed for sure (rows from the span and the output interval, fixed steps, a spring too stiff
+/// for the step budget), refused here; a force, reaction, acceleration or state that becomes
+/// non-finite during the run (the element and the time are named; nothing non-finite is ever
+/// returned); a limit on the work reached (steps, rows, wall time, smallest step: the message
+/// names the limit and the flag and scene key that raise it).
 StudyDefinition MakeStudyDefinition(const Scene& scene, const StudyOptions& options = {});
-
-/// Runs the scene's study. Every error is a SceneError with the scene file's line and column
-/// (ThrowAtSceneEntry): bad settings; a force, reaction, acceleration or state that becomes
-/// non-finite (the element and the time are named; nothing non-finite is ever returned); a
-/// limit on the work reached (steps, rows, wall time, smallest step: the message names the
-/// limit and the flag and scene key that raise it). Limits that the run would exceed for sure
-/// (rows from the span and the output interval, fixed steps, a spring too stiff for the step
-/// budget) are refused before it starts.
-StudyResult RunStudy(const Scene& scene, const StudyOptions& options = {});
 
 /// Rethrows an InputError found after the scene was read (building the Model, assembling or
 /// solving the constraints, during the run) as a SceneError at the entry of the Model element

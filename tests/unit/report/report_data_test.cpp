@@ -130,13 +130,13 @@ output: {columns: [position]}
 simulation: {until: 0.5 s, tolerance: 1e-12, output_interval: 0.1 s}
 )",
                               "fall");
-  const StudyResult plain = RunStudy(scene);
+  const StudyResult plain = RunStudy(MakeStudyDefinition(scene));
   EXPECT_THROW(SimulationReportData(scene, plain), InputError);
 
   scene.dynamics.columns = ReportColumns(scene, scene.dynamics.columns);
   StudyOptions options;
   options.record_row_snapshots = true;
-  const StudyResult r = RunStudy(scene, options);
+  const StudyResult r = RunStudy(MakeStudyDefinition(scene, options));
   ASSERT_EQ(r.row_snapshots.size(), r.rows.size());
   const nlohmann::json j = SimulationReportData(scene, r);
   EXPECT_EQ(j["samples"].get<size_t>(), r.rows.size());
@@ -188,7 +188,7 @@ output: {columns: [position, origin, quaternion]}
 simulation: {until: 1 s, tolerance: 1e-12, output_interval: 0.05 s}
 )";
     const Scene scene = LoadSceneText(text, "poses");
-    const StudyResult full = RunStudy(scene);
+    const StudyResult full = RunStudy(MakeStudyDefinition(scene));
     // The same run without the origin (and, planar, without the quaternion) columns.
     StudyResult r = full;
     std::vector<size_t> keep;
@@ -238,7 +238,8 @@ TEST(ReportData, ModesLoopADecayingOscillationOverWholePeriods) {
     options.parameter_overrides = {{"v", speed}};
     const Scene scene =
         LoadSceneFile(std::string(test::SourceDir()) + "/examples/whipple-bicycle.yaml", options);
-    const nlohmann::json data = ModesReportData(scene, AnalyseSceneModes(scene));
+    const nlohmann::json data =
+        ModesReportData(scene, AnalyseOperatingPointModes(MakeModesDefinition(scene)));
     const nlohmann::json* weave = nullptr;
     for (const nlohmann::json& m : data.at("modes")) {
       if (m.at("eigenvalue").at(1).get<double>() > 0.0) weave = &m;

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 // Before gtest: <signal.h> (via gtest) defines a macro si_value, a parameter name in units.h.
+#include "chasles/analysis/initial_state.h"
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/model/string_constraint.h"
 #include "chasles/scene/scene.h"
@@ -20,6 +21,14 @@
 
 namespace chasles {
 namespace {
+
+/// The scene's study with its initial state settled on the constraints (SettleInitialState),
+/// as a run or a solve starts from it.
+Study Settled(Study s) {
+  std::vector<std::string> warnings;
+  s.initial = SettleInitialState(*s.model, s.initial, s.settling, warnings);
+  return s;
+}
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -102,7 +111,7 @@ joints:
 simulation: {until: 1 s}
 )",
                                     "pendulum");
-  const Study study = BuildStudy(scene);
+  const Study study = Settled(BuildStudy(scene));
   ASSERT_EQ(study.model->num_constraints(), 1);
   EXPECT_EQ(study.model->constraint(0).name(), "pin");
   EXPECT_EQ(study.model->constraint(0).kind(), "revolute");
@@ -139,7 +148,7 @@ strings:
 )",
                                                   offset),
                                       "yoyo.yaml");
-    const Study study = BuildStudy(scene, 1.0);
+    const Study study = Settled(BuildStudy(scene, 1.0));
     const auto& string = dynamic_cast<const StringConstraint&>(study.model->constraint(0));
     // The drum's centre in B: the centre of mass's x and y, in the plane z = 0.
     EXPECT_EQ(string.end_b().p_BoP_B, Vec3::Zero()) << offset;

@@ -124,11 +124,14 @@ events:
 simulation: {until: 1 s, tolerance: 1e-12}
 )";
   const auto load = [text](const SceneOptions& o) { return LoadSceneText(text, "drop.yaml", o); };
-  SimulateSweepOptions options;
+  const std::vector<SweepQuantity> quantities = {ParseSweepQuantity("event(ground)"),
+                                                 ParseSweepQuantity("final(ball_z)")};
+  const SceneStudySweep sweep =
+      MakeStudySweep(load, {}, {ParseSweep("h=1 m:9 m:3")}, quantities, {}, 100);
+  SweepRunOptions options;
   options.jobs = 1;
-  const SweepTable t = SimulateSweep(
-      load, {}, {ParseSweep("h=1 m:9 m:3")},
-      {ParseSweepQuantity("event(ground)"), ParseSweepQuantity("final(ball_z)")}, options, 100);
+  const SweepTable t =
+      SimulateSweep(sweep.grid.parameters, quantities, sweep.units, sweep.point, options);
   const double g = 9.81, T = 1.0;
   ASSERT_EQ(t.rows.size(), 3u);
   ASSERT_EQ(t.errors.size(), 3u);

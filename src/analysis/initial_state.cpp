@@ -1,5 +1,7 @@
-// An initial state that violates the scene's constraints is an error, or, when the scene asks
-// for it, projected with every change reported (see internal/initial_state.h).
+// An initial state that violates the constraints is an error, or, when the caller asks for
+// it, projected with every change reported (chasles/analysis/initial_state.h).
+
+#include "chasles/analysis/initial_state.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,12 +13,11 @@
 #include "chasles/dynamics/constraint_modes.h"
 #include "chasles/dynamics/constraint_residual.h"
 #include "chasles/dynamics/constraint_solve.h"
+#include "chasles/error.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
-#include "chasles/scene/scene_error.h"
-#include "internal/initial_state.h"
 
-namespace chasles::scene_internal {
+namespace chasles {
 namespace {
 
 // Components at round-off of the vector's size print as 0.
@@ -50,14 +51,14 @@ std::string ResidualText(const ConstraintResidual& r, const ConstraintScales& s)
   return out;
 }
 
-// What to give so that `con` holds, in the scene's own keys.
-std::string Hint(const Scene& scene, const Model& model, const Constraint& con,
+// What to give so that `con` holds, in the scene format's own keys.
+std::string Hint(bool planar, const Model& model, const Constraint& con,
                  const ConstraintResidual& r) {
   const std::string body = model.body(con.child()).name();
   const std::string what = fmt::format("{} '{}'", con.kind(), con.name());
   std::vector<std::string> give;
   if (r.position_violated) {
-    give.push_back(scene.planar
+    give.push_back(planar
                        ? fmt::format("`position` and `theta` of '{}' that satisfy {}", body, what)
                        : fmt::format("`position` and the orientation (`rotation`, `euler` or "
                                      "`quaternion`) of '{}' that satisfy {}",
@@ -67,7 +68,7 @@ std::string Hint(const Scene& scene, const Model& model, const Constraint& con,
     std::string v = fmt::format(
         "`velocity` (of `velocity_point`) and `{}` of '{}' consistent "
         "with {}",
-        scene.planar ? "omega" : "angular_velocity", body, what);
+        planar ? "omega" : "angular_velocity", body, what);
     const auto* joint = dynamic_cast<const Joint*>(&con);
     if (joint != nullptr && con.parent() == kWorld &&
         joint->joint_kind() != JointKind::kPointOnPlane &&
@@ -90,16 +91,17 @@ std::string Hint(const Scene& scene, const Model& model, const Constraint& con,
 // Every value of the user's initial state that the projection changed, in the user's terms
 // (the frame origin's position, the orientation, the velocity of the given point, the angular
 // velocity), beyond round-off.
-std::vector<std::string> Changes(const Scene& scene, const Model& model, const State& given,
-                                 const State& used, const ConstraintScales& scales) {
+std::vector<std::string> Changes(const InitialSettling& settling, const Model& model,
+                                 const State& given, const State& used,
+                                 const ConstraintScales& scales) {
+  const bool planar = settling.planar;
   std::vector<std::string> out;
   const double tol_length = kRoundOffResidual * scales.length;
   const double tol_speed = kRoundOffResidual * scales.velocity;
   const double tol_rate = scales.length > 0.0 ? tol_speed / scales.length : tol_speed;
-  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+  for (size_t b = 0; b < given.bodies.size(); ++b) {
     const int i = static_cast<int>(b);
-    const std::string& name = scene.bodies[b].name;
-    const SceneInitialState& in = scene.dynamics.initial[b];
+    const std::string& name = model.body(i).name();
     const BodyState& g = given.bodies[b];
     const BodyState& u = used.bodies[b];
     const Vec3 p_given = CalcBodyOriginPosition(model, given, i);
@@ -107,14 +109,14 @@ std::vector<std::string> Changes(const Scene& scene, const Model& model, const S
     if ((p_used - p_given).norm() > tol_length) {
       const double size = std::max(p_given.norm(), p_used.norm());
       out.push_back(fmt::format("body '{}': position {} m -> {} m", name,
-                                VecText(p_given, scene.planar, size),
-                                VecText(p_used, scene.planar, size)));
+                                VecText(p_given, planar, size), VecText(p_used, planar, size)));
     }
     const Eigen::AngleAxisd turn(u.q_WB * g.q_WB.conjugate());
     if (std::abs(turn.angle()) > kRoundOffResidual) {
-      if (scene.planar) {
-        out.push_back(fmt::format("body '{}': theta {:.6g} rad -> {:.6g} rad", name, in.theta,
-                                  in.theta + turn.angle() * turn.axis().z()));
+      if (planar) {
+        const double theta = b < settling.theta.size() ? settling.theta[b] : 0.0;
+        out.push_back(fmt::format("body '{}': theta {:.6g} rad -> {:.6g} rad", name, theta,
+                                  theta + turn.angle() * turn.axis().z()));
       } else {
         out.push_back(fmt::format("body '{}': orientation turned by {:.6g} rad about {}", name,
                                   turn.angle(), VecText(turn.axis(), false)));
@@ -122,7 +124,8 @@ std::vector<std::string> Changes(const Scene& scene, const Model& model, const S
     }
     // Velocity of the point the user gave (the centre of mass by default).
     const Vec3 w_given = g.q_WB * g.w_WB_B, w_used = u.q_WB * u.w_WB_B;
-    const Vec3 r_B = in.p_BoP_B - model.body(i).p_BoBcm_B();
+    const Vec3 p_BoP_B = b < settling.p_BoP_B.size() ? settling.p_BoP_B[b] : Vec3::Zero();
+    const Vec3 r_B = p_BoP_B - model.body(i).p_BoBcm_B();
     const Vec3 v_given = g.v_WBcm_W + w_given.cross(g.q_WB * r_B);
     const Vec3 v_used = u.v_WBcm_W + w_used.cross(u.q_WB * r_B);
     if ((v_used - v_given).norm() > tol_speed) {
@@ -130,11 +133,10 @@ std::vector<std::string> Changes(const Scene& scene, const Model& model, const S
       const double size = std::max(v_given.norm(), v_used.norm());
       out.push_back(fmt::format("body '{}': velocity {} {} m/s -> {} m/s", name,
                                 at_cm ? "of its centre of mass" : "of `velocity_point`",
-                                VecText(v_given, scene.planar, size),
-                                VecText(v_used, scene.planar, size)));
+                                VecText(v_given, planar, size), VecText(v_used, planar, size)));
     }
     if ((w_used - w_given).norm() > tol_rate) {
-      if (scene.planar) {
+      if (planar) {
         out.push_back(fmt::format("body '{}': omega {:.6g} rad/s -> {:.6g} rad/s", name,
                                   w_given.z(), w_used.z()));
       } else {
@@ -150,33 +152,22 @@ std::vector<std::string> Changes(const Scene& scene, const Model& model, const S
 }  // namespace
 
 namespace {
-State SettleOnConstraints(const Scene& scene, const Model& model, const State& given,
+State SettleOnConstraints(const Model& model, const State& given, const InitialSettling& settling,
                           std::vector<std::string>& warnings);
 }  // namespace
 
-State SettleInitialState(const Scene& scene, const Model& model, const State& given,
+State SettleInitialState(const Model& model, const State& given, const InitialSettling& settling,
                          std::vector<std::string>& warnings) {
   if (model.num_constraints() == 0) return given;
-  // Nothing silent: a string given from a body to the world is modelled the other way round.
-  for (const SceneString& st : scene.dynamics.constraints.strings) {
-    if (st.to.body != kWorld) continue;
-    warnings.push_back(fmt::format(
-        "string '{}' is given from body '{}' to the world; it is modelled from its world end to "
-        "'{}' (the same string followed the other way, every sense flipped), so its reaction is "
-        "reported on '{}'",
-        st.name, scene.bodies[static_cast<size_t>(st.from.body)].name,
-        scene.bodies[static_cast<size_t>(st.from.body)].name,
-        scene.bodies[static_cast<size_t>(st.from.body)].name));
-  }
   // A string whose length exceeds its path (or whose ends move to slacken it, or whose tension
   // would come out negative) starts slack: its row is not held, so it is no violation.
   State with_modes = given;
   SelectConstraintModes(model, with_modes);
-  return SettleOnConstraints(scene, model, with_modes, warnings);
+  return SettleOnConstraints(model, with_modes, settling, warnings);
 }
 
 namespace {
-State SettleOnConstraints(const Scene& scene, const Model& model, const State& given,
+State SettleOnConstraints(const Model& model, const State& given, const InitialSettling& settling,
                           std::vector<std::string>& warnings) {
   Data data = MakeData(model);
   const ConstraintScales scales = CalcConstraintScales(model, given, data);
@@ -187,8 +178,8 @@ State SettleOnConstraints(const Scene& scene, const Model& model, const State& g
   // throws when the positions cannot be assembled at all.
   ProjectOntoConstraints(model, used, data);
   if (violations.empty()) return used;  // round-off only: corrected without a word
-  const std::vector<std::string> changes = Changes(scene, model, given, used, scales);
-  if (scene.dynamics.project_initial) {
+  const std::vector<std::string> changes = Changes(settling, model, given, used, scales);
+  if (settling.project) {
     for (const std::string& c : changes) {
       warnings.push_back("initial state projected onto the constraints: " + c);
     }
@@ -199,21 +190,21 @@ State SettleOnConstraints(const Scene& scene, const Model& model, const State& g
     const Constraint& con = model.constraint(r.constraint);
     list += fmt::format("\n  {} '{}' (body '{}'): residual {}", con.kind(), con.name(),
                         model.body(con.child()).name(), ResidualText(r, scales));
-    hints += "\n  " + Hint(scene, model, con, r);
+    hints += "\n  " + Hint(settling.planar, model, con, r);
   }
   std::string nearest;
   for (const std::string& c : changes) nearest += "\n  " + c;
+  // At the initial state of the first violated constraint's body.
   const int body = model.constraint(violations.front().constraint).child();
-  const SceneSpot& spot = scene.dynamics.initial[static_cast<size_t>(body)].where;
-  throw SceneError(
-      scene.file, spot.line, spot.column, spot.key,
+  throw InputError(
       fmt::format("the initial state violates the constraints (beyond round-off, {:g} of the "
                   "scene's scales {:.4g} m and {:.4g} m/s):{}\nTo fix it:{}\nor add "
                   "`project_initial: true` to start from the nearest consistent state "
                   "(mass-weighted), which changes:{}",
-                  kRoundOffResidual, scales.length, scales.velocity, list, hints, nearest));
+                  kRoundOffResidual, scales.length, scales.velocity, list, hints, nearest),
+      ErrorElement{ErrorElement::Kind::kInitialState, body});
 }
 
 }  // namespace
 
-}  // namespace chasles::scene_internal
+}  // namespace chasles
