@@ -100,7 +100,7 @@ void SceneDzhanibekov(benchmark::State& st) {
     library = std::min(library, CpuSeconds() - t0);
     st.ResumeTiming();
     t0 = CpuSeconds();
-    const StudyResult res = RunStudy(LoadSceneFile(kDzhanibekov));
+    const StudyResult res = RunStudy(MakeStudyDefinition(LoadSceneFile(kDzhanibekov)));
     scene = std::min(scene, CpuSeconds() - t0);
     flip_diff = std::abs(res.events.at(0).t - lib.events.at(0).t);
     benchmark::DoNotOptimize(res.events.data());
@@ -149,14 +149,14 @@ void SceneSpinningBalls(benchmark::State& st) {
   int islands = 0;
   for (auto _ : st) {
     double t0 = CpuSeconds();
-    benchmark::DoNotOptimize(RunStudy(ten).rows.data());
+    benchmark::DoNotOptimize(RunStudy(MakeStudyDefinition(ten)).rows.data());
     ms_10 = std::min(ms_10, 1e3 * (CpuSeconds() - t0));
     t0 = CpuSeconds();
-    const StudyResult r = RunStudy(thousand);
+    const StudyResult r = RunStudy(MakeStudyDefinition(thousand));
     ms_1000 = std::min(ms_1000, 1e3 * (CpuSeconds() - t0));
     islands = r.run_path.islands;
     for (const StudyContactEvent& e : r.contact_events) {
-      if (e.reason != "slip stopped") continue;
+      if (e.reason != ContactEventReason::kSlipStopped) continue;
       const int i = std::stoi(e.point.substr(e.point.find("ball") + 4));
       const double w0 = kSpinRpm * 2 * M_PI / 60 * (1.0 + i / 1000.0);
       const double t_star = 2 * 0.028575 * w0 / (7 * kMuK * 9.80665);

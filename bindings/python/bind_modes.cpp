@@ -79,10 +79,10 @@ void BindModes(py::module_& m) {
   m.def(
       "_modes_text",
       [](const PyScene& s) {
-        SceneModes r;
+        OperatingPointModes r;
         {
           py::gil_scoped_release release;
-          r = AnalyseSceneModes(s.scene);
+          r = AnalyseOperatingPointModes(MakeModesDefinition(s.scene));
         }
         return ModesText(s.scene, r);
       },
@@ -94,8 +94,12 @@ void BindModes(py::module_& m) {
         ModesSweep w;
         {
           py::gil_scoped_release release;
-          w = SweepSceneModes([&s](const SceneOptions& o) { return s.Load(o); }, s.options, spec,
-                              kDefaultMaxRows);
+          const auto load = [&s](const SceneOptions& o) { return s.Load(o); };
+          const SweepGrid grid = MakeSweepGrid(load(s.options), {spec}, kDefaultMaxRows);
+          w = SweepModes(grid.parameters, [&](double value) {
+            return MakeModesDefinitionAt(load, s.options, spec.name, grid.parameters.units[0],
+                                         value);
+          });
         }
         return ModesSweepText(w);
       },

@@ -89,7 +89,7 @@ TEST(SpinningBallsIslands, TheStudyRunsIslandsWithEveryTransitionChecked) {
   constexpr double kRel = 1e-9;
   std::map<std::string, int> stops;
   for (const StudyContactEvent& e : r.contact_events) {
-    if (e.reason != "slip stopped") continue;
+    if (e.reason != ContactEventReason::kSlipStopped) continue;
     int i = -1;
     for (int b = 0; b < kBalls; ++b) {
       if (e.point == fmt::format("floor_ball{}", b)) i = b;
