@@ -492,6 +492,7 @@ py::dict SteppingSummaryDict(const TimeSteppingSummary& c) {
   d["angular_momentum_residual"] = c.max_angular_momentum_residual;
   d["max_penetration"] = c.max_penetration;
   d["velocity_error_estimate"] = c.max_velocity_error;
+  d["accumulated_velocity_error_estimate"] = c.accumulated_velocity_error;
   d["scheme_error"] = c.numerical_energy_error;
   return d;
 }

@@ -40,27 +40,8 @@ void AddSteppingSummary(TimeSteppingSummary& into, const TimeSteppingSummary& ad
     into = add;
     return;
   }
-  into.steps += add.steps;
-  into.max_residual_impulse = std::max(into.max_residual_impulse, add.max_residual_impulse);
-  into.max_residual_velocity = std::max(into.max_residual_velocity, add.max_residual_velocity);
-  into.max_momentum_residual = std::max(into.max_momentum_residual, add.max_momentum_residual);
-  into.max_angular_momentum_residual =
-      std::max(into.max_angular_momentum_residual, add.max_angular_momentum_residual);
-  into.max_penetration = std::max(into.max_penetration, add.max_penetration);
-  into.max_gap_drift = std::max(into.max_gap_drift, add.max_gap_drift);
-  into.max_velocity_error = std::max(into.max_velocity_error, add.max_velocity_error);
-  into.max_angular_velocity_error =
-      std::max(into.max_angular_velocity_error, add.max_angular_velocity_error);
-  into.accumulated_velocity_error += add.accumulated_velocity_error;
+  MergeSteppingSummary(into, add);
   into.final_energy = add.final_energy;
-  into.work_nonconservative += add.work_nonconservative;
-  into.work_normal += add.work_normal;
-  into.work_friction += add.work_friction;
-  into.numerical_energy_error += add.numerical_energy_error;
-  into.regime_changes += add.regime_changes;
-  into.newton_iterations += add.newton_iterations;
-  into.sweeps += add.sweeps;
-  into.largest_island = std::max(into.largest_island, add.largest_island);
 }
 
 EventsHandover ProjectForEvents(const Model& model, State& state) {

@@ -104,7 +104,7 @@ std::string SteppingCertificateText(const TimeSteppingSummary& c, bool tolerance
       u(c.max_momentum_residual, kMomentum), u(c.max_angular_momentum_residual, kAngularMomentum));
   out += fmt::format(
       "{}penetration at most {}, gap drift at most {}; step-doubling error estimate per step at "
-      "most {} ({}), summed over the steps {}{}\n",
+      "most {} ({}), the accumulated velocity error estimated at {}{}\n",
       indent, u(c.max_penetration, kLength), u(c.max_gap_drift, kLength),
       u(c.max_velocity_error, kVelocity), u(c.max_angular_velocity_error, kRate, Angular::kYes),
       u(c.accumulated_velocity_error, kVelocity),

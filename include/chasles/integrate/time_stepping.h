@@ -20,9 +20,11 @@
 /// the balance of linear and angular momentum with the impulses applied, the energy ledger
 /// with the scheme's own energy error booked as a separate term, the largest penetration, the
 /// drift of the gaps of points held closed, each point's regime and the changes, and an
-/// a-posteriori estimate of the velocity error by step doubling (two half steps are taken as the
-/// step; one full step from the same state estimates their error). A run whose steps do not meet
-/// the requested tolerances says so (TimeSteppingResult::tolerance_met, warnings).
+/// a-posteriori estimate of the velocity error: each step's local error by step doubling (two half
+/// steps are taken as the step; one full step from the same state estimates their error), and the
+/// run's accumulated error of each body's velocity, carried through the impacts (each one's
+/// timing and normal, to first order in h) and summed over the smooth steps. A run whose steps do
+/// not meet the requested tolerances says so (TimeSteppingResult::tolerance_met, warnings).
 
 #include <functional>
 #include <limits>
@@ -49,10 +51,12 @@ struct TimeSteppingOptions {
   ContactTolerances tolerances;
   /// The contact problem's settings (its residual tolerance, relative to the impulse scale).
   ContactProblemSettings solver;
-  /// Estimate each step's velocity error by step doubling (three contact solves per step).
+  /// Estimate the velocity error: each step's by step doubling (three contact solves per step)
+  /// and the run's accumulated error (TimeSteppingSummary::accumulated_velocity_error).
   bool error_estimate = true;
-  /// Requested bound on each step's estimated velocity error [m/s] (infinite: none). A step
-  /// above it is reported (tolerance_met false and a warning), not repeated.
+  /// Requested bound on the run's accumulated velocity error estimate [m/s] (infinite: none).
+  /// The first step that takes the estimate above it is reported (tolerance_met false and a
+  /// warning); the run goes on.
   double velocity_tolerance = std::numeric_limits<double>::infinity();
   /// Keep every step's certificate in TimeSteppingResult::steps.
   bool store_steps = false;
@@ -109,6 +113,9 @@ struct TimeSteppingStep {
   /// velocities [rad/s] (0 without the estimate).
   double velocity_error = 0.0;
   double angular_velocity_error = 0.0;
+  /// The run's accumulated estimate of the bodies' velocity error at the step's end, the
+  /// largest over the bodies [m/s] (0 without the estimate).
+  double accumulated_velocity_error = 0.0;
   /// Whether the contact problems met their residual tolerance and the estimate its bound.
   bool converged = true;
   bool within_tolerance = true;
@@ -125,8 +132,10 @@ struct TimeSteppingSummary {
   double max_gap_drift = 0.0;
   double max_velocity_error = 0.0;
   double max_angular_velocity_error = 0.0;
-  /// Σ of the steps' velocity error estimates [m/s]: a first-order estimate of the accumulated
-  /// error of the velocities (local errors added without their propagation).
+  /// The accumulated estimate of the velocity error at the end, the largest over the bodies
+  /// [m/s] (docs/contact.md, "The accumulated error estimate"): an upper estimate of
+  /// |v - v_exact| of each body's linear velocity, first order in h. Stretches merged
+  /// (MergeSteppingSummary) add theirs.
   double accumulated_velocity_error = 0.0;
   /// Energy at the start and the end (T + V) [J], and the totals of the ledger's terms [J].
   double initial_energy = 0.0;
@@ -166,6 +175,11 @@ struct TimeSteppingResult {
   /// The end of the last step that changed a regime (or options.quiet_from) [s].
   double last_regime_change = 0.0;
 };
+
+/// Adds the certificate of a later stretch (or step) `add` to `into`: the steps, the worst of
+/// the two, the totals and the accumulated estimates; the energies at the ends are left as they
+/// are.
+void MergeSteppingSummary(TimeSteppingSummary& into, const TimeSteppingSummary& add);
 
 /// Why `model` cannot be time stepped (constraints are not taken yet, nor rolling
 /// resistance): names the first element that does not fit; empty when it can.
