@@ -339,8 +339,8 @@ void StudyRun::RecordChanges(const std::vector<ContactModeChange>& changes, doub
 
 // Contacts that approach take their impact first; then every contact point gets a consistent
 // mode, so that the next output row already shows it. Each island is settled as its own problem
-// (SettleContactsByIsland): the dense impact and mode problems cost the cube of their points,
-// so one problem over 1,000 independent balls cost 200 times the balls one at a time.
+// (SettleContactsByIsland): the dense impact and mode problems cost the cube of their points, and
+// one problem over 1,000 independent balls took 7 s of an 8 s run (docs/benchmarks.md).
 void StudyRun::SettleContacts(ContactEventReason reason,
                               std::vector<std::pair<int, Vec3>>* impulses) {
   if (seg_.model->num_contacts() == 0) return;
