@@ -58,6 +58,10 @@ struct TimeSteppingOptions {
   /// The first step that takes the estimate above it is reported (tolerance_met false and a
   /// warning); the run goes on.
   double velocity_tolerance = std::numeric_limits<double>::infinity();
+  /// Threads over each step's islands (>= 1; fewer when a step has fewer islands or the system
+  /// starts fewer, parallel.h). The result is bitwise the same for any number: the islands share
+  /// no body, and their certificates are merged in island order.
+  int threads = 1;
   /// Keep every step's certificate in TimeSteppingResult::steps.
   bool store_steps = false;
   /// Keep every sample in TimeSteppingResult::samples.
