@@ -189,8 +189,8 @@ ColumnPoses PosesFromColumns(const Scene& scene, const StudyResult& r) {
           "the report needs the pose of body '{0}' at every sample: its origin ({0}_ox, _oy, "
           "_oz) or centre of mass ({0}_x, _y, _z) and its quaternion ({0}_qw, _qx, _qy, _qz{1}) "
           "columns, which the table lacks: add the output groups origin and quaternion (or "
-          "position and quaternion), or run chasles simulate with --html, which records the "
-          "poses",
+          "position and quaternion), or use the report chasles simulate --html writes, which "
+          "draws the poses recorded from the run's states",
           b.name, scene.planar ? ", or _theta" : ""));
     }
     const Vec3 p_BoBcm_B = b.mass_properties.p_BoBcm_B();
