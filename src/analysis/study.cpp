@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <unordered_set>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -18,6 +21,7 @@
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/dynamics/redundancy.h"
 #include "chasles/error.h"
+#include "chasles/integrate/islands.h"
 #include "chasles/integrate/run_path.h"
 #include "chasles/integrate/sphere_events.h"
 #include "chasles/model/data.h"
@@ -65,6 +69,25 @@ struct Jump {
   const StudyImpactSpec* impact;
 };
 
+/// One impulse of a settling and the impact problem (an island's) it came from.
+struct ImpactAt {
+  const ContactImpulse* impulse;
+  const ImpactResult* result;
+};
+
+/// The impulses of `results` in point order (one problem lists its points in order already;
+/// the islands' points interleave).
+std::vector<ImpactAt> ImpulsesByPoint(const std::vector<ImpactResult>& results) {
+  std::vector<ImpactAt> all;
+  for (const ImpactResult& r : results) {
+    for (const ContactImpulse& i : r.impulses) all.push_back({&i, &r});
+  }
+  std::stable_sort(all.begin(), all.end(), [](const ImpactAt& a, const ImpactAt& b) {
+    return a.impulse->point < b.impulse->point;
+  });
+  return all;
+}
+
 /// One run of a study: the state, the current segment and everything recorded so far.
 class StudyRun {
  public:
@@ -86,7 +109,8 @@ class StudyRun {
   [[noreturn]] void RethrowForUserBody(const InputError& e) const;
   const std::string& Label(int p) const { return labels_[static_cast<size_t>(p)]; }
   void Start();
-  void RecordImpacts(const ImpactResult& r, double t);
+  /// The impacts of the settled islands, by point (each with its island's energy change).
+  void RecordImpacts(const std::vector<ImpactResult>& results, double t);
   void RecordChanges(const std::vector<ContactModeChange>& changes, double t,
                      ContactEventReason reason);
   /// Impacts of the contacts driven into their planes, then every point's mode; appends each
@@ -146,6 +170,8 @@ class StudyRun {
   double scheme_error_ = 0.0;
   double quiet_from_ = 0.0;
   bool law_warned_ = false;
+  /// The strings named in result_.string_events so far.
+  std::unordered_set<std::string> strings_listed_;
 };
 
 StudyResult StudyRun::Run() {
@@ -268,12 +294,12 @@ void StudyRun::Start() {
     }
   } else if (model.num_contacts() > 0 && path_ != RunPath::kSphereEvents) {
     SettleContacts(ContactEventReason::kInitial);
-    // Every point's initial mode is part of the timeline, changed or not.
+    // Every point's initial mode is part of the timeline, changed or not: the labels the
+    // settling listed, gathered in one pass over its records (not one pass per point).
+    std::unordered_set<std::string> listed;
+    for (const StudyContactEvent& e : result_.contact_events) listed.insert(e.point);
     for (int p = 0; p < model.num_contact_points(); ++p) {
-      const bool listed =
-          std::any_of(result_.contact_events.begin(), result_.contact_events.end(),
-                      [&](const StudyContactEvent& e) { return e.point == Label(p); });
-      if (listed) continue;
+      if (listed.count(Label(p)) > 0) continue;
       const ContactPointState& ps = state_.contacts[static_cast<size_t>(p)];
       const StudyContactMode regime{ps.mode, ps.rolling_held};
       result_.contact_events.push_back({state_.t, Label(p),
@@ -288,12 +314,13 @@ void StudyRun::Start() {
   slip_.Sample(model, state_);
 }
 
-void StudyRun::RecordImpacts(const ImpactResult& r, double t) {
-  for (const ContactImpulse& imp : r.impulses) {
-    result_.impacts.push_back({t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
-                               r.kinetic_energy_before - r.kinetic_energy_after, false,
-                               std::numeric_limits<double>::quiet_NaN(), false, imp.law,
-                               r.frictionless_fallback});
+void StudyRun::RecordImpacts(const std::vector<ImpactResult>& results, double t) {
+  for (const ImpactAt& i : ImpulsesByPoint(results)) {
+    const ImpactResult& r = *i.result;
+    result_.impacts.push_back(
+        {t, Label(i.impulse->point), i.impulse->approach_speed, i.impulse->normal_impulse,
+         r.kinetic_energy_before - r.kinetic_energy_after, false,
+         std::numeric_limits<double>::quiet_NaN(), false, i.impulse->law, r.frictionless_fallback});
   }
 }
 
@@ -311,20 +338,23 @@ void StudyRun::RecordChanges(const std::vector<ContactModeChange>& changes, doub
 }
 
 // Contacts that approach take their impact first; then every contact point gets a consistent
-// mode, so that the next output row already shows it.
+// mode, so that the next output row already shows it. Each island is settled as its own problem
+// (SettleContactsByIsland): the dense impact and mode problems cost the cube of their points, and
+// one problem over 1,000 independent balls took 7 s of an 8 s run (docs/benchmarks.md).
 void StudyRun::SettleContacts(ContactEventReason reason,
                               std::vector<std::pair<int, Vec3>>* impulses) {
   if (seg_.model->num_contacts() == 0) return;
   const ContactTolerances tol;
-  const ImpactResult impacts = ResolveImpacts(*seg_.model, state_, tol);
-  RecordImpacts(impacts, state_.t);
-  ModeSelectionNotes notes;
-  RecordChanges(SelectContactModes(*seg_.model, state_, tol, {}, &notes), state_.t, reason);
+  const ContactSettling settled = SettleContactsByIsland(*seg_.model, state_, tol);
+  RecordImpacts(settled.impacts, state_.t);
+  RecordChanges(settled.changes, state_.t, reason);
   if (impulses != nullptr) {
-    for (const ContactImpulse& i : impacts.impulses) impulses->emplace_back(i.point, i.impulse_W);
-    for (const JamImpulse& j : notes.jams) impulses->emplace_back(j.point, j.impulse_W);
+    for (const ImpactAt& i : ImpulsesByPoint(settled.impacts)) {
+      impulses->emplace_back(i.impulse->point, i.impulse->impulse_W);
+    }
+    for (const JamImpulse& j : settled.jams) impulses->emplace_back(j.point, j.impulse_W);
   }
-  for (const JamImpulse& j : notes.jams) {
+  for (const JamImpulse& j : settled.jams) {
     result_.impacts.push_back({state_.t, Label(j.point), 0.0, j.normal_impulse, j.energy_lost,
                                false, std::numeric_limits<double>::quiet_NaN(), true, std::nullopt,
                                false});
@@ -679,6 +709,13 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
       [](const StudyContactEvent& a, const StudyContactEvent& b) { return a.t < b.t; });
   // Impacts with the table and between balls, in time order; a collision of a listed pair is
   // at its contact point, of any other pair at "A | B".
+  // The listed pairs' points, by their bodies (a later listing of a pair wins, as before).
+  std::map<std::pair<BodyIndex, BodyIndex>, int> pair_point;
+  for (int k = 0; k < m.num_contacts(); ++k) {
+    const ContactSpec& s = m.contact(k).spec();
+    if (s.shape != ContactShape::kSphereSphere) continue;
+    pair_point[std::minmax(s.body, s.other_body)] = m.contact_point_offset(k);
+  }
   std::vector<StudyImpact> impacts;
   for (const ImpactRecord& imp : r.plane_impacts) {
     impacts.push_back({imp.t, Label(imp.point), imp.approach_speed, imp.normal_impulse,
@@ -687,14 +724,8 @@ void StudyRun::RecordSphereEvents(const SphereEventResult& r) {
   }
   for (const SphereCollision& c : r.collisions) {
     std::string point = fmt::format("{} | {}", m.body(c.body_a).name(), m.body(c.body_b).name());
-    for (int k = 0; k < m.num_contacts(); ++k) {
-      const ContactSpec& s = m.contact(k).spec();
-      if (s.shape == ContactShape::kSphereSphere &&
-          ((s.body == c.body_a && s.other_body == c.body_b) ||
-           (s.body == c.body_b && s.other_body == c.body_a))) {
-        point = Label(m.contact_point_offset(k));
-      }
-    }
+    const auto listed = pair_point.find(std::minmax(c.body_a, c.body_b));
+    if (listed != pair_point.end()) point = Label(listed->second);
     impacts.push_back({c.t, point, c.approach_speed, c.normal_impulse, c.energy_lost, false,
                        std::numeric_limits<double>::quiet_NaN(), false, c.law, false});
   }
@@ -748,12 +779,12 @@ void StudyRun::RecordSimulation(const SimulationResult& r,
   for (const ConstraintEvent& e : r.constraint_events) {
     const std::string& name = m.constraint(e.constraint).name();
     // A later segment lists its strings' modes again as "initial": only news is kept.
-    const bool known = std::any_of(result_.string_events.begin(), result_.string_events.end(),
-                                   [&](const StudyStringEvent& x) { return x.string == name; });
+    const bool known = strings_listed_.count(name) > 0;
     if (e.reason == ConstraintEventReason::kInitial && known && e.from == e.to &&
         e.impulse == 0.0) {
       continue;
     }
+    strings_listed_.insert(name);
     result_.string_events.push_back(
         {e.t, name, e.from, e.to, e.reason, e.approach_speed, e.impulse, e.energy_lost});
   }

@@ -207,10 +207,31 @@ namespace {
 
 /// Each constraint's share of Jᵀμ on body `b` ([F; M about Bcm] in W, from the rows on b),
 /// as an impulse at the constraint's point J: M_J = M_Bcm - (p_WJ - p_WBcm) × F.
-void AddSupportImpulses(const Model& model, const State& state, const Data& data,
-                        const Eigen::VectorXd& mu, int b, std::vector<BodyImpulse>& out) {
-  const Vec3& p_WBcm = state.bodies[static_cast<size_t>(b)].p_WBcm;
+// The constraints acting on each body (as child, parent or extra body), in Model order: one pass
+// over the constraints, so that a jump's records cost O(bodies + constraints), not their product.
+std::vector<std::vector<int>> ConstraintsOfBodies(const Model& model, const Data& data) {
+  std::vector<std::vector<int>> of_body(static_cast<size_t>(model.num_bodies()));
   for (int c = 0; c < model.num_constraints(); ++c) {
+    const Constraint& con = model.constraint(c);
+    const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+    std::vector<BodyIndex> bodies = {con.child(), con.parent()};
+    for (int k = 0; k < e.num_extra; ++k) bodies.push_back(e.extra_body[static_cast<size_t>(k)]);
+    std::sort(bodies.begin(), bodies.end());
+    bodies.erase(std::unique(bodies.begin(), bodies.end()), bodies.end());
+    for (BodyIndex b : bodies) {
+      if (b >= 0 && b < model.num_bodies()) of_body[static_cast<size_t>(b)].push_back(c);
+    }
+  }
+  return of_body;
+}
+
+// The supports' impulses on body b: each constraint `constraints` lists for it (by
+// ConstraintsOfBodies).
+void AddSupportImpulses(const Model& model, const State& state, const Data& data,
+                        const Eigen::VectorXd& mu, int b, const std::vector<int>& constraints,
+                        std::vector<BodyImpulse>& out) {
+  const Vec3& p_WBcm = state.bodies[static_cast<size_t>(b)].p_WBcm;
+  for (int c : constraints) {
     const Constraint& con = model.constraint(c);
     const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
     const int n = con.num_rows();
@@ -249,6 +270,13 @@ void RecordJumpImpulses(const Model& model, const State& before, const State& af
     jump.reactions.push_back(MakeReactionReport(model, data, c));
     jump.reactions.back().power = 0.0;
   }
+  // Each body's applied impulses, in their order, and its constraints.
+  std::vector<std::vector<const JumpImpulse*>> applied(static_cast<size_t>(model.num_bodies()));
+  for (const JumpImpulse& j : impulses) {
+    if (j.body >= 0 && j.body < model.num_bodies())
+      applied[static_cast<size_t>(j.body)].push_back(&j);
+  }
+  const std::vector<std::vector<int>> constraints = ConstraintsOfBodies(model, data);
   // Each body: ΔH_cm = R I_B (ω_B after - ω_B before) (the instant moves nothing).
   for (int b = 0; b < model.num_bodies(); ++b) {
     const auto i = static_cast<size_t>(b);
@@ -266,10 +294,8 @@ void RecordJumpImpulses(const Model& model, const State& before, const State& af
     r.dw_WB_W = R * (s1.w_WB_B - s0.w_WB_B);
     r.H_Bcm_W = R * (body.I_BBcm_B() * s1.w_WB_B);
     r.dH_Bcm_W = R * (body.I_BBcm_B() * (s1.w_WB_B - s0.w_WB_B));
-    for (const JumpImpulse& j : impulses) {
-      if (j.body == b) r.impulses.push_back(j.impulse);
-    }
-    AddSupportImpulses(model, after, data, mu, b, r.impulses);
+    for (const JumpImpulse* j : applied[i]) r.impulses.push_back(j->impulse);
+    AddSupportImpulses(model, after, data, mu, b, constraints[i], r.impulses);
     jump.bodies.push_back(std::move(r));
   }
 }

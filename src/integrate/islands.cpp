@@ -112,56 +112,129 @@ std::string IslandObstacle(const Model& model) {
   return "";
 }
 
+IslandSplit::IslandSplit(const Model& model, IslandPartition partition)
+    : model_(model), partition_(std::move(partition)) {
+  local_.assign(static_cast<size_t>(model.num_bodies()), kWorld);
+  for (const std::vector<BodyIndex>& bodies : partition_.bodies) {
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      local_[static_cast<size_t>(bodies[i])] = static_cast<BodyIndex>(i);
+    }
+  }
+  contents_.resize(partition_.bodies.size());
+  for (int f = 0; f < model.num_force_elements(); ++f) {
+    const std::vector<BodyIndex> bodies = model.force_element(f).bodies();
+    if (bodies.empty()) {
+      for (Contents& c : contents_) c.forces.push_back(f);
+    } else {
+      contents_[IslandOf(bodies[0])].forces.push_back(f);
+    }
+  }
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    contents_[IslandOf(model.constraint(c).child())].constraints.push_back(c);
+  }
+  for (int k = 0; k < model.num_contacts(); ++k) {
+    Contents& c = contents_[IslandOf(model.contact(k).body())];
+    c.contacts.push_back(k);
+    for (int q = 0; q < model.contact(k).num_points(); ++q) {
+      c.points.push_back(model.contact_point_offset(k) + q);
+    }
+  }
+}
+
+IslandModel IslandSplit::Build(int i) const {
+  const Contents& contents = contents_[Index(i)];
+  IslandModel im;
+  Model& m = im.model;
+  im.bodies = partition_.bodies[Index(i)];
+  for (BodyIndex b : im.bodies) m.AddBody(model_.body(b).name(), model_.body(b).mass_properties());
+  for (int f : contents.forces) m.AddForceElement(model_.force_element(f).Renumbered(local_));
+  for (int c : contents.constraints) m.AddConstraint(model_.constraint(c).Renumbered(local_));
+  for (int k : contents.contacts) {
+    ContactSpec spec = model_.contact(k).spec();
+    spec.body = local_[static_cast<size_t>(spec.body)];
+    if (spec.other_body != kWorld) spec.other_body = local_[static_cast<size_t>(spec.other_body)];
+    m.AddContact(spec);
+  }
+  im.forces = contents.forces;
+  im.constraints = contents.constraints;
+  im.contacts = contents.contacts;
+  im.points = contents.points;
+  return im;
+}
+
+State IslandSplit::Part(const IslandModel& im, int i, const State& whole) const {
+  State s;
+  s.t = whole.t;
+  for (BodyIndex b : im.bodies) s.bodies.push_back(whole.bodies[static_cast<size_t>(b)]);
+  if (!whole.force_integrals.empty()) {
+    for (int f : im.forces) {
+      const bool shared = model_.force_element(f).bodies().empty();
+      s.force_integrals.push_back(shared && i > 0 ? ForceIntegrals{}
+                                                  : whole.force_integrals[static_cast<size_t>(f)]);
+    }
+  }
+  for (int c : im.constraints) {
+    const auto g = static_cast<size_t>(c);
+    if (!whole.constraint_work.empty()) s.constraint_work.push_back(whole.constraint_work[g]);
+    if (!whole.constraint_modes.empty()) s.constraint_modes.push_back(whole.constraint_modes[g]);
+  }
+  if (!whole.contacts.empty()) {
+    for (int q : im.points) s.contacts.push_back(whole.contacts[static_cast<size_t>(q)]);
+  }
+  return s;
+}
+
+void IslandSplit::ScatterMotion(const IslandModel& im, const State& part, State& whole) {
+  for (size_t j = 0; j < part.bodies.size(); ++j) {
+    whole.bodies[static_cast<size_t>(im.bodies[j])] = part.bodies[j];
+  }
+  for (size_t j = 0; j < part.contacts.size(); ++j) {
+    whole.contacts[static_cast<size_t>(im.points[j])] = part.contacts[j];
+  }
+}
+
+void IslandSplit::RethrowForWholeModel(const IslandModel& im, const InputError& e) {
+  if (!e.element() || typeid(e) != typeid(InputError)) throw;
+  ErrorElement global = *e.element();
+  const auto local = static_cast<size_t>(global.index);
+  switch (global.kind) {
+    case ErrorElement::Kind::kBody:
+    case ErrorElement::Kind::kInitialState:
+      global.index = im.bodies[local];
+      break;
+    case ErrorElement::Kind::kForceElement:
+      global.index = im.forces[local];
+      break;
+    case ErrorElement::Kind::kConstraint:
+      global.index = im.constraints[local];
+      break;
+    case ErrorElement::Kind::kContact:
+      global.index = im.contacts[local];
+      break;
+    case ErrorElement::Kind::kContactPoint:
+      global.index = im.points[local];
+      break;
+    case ErrorElement::Kind::kEvent:  // every island watches all of the run's events
+      break;
+  }
+  throw InputError(e.what(), global);
+}
+
 namespace internal {
 namespace {
-
-// What island i holds, by global index: its force elements (an element acting on each body
-// alone, gravity, is in every island), constraints and contacts, each in Model order.
-struct IslandContents {
-  std::vector<int> forces, constraints, contacts;
-};
-
-// One island as a Model of its own, with the map from its local indices to the global ones.
-struct IslandModel {
-  Model model;
-  std::vector<int> forces;  // global element of each local element
-  std::vector<int> points;  // global contact point of each local point
-};
 
 class IslandRun {
  public:
   IslandRun(const Model& model, const State& initial, const SimulationOptions& o,
             IslandPartition partition)
-      : model_(model), initial_(initial), o_(o), p_(std::move(partition)) {
-    // Each body's index inside its island: the renumbering every island's elements use.
-    local_.assign(static_cast<size_t>(model.num_bodies()), kWorld);
-    for (const std::vector<BodyIndex>& bodies : p_.bodies) {
-      for (size_t i = 0; i < bodies.size(); ++i) {
-        local_[static_cast<size_t>(bodies[i])] = static_cast<BodyIndex>(i);
-      }
-    }
-    contents_.resize(p_.bodies.size());
-    for (int f = 0; f < model.num_force_elements(); ++f) {
-      const std::vector<BodyIndex> bodies = model.force_element(f).bodies();
-      if (bodies.empty()) {
-        for (IslandContents& c : contents_) c.forces.push_back(f);
-      } else {
-        contents_[Island(bodies[0])].forces.push_back(f);
-      }
-    }
-    for (int c = 0; c < model.num_constraints(); ++c) {
-      contents_[Island(model.constraint(c).child())].constraints.push_back(c);
-    }
-    for (int k = 0; k < model.num_contacts(); ++k) {
-      contents_[Island(model.contact(k).body())].contacts.push_back(k);
-    }
-  }
+      : model_(model), initial_(initial), o_(o), split_(model, std::move(partition)) {}
 
   SimulationResult Run() {
-    const size_t n = p_.bodies.size();
+    const size_t n = split_.partition().bodies.size();
     results_.resize(n);
     points_.resize(n);
     forces_.resize(n);
+    constraints_.resize(n);
     std::vector<std::exception_ptr> errors(n);
     std::atomic<size_t> next{0};
     std::atomic<bool> failed{false};
@@ -185,92 +258,9 @@ class IslandRun {
   }
 
  private:
-  size_t Island(BodyIndex b) const {
-    return static_cast<size_t>(p_.island_of_body[static_cast<size_t>(b)]);
-  }
-
-  IslandModel BuildModel(size_t i) const {
-    IslandModel im;
-    Model& m = im.model;
-    for (BodyIndex b : p_.bodies[i]) {
-      m.AddBody(model_.body(b).name(), model_.body(b).mass_properties());
-    }
-    for (int f : contents_[i].forces) {
-      m.AddForceElement(model_.force_element(f).Renumbered(local_));
-      im.forces.push_back(f);
-    }
-    for (int c : contents_[i].constraints) m.AddConstraint(model_.constraint(c).Renumbered(local_));
-    for (int k : contents_[i].contacts) {
-      ContactSpec spec = model_.contact(k).spec();
-      spec.body = local_[static_cast<size_t>(spec.body)];
-      if (spec.other_body != kWorld) spec.other_body = local_[static_cast<size_t>(spec.other_body)];
-      m.AddContact(spec);
-      for (int q = 0; q < model_.contact(k).num_points(); ++q) {
-        im.points.push_back(model_.contact_point_offset(k) + q);
-      }
-    }
-    return im;
-  }
-
-  // Rethrows `e` from island i's run naming its element by its index in the whole Model.
-  [[noreturn]] void RethrowForWholeModel(size_t i, const IslandModel& im,
-                                         const InputError& e) const {
-    if (!e.element() || typeid(e) != typeid(InputError)) throw;
-    ErrorElement global = *e.element();
-    const auto local = static_cast<size_t>(global.index);
-    switch (global.kind) {
-      case ErrorElement::Kind::kBody:
-      case ErrorElement::Kind::kInitialState:
-        global.index = p_.bodies[i][local];
-        break;
-      case ErrorElement::Kind::kForceElement:
-        global.index = im.forces[local];
-        break;
-      case ErrorElement::Kind::kConstraint:
-        global.index = contents_[i].constraints[local];
-        break;
-      case ErrorElement::Kind::kContact:
-        global.index = contents_[i].contacts[local];
-        break;
-      case ErrorElement::Kind::kContactPoint:
-        global.index = im.points[local];
-        break;
-      case ErrorElement::Kind::kEvent:  // every island watches all of the run's events
-        break;
-    }
-    throw InputError(e.what(), global);
-  }
-
-  // The island's part of the initial state. An element acting on every body alone (gravity)
-  // carries its integrals from the start in island 0 and from zero in the others (Merge sums).
-  State InitialState(size_t i, const IslandModel& im) const {
-    State s;
-    s.t = initial_.t;
-    for (BodyIndex b : p_.bodies[i]) s.bodies.push_back(initial_.bodies[static_cast<size_t>(b)]);
-    if (!initial_.force_integrals.empty()) {
-      for (int f : im.forces) {
-        const bool shared = model_.force_element(f).bodies().empty();
-        s.force_integrals.push_back(
-            shared && i > 0 ? ForceIntegrals{} : initial_.force_integrals[static_cast<size_t>(f)]);
-      }
-    }
-    for (int c : contents_[i].constraints) {
-      const auto g = static_cast<size_t>(c);
-      if (!initial_.constraint_work.empty())
-        s.constraint_work.push_back(initial_.constraint_work[g]);
-      if (!initial_.constraint_modes.empty()) {
-        s.constraint_modes.push_back(initial_.constraint_modes[g]);
-      }
-    }
-    if (!initial_.contacts.empty()) {
-      for (int q : im.points) s.contacts.push_back(initial_.contacts[static_cast<size_t>(q)]);
-    }
-    return s;
-  }
-
   void RunIsland(size_t i) {
-    const IslandModel im = BuildModel(i);
-    const State initial = InitialState(i, im);
+    const IslandModel im = split_.Build(static_cast<int>(i));
+    const State initial = split_.Part(im, static_cast<int>(i), initial_);
     SimulationOptions o = o_;
     o.on_sample = nullptr;
     o.store_samples = true;
@@ -281,8 +271,8 @@ class IslandRun {
     o.on_transition = nullptr;
     if (o_.island_transition) {
       o.on_transition =
-          o_.island_transition(IslandView{static_cast<int>(i), &im.model, &initial, p_.bodies[i],
-                                          im.forces, contents_[i].constraints, im.points});
+          o_.island_transition(IslandView{static_cast<int>(i), &im.model, &initial, im.bodies,
+                                          im.forces, im.constraints, im.points});
     }
     if (o_.on_step && o_.threads > 1) {
       o.on_step = [this](double t) {
@@ -293,16 +283,18 @@ class IslandRun {
     try {
       results_[i] = RunHybrid(im.model, initial, o);
     } catch (const InputError& e) {
-      RethrowForWholeModel(i, im, e);
+      IslandSplit::RethrowForWholeModel(im, e);
     }
     points_[i] = im.points;
     forces_[i] = im.forces;
+    constraints_[i] = im.constraints;
   }
 
   // The whole State from the islands' states `part(i)`.
   template <class Part>
   State Assemble(const Part& part) const {
-    const size_t n = p_.bodies.size();
+    const IslandPartition& p = split_.partition();
+    const size_t n = p.bodies.size();
     State s;
     s.t = part(0).t;
     s.bodies.resize(static_cast<size_t>(model_.num_bodies()));
@@ -319,7 +311,7 @@ class IslandRun {
       const State& x = part(i);
       if (x.t != s.t) throw std::logic_error("islands: the islands' sample times differ");
       for (size_t j = 0; j < x.bodies.size(); ++j) {
-        s.bodies[static_cast<size_t>(p_.bodies[i][j])] = x.bodies[j];
+        s.bodies[static_cast<size_t>(p.bodies[i][j])] = x.bodies[j];
       }
       for (size_t j = 0; j < x.force_integrals.size(); ++j) {
         ForceIntegrals& F = s.force_integrals[static_cast<size_t>(forces_[i][j])];
@@ -330,7 +322,7 @@ class IslandRun {
         F.linear_impulse_W += f.linear_impulse_W;
         F.angular_impulse_Wo_W += f.angular_impulse_Wo_W;
       }
-      const std::vector<int>& cons = contents_[i].constraints;
+      const std::vector<int>& cons = constraints_[i];
       for (size_t j = 0; j < x.constraint_work.size(); ++j) {
         s.constraint_work[static_cast<size_t>(cons[j])] = x.constraint_work[j];
       }
@@ -346,11 +338,12 @@ class IslandRun {
   }
 
   SimulationResult Merge() {
-    const size_t n = p_.bodies.size();
+    const IslandPartition& p = split_.partition();
+    const size_t n = p.bodies.size();
     SimulationResult r;
     r.islands.split = true;
     r.islands.count = static_cast<int>(n);
-    r.islands.bodies = p_.bodies;
+    r.islands.bodies = p.bodies;
     const size_t num_samples = results_[0].samples.size();
     for (size_t i = 0; i < n; ++i) {
       if (results_[i].samples.size() != num_samples) {
@@ -370,7 +363,7 @@ class IslandRun {
     std::vector<ConstraintEvent> initial_strings;
     for (size_t i = 0; i < n; ++i) {
       SimulationResult& x = results_[i];
-      const std::vector<int>& cons = contents_[i].constraints;
+      const std::vector<int>& cons = constraints_[i];
       for (size_t e = 0; e < x.contact_events.size(); ++e) {
         ContactEvent c = x.contact_events[e];
         c.point = points_[i][static_cast<size_t>(c.point)];
@@ -412,11 +405,9 @@ class IslandRun {
   const Model& model_;
   const State& initial_;
   const SimulationOptions& o_;
-  const IslandPartition p_;
-  std::vector<BodyIndex> local_;
-  std::vector<IslandContents> contents_;
+  const IslandSplit split_;
   std::vector<SimulationResult> results_;
-  std::vector<std::vector<int>> points_, forces_;
+  std::vector<std::vector<int>> points_, forces_, constraints_;
   std::mutex step_mutex_;
 };
 

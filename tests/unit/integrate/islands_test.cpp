@@ -1,10 +1,11 @@
 // Islands of the hybrid run: n spinning balls set down on a floor (Problems 8.26/8.27), each
 // its own island with its own integrator and stick event; the partition by joints and
 // sphere-sphere contacts; bitwise-equal results for 1 and 2 threads; a user event that stops
-// the whole run.
+// the whole run; settling the contacts island by island against the whole problem.
 
 #include "chasles/integrate/islands.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -14,6 +15,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "chasles/dynamics/contact_solve.h"
 #include "chasles/error.h"
 #include "chasles/integrate/simulate.h"
 #include "chasles/model/constraints.h"
@@ -357,6 +359,102 @@ TEST(Islands, IslandTransitionChecksEachIslandOnItsOwnStates) {
   EXPECT_EQ(points, (std::vector<std::vector<int>>{{0}, {1}}));
   // Ball 1 sticks at t*(w0/2) < t_end; ball 0 does not.
   EXPECT_EQ(transitions, (std::vector<int>{0, 1}));
+}
+
+// SettleContactsByIsland against the one problem over the whole Model: balls and a pair and a
+// dumbbell of balls, each its own island, some driven into the floor (impacts), some sliding,
+// one at rest (sticking). The problems are block-diagonal over the islands and every slip here
+// stays in the x-z plane (straight impulse paths, integrated exactly), so the two answers agree
+// to round-off: velocities, impulses and energies to 1e-12, modes and the changes exactly.
+TEST(Islands, SettlingIslandByIslandAgreesWithTheWholeProblem) {
+  reference::Ball bouncy = kBall;
+  bouncy.restitution = 0.5;
+  Model m =
+      reference::MakeBallsOnFloor({bouncy, kBall, kBall, kBall, kBall, kBall, kBall, kBall}, kG);
+  AddSpherePair(m, 4, 5);
+  m.AddConstraint(std::make_shared<Joint>("link", JointKind::kSpherical, 6,
+                                          AttachmentFrame{Vec3(0, 0.05, 0)}, 7,
+                                          AttachmentFrame{Vec3(0, -0.05, 0)}));
+  State s = SetDown(m, std::vector<double>(8, 0.0));
+  SetBodyPose(m, 5, Vec3(2 * kR, 4, kR), Quat::Identity(), s);
+  SetBodyPose(m, 6, Vec3(0, 6, kR), Quat::Identity(), s);
+  SetBodyPose(m, 7, Vec3(0, 6.1, kR), Quat::Identity(), s);
+  const double v_drop = 1.0;                                         // [m/s]
+  SetBodyVelocity(m, 0, Vec3(0, 0, -v_drop), Vec3(0, kW0, 0), s);    // bounces, spinning
+  SetBodyVelocity(m, 1, Vec3(0.3, 0, -v_drop), Vec3(0, kW0, 0), s);  // lands slipping
+  SetBodyVelocity(m, 2, Vec3(1.0, 0, 0), Vec3::Zero(), s);           // slides
+  SetBodyVelocity(m, 4, Vec3(0.5, 0, 0), Vec3::Zero(), s);           // strikes ball 5
+  SetBodyVelocity(m, 6, Vec3(0.5, 0, -0.2), Vec3::Zero(), s);        // the dumbbell lands
+  SetBodyVelocity(m, 7, Vec3(0.5, 0, -0.2), Vec3::Zero(), s);
+  State whole = s;
+  const ImpactResult impacts = ResolveImpacts(m, whole);
+  ModeSelectionNotes notes;
+  const std::vector<ContactModeChange> changes = SelectContactModes(m, whole, {}, {}, &notes);
+  State split = s;
+  const ContactSettling settled = SettleContactsByIsland(m, split);
+  EXPECT_EQ(settled.islands, 6);
+  EXPECT_TRUE(notes.jams.empty());
+  EXPECT_TRUE(settled.jams.empty());
+  // Ball 0 (sphere: the normal impulse turns nothing) leaves at e v_drop; ball 2 slides, ball 3
+  // sticks at rest.
+  EXPECT_TRUE(Near(split.bodies[0].v_WBcm_W.z(), bouncy.restitution * v_drop, 1e-12));
+  EXPECT_EQ(split.contacts[0].mode, ContactMode::kSeparated);
+  EXPECT_EQ(split.contacts[2].mode, ContactMode::kSliding);
+  EXPECT_EQ(split.contacts[3].mode, ContactMode::kSticking);
+  // The motion: speeds on the scale of v_drop, spins on kW0.
+  for (size_t b = 0; b < s.bodies.size(); ++b) {
+    EXPECT_TRUE(test::MatNear(split.bodies[b].v_WBcm_W, whole.bodies[b].v_WBcm_W, 1e-12, v_drop))
+        << "body " << b;
+    EXPECT_TRUE(test::MatNear(split.bodies[b].w_WB_B, whole.bodies[b].w_WB_B, 1e-12, kW0))
+        << "body " << b;
+  }
+  // Each point's mode and slip direction, and the work booked: per island here, shared over
+  // the whole Model there, so their totals agree.
+  double work_whole = 0.0, work_split = 0.0;
+  for (size_t p = 0; p < s.contacts.size(); ++p) {
+    EXPECT_EQ(split.contacts[p].mode, whole.contacts[p].mode) << "point " << p;
+    EXPECT_EQ(split.contacts[p].rolling_held, whole.contacts[p].rolling_held) << "point " << p;
+    EXPECT_TRUE(test::MatNear(split.contacts[p].slip_direction_W,
+                              whole.contacts[p].slip_direction_W, 1e-12, 1.0));
+    work_whole += whole.contacts[p].impact_work + whole.contacts[p].friction_work;
+    work_split += split.contacts[p].impact_work + split.contacts[p].friction_work;
+  }
+  const double energy_scale = kMass * v_drop * v_drop;
+  EXPECT_TRUE(Near(work_split, work_whole, 1e-12, energy_scale));
+  // The same changes, in the same order.
+  ASSERT_EQ(settled.changes.size(), changes.size());
+  for (size_t k = 0; k < changes.size(); ++k) {
+    EXPECT_EQ(settled.changes[k].point, changes[k].point);
+    EXPECT_EQ(settled.changes[k].from, changes[k].from);
+    EXPECT_EQ(settled.changes[k].to, changes[k].to);
+    EXPECT_EQ(settled.changes[k].held_from, changes[k].held_from);
+    EXPECT_EQ(settled.changes[k].held_to, changes[k].held_to);
+  }
+  // The same impulses at the same points: balls 0 and 1, the pair (its floor points and its
+  // sphere-sphere point) and the dumbbell's two points.
+  std::vector<ContactImpulse> by_island;
+  double energy_change = 0.0;
+  for (const ImpactResult& r : settled.impacts) {
+    EXPECT_FALSE(r.frictionless_fallback);
+    by_island.insert(by_island.end(), r.impulses.begin(), r.impulses.end());
+    energy_change += r.kinetic_energy_after - r.kinetic_energy_before;
+  }
+  EXPECT_TRUE(Near(energy_change, impacts.kinetic_energy_after - impacts.kinetic_energy_before,
+                   1e-12, energy_scale));
+  std::stable_sort(
+      by_island.begin(), by_island.end(),
+      [](const ContactImpulse& a, const ContactImpulse& b) { return a.point < b.point; });
+  ASSERT_EQ(by_island.size(), impacts.impulses.size());
+  EXPECT_GE(by_island.size(), 5u);
+  const double impulse_scale = kMass * v_drop;
+  for (size_t k = 0; k < by_island.size(); ++k) {
+    const ContactImpulse &a = by_island[k], &b = impacts.impulses[k];
+    EXPECT_EQ(a.point, b.point);
+    EXPECT_TRUE(Near(a.normal_impulse, b.normal_impulse, 1e-12, impulse_scale)) << a.point;
+    EXPECT_TRUE(test::MatNear(a.impulse_W, b.impulse_W, 1e-12, impulse_scale)) << a.point;
+    EXPECT_TRUE(Near(a.approach_speed, b.approach_speed, 1e-12, v_drop)) << a.point;
+    EXPECT_EQ(a.sticking, b.sticking) << a.point;
+  }
 }
 
 }  // namespace
