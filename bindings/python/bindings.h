@@ -29,6 +29,7 @@ void BindModel(py::module_& m);
 void BindSimulate(py::module_& m);
 void BindScene(py::module_& m);
 void BindModes(py::module_& m);
+void BindBalance(py::module_& m);
 
 /// A loaded scene and where it came from, so that a sweep can load it again with one more
 /// override (the Python class Scene).

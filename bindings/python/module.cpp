@@ -118,4 +118,5 @@ PYBIND11_MODULE(_chasles, m) {
   chasles::python::BindSimulate(m);
   chasles::python::BindScene(m);
   chasles::python::BindModes(m);
+  chasles::python::BindBalance(m);
 }

@@ -84,6 +84,7 @@
 #include "chasles/model/surface_rolling.h"
 #include "chasles/report/audit_json.h"
 #include "chasles/report/audit_text.h"
+#include "chasles/report/balance_json.h"
 #include "chasles/report/balance_text.h"
 #include "chasles/report/certificate_json.h"
 #include "chasles/report/certificate_text.h"

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "chasles/model/body.h"
 
 namespace chasles {
 
@@ -76,6 +77,39 @@ BalanceReport CalcBalance(double mass, const Vec3& p_WBcm, const Mat3& I_cm_W,
     }
   }
   return r;
+}
+
+RotorBalance AnalyseRotorBalance(const RotorBalanceDefinition& definition) {
+  try {
+    if (!definition.model)
+      throw InputError("a rotor balance needs its Model (RotorBalanceDefinition::model)");
+    const Model& model = *definition.model;
+    const BodyIndex b = definition.rotor;
+    if (b < 0 || b >= model.num_bodies()) {
+      throw InputError(fmt::format("a rotor balance's rotor is body {}, but the Model has {}", b,
+                                   model.num_bodies()));
+    }
+    std::vector<std::string> warnings;
+    const State initial =
+        definition.settle_initial
+            ? SettleInitialState(model, definition.initial, *definition.settle_initial, warnings)
+            : definition.initial;
+    const BodyState& s = initial.bodies[static_cast<size_t>(b)];
+    const Mat3 R = s.q_WB.normalized().toRotationMatrix();
+    RotorBalance out;
+    out.body = model.body(b).name();
+    out.axis = definition.axis;
+    out.balance =
+        CalcBalance(model.body(b).mass(), s.p_WBcm, R * model.body(b).I_BBcm_B() * R.transpose(),
+                    definition.axis, definition.speed, definition.grade);
+    out.whirl = CalcRotorWhirl(model, initial, b, definition.axis.a_W, definition.whirl_speeds,
+                               definition.speed);
+    return out;
+  } catch (const InputError& e) {
+    if (!definition.locate_error) throw;
+    definition.locate_error(e);
+    throw;  // a locator that returns leaves the error as it is
+  }
 }
 
 }  // namespace chasles

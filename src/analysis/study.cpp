@@ -514,6 +514,7 @@ void StudyRun::RunSteppingStretch(double t_b) {
   o.output_interval = stretch.output_interval;
   o.quiet_span = rule.quiet_span;
   o.quiet_from = quiet_from_;
+  o.threads = def_.options.threads;
   o.on_step = [this](double t) { OnStep(t); };
   TimeSteppingResult r;
   try {
@@ -608,6 +609,7 @@ void StudyRun::RunStepping(double t_b) {
   TimeSteppingOptions o = *def_.time_stepping;
   o.t_end = t_b;
   o.output_interval = def_.options.output_interval;
+  o.threads = def_.options.threads;
   o.on_step = [this](double t) { OnStep(t); };
   const TimeSteppingResult r = SimulateTimeStepping(*seg_.model, state_, o);
   RecordStepping(r);

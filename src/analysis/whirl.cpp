@@ -10,6 +10,7 @@
 
 #include "chasles/analysis/operating_point.h"
 #include "chasles/error.h"
+#include "chasles/model/bearing.h"
 
 namespace chasles {
 namespace {
@@ -175,6 +176,49 @@ WhirlMap CalcWhirl(const Model& model, const State& state, BodyIndex rotor, cons
     out.critical_speeds.push_back(std::move(cs));
   }
   return out;
+}
+
+bool HeldByBearing(const Model& model, BodyIndex body) {
+  for (int i = 0; i < model.num_force_elements(); ++i) {
+    const auto* bearing = dynamic_cast<const Bearing*>(&model.force_element(i));
+    if (bearing != nullptr && bearing->body() == body) return true;
+  }
+  return false;
+}
+
+std::vector<double> WhirlSpeedGrid(double from, double to, int count) {
+  std::vector<double> out;
+  for (int i = 0; i < count; ++i) {
+    out.push_back(i + 1 == count ? to : from + (to - from) * i / (count - 1));
+  }
+  return out;
+}
+
+std::optional<WhirlMap> CalcRotorWhirl(const Model& model, const State& state, BodyIndex rotor,
+                                       const Vec3& a_W, const std::vector<double>& speeds,
+                                       double speed) {
+  if (!HeldByBearing(model, rotor)) {
+    if (!speeds.empty()) {
+      throw InputError(fmt::format(
+          "no bearing element holds '{}': whirl needs the rotor on elastic bearings (forces, "
+          "type bearing)",
+          model.body(rotor).name()));
+    }
+    return std::nullopt;
+  }
+  if (!speeds.empty()) return CalcWhirl(model, state, rotor, a_W, speeds);
+  double top = std::isfinite(speed) ? speed : 0.0;
+  if (!(top > 0.0)) {
+    // Held by name: a range-for over a member of a temporary would outlive the temporary.
+    const WhirlMap at_rest = CalcWhirl(model, state, rotor, a_W, {0.0});
+    for (const WhirlMode& m : at_rest.points[0].modes) {
+      top = std::max(top, std::abs(m.eigenvalue.imag()));
+    }
+  }
+  if (!(top > 0.0)) return std::nullopt;  // nothing whirls: no rows
+  std::vector<double> grid;
+  for (int i = 0; i <= 20; ++i) grid.push_back(2.0 * top * i / 20.0);
+  return CalcWhirl(model, state, rotor, a_W, grid);
 }
 
 }  // namespace chasles

@@ -1,7 +1,9 @@
 #include "chasles/integrate/time_stepping.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -9,6 +11,7 @@
 #include "chasles/dynamics/contact_frame.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
+#include "chasles/integrate/parallel.h"
 #include "chasles/math/quaternion.h"
 #include "chasles/model/data.h"
 
@@ -123,9 +126,11 @@ class Stepper {
   std::vector<ActivePoint> FindActive(const State& mid) const;
   void SolveIslands(const std::vector<ActivePoint>& active, const std::vector<Vec6>& u_k, double h,
                     std::vector<Vec6>& u, std::vector<Eigen::Vector3d>& P, StepOutcome& out);
-  void SolveIsland(const std::vector<ActivePoint>& active, const std::vector<int>& members,
-                   const std::vector<Vec6>& u_k, double h, std::vector<Vec6>& u,
-                   std::vector<Eigen::Vector3d>& P, StepOutcome& out);
+  ContactProblemSolution SolveIsland(const std::vector<ActivePoint>& active,
+                                     const std::vector<int>& members, const std::vector<Vec6>& u_k,
+                                     double h, std::vector<Vec6>& u,
+                                     std::vector<Eigen::Vector3d>& P,
+                                     std::vector<ContactRegime>& regime);
   Mat63 MinvAt(BodyIndex b, const Eigen::Matrix<double, 3, 6>& A) const;
   void Advance(const State& s, const std::vector<Vec6>& u_k, const std::vector<Vec6>& u, double h,
                State& next) const;
@@ -236,14 +241,45 @@ void Stepper::SolveIslands(const std::vector<ActivePoint>& active, const std::ve
     islands[static_cast<size_t>(island)].push_back(static_cast<int>(i));
   }
   out.cert.islands += static_cast<int>(islands.size());
-  for (const std::vector<int>& members : islands) {
-    SolveIsland(active, members, u_k, h, u, P, out);
+  // The islands share no body and no point, so each writes only its own entries of u, P, the
+  // warm start and the regimes; their certificates are merged in island order afterwards, and
+  // the step is bitwise the same for any number of threads.
+  std::vector<ContactProblemSolution> solved(islands.size());
+  std::vector<std::exception_ptr> failed(islands.size());
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    for (size_t k; (k = next.fetch_add(1)) < islands.size();) {
+      try {
+        solved[k] = SolveIsland(active, islands[k], u_k, h, u, P, out.regime);
+      } catch (...) {
+        failed[k] = std::current_exception();
+      }
+    }
+  };
+  const int threads = std::min<int>(o_.threads, static_cast<int>(islands.size()));
+  if (threads > 1) {
+    RunOnThreads(threads, work);
+  } else {
+    work();
+  }
+  TimeSteppingStep& c = out.cert;
+  for (size_t k = 0; k < islands.size(); ++k) {
+    if (failed[k]) std::rethrow_exception(failed[k]);
+    const ContactProblemSolution& sol = solved[k];
+    c.residual_impulse = std::max(c.residual_impulse, sol.residual_impulse);
+    c.residual_velocity = std::max(c.residual_velocity, sol.residual_velocity);
+    c.impulse_scale = std::max(c.impulse_scale, sol.scale);
+    c.newton_iterations += sol.newton_iterations;
+    c.sweeps += sol.sweeps;
+    c.converged = c.converged && sol.converged;
   }
 }
 
-void Stepper::SolveIsland(const std::vector<ActivePoint>& active, const std::vector<int>& members,
-                          const std::vector<Vec6>& u_k, double h, std::vector<Vec6>& u,
-                          std::vector<Eigen::Vector3d>& P, StepOutcome& out) {
+ContactProblemSolution Stepper::SolveIsland(const std::vector<ActivePoint>& active,
+                                            const std::vector<int>& members,
+                                            const std::vector<Vec6>& u_k, double h,
+                                            std::vector<Vec6>& u, std::vector<Eigen::Vector3d>& P,
+                                            std::vector<ContactRegime>& regime) {
   const int m = static_cast<int>(members.size());
   // Each body's points in the island, with M⁻¹ Aᵀ of each: W_ij = Σ_b A_i^b M_b⁻¹ A_j^bᵀ.
   struct Entry {
@@ -293,14 +329,7 @@ void Stepper::SolveIsland(const std::vector<ActivePoint>& active, const std::vec
   }
   problem.W.resize(3 * m, 3 * m);
   problem.W.setFromTriplets(t.begin(), t.end());
-  const ContactProblemSolution sol = SolveFrictionalContact(problem, warm, o_.solver);
-  TimeSteppingStep& c = out.cert;
-  c.residual_impulse = std::max(c.residual_impulse, sol.residual_impulse);
-  c.residual_velocity = std::max(c.residual_velocity, sol.residual_velocity);
-  c.impulse_scale = std::max(c.impulse_scale, sol.scale);
-  c.newton_iterations += sol.newton_iterations;
-  c.sweeps += sol.sweeps;
-  c.converged = c.converged && sol.converged;
+  ContactProblemSolution sol = SolveFrictionalContact(problem, warm, o_.solver);
   for (const auto& [b, e] : by_body) {
     u[static_cast<size_t>(b)] += e.G * sol.P.segment<3>(3 * e.local);
   }
@@ -312,11 +341,12 @@ void Stepper::SolveIsland(const std::vector<ActivePoint>& active, const std::vec
     // the solver's regimes, are not unique): apart if separating, else sliding or sticking.
     const double U_n = sol.U[3 * j] - shift[j];
     const double slip = sol.U.segment<2>(3 * j + 1).norm();
-    out.regime[static_cast<size_t>(a.point)] =
-        U_n > o_.tolerances.resting_speed  ? ContactRegime::kOpen
-        : slip > o_.tolerances.stick_speed ? ContactRegime::kSliding
-                                           : ContactRegime::kSticking;
+    regime[static_cast<size_t>(a.point)] = U_n > o_.tolerances.resting_speed ? ContactRegime::kOpen
+                                           : slip > o_.tolerances.stick_speed
+                                               ? ContactRegime::kSliding
+                                               : ContactRegime::kSticking;
   }
+  return sol;
 }
 
 // Positions from the step's mean velocity; the angular velocity back into B at q_k+1.
@@ -713,6 +743,9 @@ TimeSteppingResult SimulateTimeStepping(const Model& model, const State& initial
   if (!(options.output_interval >= 0) || !std::isfinite(options.output_interval)) {
     throw InputError(fmt::format("time stepping: output_interval = {} s must be >= 0 and finite",
                                  options.output_interval));
+  }
+  if (!(options.threads >= 1)) {
+    throw InputError(fmt::format("time stepping: threads is {}; it must be >= 1", options.threads));
   }
   Run run(model, initial, options);
   return run.Go();

@@ -104,4 +104,8 @@ std::string WhirlText(const WhirlMap& w) {
   return out;
 }
 
+std::string RotorBalanceText(const RotorBalance& b) {
+  return BalanceText(b.body, b.balance, b.axis) + (b.whirl ? WhirlText(*b.whirl) : "");
+}
+
 }  // namespace chasles

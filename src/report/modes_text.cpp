@@ -41,10 +41,11 @@ std::string ShapeText(const Mode& m, const Linearization& lin) {
   const auto n = static_cast<Eigen::Index>(lin.coordinates.size());
   for (Eigen::Index i = 0; i < n && i < m.shape.size(); ++i) {
     if (std::abs(m.shape[i]) < 1e-9) continue;
-    out +=
-        fmt::format("      {} {:.6g} at {:.1f}° {}\n", lin.coordinates[static_cast<size_t>(i)].name,
-                    std::abs(m.shape[i]), std::arg(m.shape[i]) * 180.0 / std::numbers::pi,
-                    lin.coordinates[static_cast<size_t>(i)].unit);
+    // The amplitude in the coordinate's unit, then its phase in degrees.
+    const LinearCoordinate& c = lin.coordinates[static_cast<size_t>(i)];
+    out += fmt::format("      {} {:.6g}{} at {:.1f}°\n", c.name, std::abs(m.shape[i]),
+                       c.unit.empty() ? "" : " " + c.unit,
+                       std::arg(m.shape[i]) * 180.0 / std::numbers::pi);
   }
   return out;
 }

@@ -8,18 +8,13 @@
 #include "chasles/error.h"
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/study.h"
+#include "internal/definition_start.h"
 
 namespace chasles {
 
 ModesDefinition MakeModesDefinition(const Scene& scene) {
-  // The end time plays no part in small motions.
-  const Study study = BuildStudy(scene, 1.0);
   ModesDefinition def;
-  def.model = study.model;
-  def.initial = study.initial;
-  def.settle_initial = study.settling;
-  const auto shared = std::make_shared<const Scene>(scene);
-  def.locate_error = [shared](const InputError& e) { ThrowAtSceneEntry(*shared, e); };
+  scene_internal::StartDefinition(scene, def);
   return def;
 }
 

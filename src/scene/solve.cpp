@@ -17,16 +17,13 @@
 #include "chasles/scene/scene_error.h"
 #include "chasles/scene/study.h"
 #include "chasles/suggest.h"
+#include "internal/definition_start.h"
 
 namespace chasles {
 
 SolveDefinition MakeSolveDefinition(const Scene& scene) {
-  // The end time plays no part in an instantaneous solve.
-  const Study study = BuildStudy(scene, 1.0);
   SolveDefinition def;
-  def.model = study.model;
-  def.initial = study.initial;
-  def.settle_initial = study.settling;
+  const Study study = scene_internal::StartDefinition(scene, def);
   def.planar = scene.planar;
   // The scene's own warnings (version-1 spellings, mesh repairs) come first, then a string
   // modelled the other way round; the solve adds the initial values its projection changes
@@ -43,8 +40,6 @@ SolveDefinition MakeSolveDefinition(const Scene& scene) {
   def.mu_s.assign(c.names().size(), std::numeric_limits<double>::quiet_NaN());
   for (size_t i = 0; i < c.rolling.size(); ++i) def.mu_s[c.joints.size() + i] = c.rolling[i].mu_s;
   def.contact_point_labels = scene.dynamics.contacts.point_labels();
-  const auto shared = std::make_shared<const Scene>(scene);
-  def.locate_error = [shared](const InputError& e) { ThrowAtSceneEntry(*shared, e); };
   return def;
 }
 

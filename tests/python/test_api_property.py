@@ -80,6 +80,9 @@ class Pool:
             "StringPulley": [chasles.StringPulley([0.0, 0.0, 1.0], 0.1, "counterclockwise")],
             "AttachmentFrame": [chasles.AttachmentFrame([0.0, 0.0, 0.0], np.eye(3))],
             "PitchCircle": [chasles.PitchCircle([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 0.1)],
+            "Balance": [chasles.balance(chasles.load_scene(example("unbalanced-disk-rotor.yaml")),
+                                        "rotor", planes="-25 cm, 25 cm", radius="15 cm",
+                                        speed="3000 rpm", grade=6.3)],
         })
 
     def of(self, name):

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -20,7 +21,10 @@
 #include "chasles/analysis/instantaneous.h"
 #include "chasles/analysis/modes.h"
 #include "chasles/analysis/whirl.h"
+#include "chasles/error.h"
+#include "chasles/scene/balance.h"
 #include "chasles/scene/scene.h"
+#include "chasles/scene/scene_error.h"
 #include "chasles/scene/study.h"
 
 namespace chasles {
@@ -347,6 +351,70 @@ TEST(Rotor, CriticalSpeedsWithTheirDirections) {
     EXPECT_NEAR(map.critical_speeds[i].speed, want[i].first, kTol * want[i].first);
     EXPECT_EQ(map.critical_speeds[i].directions, want[i].second) << "at " << want[i].first;
   }
+}
+
+// The scene's balance (scene/balance.h: the options read as the command line writes them,
+// analysis/balance.h's AnalyseRotorBalance at the settled initial pose) is the closed form of
+// the tilted eccentric disk; held by joints, not bearings, it has no whirl rows.
+TEST(Rotor, SceneBalanceIsTheClosedForm) {
+  const TiltedDisk d;
+  const Scene scene = LoadSceneText(DiskRotorScene(d, 300.0, ""), "rotor.yaml");
+  BalanceOptions options;
+  options.body = "rotor";
+  options.planes = fmt::format("{} m, {} m", d.zA, d.zB);
+  options.radius = fmt::format("{} m", d.r);
+  options.speed = "300 rad/s";
+  options.grade = 6.3;
+  const RotorBalance b = AnalyseRotorBalance(MakeBalanceDefinition(scene, options));
+  const double U = d.m * d.e, C = -d.Ixz(), D = C + d.z0 * U;
+  const double uA = (d.zB * U - D) / (d.zA - d.zB), uB = (D - d.zA * U) / (d.zA - d.zB);
+  EXPECT_EQ(b.body, "rotor");
+  EXPECT_NEAR(b.balance.static_unbalance_W.x(), U, kTol * U);
+  EXPECT_NEAR(b.balance.couple_unbalance_W.x(), C, kTol * std::abs(C));
+  EXPECT_NEAR(b.balance.corrections[0].mass, std::abs(uA) / d.r, kTol * std::abs(uA) / d.r);
+  EXPECT_NEAR(b.balance.corrections[1].mass, std::abs(uB) / d.r, kTol * std::abs(uB) / d.r);
+  EXPECT_NEAR(b.balance.bearing_forces_W[0].norm(), 300.0 * 300.0 * std::abs(uA),
+              kTol * 300.0 * 300.0 * std::abs(uA));
+  EXPECT_NEAR(b.balance.permissible, d.m * 6.3e-3 / 300.0, 1e-15);
+  EXPECT_FALSE(b.whirl.has_value());
+  // Whirl spins asked of a rotor no bearing holds: an error at the option.
+  options.whirl = "0 rpm:100 rpm:3";
+  try {
+    MakeBalanceDefinition(scene, options);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key(), "--whirl");
+  }
+}
+
+// CalcRotorWhirl's spins: 21 from 0 to twice the speed, or without one to twice the highest
+// whirl frequency at rest (the quartic's largest root at Ω = 0); given spins as they are; no
+// rows for a rotor no bearing holds, and an error when spins are asked of it.
+TEST(Rotor, RotorWhirlChoosesItsSpins) {
+  const RotorOnBearings r;
+  const Study s = Settled(BuildStudy(LoadSceneText(r.Scene(0.0), "rotor.yaml"), 1.0));
+  const std::optional<WhirlMap> at =
+      CalcRotorWhirl(*s.model, s.initial, 0, Vec3::UnitZ(), {}, 150.0);
+  ASSERT_TRUE(at.has_value());
+  ASSERT_EQ(at->points.size(), 21u);
+  for (size_t k = 0; k < 21; ++k) EXPECT_EQ(at->points[k].speed, 15.0 * static_cast<double>(k));
+  const std::optional<WhirlMap> rest =
+      CalcRotorWhirl(*s.model, s.initial, 0, Vec3::UnitZ(), {}, std::nan(""));
+  ASSERT_TRUE(rest.has_value());
+  ASSERT_EQ(rest->points.size(), 21u);
+  const double top = WhirlClosedForm(r.Mass(), r.It(), r.Ip(), r.K(0), r.K(1), r.K(2), 0.0)[3];
+  EXPECT_NEAR(rest->points[20].speed, 2.0 * top, kTol * 2.0 * top);
+  const std::optional<WhirlMap> given =
+      CalcRotorWhirl(*s.model, s.initial, 0, Vec3::UnitZ(), WhirlSpeedGrid(10.0, 30.0, 3), 150.0);
+  ASSERT_TRUE(given.has_value());
+  ASSERT_EQ(given->points.size(), 3u);
+  EXPECT_EQ(given->points[1].speed, 20.0);
+  EXPECT_EQ(given->points[2].speed, 30.0);
+  const Study free = Settled(
+      BuildStudy(LoadSceneText(DiskRotorScene(TiltedDisk{}, 300.0, ""), "rotor.yaml"), 1.0));
+  EXPECT_FALSE(CalcRotorWhirl(*free.model, free.initial, 0, Vec3::UnitZ(), {}, 150.0));
+  EXPECT_THROW(CalcRotorWhirl(*free.model, free.initial, 0, Vec3::UnitZ(), {0.0, 1.0}, 150.0),
+               InputError);
 }
 
 }  // namespace

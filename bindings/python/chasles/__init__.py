@@ -1,7 +1,8 @@
 """chasles: rigid-body kinetics from Python.
 
 Load a scene (``load_scene``, ``load_scene_string``), read its mass properties, solve the
-instantaneous problem (``solve``), run it (``run``) or sweep a parameter (``sweep``); or build
+instantaneous problem (``solve``), run it (``run``), sweep a parameter (``sweep``) or balance a
+rotor (``balance``); or build
 a ``Model`` of bodies, force elements, joints and contacts and call ``solve_instantaneous``,
 ``simulate`` and ``run_study``; ``sweep_function`` sweeps any Python function of parameters. Everything is SI; vectors and matrices are numpy arrays; quaternions are
 ``[w, x, y, z]``. Tables (``Table``, ``Run``) carry column names and units and convert to
@@ -31,6 +32,8 @@ from ._chasles import (  # noqa: F401
     _mass_text,
     _modes_text,
     _modes_sweep_text,
+    _balance,
+    _BalanceOptions,
     _run_study,
     _run_sweep,
     _simulate,
@@ -234,6 +237,78 @@ def modes_text(scene, sweep=None):
     if sweep is None:
         return _modes_text(scene)
     return _modes_sweep_text(scene, _text_option("sweep", sweep))
+
+
+def _option_quantity(name, value, unit):
+    """A quantity option as the program takes it: a string as written there (an expression with
+    its units, as in the scene: "15 cm", "3000 rpm"), or a number in the SI ``unit``."""
+    if isinstance(value, str):
+        return value
+    v = _number(name, value)
+    if not _math.isfinite(v):
+        raise InputError(f"{name} must be a finite number, got {value!r}")
+    return f"{v!r} {unit}"
+
+
+def _option_point(name, value, unit):
+    """A point or direction option: a string as in the scene ("[0, 0, 5 cm]"), or 3 numbers
+    (SI ``unit``; "" for a direction)."""
+    if isinstance(value, str):
+        return value
+    if not isinstance(value, (list, tuple, _np.ndarray)) or len(value) != 3:
+        raise TypeError(f"{name} must be a string or 3 numbers, got {type(value).__name__} "
+                        f"{value!r}")
+    entries = [_option_quantity(name, v, unit).strip() for v in value]
+    return "[" + ", ".join(entries) + "]"
+
+
+def balance(scene, body, planes, radius, axis=None, through=None, speed=None, grade=None,
+            whirl=None):
+    """A rotor's balance (``chasles balance``, docs/modes.md "Rotors"): the static and couple
+    unbalance of the body ``body`` of ``scene`` about a spin axis, the two correction masses,
+    the bearing forces at a speed, the ISO 21940-11 permissible residual unbalance and, when a
+    bearing element holds the rotor, its whirl rows. Returns a Balance; its ``text()`` and
+    ``json()`` are what the program prints.
+
+    The options are the program's: ``planes`` (``--planes``) the two planes' positions along
+    the axis from ``through``, "A, B" or a pair (each a string or metres); ``radius``
+    (``--radius``) the correction radius; ``axis`` (``--axis``, default [0, 0, 1]) and
+    ``through`` (``--through``, default [0, 0, 0] m) a string as in the scene or 3 numbers;
+    ``speed`` (``--speed``) a string ("3000 rpm") or rad/s; ``grade`` (``--grade``) G in
+    mm/s, which needs ``speed``; ``whirl`` (``--whirl``) "A:B:N" or (A, B, N), N spins from A
+    to B (strings or rad/s). A string is read as in the scene (its parameters and units). Bad
+    options raise SceneError naming the option, a value of another type TypeError.
+    """
+    _instance("scene", scene, Scene)
+    options = _BalanceOptions()
+    options.source, options.option_prefix = "chasles.balance", ""
+    options.body = _instance("body", body, str)
+    if isinstance(planes, str):
+        options.planes = planes
+    elif isinstance(planes, (list, tuple, _np.ndarray)) and len(planes) == 2:
+        options.planes = ", ".join(_option_quantity("planes", p, "m") for p in planes)
+    else:
+        raise TypeError(f"planes must be a string 'A, B' or 2 positions, got "
+                        f"{type(planes).__name__} {planes!r}")
+    options.radius = _option_quantity("radius", radius, "m")
+    if axis is not None:
+        options.axis = _option_point("axis", axis, "")
+    if through is not None:
+        options.through = _option_point("through", through, "m")
+    if speed is not None:
+        options.speed = _option_quantity("speed", speed, "rad/s")
+    if grade is not None:
+        options.grade = _number("grade", grade)
+    if isinstance(whirl, str):
+        options.whirl = whirl
+    elif isinstance(whirl, (list, tuple)) and len(whirl) == 3:
+        count = _whole("whirl's N", whirl[2], 2, 1000)
+        options.whirl = ":".join([_option_quantity("whirl", whirl[0], "rad/s"),
+                                  _option_quantity("whirl", whirl[1], "rad/s"), str(count)])
+    elif whirl is not None:
+        raise TypeError(f"whirl must be a string 'A:B:N' or (A, B, N), got "
+                        f"{type(whirl).__name__} {whirl!r}")
+    return _balance(scene, options)
 
 
 def _solution_table(self):

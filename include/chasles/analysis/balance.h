@@ -21,9 +21,17 @@
 
 #include <array>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "chasles/analysis/error_locator.h"
+#include "chasles/analysis/initial_state.h"
+#include "chasles/analysis/whirl.h"
 #include "chasles/math/types.h"
+#include "chasles/model/model.h"
+#include "chasles/model/state.h"
 
 namespace chasles {
 
@@ -78,5 +86,42 @@ BalanceReport CalcBalance(double mass, const Vec3& p_WBcm, const Mat3& I_cm_W,
                           const RotorAxis& axis,
                           double speed = std::numeric_limits<double>::quiet_NaN(),
                           double grade = std::numeric_limits<double>::quiet_NaN());
+
+/// A rotor of a Model to balance (`chasles balance`; the scene layer's MakeBalanceDefinition
+/// makes one from a scene and the command's options).
+struct RotorBalanceDefinition {
+  std::shared_ptr<const Model> model;
+  /// The state whose pose of the rotor is balanced (and the whirl starts from).
+  State initial;
+  /// Settle `initial` onto the constraints first, as a run starts (SettleInitialState; its
+  /// warnings are the run's, not the balance's); none: as it is.
+  std::optional<InitialSettling> settle_initial;
+  BodyIndex rotor = 0;
+  RotorAxis axis;
+  /// Spin [rad/s] for the bearing forces and the grade (NaN: none) and the ISO 21940-11 grade G
+  /// [mm/s] (NaN: none).
+  double speed = std::numeric_limits<double>::quiet_NaN();
+  double grade = std::numeric_limits<double>::quiet_NaN();
+  /// The spins of the whirl rows [rad/s, ascending]; empty: chosen by CalcRotorWhirl.
+  std::vector<double> whirl_speeds;
+  /// Places the analysis's errors at their source (the scene layer's file:line:col); null:
+  /// they are thrown as they are.
+  ErrorLocator locate_error;
+};
+
+struct RotorBalance {
+  /// The rotor's name and the axis and planes as the definition gives them.
+  std::string body;
+  RotorAxis axis;
+  BalanceReport balance;
+  /// The whirl rows when a bearing holds the rotor and something whirls (CalcRotorWhirl).
+  std::optional<WhirlMap> whirl;
+};
+
+/// The definition's rotor at its settled initial pose: CalcBalance of its mass, centre of mass
+/// and inertia in W about `axis`, and CalcRotorWhirl about the axis's direction. Throws
+/// InputError (coincident planes, a radius that is not positive, whirl speeds for a rotor no
+/// bearing holds, ...) through the definition's `locate_error` when it has one.
+RotorBalance AnalyseRotorBalance(const RotorBalanceDefinition& definition);
 
 }  // namespace chasles

@@ -14,6 +14,7 @@
 /// a spin at which a whirl frequency |Im λ| equals Ω (FindCriticalSpeeds).
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,5 +62,21 @@ struct WhirlMap {
 /// by bisection between the grid's points to 1e-12 of the span.
 WhirlMap CalcWhirl(const Model& model, const State& state, BodyIndex rotor, const Vec3& a_W,
                    const std::vector<double>& speeds);
+
+/// Whether a bearing element of `model` (model/bearing.h) holds body `body`: whirl needs the
+/// rotor on elastic bearings.
+bool HeldByBearing(const Model& model, BodyIndex body);
+
+/// `count` (2 or more) spins from `from` to `to` [rad/s], evenly spaced, the last exactly `to`.
+std::vector<double> WhirlSpeedGrid(double from, double to, int count);
+
+/// The whirl rows of a rotor's balance (`chasles balance`, docs/modes.md "Rotors"): CalcWhirl
+/// over `speeds` when given, else over 21 spins from 0 to twice `speed` [rad/s] when it is
+/// positive and finite, else from 0 to twice the highest whirl frequency at rest. None when no
+/// bearing holds the rotor (with `speeds` given, an InputError: they ask for rows there cannot
+/// be) or when nothing whirls.
+std::optional<WhirlMap> CalcRotorWhirl(const Model& model, const State& state, BodyIndex rotor,
+                                       const Vec3& a_W, const std::vector<double>& speeds,
+                                       double speed);
 
 }  // namespace chasles

@@ -54,6 +54,10 @@ struct TimeSteppingOptions {
   /// Requested bound on each step's estimated velocity error [m/s] (infinite: none). A step
   /// above it is reported (tolerance_met false and a warning), not repeated.
   double velocity_tolerance = std::numeric_limits<double>::infinity();
+  /// Threads over each step's islands (>= 1; fewer when a step has fewer islands or the system
+  /// starts fewer, parallel.h). The result is bitwise the same for any number: the islands share
+  /// no body, and their certificates are merged in island order.
+  int threads = 1;
   /// Keep every step's certificate in TimeSteppingResult::steps.
   bool store_steps = false;
   /// Keep every sample in TimeSteppingResult::samples.

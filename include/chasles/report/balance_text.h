@@ -18,4 +18,7 @@ std::string BalanceText(const std::string& body, const BalanceReport& report,
 /// One row per speed (forward and backward frequencies), then the critical speeds.
 std::string WhirlText(const WhirlMap& whirl);
 
+/// What `chasles balance` prints: BalanceText, then WhirlText when there are whirl rows.
+std::string RotorBalanceText(const RotorBalance& balance);
+
 }  // namespace chasles
