@@ -1,13 +1,14 @@
 // chasles report RUN.json -o report.html: the browser report of a finished `simulate` run,
 // rebuilt from its JSON summary (events, contact-mode changes, impacts, jumps), the CSV it
-// names (every sample) and the scene it names (the bodies' parts). The force arrows need the
-// forces at every sample, which only a run made with --html records: this report has the
-// replay, the plots and the events, without arrows.
+// names (every sample, and the bodies' poses from its columns) and the scene it names (the
+// bodies' parts). The force arrows need the forces at every sample, which only a run made with
+// --html records: this report has the replay, the plots and the events, without arrows.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -200,14 +201,17 @@ int RunReport(const ReportArgs& args) {
   const std::string csv = ResolveBesideJson(Get<std::string>(j, "csv", json), json);
   ReadCsv(csv, args.max_input_bytes, r);
   ReadTimeline(j, json, r);
-  // The poses the replay draws, from the centre of mass and orientation columns when the run
-  // has no origin columns (the default columns of a planar scene and of many 3-D ones).
+  // A finished run's files hold columns, not states: the poses the replay draws are read from
+  // the table (its origin and quaternion columns, or its centre of mass and orientation), and
+  // the data says so ("poses_from": "columns").
   std::vector<std::string> derived;
   std::string page;
   try {
-    derived = CompletePoseColumns(scene, r);
     CheckQuaternions(scene, r, csv);
-    page = HtmlReport(SimulationReportData(scene, r));
+    ColumnPoses poses = PosesFromColumns(scene, r);
+    derived = std::move(poses.derived);
+    r.row_poses = std::move(poses.rows);
+    page = HtmlReport(SimulationReportData(scene, r, PoseSource::kColumns));
   } catch (const InputError& e) {
     // Which run: the summary and its table, then what is wrong with them.
     throw InputError(fmt::format("the report of {} (table {}, scene {}): {}", json, csv,

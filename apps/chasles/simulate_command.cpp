@@ -57,8 +57,8 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateArgs& args) {
                   "(default: the scene's own units; the CSV and JSON are always SI)");
   cmd->add_option("--html", args.html,
                   "Also write the browser report (a 3-D replay with plots, one HTML file) here; "
-                  "the CSV then also holds the columns the report needs (poses, ledger, "
-                  "reactions, contacts); with --sweep, the quantities plotted against the swept "
+                  "the CSV then also holds the columns the report plots (ledger, reactions, "
+                  "contacts); with --sweep, the quantities plotted against the swept "
                   "parameters");
   cmd->add_option("--precision", args.precision,
                   "Digits of the CSV's numbers: default (the shortest text that reads back as "
@@ -252,10 +252,12 @@ int RunSimulate(const SimulateArgs& args) {
   }
   ApplyRunLimitOptions(args, options);
   if (!args.html.empty()) {
-    // The replay needs every body's pose at every sample, the plots the ledger, reaction and
-    // contact columns, and the arrows the forces at every sample.
+    // The replay needs every body's pose at every sample (recorded from the states, whatever
+    // the columns), the plots the ledger, reaction and contact columns, and the arrows the
+    // forces at every sample.
     scene.dynamics.columns = ReportColumns(scene, scene.dynamics.columns);
     options.record_row_snapshots = true;
+    options.record_row_poses = true;
   }
   const double t_end =
       std::isfinite(options.until) ? options.until : scene.dynamics.simulation.until;

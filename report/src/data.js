@@ -2,7 +2,7 @@
 // in <script type="application/json" id="chasles-data">, with long arrays as base64 text of
 // little-endian numbers.
 
-export const FORMAT_MAJOR = 'chasles-report 1';
+export const FORMAT_MAJOR = 'chasles-report 2';
 
 /** The bytes of a base64 string. */
 export function bytesOf(base64) {
@@ -27,7 +27,7 @@ export function u4(base64) {
   return new Uint32Array(bytesOf(base64).buffer);
 }
 
-/** The embedded data, decoded: columns as typed arrays by name. */
+/** The embedded data, decoded: columns as typed arrays by name, a run's poses by body index. */
 export function readData(doc) {
   const node = doc.getElementById('chasles-data');
   if (!node) throw new Error('this page has no chasles-data element');
@@ -42,6 +42,15 @@ export function readData(doc) {
     data.byName.set(c.name, c);
   }
   data.time = data.byName.has('t') ? data.byName.get('t').values : new Float64Array(0);
+  if (data.kind === 'simulate') {
+    // Every body's origin and quaternion at every sample, placed by the body's index in
+    // data.bodies (not by any name).
+    const poses = new Array(data.bodies.length).fill(null);
+    for (const p of data.poses || []) {
+      poses[p.body] = { body: p.body, origin: f8(p.origin), quaternion: f8(p.quaternion) };
+    }
+    data.poses = poses;
+  }
   for (const r of data.reactions || []) r.values = f4(r.data);
   for (const c of data.contacts || []) c.values = f4(c.data);
   for (const f of data.forces || []) f.values = f4(f.data);

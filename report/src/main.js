@@ -56,12 +56,26 @@ function layout(data) {
   return { view, controls, legend, side };
 }
 
-/** Pose of body b at sample i from the columns: origin and quaternion [w, x, y, z]. */
-function poseColumns(data, body) {
-  const c = (s) => data.byName.get(`${body.name}_${s}`);
-  const cols = ['ox', 'oy', 'oz', 'qw', 'qx', 'qy', 'qz'].map(c);
-  if (cols.some((x) => !x)) throw new Error(`the data has no pose columns for body '${body.name}'`);
-  return cols.map((x) => x.values);
+/**
+ * Body k's pose at every sample from the data's poses (by the body's index, whatever the
+ * columns are called): [ox, oy, oz, qw, qx, qy, qz] arrays.
+ */
+function posesOf(data, k) {
+  const p = data.poses[k];
+  const n = data.time.length;
+  if (!p) throw new Error(`the data has no poses for body ${k} ('${data.bodies[k].name}')`);
+  if (p.origin.length !== 3 * n || p.quaternion.length !== 4 * n) {
+    throw new Error(`the poses of body ${k} ('${data.bodies[k].name}') are not ${n} samples long`);
+  }
+  const component = (values, stride, c) => {
+    const out = new Float64Array(n);
+    for (let i = 0; i < n; i++) out[i] = values[stride * i + c];
+    return out;
+  };
+  return [
+    ...[0, 1, 2].map((c) => component(p.origin, 3, c)),
+    ...[0, 1, 2, 3].map((c) => component(p.quaternion, 4, c)),
+  ];
 }
 
 /**
@@ -126,7 +140,7 @@ function bodyTable(b) {
 
 /** The replay of a run. */
 function simulateReport(data, parts) {
-  const poses = data.bodies.map((b) => poseColumns(data, b));
+  const poses = data.bodies.map((b, k) => posesOf(data, k));
   const { center, size, body, floor } = extent(data, poses);
   const view = new View(parts.view, { planar: data.planar, center, size, floor });
   addPlanes(view, data, size, center);

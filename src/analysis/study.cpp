@@ -893,6 +893,9 @@ void StudyRun::ApplyJump(const Jump& j) {
 void StudyRun::AddRow(const Model& model, const State& s) {
   t_last_row_ = s.t;
   result_.rows.push_back(rows_.Row(model, seg_.map, s, carry_));
+  if (def_.record_row_poses) {
+    result_.row_poses.push_back(study_internal::CalcUserBodyPoses(model, s, seg_.map));
+  }
   if (!def_.record_row_snapshots) return;
   StudySnapshot snap =
       study_internal::MakeSnapshot(model, s, def_.num_reported_constraints, labels_, theta_, false);

@@ -406,6 +406,20 @@ StudySnapshot MakeSnapshot(const Model& model, const State& state, int num_repor
   return out;
 }
 
+std::vector<StudyBodyPose> CalcUserBodyPoses(const Model& model, const State& state,
+                                             const BodyMap& map) {
+  std::vector<StudyBodyPose> poses;
+  poses.reserve(map.place.size());
+  for (size_t b = 0; b < map.place.size(); ++b) {
+    const MappedBodyMotion m = CalcMappedBodyMotion(model, state, map, static_cast<int>(b));
+    // The quaternion of R_WB as BodyValue makes it for the columns, so that a row's pose and
+    // its origin and quaternion columns are the same doubles.
+    const Quat q_WB(m.R_WB);
+    poses.push_back({m.p_WBo, q_WB.w() < 0 ? Quat(-q_WB.coeffs()) : q_WB});
+  }
+  return poses;
+}
+
 SlipWatch::SlipWatch(std::vector<RollingWatch> watched) {
   for (RollingWatch& w : watched) entries_.push_back({std::move(w)});
 }

@@ -28,7 +28,7 @@ namespace chasles {
 namespace {
 
 /// The format's name and version; the page refuses data of another major version.
-constexpr const char* kFormat = "chasles-report 1";
+constexpr const char* kFormat = "chasles-report 2";
 
 nlohmann::json QuatJson(const Quat& q) {
   const Eigen::Vector4d w = QuatToWxyz(q.w() < 0 ? Quat(-q.coeffs()) : q);
@@ -126,11 +126,6 @@ int FindColumn(const std::vector<std::string>& columns, const std::string& name)
   return it == columns.end() ? -1 : static_cast<int>(it - columns.begin());
 }
 
-const std::vector<std::string>& PoseSuffixes() {
-  static const std::vector<std::string> s = {"ox", "oy", "oz", "qw", "qx", "qy", "qz"};
-  return s;
-}
-
 }  // namespace
 
 std::string Base64(const void* bytes, size_t size) {
@@ -158,58 +153,74 @@ std::string Base64(const void* bytes, size_t size) {
   return out;
 }
 
-std::vector<std::string> CompletePoseColumns(const Scene& scene, StudyResult& r) {
-  std::vector<std::string> done;
-  const auto col = [&](const std::string& name) { return FindColumn(r.columns, name); };
-  for (const SceneBody& b : scene.bodies) {
-    bool has_pose = true;
-    for (const std::string& s : PoseSuffixes()) has_pose = has_pose && col(b.name + "_" + s) >= 0;
-    if (has_pose) continue;
-    const int x = col(b.name + "_x"), y = col(b.name + "_y"), z = col(b.name + "_z");
-    const int theta = col(b.name + "_theta");
-    std::vector<int> q;
-    for (const char* s : {"_qw", "_qx", "_qy", "_qz"}) q.push_back(col(b.name + s));
-    const bool has_q = std::all_of(q.begin(), q.end(), [](int c) { return c >= 0; });
-    if (x < 0 || y < 0 || (scene.planar ? theta < 0 && !has_q : z < 0 || !has_q)) continue;
+namespace {
+
+/// Quaternion with w >= 0 (q and −q are the same rotation; the columns print this one).
+Quat PositiveW(const Quat& q) {
+  return q.w() < 0 ? Quat(-q.coeffs()) : q;
+}
+
+/// The table's pose of one body at every row (PosesFromColumns), or the columns it lacks.
+struct BodyColumns {
+  int ox = -1, oy = -1, oz = -1, x = -1, y = -1, z = -1, theta = -1;
+  std::vector<int> q;
+  bool has_origin() const { return ox >= 0 && oy >= 0 && oz >= 0; }
+  bool has_q() const {
+    return std::all_of(q.begin(), q.end(), [](int c) { return c >= 0; });
+  }
+};
+
+}  // namespace
+
+ColumnPoses PosesFromColumns(const Scene& scene, const StudyResult& r) {
+  ColumnPoses out;
+  out.rows.assign(r.rows.size(), std::vector<StudyBodyPose>(scene.bodies.size()));
+  for (size_t k = 0; k < scene.bodies.size(); ++k) {
+    const SceneBody& b = scene.bodies[k];
+    const auto col = [&](const char* s) { return FindColumn(r.columns, b.name + "_" + s); };
+    BodyColumns c{col("ox"), col("oy"), col("oz"),    col("x"),
+                  col("y"),  col("z"),  col("theta"), {col("qw"), col("qx"), col("qy"), col("qz")}};
+    // The orientation: the quaternion, or a planar body's angle about z.
+    const bool has_turn = c.has_q() || (scene.planar && c.theta >= 0);
+    // The origin: its own columns, or the centre of mass (a planar one may lack z: 0).
+    const bool has_cm = c.x >= 0 && c.y >= 0 && (c.z >= 0 || scene.planar);
+    if (!has_turn || !(c.has_origin() || has_cm)) {
+      throw InputError(fmt::format(
+          "the report needs the pose of body '{0}' at every sample: its origin ({0}_ox, _oy, "
+          "_oz) or centre of mass ({0}_x, _y, _z) and its quaternion ({0}_qw, _qx, _qy, _qz{1}) "
+          "columns, which the table lacks: add the output groups origin and quaternion (or "
+          "position and quaternion), or use the report chasles simulate --html writes, which "
+          "draws the poses recorded from the run's states",
+          b.name, scene.planar ? ", or _theta" : ""));
+    }
     const Vec3 p_BoBcm_B = b.mass_properties.p_BoBcm_B();
-    // Only the missing ones are added (a run may have the quaternion but not the origin).
-    std::vector<bool> missing;
-    for (const std::string& s : PoseSuffixes()) missing.push_back(col(b.name + "_" + s) < 0);
-    for (auto& row : r.rows) {
-      const auto at = [&](int c) { return row[static_cast<size_t>(c)]; };
-      // A planar body turns about z by θ; otherwise its quaternion [w, x, y, z].
-      const Quat q_WB = has_q ? Quat(at(q[0]), at(q[1]), at(q[2]), at(q[3])).normalized()
-                              : Quat(Eigen::AngleAxisd(at(theta), Vec3::UnitZ()));
-      const Vec3 p_WBcm(at(x), at(y), z >= 0 ? at(z) : 0.0);
-      const Vec3 p_WBo = p_WBcm - q_WB.toRotationMatrix() * p_BoBcm_B;
-      const Eigen::Vector4d w = QuatToWxyz(q_WB.w() < 0 ? Quat(-q_WB.coeffs()) : q_WB);
-      const double pose[7] = {p_WBo.x(), p_WBo.y(), p_WBo.z(), w[0], w[1], w[2], w[3]};
-      for (size_t k = 0; k < 7; ++k) {
-        if (missing[k]) row.push_back(pose[k]);
+    for (size_t i = 0; i < r.rows.size(); ++i) {
+      const auto at = [&](int column) { return r.rows[i][static_cast<size_t>(column)]; };
+      const Quat q_WB = c.has_q()
+                            ? Quat(at(c.q[0]), at(c.q[1]), at(c.q[2]), at(c.q[3])).normalized()
+                            : Quat(Eigen::AngleAxisd(at(c.theta), Vec3::UnitZ()));
+      StudyBodyPose& pose = out.rows[i][k];
+      pose.q_WB = PositiveW(q_WB);
+      if (c.has_origin()) {
+        pose.p_WBo = Vec3(at(c.ox), at(c.oy), at(c.oz));
+      } else {
+        // Bo = Bcm − R_WB p_BoBcm_B.
+        const Vec3 p_WBcm(at(c.x), at(c.y), c.z >= 0 ? at(c.z) : 0.0);
+        pose.p_WBo = p_WBcm - q_WB.toRotationMatrix() * p_BoBcm_B;
       }
     }
-    const bool with_units = r.units.size() == r.columns.size();
-    for (size_t k = 0; k < 7; ++k) {
-      if (!missing[k]) continue;
-      r.columns.push_back(b.name + "_" + PoseSuffixes()[k]);
-      if (with_units) r.units.push_back(k < 3 ? "m" : "");
-    }
-    done.push_back(b.name);
+    if (!c.has_origin()) out.derived.push_back(b.name);
   }
-  return done;
+  return out;
 }
 
 std::vector<std::string> ReportColumns(const Scene& scene,
                                        const std::vector<std::string>& columns) {
   std::vector<std::string> out = columns;
   if (out.empty() || out.front() != "t") out.insert(out.begin(), "t");
-  std::vector<std::string> wanted;
-  for (const SceneBody& b : scene.bodies) {
-    for (const std::string& s : PoseSuffixes()) wanted.push_back(b.name + "_" + s);
-  }
-  for (const char* g : {"energy", "work", "residual", "reactions", "contacts"}) wanted.push_back(g);
   std::unordered_set<std::string> seen(out.begin(), out.end());
-  for (const std::string& c : ExpandStudyColumns(scene, wanted)) {
+  for (const std::string& c :
+       ExpandStudyColumns(scene, {"energy", "work", "residual", "reactions", "contacts"})) {
     if (seen.insert(c).second) out.push_back(c);
   }
   return out;
@@ -266,42 +277,59 @@ nlohmann::json AppliedForcesJson(const std::vector<StudySnapshot>& snapshots, si
   return out;
 }
 
+/// Every body's origin and quaternion at every sample, by the body's index (f8: the replay
+/// draws them, and the tests compare them with the run's state to round-off).
+nlohmann::json PosesJson(const Scene& scene, const StudyResult& r) {
+  const size_t n = r.rows.size(), bodies = scene.bodies.size();
+  const bool complete =
+      r.row_poses.size() == n &&
+      std::all_of(r.row_poses.begin(), r.row_poses.end(),
+                  [&](const std::vector<StudyBodyPose>& row) { return row.size() == bodies; });
+  if (!complete) {
+    throw InputError(fmt::format(
+        "the report needs every body's pose at every sample, and the run recorded {} of {} "
+        "rows for {} bodies: run it with StudyOptions::record_row_poses (chasles simulate "
+        "--html does), or read them from its table (PosesFromColumns)",
+        r.row_poses.size(), n, bodies));
+  }
+  nlohmann::json poses = nlohmann::json::array();
+  std::vector<double> origin(3 * n), quaternion(4 * n);
+  for (size_t k = 0; k < bodies; ++k) {
+    for (size_t i = 0; i < n; ++i) {
+      const StudyBodyPose& p = r.row_poses[i][k];
+      const Eigen::Vector4d q = QuatToWxyz(PositiveW(p.q_WB));
+      for (int a = 0; a < 3; ++a) origin[3 * i + static_cast<size_t>(a)] = p.p_WBo[a];
+      for (int a = 0; a < 4; ++a) quaternion[4 * i + static_cast<size_t>(a)] = q[a];
+    }
+    poses.push_back({{"body", k}, {"origin", F8(origin)}, {"quaternion", F8(quaternion)}});
+  }
+  return poses;
+}
+
 }  // namespace
 
-nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r) {
+nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& r, PoseSource from) {
   nlohmann::json j = ReportSceneJson(scene, "simulate");
   const size_t n = r.rows.size();
-  // Every column of the run, column-major. t and the poses exactly (the replay and the test
-  // of the page compare them with the CSV); the rest for plotting.
-  std::vector<bool> exact(r.columns.size(), false);
-  if (!r.columns.empty()) exact[0] = true;
-  for (const SceneBody& b : scene.bodies) {
-    for (const std::string& s : PoseSuffixes()) {
-      const int c = FindColumn(r.columns, b.name + "_" + s);
-      if (c < 0) {
-        throw InputError(fmt::format(
-            "the report needs the column '{}_{}' (the pose of body '{}'), or its centre of "
-            "mass and orientation to derive it from: run chasles simulate with --html, or add "
-            "the output groups origin and quaternion (or position and quaternion)",
-            b.name, s, b.name));
-      }
-      exact[static_cast<size_t>(c)] = true;
-    }
-  }
+  // Every column of the run, column-major: t exactly (the page's clock), the rest for
+  // plotting. The poses the replay draws are data of their own, not columns.
   const std::vector<std::string> units = StudyColumnUnits(scene, r.columns);
   const std::vector<std::string> groups = StudyColumnGroups(scene, r.columns);
   nlohmann::json columns = nlohmann::json::array();
   std::vector<double> values(n);
   for (size_t c = 0; c < r.columns.size(); ++c) {
     for (size_t i = 0; i < n; ++i) values[i] = r.rows[i][c];
+    const bool exact = c == 0;
     columns.push_back({{"name", r.columns[c]},
                        {"unit", units[c]},
                        {"group", groups[c]},
-                       {"type", exact[c] ? "f8" : "f4"},
-                       {"data", exact[c] ? F8(values) : F4(values)}});
+                       {"type", exact ? "f8" : "f4"},
+                       {"data", exact ? F8(values) : F4(values)}});
   }
   j["samples"] = n;
   j["columns"] = columns;
+  j["poses_from"] = from == PoseSource::kStates ? "states" : "columns";
+  j["poses"] = PosesJson(scene, r);
 
   nlohmann::json events = nlohmann::json::array();
   for (const StudyEvent& e : r.events) {

@@ -1138,6 +1138,7 @@ StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOpti
   def.certificate = CertificateTolerancesFor(scene);
   def.progress = options.progress;
   def.record_row_snapshots = options.record_row_snapshots;
+  def.record_row_poses = options.record_row_poses;
   // The first segment's Model, built once: the checks below read it and the run starts on it.
   def.model = std::make_shared<const Model>(BuildModel(scene, def.bodies, IdentityMap(scene)));
   const Model& first = *def.model;

@@ -121,9 +121,58 @@ function expectedMarks(json) {
 }
 
 /**
- * A simulate report against its run: at seeded samples, seek(t) then bodyPose equals the CSV's
- * origin and quaternion at that row to 1e-9; the ledger plot holds every energy and work
- * column; every plot marks every event.
+ * The run's own origin and quaternion columns: the same run again without --html, asked for
+ * those columns only (another --columns of `args` left out), in a folder of its own. The page's
+ * poses are data of their own (recorded from the states, or read by `chasles report` from the
+ * CSV); these columns are the independent record they are compared with.
+ */
+function referencePoses(stem, scene, args) {
+  const dir = join(work, `reference-${stem}`);
+  mkdirSync(dir, { recursive: true });
+  const rest = args.filter((a, k) => a !== '--columns' && args[k - 1] !== '--columns');
+  chaslesRun(['simulate', example(scene), '--out', dir, '--quiet', ...rest, '--columns', 'origin,quaternion']);
+  return readCsv(join(dir, `${stem}.csv`));
+}
+
+/**
+ * At seeded samples, seek(t) then bodyPose equals the reference run's origin and quaternion at
+ * that row to 1e-9 (referencePoses). Returns the number of poses compared.
+ */
+async function comparePoses(page, stem, reference) {
+  const bodies = await page.evaluate(() => window.chasles.data.bodies.map((b) => b.name));
+  const n = reference.rows.length;
+  const t = reference.col('t');
+  const random = lcg(20261124);
+  const picks = [0, n - 1, n >> 1];
+  for (let k = 0; k < 6; k++) picks.push(Math.floor(random() * n));
+  let compared = 0;
+  for (const i of picks) {
+    const ti = reference.rows[i][t];
+    // A row repeated at one time (the state after an impulse) is shown as the later one.
+    const unique = (i + 1 >= n || reference.rows[i + 1][t] !== ti) && (i === 0 || reference.rows[i - 1][t] !== ti);
+    if (!unique) continue;
+    await page.evaluate((x) => window.chasles.seek(x), ti);
+    for (const b of bodies) {
+      const pose = await page.evaluate((name) => window.chasles.bodyPose(name), b);
+      const want = ['ox', 'oy', 'oz', 'qw', 'qx', 'qy', 'qz'].map((s) => reference.rows[i][reference.col(`${b}_${s}`)]);
+      const got = [...pose.position, ...pose.quaternion];
+      for (let c = 0; c < 7; c++) {
+        assert.ok(
+          Math.abs(got[c] - want[c]) <= 1e-9 * Math.max(1, Math.abs(want[c])),
+          `${stem}: body ${b} at t = ${ti}: pose component ${c} is ${got[c]}, the run's ${want[c]}`,
+        );
+      }
+      compared++;
+    }
+  }
+  assert.ok(compared >= bodies.length * 3, `${stem}: only ${compared} poses compared`);
+  return compared;
+}
+
+/**
+ * A simulate report against its run: at seeded samples, seek(t) then bodyPose equals the run's
+ * origin and quaternion at that row to 1e-9 (comparePoses); the ledger plot holds every energy
+ * and work column; every plot marks every event.
  */
 async function checkSimulation(stem, scene, args = [], fromJson = false) {
   const html = join(work, `${stem}.html`);
@@ -137,33 +186,9 @@ async function checkSimulation(stem, scene, args = [], fromJson = false) {
   const csv = readCsv(join(work, `${stem}.csv`));
   const json = JSON.parse(readFileSync(join(work, `${stem}.json`), 'utf8'));
   const { page, problems } = await openReport(html);
-  const bodies = await page.evaluate(() => window.chasles.data.bodies.map((b) => b.name));
-  const n = csv.rows.length;
-  const t = csv.col('t');
-  const random = lcg(20261124);
-  const picks = [0, n - 1, n >> 1];
-  for (let k = 0; k < 6; k++) picks.push(Math.floor(random() * n));
-  let compared = 0;
-  for (const i of picks) {
-    const ti = csv.rows[i][t];
-    // A row repeated at one time (the state after an impulse) is shown as the later one.
-    const unique = (i + 1 >= n || csv.rows[i + 1][t] !== ti) && (i === 0 || csv.rows[i - 1][t] !== ti);
-    if (!unique) continue;
-    await page.evaluate((x) => window.chasles.seek(x), ti);
-    for (const b of bodies) {
-      const pose = await page.evaluate((name) => window.chasles.bodyPose(name), b);
-      const want = ['ox', 'oy', 'oz', 'qw', 'qx', 'qy', 'qz'].map((s) => csv.rows[i][csv.col(`${b}_${s}`)]);
-      const got = [...pose.position, ...pose.quaternion];
-      for (let c = 0; c < 7; c++) {
-        assert.ok(
-          Math.abs(got[c] - want[c]) <= 1e-9 * Math.max(1, Math.abs(want[c])),
-          `${stem}: body ${b} at t = ${ti}: pose component ${c} is ${got[c]}, CSV ${want[c]}`,
-        );
-      }
-      compared++;
-    }
-  }
-  assert.ok(compared >= bodies.length * 3, `${stem}: only ${compared} poses compared`);
+  // A finished run's files hold no states: `chasles report` reads the poses from the CSV.
+  assert.equal(await page.evaluate(() => window.chasles.data.poses_from), fromJson ? 'columns' : 'states');
+  await comparePoses(page, stem, referencePoses(stem, scene, args));
 
   const plots = await page.evaluate(() => window.chasles.plots());
   const ledger = plots.find((p) => p.title.startsWith('Energy ledger'));
@@ -405,11 +430,40 @@ test('simulate report: applied forces drawn where they act (a pinned rod pushed 
   await page.close();
 });
 
+test('simulate report: the replay needs no column names (every column renamed)', async () => {
+  // The pinned rod's report with every column but the clock t renamed: the replay draws the
+  // poses of the data's own block, by body index, so they still equal the run's origin and
+  // quaternion (its centre of mass is off its origin at the pin, and it turns).
+  const stem = 'pinned-rod-world-force';
+  const dir = join(work, 'renamed');
+  mkdirSync(dir, { recursive: true });
+  const html = join(dir, `${stem}.html`);
+  chaslesRun(['simulate', example(`${stem}.yaml`), '--out', dir, '--html', html, '--quiet']);
+  const page0 = readFileSync(html, 'utf8');
+  const block = /(<script type="application\/json" id="chasles-data">)(.*?)(<\/script>)/s;
+  const m = page0.match(block);
+  assert.ok(m, 'no data block');
+  const data = JSON.parse(m[2]);
+  assert.ok(data.columns.some((c) => c.name.startsWith('rod_')), 'the run has columns named after the rod');
+  data.columns.forEach((c, k) => {
+    if (c.name !== 't') c.name = `column ${k}`;
+  });
+  const renamed = join(dir, `${stem}-renamed.html`);
+  const text = JSON.stringify(data).replace(/</g, '\\u003c');
+  writeFileSync(renamed, page0.replace(block, (_, a, _b, c) => `${a}${text}${c}`));
+  const { page, problems } = await openReport(renamed);
+  const names = await page.evaluate(() => window.chasles.data.columns.map((c) => c.name));
+  assert.ok(!names.some((n) => n.startsWith('rod_')), `columns still named after the rod: ${names}`);
+  await comparePoses(page, stem, referencePoses(stem, `${stem}.yaml`, []));
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('report from a finished run: projectile with drag, apex and ground events', async () => {
   const { page, json } = await checkSimulation(
     'projectile-drag',
     'projectile-drag.yaml',
-    ['--columns', 'position,quaternion,origin,energy,work,residual'],
+    ['--columns', 'position,quaternion,energy,work,residual'],
     true,
   );
   assert.ok(json.events.some((e) => e.name === 'ground' && e.stopped), 'the ground event');

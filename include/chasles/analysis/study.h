@@ -221,6 +221,9 @@ struct StudyDefinition {
   /// Also record the reactions and contact points at every output row
   /// (StudyResult::row_snapshots; the browser report draws their forces).
   bool record_row_snapshots = false;
+  /// Also record every user body's frame at every output row (StudyResult::row_poses; the
+  /// browser report's replay draws them, whatever the columns are).
+  bool record_row_poses = false;
 };
 
 /// The reaction of one constraint (name, kind, point, force and moment in W, in the child's frame
@@ -421,6 +424,15 @@ struct StudyAppliedForce {
   bool is_moment = false;
 };
 
+/// Where a user body's frame B is at one instant: its origin Bo and its orientation, from the
+/// state (CalcMappedBodyMotion: exact for a part of a composite too).
+struct StudyBodyPose {
+  /// Origin Bo of B in W [m].
+  Vec3 p_WBo = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  /// Orientation of B in W, with w >= 0 (as the quaternion columns print it).
+  Quat q_WB = Quat(Eigen::Vector4d::Constant(std::numeric_limits<double>::quiet_NaN()));
+};
+
 /// Bodies, reactions and contact points at one instant (an event, the end of the run).
 struct StudySnapshot {
   std::vector<StudyBodyState> bodies;
@@ -565,6 +577,9 @@ struct StudyResult {
   /// With StudyDefinition::record_row_snapshots: the reactions and contact points at each row
   /// of `rows` (same order and count; bodies left empty: the rows hold the poses).
   std::vector<StudySnapshot> row_snapshots;
+  /// With StudyDefinition::record_row_poses: every user body's pose (definition order) at each
+  /// row of `rows` (same order and count), taken from the state whatever the columns are.
+  std::vector<std::vector<StudyBodyPose>> row_poses;
 };
 
 /// Runs a study. Throws InputError for bad settings, and for a force, reaction, acceleration

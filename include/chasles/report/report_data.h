@@ -19,30 +19,49 @@
 
 namespace chasles {
 
-/// The output columns a report needs besides `columns` (a run's own): per body the frame
-/// origin and the quaternion (the replay's poses), and the ledger, reaction and contact
-/// columns (the plots). `columns` first, in order; missing ones appended.
+/// The output columns a report plots besides `columns` (a run's own): the ledger, reaction and
+/// contact columns. `columns` first, in order (t first); missing ones appended. The poses the
+/// replay draws are no columns: the run records them from its states
+/// (StudyOptions::record_row_poses).
 std::vector<std::string> ReportColumns(const Scene& scene, const std::vector<std::string>& columns);
 
-/// Adds the pose columns (ReportColumns) a run's table lacks, for each body whose centre of
-/// mass and orientation are in it: Bo = Bcm − R_WB p_BoBcm_B from `<body>_x, _y, _z` and the
-/// quaternion `<body>_qw..qz`, or for a planar scene from `<body>_x, _y` (and `_z`, else 0)
-/// and `<body>_theta` (q = [cos θ/2, 0, 0, sin θ/2]). Returns the names of the bodies it
-/// completed (`chasles report` says so); a body with neither stays without.
-std::vector<std::string> CompletePoseColumns(const Scene& scene, StudyResult& result);
+/// Where the poses of a run's report come from (the data's "poses_from").
+enum class PoseSource {
+  kStates,   ///< "states": recorded from the run's states (StudyResult::row_poses)
+  kColumns,  ///< "columns": reconstructed from a finished run's table (PosesFromColumns)
+};
+
+/// The poses read from a finished run's table.
+struct ColumnPoses {
+  /// Per row of the table, every scene body's pose (the layout of StudyResult::row_poses).
+  std::vector<std::vector<StudyBodyPose>> rows;
+  /// The bodies whose origin was derived from the centre of mass (no origin columns).
+  std::vector<std::string> derived;
+};
+
+/// Every body's pose at every row of a finished run's table, for `chasles report` of a run's
+/// CSV, which holds columns and no states: the one place the report reads poses by column
+/// name. Per body the origin from `<body>_ox, _oy, _oz`, or else Bo = Bcm − R_WB p_BoBcm_B from
+/// `<body>_x, _y, _z` (planar: `_z` or 0); the orientation from `<body>_qw..qz` (normalised) or,
+/// planar, `<body>_theta` (q = [cos θ/2, 0, 0, sin θ/2]); quaternions with w >= 0. Throws
+/// InputError naming the body and the columns it lacks.
+ColumnPoses PosesFromColumns(const Scene& scene, const StudyResult& result);
 
 /// The scene part of every report: kind, title, scene file, planar flag, units, and per body
 /// its parts as primitives or meshes (in B), centre of mass, inertia about it, principal
 /// moments and axes, named points. Mesh files are read again (their vertices, scaled to m).
 nlohmann::json ReportSceneJson(const Scene& scene, const std::string& kind);
 
-/// The report of a run: ReportSceneJson plus "time" (f8), "columns" (name, unit, group, data:
-/// f8 for t and the pose columns, f4 otherwise), "events", "contact_events", "impacts",
-/// "jumps", "ledger_columns" and, when the result has row snapshots, "reactions" (per
-/// constraint: point and force in W at each row, f4) and "contacts" (per point: position,
-/// normal force N n and friction force in W at each row, f4, and the mode of each row). The
-/// result's columns must hold the pose columns (ReportColumns); throws InputError otherwise.
-nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& result);
+/// The report of a run: ReportSceneJson plus "samples", "columns" (name, unit, group, type,
+/// data: f8 for t, f4 otherwise), "poses_from" (`from`: "states" or "columns") and "poses" (per
+/// body, by its index in "bodies": its origin and quaternion [w, x, y, z] at every sample, f8,
+/// from the result's row_poses, which must hold every body at every row; InputError
+/// otherwise), "events", "contact_events", "impacts", "jumps" and, when the result has row
+/// snapshots, "reactions" (per constraint: point and force in W at each row, f4), "contacts"
+/// (per point: position, normal force N n and friction force in W at each row, f4, and the
+/// mode of each row) and "forces" (docs/report.md, "The data").
+nlohmann::json SimulationReportData(const Scene& scene, const StudyResult& result,
+                                    PoseSource from = PoseSource::kStates);
 
 /// The mass report: ReportSceneJson(scene, "mass").
 nlohmann::json MassReportData(const Scene& scene);

@@ -62,6 +62,9 @@ struct StudyOptions {
   double min_step = std::numeric_limits<double>::quiet_NaN();
   /// Record the reactions and contact points at every output row (the browser report).
   bool record_row_snapshots = false;
+  /// Record every body's pose at every output row (StudyResult::row_poses; the browser
+  /// report's replay).
+  bool record_row_poses = false;
 };
 
 /// The scene's study for the library's RunStudy: bodies, a ModelBuilder and an EventBuilder

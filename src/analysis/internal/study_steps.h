@@ -77,6 +77,11 @@ StudySnapshot MakeSnapshot(const Model& model, const State& state, int num_repor
                            const std::vector<std::string>& labels, ThetaTracker& theta,
                            bool advance);
 
+/// Every user body's pose at `state` (StudyResult::row_poses): origin and orientation of its
+/// frame through the map, the quaternion with w >= 0 as the quaternion columns print it.
+std::vector<StudyBodyPose> CalcUserBodyPoses(const Model& model, const State& state,
+                                             const BodyMap& map);
+
 /// Watches the friction each watched rolling contact needs over the output samples.
 class SlipWatch {
  public:

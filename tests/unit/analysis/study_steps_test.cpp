@@ -250,6 +250,51 @@ TEST(RunStudy, ImpulseThenEmbeddingOnFreeBodiesMatchesMomentumAndTheLedger) {
   EXPECT_TRUE(r.certificate.passed());
 }
 
+TEST(RunStudy, RowPosesFollowEveryUserBodyThroughAnEmbedding) {
+  // The run of the test above, its poses recorded: a block of mass M at rest gets J along y at
+  // t = 0.2 s (then moves at J / M), and a bullet m at v along x embeds at its centre at
+  // t = 0.5 s, where both are at (0, 0.3 J / M, 0); the composite then moves at
+  // V = (m v, J, 0) / (m + M) without turning. Both user bodies keep a pose of their own at
+  // every row, the Model having one body after the embedding; each frame's origin is its centre
+  // of mass and no body turns.
+  const double m = 0.01, M = 2.0, v = 400.0, J = 3.0;
+  StudyDefinition def;
+  def.bodies = {{"block", Box(M, 0.2, 0.2, 0.2)},
+                {"bullet", MassProperties(m, Vec3::Zero(), RotationalInertia(1e-8, 1e-8, 1e-8))}};
+  def.build_model = FreeBodies;
+  def.initial = MakeRestState(FreeBodies(def.bodies, {}));
+  def.initial.bodies[1].p_WBcm = Vec3(-200.0, J / M * 0.3, 0.0);
+  def.initial.bodies[1].v_WBcm_W = Vec3(v, 0, 0);
+  def.options.t_end = 1.0;
+  def.options.output_interval = 0.1;
+  def.impulses = {{0.2, 0, Vec3::Zero(), Vec3(0, J, 0), VectorFrame::kWorld}};
+  def.impacts = {{0.5, 0, 1, 0.0}};
+  def.columns = {{"t", "t", -1, "t", "", -1}};
+  def.record_row_poses = true;
+  const StudyResult r = RunStudy(def);
+  ASSERT_EQ(r.row_poses.size(), r.rows.size());
+  const Vec3 meet(0, J / M * 0.3, 0);
+  const Vec3 V = Vec3(m * v, J, 0) / (m + M);
+  for (size_t i = 0; i < r.rows.size(); ++i) {
+    const double t = r.rows[i][0];
+    ASSERT_EQ(r.row_poses[i].size(), 2u) << "t = " << t;
+    // The rows at a jump's time are the state after it (the grid's sample at t = 0.2 s, just
+    // before the impulse, has the block at rest there too).
+    const Vec3 block = t <= 0.2   ? Vec3::Zero()
+                       : t <= 0.5 ? Vec3(0, J / M * (t - 0.2), 0)
+                                  : Vec3(meet + V * (t - 0.5));
+    const Vec3 bullet = t < 0.5 ? Vec3(def.initial.bodies[1].p_WBcm + Vec3(v * t, 0, 0)) : block;
+    EXPECT_TRUE(test::MatNear(r.row_poses[i][0].p_WBo, block, 1e-12, 1.0)) << "t = " << t;
+    EXPECT_TRUE(test::MatNear(r.row_poses[i][1].p_WBo, bullet, 1e-12, 200.0)) << "t = " << t;
+    for (const StudyBodyPose& p : r.row_poses[i]) {
+      // To round-off: the bullet strikes the centre to the last bits of a 200 m flight, which
+      // leaves the composite a turn of order 1e-15 rad.
+      EXPECT_TRUE(test::MatNear(p.q_WB.coeffs(), Quat::Identity().coeffs(), 1e-12, 1.0));
+      EXPECT_GE(p.q_WB.w(), 0.0);
+    }
+  }
+}
+
 TEST(RunStudy, AStepLimitIsALimitError) {
   StudyDefinition def;
   def.bodies = {{"box", Box(1.0, 0.1, 0.1, 0.1)}};

@@ -116,59 +116,134 @@ bodies:
   EXPECT_NEAR(1 - 2 * (x * x + y * y), 0.8, 1e-15);
 }
 
-// Free fall from z0 with vz0: z(t) = z0 + vz0 t − g t²/2, exact to round-off in the report's
-// f8 pose columns; the pose columns are added to the scene's own; without them the report is
-// refused.
-TEST(ReportData, RunColumnsExactAndPoseColumnsRequired) {
-  Scene scene = LoadSceneText(R"(
-bodies:
-  - name: ball
-    parts: [{shape: sphere, radius: 0.1 m, mass: 1 kg}]
-    initial: {position: [0, 0, 2 m], velocity: [0, 0, 3 m/s]}
-gravity: [0, 0, -9.81 m/s^2]
-output: {columns: [position]}
-simulation: {until: 0.5 s, tolerance: 1e-12, output_interval: 0.1 s}
-)",
-                              "fall");
-  const StudyResult plain = RunStudy(MakeStudyDefinition(scene));
-  EXPECT_THROW(SimulationReportData(scene, plain), InputError);
-
-  scene.dynamics.columns = ReportColumns(scene, scene.dynamics.columns);
-  StudyOptions options;
-  options.record_row_snapshots = true;
-  const StudyResult r = RunStudy(MakeStudyDefinition(scene, options));
-  ASSERT_EQ(r.row_snapshots.size(), r.rows.size());
-  const nlohmann::json j = SimulationReportData(scene, r);
-  EXPECT_EQ(j["samples"].get<size_t>(), r.rows.size());
-  std::vector<double> t, oz, qw;
-  for (const auto& c : j["columns"]) {
-    if (c["name"] == "t") t = DecodeF8(c["data"]);
-    if (c["name"] == "ball_oz") oz = DecodeF8(c["data"]);
-    if (c["name"] == "ball_qw") qw = DecodeF8(c["data"]);
-    if (c["name"] == "ball_oz") {
-      EXPECT_EQ(c["type"], "f8");
-    }
-    if (c["name"] == "E") {
-      EXPECT_EQ(c["group"], "energy");
-    }
-  }
-  ASSERT_EQ(t.size(), r.rows.size());
-  ASSERT_EQ(oz.size(), r.rows.size());
-  for (size_t i = 0; i < t.size(); ++i) {
-    EXPECT_NEAR(oz[i], 2.0 + 3.0 * t[i] - 0.5 * 9.81 * t[i] * t[i], 1e-12);
-    EXPECT_EQ(qw[i], 1.0);
-  }
-  EXPECT_TRUE(j["reactions"].empty());
-  EXPECT_TRUE(j["contacts"].empty());
+/// Index of column `name` of a result (a failure when it has none).
+size_t ColumnIndex(const std::vector<std::string>& columns, const std::string& name) {
+  const auto it = std::find(columns.begin(), columns.end(), name);
+  EXPECT_NE(it, columns.end()) << "no column " << name;
+  return it == columns.end() ? 0 : static_cast<size_t>(it - columns.begin());
 }
 
-// The poses derived from the centre of mass and orientation equal the recorded origin and
-// quaternion columns: Bo = Bcm − R_WB p_BoBcm_B, here with the centre of mass off the body
-// origin (a part at (0.3, 0.1, 0.2) m) and a spinning, tumbling body (3-D), and a planar body
-// turning about z.
-TEST(ReportData, PosesDerivedFromCentreOfMassAndOrientation) {
+/// A tumbling, falling box whose centre of mass is off its frame's origin: a single part at
+/// p_BoBcm_B = (0.3, 0.1, 0.2) m. `columns`: its output columns.
+Scene TumblingBox(const std::string& columns) {
+  return LoadSceneText(R"(
+bodies:
+  - name: b
+    parts: [{shape: box, size: [0.4 m, 0.2 m, 0.1 m], mass: 1 kg, position: [0.3 m, 0.1 m, 0.2 m]}]
+    initial: {velocity: [1 m/s, 2 m/s, 3 m/s], angular_velocity: [1 rad/s, 5 rad/s, 0.2 rad/s]}
+gravity: standard
+output: {columns: [)" + columns +
+                           R"(]}
+simulation: {until: 1 s, tolerance: 1e-12, output_interval: 0.05 s}
+)",
+                       "tumbling");
+}
+
+/// The data's poses of body k: per sample [ox, oy, oz] and [qw, qx, qy, qz].
+std::pair<std::vector<double>, std::vector<double>> DataPoses(const nlohmann::json& j, size_t k) {
+  const nlohmann::json& p = j["poses"][k];
+  EXPECT_EQ(p["body"].get<size_t>(), k);
+  return {DecodeF8(p["origin"]), DecodeF8(p["quaternion"])};
+}
+
+// The poses block is the state's: at every sample the origin is Bo = Bcm − R_WB p_BoBcm_B from
+// the run's centre of mass and quaternion (the state's own values, as the position and
+// quaternion columns give them), for a body turning about all three axes with its centre of
+// mass 0.37 m off its origin; the quaternion is the state's. No origin column is asked for.
+TEST(ReportData, PosesAreTheStatesOrigin) {
+  const Scene scene = TumblingBox("position, quaternion");
+  const Vec3 p_BoBcm_B(0.3, 0.1, 0.2);
+  ASSERT_NEAR((scene.bodies[0].mass_properties.p_BoBcm_B() - p_BoBcm_B).norm(), 0.0, 1e-15);
+  StudyOptions options;
+  options.record_row_poses = true;
+  const StudyResult r = RunStudy(MakeStudyDefinition(scene, options));
+  ASSERT_EQ(r.row_poses.size(), r.rows.size());
+  const nlohmann::json j = SimulationReportData(scene, r);
+  EXPECT_EQ(j["format"], "chasles-report 2");
+  EXPECT_EQ(j["poses_from"], "states");
+  ASSERT_EQ(j["poses"].size(), 1u);
+  const auto [origin, quaternion] = DataPoses(j, 0);
+  const size_t n = r.rows.size();
+  ASSERT_EQ(n, 21u);
+  ASSERT_EQ(origin.size(), 3 * n);
+  ASSERT_EQ(quaternion.size(), 4 * n);
+  const auto col = [&](const char* name) { return ColumnIndex(r.columns, name); };
+  // A run that turns: the last quaternion is far from the first.
+  EXPECT_LT(std::abs(r.rows[n - 1][col("b_qw")]), 0.95);
+  constexpr double kTolerance = 1e-12;  // positions of a few metres, to round-off
+  for (size_t i = 0; i < n; ++i) {
+    const std::vector<double>& row = r.rows[i];
+    const Quat q_WB(row[col("b_qw")], row[col("b_qx")], row[col("b_qy")], row[col("b_qz")]);
+    const Vec3 p_WBcm(row[col("b_x")], row[col("b_y")], row[col("b_z")]);
+    const Vec3 p_WBo = p_WBcm - q_WB.toRotationMatrix() * p_BoBcm_B;
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(origin[3 * i + static_cast<size_t>(a)], p_WBo[a], kTolerance) << "row " << i;
+    }
+    const double q[4] = {q_WB.w(), q_WB.x(), q_WB.y(), q_WB.z()};
+    for (size_t a = 0; a < 4; ++a) {
+      EXPECT_NEAR(quaternion[4 * i + a], q[a], kTolerance) << "row " << i;
+    }
+  }
+  // Every column but t is for plotting (f4); nothing is exact by its name.
+  for (const auto& c : j["columns"]) EXPECT_EQ(c["type"], c["name"] == "t" ? "f8" : "f4");
+}
+
+// The poses do not depend on the columns: a run asked for the energy alone gives the page the
+// same poses as the origin and quaternion columns of the same run, and renaming every column
+// changes no pose. A run that recorded no poses is refused.
+TEST(ReportData, PosesWhateverTheColumns) {
+  StudyOptions options;
+  options.record_row_poses = true;
+  const Scene with_poses = TumblingBox("origin, quaternion");
+  const Scene energy = TumblingBox("energy");
+  const StudyResult a = RunStudy(MakeStudyDefinition(with_poses, options));
+  StudyResult b = RunStudy(MakeStudyDefinition(energy, options));
+  for (const std::string& c : b.columns) {
+    EXPECT_EQ(c.find("b_"), std::string::npos) << c;
+  }
+  ASSERT_EQ(a.rows.size(), b.rows.size());
+  const nlohmann::json j = SimulationReportData(energy, b);
+  const auto [origin, quaternion] = DataPoses(j, 0);
+  const auto col = [&](const char* name) { return ColumnIndex(a.columns, name); };
+  constexpr double kTolerance = 1e-15;  // the same run: the same doubles
+  for (size_t i = 0; i < a.rows.size(); ++i) {
+    const std::vector<double>& row = a.rows[i];
+    EXPECT_NEAR(origin[3 * i], row[col("b_ox")], kTolerance);
+    EXPECT_NEAR(origin[3 * i + 1], row[col("b_oy")], kTolerance);
+    EXPECT_NEAR(origin[3 * i + 2], row[col("b_oz")], kTolerance);
+    EXPECT_NEAR(quaternion[4 * i], row[col("b_qw")], kTolerance);
+    EXPECT_NEAR(quaternion[4 * i + 1], row[col("b_qx")], kTolerance);
+    EXPECT_NEAR(quaternion[4 * i + 2], row[col("b_qy")], kTolerance);
+    EXPECT_NEAR(quaternion[4 * i + 3], row[col("b_qz")], kTolerance);
+  }
+  // The run with the pose columns under other names: the same poses, to the bit.
+  StudyResult renamed = a;
+  const nlohmann::json before = SimulationReportData(with_poses, a)["poses"];
+  for (std::string& c : renamed.columns) {
+    if (c != "t") c = "E";  // a column of the scene's run, so that its unit is found
+  }
+  EXPECT_EQ(SimulationReportData(with_poses, renamed)["poses"], before);
+
+  const StudyResult plain = RunStudy(MakeStudyDefinition(with_poses));
+  EXPECT_TRUE(plain.row_poses.empty());
+  try {
+    SimulationReportData(with_poses, plain);
+    ADD_FAILURE() << "a run without poses was drawn";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the run recorded 0 of 21 rows for 1 bodies"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// `chasles report` of a finished run's table (PosesFromColumns): the origin derived from the
+// centre of mass and orientation, Bo = Bcm − R_WB p_BoBcm_B, equals the run's own origin and
+// quaternion columns, here with the centre of mass off the body origin (a part at (0.3, 0.1,
+// 0.2) m) and a spinning, tumbling body (3-D), and a planar body turning about z (from θ); a
+// table with the origin columns gives them as they are; a table without orientation is refused.
+TEST(ReportData, PosesFromColumnsOfAFinishedRun) {
   for (const bool planar : {false, true}) {
-    const std::string text = planar ? R"(
+    const Scene scene = planar ? LoadSceneText(R"(
 planar: true
 bodies:
   - name: b
@@ -177,17 +252,9 @@ bodies:
 gravity: standard
 output: {columns: [planar, origin, quaternion]}
 simulation: {until: 1 s, tolerance: 1e-12, output_interval: 0.05 s}
-)"
-                                    : R"(
-bodies:
-  - name: b
-    parts: [{shape: box, size: [0.4 m, 0.2 m, 0.1 m], mass: 1 kg, position: [0.3 m, 0.1 m, 0.2 m]}]
-    initial: {velocity: [1 m/s, 2 m/s, 3 m/s], angular_velocity: [1 rad/s, 5 rad/s, 0.2 rad/s]}
-gravity: standard
-output: {columns: [position, origin, quaternion]}
-simulation: {until: 1 s, tolerance: 1e-12, output_interval: 0.05 s}
-)";
-    const Scene scene = LoadSceneText(text, "poses");
+)",
+                                               "poses")
+                               : TumblingBox("position, origin, quaternion");
     const StudyResult full = RunStudy(MakeStudyDefinition(scene));
     // The same run without the origin (and, planar, without the quaternion) columns.
     StudyResult r = full;
@@ -207,23 +274,45 @@ simulation: {until: 1 s, tolerance: 1e-12, output_interval: 0.05 s}
       r.rows[i].clear();
       for (size_t c : keep) r.rows[i].push_back(full.rows[i][c]);
     }
-    EXPECT_EQ(CompletePoseColumns(scene, r), std::vector<std::string>{"b"}) << planar;
-    const auto find = [](const std::vector<std::string>& cols, const std::string& n) {
-      for (size_t c = 0; c < cols.size(); ++c) {
-        if (cols[c] == n) return c;
-      }
-      ADD_FAILURE() << "no column " << n;
-      return size_t{0};
-    };
-    for (const char* s : {"b_ox", "b_oy", "b_oz", "b_qw", "b_qx", "b_qy", "b_qz"}) {
-      const size_t a = find(full.columns, s), b = find(r.columns, s);
-      for (size_t i = 0; i < full.rows.size(); ++i) {
-        EXPECT_NEAR(r.rows[i][b], full.rows[i][a], 1e-12)
-            << s << " row " << i << " planar " << planar;
+    const ColumnPoses derived = PosesFromColumns(scene, r);
+    EXPECT_EQ(derived.derived, std::vector<std::string>{"b"}) << planar;
+    const ColumnPoses read = PosesFromColumns(scene, full);
+    EXPECT_TRUE(read.derived.empty());
+    ASSERT_EQ(derived.rows.size(), full.rows.size());
+    ASSERT_EQ(read.rows.size(), full.rows.size());
+    const auto col = [&](const char* name) { return ColumnIndex(full.columns, name); };
+    for (size_t i = 0; i < full.rows.size(); ++i) {
+      const std::vector<double>& row = full.rows[i];
+      const double want[7] = {row[col("b_ox")], row[col("b_oy")], row[col("b_oz")],
+                              row[col("b_qw")], row[col("b_qx")], row[col("b_qy")],
+                              row[col("b_qz")]};
+      for (const ColumnPoses* poses : {&derived, &read}) {
+        ASSERT_EQ(poses->rows[i].size(), 1u);
+        const StudyBodyPose& p = poses->rows[i][0];
+        const double got[7] = {p.p_WBo.x(), p.p_WBo.y(), p.p_WBo.z(), p.q_WB.w(),
+                               p.q_WB.x(),  p.q_WB.y(),  p.q_WB.z()};
+        for (size_t k = 0; k < 7; ++k) {
+          EXPECT_NEAR(got[k], want[k], 1e-12) << k << " row " << i << " planar " << planar;
+        }
       }
     }
-    // Nothing to add a second time; a body without orientation columns stays without.
-    EXPECT_TRUE(CompletePoseColumns(scene, r).empty());
+    StudyResult with_poses = r;
+    with_poses.row_poses = derived.rows;
+    EXPECT_EQ(SimulationReportData(scene, with_poses, PoseSource::kColumns)["poses_from"],
+              "columns");
+
+    // Without any orientation the pose cannot be made.
+    StudyResult bare = r;
+    bare.columns = {"t", "E"};
+    for (auto& row : bare.rows) row.resize(2);
+    try {
+      PosesFromColumns(scene, bare);
+      ADD_FAILURE() << "a table without poses was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("the report needs the pose of body 'b'"),
+                std::string::npos)
+          << e.what();
+    }
   }
 }
 
