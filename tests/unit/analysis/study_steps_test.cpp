@@ -201,25 +201,33 @@ TEST(StudySteps, RowsAndTheClosedSegmentBookTheWorkOfAConstantForce) {
   EXPECT_THROW(RowMaker({{"box_q", "position", 0, "nonsense", "", -1}}, theta), InputError);
 }
 
-TEST(RunStudy, ImpulseThenEmbeddingOnFreeBodiesMatchesMomentumAndTheLedger) {
-  // Without YAML: a block at rest gets an impulse J along y at t = 0.2 s, then at t = 0.5 s a
-  // bullet moving along x embeds at its centre. Momentum: P = m v e_x + J e_y after the
-  // embedding, and the composite moves at V = P / (m + M); the energy jumps are ½ J² / M at
-  // the impulse and ½ (m + M) V² - (½ m v² + ½ M (J/M)²) at the plastic embedding.
-  const double m = 0.01, M = 2.0, v = 400.0, J = 3.0;
+// A block of mass M at rest gets an impulse J along y at t = 0.2 s, then at t = 0.5 s a bullet
+// m moving at v along x embeds at its centre: it reaches x = 0 at y = (J / M) (0.5 - 0.2) s, so
+// the composite does not turn. Free bodies, no YAML.
+constexpr double kBlockM = 2.0, kBulletM = 0.01, kBulletV = 400.0, kImpulseJ = 3.0;
+StudyDefinition BulletIntoPushedBlock() {
+  const double m = kBulletM, M = kBlockM, v = kBulletV, J = kImpulseJ;
   StudyDefinition def;
   def.bodies = {{"block", Box(M, 0.2, 0.2, 0.2)},
                 {"bullet", MassProperties(m, Vec3::Zero(), RotationalInertia(1e-8, 1e-8, 1e-8))}};
   def.build_model = FreeBodies;
   def.initial = MakeRestState(FreeBodies(def.bodies, {}));
-  // The bullet reaches the block's centre at t = 0.5 s: x = 0 and y = (J / M) (0.5 - 0.2) s,
-  // so the composite does not turn.
   def.initial.bodies[1].p_WBcm = Vec3(-200.0, J / M * 0.3, 0.0);
   def.initial.bodies[1].v_WBcm_W = Vec3(v, 0, 0);
   def.options.t_end = 1.0;
   def.options.output_interval = 0.1;
   def.impulses = {{0.2, 0, Vec3::Zero(), Vec3(0, J, 0), VectorFrame::kWorld}};
   def.impacts = {{0.5, 0, 1, 0.0}};
+  return def;
+}
+
+TEST(RunStudy, ImpulseThenEmbeddingOnFreeBodiesMatchesMomentumAndTheLedger) {
+  // Without YAML: a block at rest gets an impulse J along y at t = 0.2 s, then at t = 0.5 s a
+  // bullet moving along x embeds at its centre. Momentum: P = m v e_x + J e_y after the
+  // embedding, and the composite moves at V = P / (m + M); the energy jumps are ½ J² / M at
+  // the impulse and ½ (m + M) V² - (½ m v² + ½ M (J/M)²) at the plastic embedding.
+  const double m = kBulletM, M = kBlockM, v = kBulletV, J = kImpulseJ;
+  StudyDefinition def = BulletIntoPushedBlock();
   def.columns = {{"t", "t", -1, "t", "", -1}, {"Py", "momentum", -1, "Py", "", -1}};
   const StudyResult r = RunStudy(def);
   ASSERT_EQ(r.jumps.size(), 2u);
@@ -257,18 +265,8 @@ TEST(RunStudy, RowPosesFollowEveryUserBodyThroughAnEmbedding) {
   // V = (m v, J, 0) / (m + M) without turning. Both user bodies keep a pose of their own at
   // every row, the Model having one body after the embedding; each frame's origin is its centre
   // of mass and no body turns.
-  const double m = 0.01, M = 2.0, v = 400.0, J = 3.0;
-  StudyDefinition def;
-  def.bodies = {{"block", Box(M, 0.2, 0.2, 0.2)},
-                {"bullet", MassProperties(m, Vec3::Zero(), RotationalInertia(1e-8, 1e-8, 1e-8))}};
-  def.build_model = FreeBodies;
-  def.initial = MakeRestState(FreeBodies(def.bodies, {}));
-  def.initial.bodies[1].p_WBcm = Vec3(-200.0, J / M * 0.3, 0.0);
-  def.initial.bodies[1].v_WBcm_W = Vec3(v, 0, 0);
-  def.options.t_end = 1.0;
-  def.options.output_interval = 0.1;
-  def.impulses = {{0.2, 0, Vec3::Zero(), Vec3(0, J, 0), VectorFrame::kWorld}};
-  def.impacts = {{0.5, 0, 1, 0.0}};
+  const double m = kBulletM, M = kBlockM, v = kBulletV, J = kImpulseJ;
+  StudyDefinition def = BulletIntoPushedBlock();
   def.columns = {{"t", "t", -1, "t", "", -1}};
   def.record_row_poses = true;
   const StudyResult r = RunStudy(def);
