@@ -11,8 +11,10 @@
 #include "chasles/dynamics/contact_frame.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
+#include "chasles/integrate/ball_pairs.h"
 #include "chasles/integrate/parallel.h"
 #include "chasles/math/quaternion.h"
+#include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
 
 // Moreau–Jean time stepping (J. J. Moreau, "Unilateral contact and dry friction in finite
@@ -40,7 +42,9 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat63 = Eigen::Matrix<double, 6, 3>;
 
 // One active point at the midpoint configuration: the 3 rows (n, t1, t2) on each body,
-// A = [k; r × k] per row (the other body's with a minus sign), and its coefficients.
+// A = [k; r × k] per row (the other body's with a minus sign), and its coefficients. `point`
+// is the Model's contact point, or num_contact_points() + k for the step's k-th pair of balls
+// (TimeSteppingOptions::collide_all_pairs).
 struct ActivePoint {
   int point = -1;
   BodyIndex body = kWorld, other = kWorld;
@@ -100,10 +104,20 @@ class BodySets {
   std::vector<int> parent_, size_;
 };
 
-// The gaps and normals of all points at one configuration.
+// A pair of balls held closed (sticking or sliding) at a step's end: its regime then and gap
+// (TimeSteppingOptions::collide_all_pairs; a pair not listed is apart).
+struct ClosedPair {
+  std::pair<int, int> bodies;
+  ContactMode mode = ContactMode::kSeparated;
+  double gap = 0.0;  // [m]
+};
+
+// The gaps and normals of all points at one configuration, and the pairs of balls held closed
+// there (in the order of their bodies).
 struct Geometry {
   std::vector<double> gaps;  // [m]
   std::vector<Vec3> normals;
+  std::vector<ClosedPair> pairs;
 };
 
 // An impact in a step (an active point approaching at the step's start): what the run's
@@ -142,7 +156,17 @@ class Stepper {
       : model_(model),
         o_(o),
         data_(MakeData(model)),
-        warm_(static_cast<size_t>(model.num_contact_points()), Eigen::Vector3d::Zero()) {}
+        warm_(static_cast<size_t>(model.num_contact_points()), Eigen::Vector3d::Zero()) {
+    if (!o.collide_all_pairs) return;
+    radius_ = o.ball_radii.empty() ? BallRadii(model) : o.ball_radii;
+    for (int c = 0; c < model.num_contacts(); ++c) {
+      const ContactSpec& spec = model.contact(c).spec();
+      if (spec.shape != ContactShape::kSphereSphere) continue;
+      declared_.push_back(
+          {std::min(spec.body, spec.other_body), std::max(spec.body, spec.other_body)});
+    }
+    std::sort(declared_.begin(), declared_.end());
+  }
 
   // One Moreau–Jean step of length h, in place.
   // `gaps` and `energy` are the start's (the previous outcome's).
@@ -153,7 +177,14 @@ class Stepper {
  private:
   void Midpoint(const State& s, double h, State& mid) const;
   void FreeVelocities(const State& s, double h, std::vector<Vec6>& u_k, std::vector<Vec6>& u_free);
-  std::vector<ActivePoint> FindActive(const State& mid, const Geometry& start) const;
+  std::vector<ActivePoint> FindActive(const State& s, const State& mid,
+                                      const Geometry& start) const;
+  void FindActivePairs(const State& s, const State& mid, std::vector<ActivePoint>& active) const;
+  std::vector<std::pair<int, int>> NearPairs(const State& s, double reach) const;
+  Eigen::Vector3d& Warm(int point);
+  void KeepPairWarmStarts(const std::vector<ActivePoint>& active);
+  void CertifyPairs(const State& next, const std::vector<ActivePoint>& active,
+                    const Geometry& start, StepOutcome& out) const;
   void SolveIslands(const std::vector<ActivePoint>& active, const std::vector<Vec6>& u_k, double h,
                     std::vector<Vec6>& u, std::vector<Eigen::Vector3d>& P, StepOutcome& out);
   ContactProblemSolution SolveIsland(const std::vector<ActivePoint>& active,
@@ -184,6 +215,13 @@ class Stepper {
   std::vector<Mat3> R_m_, I_W_inv_;    // per body at the midpoint
   std::vector<Vec3> F_, M_;            // applied force and moment about Bcm, in W
   std::vector<Eigen::Vector3d> warm_;  // last impulse per point, per second of step [N]
+  // Pairs of balls (collide_all_pairs): each body's ball radius (0: none), the pairs the model
+  // lists (they keep their contacts), and the last impulses of the pairs active in the last
+  // step (by bodies) and of this step's pair points (per pair point, as warm_).
+  std::vector<double> radius_;
+  std::vector<std::pair<int, int>> declared_;
+  std::vector<std::pair<std::pair<int, int>, Eigen::Vector3d>> pair_warm_;
+  std::vector<Eigen::Vector3d> step_pair_warm_;
 };
 
 void Stepper::Midpoint(const State& s, double h, State& mid) const {
@@ -227,7 +265,8 @@ void Stepper::FreeVelocities(const State& s, double h, std::vector<Vec6>& u_k,
   }
 }
 
-std::vector<ActivePoint> Stepper::FindActive(const State& mid, const Geometry& start) const {
+std::vector<ActivePoint> Stepper::FindActive(const State& s, const State& mid,
+                                             const Geometry& start) const {
   std::vector<ActivePoint> active;
   for (int p = 0; p < model_.num_contact_points(); ++p) {
     const ContactFrame g = CalcContactFrame(model_, mid, data_, p);
@@ -254,7 +293,83 @@ std::vector<ActivePoint> Stepper::FindActive(const State& mid, const Geometry& s
     a.restitution = c.restitution();
     active.push_back(std::move(a));
   }
+  if (o_.collide_all_pairs) FindActivePairs(s, mid, active);
   return active;
+}
+
+// The pairs of balls whose spheres lie within `reach` of touching at `s` [m], the listed pairs
+// left out.
+std::vector<std::pair<int, int>> Stepper::NearPairs(const State& s, double reach) const {
+  std::vector<Vec3> centres(s.bodies.size());
+  for (size_t b = 0; b < centres.size(); ++b) centres[b] = s.bodies[b].p_WBcm;
+  std::vector<std::pair<int, int>> pairs = FindSpherePairs(centres, radius_, reach);
+  if (!declared_.empty()) {
+    std::erase_if(pairs, [&](const std::pair<int, int>& p) {
+      return std::binary_search(declared_.begin(), declared_.end(), p);
+    });
+  }
+  return pairs;
+}
+
+// The pairs of balls touching at the midpoint (gap within the touching tolerance), each as a
+// sphere-sphere point of its two balls (body the first, the normal towards it), as the model's
+// own sphere-sphere points are built (CalcContactFrame).
+void Stepper::FindActivePairs(const State& s, const State& mid,
+                              std::vector<ActivePoint>& active) const {
+  const int first = model_.num_contact_points();
+  int k = 0;
+  for (const auto& [i, j] : NearPairs(mid, o_.tolerances.gap)) {
+    const auto bi = static_cast<size_t>(i), bj = static_cast<size_t>(j);
+    const Vec3 d = mid.bodies[bi].p_WBcm - mid.bodies[bj].p_WBcm;
+    const double dn = d.norm();
+    if (!(dn > 0.0)) {
+      throw InputError(fmt::format("time stepping: the centres of balls '{}' and '{}' coincide "
+                                   "at t = {} s; the normal of their contact is undefined",
+                                   model_.body(i).name(), model_.body(j).name(), mid.t),
+                       ErrorElement{ErrorElement::Kind::kBody, i});
+    }
+    ActivePoint a;
+    a.point = first + k++;
+    a.body = i;
+    a.other = j;
+    a.n = d / dn;
+    const Mat3 T = FrameWithZAxis(a.n);
+    a.t1 = T.col(0);
+    a.t2 = T.col(1);
+    a.r = -radius_[bi] * a.n;
+    a.r_other = radius_[bj] * a.n;
+    a.gap = dn - radius_[bi] - radius_[bj];
+    const Vec3 d0 = s.bodies[bi].p_WBcm - s.bodies[bj].p_WBcm;
+    a.turn = d0.norm() > 0.0 ? (a.n - d0.normalized()).norm() : 0.0;
+    const Vec3 k3[3] = {a.n, a.t1, a.t2};
+    for (int r = 0; r < 3; ++r) {
+      a.A_body.row(r) << k3[r].transpose(), a.r.cross(k3[r]).transpose();
+      a.A_other.row(r) << -k3[r].transpose(), -a.r_other.cross(k3[r]).transpose();
+    }
+    const Vec3 v_rel = (mid.bodies[bi].v_WBcm_W + data_.w_WB_W[bi].cross(a.r)) -
+                       (mid.bodies[bj].v_WBcm_W + data_.w_WB_W[bj].cross(a.r_other));
+    const double slip = (v_rel - a.n * a.n.dot(v_rel)).norm();
+    a.mu = slip <= o_.tolerances.stick_speed ? o_.pair_law.mu_s : o_.pair_law.mu_k;
+    a.restitution = o_.pair_law.restitution;
+    active.push_back(std::move(a));
+  }
+}
+
+// The last impulse per second of step of a point (the model's, or the step's pair point).
+Eigen::Vector3d& Stepper::Warm(int point) {
+  const auto p = static_cast<size_t>(point);
+  return p < warm_.size() ? warm_[p] : step_pair_warm_[p - warm_.size()];
+}
+
+// This step's pair points start from the impulses their pairs had in the last step (zero for a
+// pair that was not active); after the step, SolveIsland has left theirs in step_pair_warm_.
+void Stepper::KeepPairWarmStarts(const std::vector<ActivePoint>& active) {
+  std::vector<std::pair<std::pair<int, int>, Eigen::Vector3d>> kept;
+  for (const ActivePoint& a : active) {
+    if (static_cast<size_t>(a.point) < warm_.size()) continue;
+    kept.push_back({{a.body, a.other}, Warm(a.point)});
+  }
+  pair_warm_ = std::move(kept);
 }
 
 // The points that touch couple only the bodies they hold: the islands of bodies linked by
@@ -352,7 +467,7 @@ ContactProblemSolution Stepper::SolveIsland(const std::vector<ActivePoint>& acti
     q[0] += shift[j];
     problem.q.segment<3>(3 * j) = q;
     problem.mu[static_cast<size_t>(j)] = a.mu;
-    warm.segment<3>(3 * j) = h * warm_[static_cast<size_t>(a.point)];
+    warm.segment<3>(3 * j) = h * Warm(a.point);
   }
   std::stable_sort(by_body.begin(), by_body.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
@@ -386,7 +501,7 @@ ContactProblemSolution Stepper::SolveIsland(const std::vector<ActivePoint>& acti
           MakeImpact(a, U_k, sol.P.segment<3>(3 * j), problem.W.coeff(3 * j, 3 * j), h));
     }
     P[static_cast<size_t>(members[static_cast<size_t>(j)])] = sol.P.segment<3>(3 * j);
-    warm_[static_cast<size_t>(a.point)] = sol.P.segment<3>(3 * j) / h;
+    Warm(a.point) = sol.P.segment<3>(3 * j) / h;
     // The regime by the velocities after the step (the impulses of redundant points, and so
     // the solver's regimes, are not unique): apart if separating, else sliding or sticking.
     const double U_n = sol.U[3 * j] - shift[j];
@@ -521,9 +636,14 @@ void Stepper::BookContacts(const State& mid, const std::vector<ActivePoint>& act
     }
     const double w_n = P[i][0] * U[0];
     const double w_t = P[i].tail<2>().dot(U.tail<2>());
-    ContactPointState& cs = next.contacts[static_cast<size_t>(a.point)];
-    cs.impact_work += w_n;
-    cs.friction_work += w_t;
+    if (static_cast<size_t>(a.point) < next.contacts.size()) {
+      ContactPointState& cs = next.contacts[static_cast<size_t>(a.point)];
+      cs.impact_work += w_n;
+      cs.friction_work += w_t;
+    } else {
+      next.unlisted_contact_work.impact_work += w_n;
+      next.unlisted_contact_work.friction_work += w_t;
+    }
     out.cert.work_normal += w_n;
     out.cert.work_friction += w_t;
   }
@@ -532,7 +652,7 @@ void Stepper::BookContacts(const State& mid, const std::vector<ActivePoint>& act
 Geometry Stepper::Measure(const State& s) {
   CalcKinematics(model_, s, data_);
   const auto n = static_cast<size_t>(model_.num_contact_points());
-  Geometry g{std::vector<double>(n), std::vector<Vec3>(n)};
+  Geometry g{std::vector<double>(n), std::vector<Vec3>(n), {}};
   for (size_t p = 0; p < n; ++p) {
     const ContactFrame f = CalcContactFrame(model_, s, data_, static_cast<int>(p));
     g.gaps[p] = f.gap;
@@ -581,23 +701,37 @@ void Stepper::Certify(const State& s, const State& next, const Vec3& impulse, co
 StepOutcome Stepper::Step(State& s, double h, const Geometry& start, double energy) {
   const auto n = static_cast<size_t>(model_.num_bodies());
   StepOutcome out;
-  out.regime.assign(static_cast<size_t>(model_.num_contact_points()), ContactRegime::kOpen);
-  out.is_impact.assign(out.regime.size(), 0);
   State mid = s;
   Midpoint(s, h, mid);
   CalcKinematics(model_, mid, data_);
   CalcForces(model_, mid, data_);
   std::vector<Vec6> u_k(n), u(n);
   FreeVelocities(s, h, u_k, u);
-  const std::vector<ActivePoint> active = FindActive(mid, start);
+  const std::vector<ActivePoint> active = FindActive(s, mid, start);
+  // The model's points, then this step's pairs of balls (their points follow the model's), each
+  // pair starting from its impulse of the last step.
   std::vector<char> is_active(warm_.size(), 0);
-  for (const ActivePoint& a : active) is_active[static_cast<size_t>(a.point)] = 1;
+  step_pair_warm_.clear();
+  for (const ActivePoint& a : active) {
+    if (static_cast<size_t>(a.point) < warm_.size()) {
+      is_active[static_cast<size_t>(a.point)] = 1;
+      continue;
+    }
+    const auto it = std::lower_bound(
+        pair_warm_.begin(), pair_warm_.end(), std::make_pair(a.body, a.other),
+        [](const auto& entry, const std::pair<int, int>& key) { return entry.first < key; });
+    const bool had = it != pair_warm_.end() && it->first == std::make_pair(a.body, a.other);
+    step_pair_warm_.push_back(had ? it->second : Eigen::Vector3d::Zero());
+  }
   for (size_t p = 0; p < warm_.size(); ++p) {
     if (!is_active[p]) warm_[p].setZero();
   }
+  out.regime.assign(warm_.size() + step_pair_warm_.size(), ContactRegime::kOpen);
+  out.is_impact.assign(out.regime.size(), 0);
   out.cert.active_points = static_cast<int>(active.size());
   std::vector<Eigen::Vector3d> P(active.size(), Eigen::Vector3d::Zero());
   SolveIslands(active, u_k, h, u, P, out);
+  if (o_.collide_all_pairs) KeepPairWarmStarts(active);
   OtherImpulses(active, P, h, out);
   State next = s;
   next.t = s.t + h;
@@ -605,13 +739,51 @@ StepOutcome Stepper::Step(State& s, double h, const Geometry& start, double ener
   Vec3 impulse = Vec3::Zero(), moment = Vec3::Zero();
   BookForces(mid, u_k, u, h, next, out, impulse, moment);
   BookContacts(mid, active, P, u_k, u, next, out, impulse, moment);
-  for (size_t p = 0; p < out.regime.size(); ++p) {
+  for (size_t p = 0; p < next.contacts.size(); ++p) {
     ContactPointState& cs = next.contacts[p];
     cs.mode = ModeOf(out.regime[p]);
   }
   Certify(s, next, impulse, moment, start.gaps, energy, out);
+  if (o_.collide_all_pairs) CertifyPairs(next, active, start, out);
   s = std::move(next);
   return out;
+}
+
+// The pairs of balls in the step's certificate: the deepest penetration at its end (the
+// broadphase finds every pair that overlaps, active in the step or not), the gap drift of the
+// pairs held closed at both ends, the regime changes (a pair closed at the start and not active
+// now opened), and the pairs held closed at the end for the next step (out.end.pairs).
+void Stepper::CertifyPairs(const State& next, const std::vector<ActivePoint>& active,
+                           const Geometry& start, StepOutcome& out) const {
+  TimeSteppingStep& c = out.cert;
+  const auto gap_at = [&](int i, int j) {
+    const auto bi = static_cast<size_t>(i), bj = static_cast<size_t>(j);
+    return (next.bodies[bi].p_WBcm - next.bodies[bj].p_WBcm).norm() - radius_[bi] - radius_[bj];
+  };
+  for (const auto& [i, j] : NearPairs(next, 0.0)) {
+    c.max_penetration = std::max(c.max_penetration, -gap_at(i, j));
+  }
+  const auto find = [&](const std::pair<int, int>& key) -> const ClosedPair* {
+    const auto it = std::lower_bound(
+        start.pairs.begin(), start.pairs.end(), key,
+        [](const ClosedPair& p, const std::pair<int, int>& k) { return p.bodies < k; });
+    return it != start.pairs.end() && it->bodies == key ? &*it : nullptr;
+  };
+  size_t still_active = 0;
+  for (const ActivePoint& a : active) {
+    if (static_cast<size_t>(a.point) < warm_.size()) continue;
+    const std::pair<int, int> key{a.body, a.other};
+    const ClosedPair* before = find(key);
+    if (before != nullptr) ++still_active;
+    const ContactMode mode = ModeOf(out.regime[static_cast<size_t>(a.point)]);
+    if (mode != (before != nullptr ? before->mode : ContactMode::kSeparated)) ++c.regime_changes;
+    if (mode == ContactMode::kSeparated) continue;
+    const double gap = gap_at(a.body, a.other);
+    if (before != nullptr) c.gap_drift = std::max(c.gap_drift, std::abs(gap - before->gap));
+    out.end.pairs.push_back({key, mode, gap});
+  }
+  // Closed at the start and not touching at the midpoint: apart now.
+  c.regime_changes += static_cast<int>(start.pairs.size() - still_active);
 }
 
 // Two outcomes of consecutive half steps as one step's certificate.
@@ -953,6 +1125,33 @@ TimeSteppingResult SimulateTimeStepping(const Model& model, const State& initial
   }
   if (!(options.threads >= 1)) {
     throw InputError(fmt::format("time stepping: threads is {}; it must be >= 1", options.threads));
+  }
+  if (options.collide_all_pairs) {
+    // The coefficients as a contact would have them (ValidateContactSpec names the rule).
+    ContactSpec law;
+    law.name = "pair_law";
+    law.shape = ContactShape::kSphereSphere;
+    law.radius = law.other_radius = 1.0;
+    law.body = 0;
+    law.other_body = model.num_bodies() > 1 ? 1 : 0;
+    law.restitution = options.pair_law.restitution;
+    law.mu_s = options.pair_law.mu_s;
+    law.mu_k = options.pair_law.mu_k;
+    law.restitution_law = options.pair_law.law;
+    ValidateContactSpec(law);
+    if (!options.ball_radii.empty()) {
+      if (options.ball_radii.size() != static_cast<size_t>(model.num_bodies())) {
+        throw InputError(fmt::format("time stepping: ball_radii has {} entries for {} bodies",
+                                     options.ball_radii.size(), model.num_bodies()));
+      }
+      for (double r : options.ball_radii) {
+        if (!(r >= 0.0) || !std::isfinite(r)) {
+          throw InputError(fmt::format(
+              "time stepping: a ball radius is {} m; it must be >= 0 (0: not a ball) and finite",
+              r));
+        }
+      }
+    }
   }
   Run run(model, initial, options);
   return run.Go();

@@ -158,8 +158,8 @@ std::vector<SetContact> ExpandContactSet(const std::string& base, const ContactB
         sets.has_with ? BodySetRole::kWith : BodySetRole::kBodies, -1,
         fmt::format("the set stands for {} contacts ({} bodies{}), more than the {} one entry may "
                     "list: each listed contact has its own state, columns and report lines. For "
-                    "balls on a table that may all collide, list no pairs: 'integrator: events' "
-                    "with 'ball_collisions' lets every pair collide",
+                    "balls that may all collide, list no pairs: 'integrator: events' or "
+                    "'stepping' with 'ball_collisions' lets every pair collide",
                     count, a.size(),
                     sets.between    ? ", every pair"
                     : sets.has_with ? fmt::format(" against {}", b.size())

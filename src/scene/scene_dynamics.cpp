@@ -621,13 +621,16 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
 }
 
 // `ball_collisions`: the coefficients of every pair of balls the scene does not list, read as
-// a contact's (numbers, or a material pair). Only the event-driven path lets every pair collide.
+// a contact's (numbers, or a material pair). The event-driven path and time stepping let every
+// pair collide; the adaptive engine (also auto's event-driven stretches) does not.
 void SceneReader::ReadBallCollisions(const At& at, Scene& scene) {
   SceneSimulation& sim = scene.dynamics.simulation;
-  if (!sim.event_driven) {
+  if (!sim.event_driven && !sim.time_stepping) {
     report_.Fail(at,
                  "'ball_collisions' lets every pair of balls collide, which only 'integrator: "
-                 "events' does; for another integrator list each pair as a contact with 'with'");
+                 "events' and 'integrator: stepping' do (not the adaptive engine, on which "
+                 "'auto' also runs); for another integrator list each pair as a contact with "
+                 "'with'");
   }
   report_.CheckMap(at, {"materials", "mu_s", "mu_k", "restitution", "restitution_law"},
                    "the collisions between balls");

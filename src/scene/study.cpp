@@ -1159,6 +1159,16 @@ StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOpti
     for (std::string& w : TimeSteppingLawWarnings(first)) def.warnings.push_back(std::move(w));
     TimeSteppingOptions stepping;
     stepping.step = sim.step;
+    stepping.collide_all_pairs = sim.collide_all_pairs;
+    stepping.pair_law = sim.ball_collisions;
+    if (sim.collide_all_pairs && sim.ball_collisions.restitution > 0 &&
+        sim.ball_collisions.law != RestitutionLaw::kNewton) {
+      def.warnings.push_back(fmt::format(
+          "ball_collisions: time stepping applies Newton's law at all touching points at once; "
+          "its restitution_law '{}' is not used (the laws agree for a frictionless collision "
+          "of two bodies)",
+          RestitutionLawName(sim.ball_collisions.law)));
+    }
     def.time_stepping = stepping;
   }
   if (sim.auto_engine) {

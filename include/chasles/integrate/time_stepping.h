@@ -34,6 +34,7 @@
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/integrate/contact_problem.h"
 #include "chasles/integrate/obstacle.h"
+#include "chasles/integrate/sphere_events.h"
 #include "chasles/integrate/stats.h"
 #include "chasles/model/model.h"
 #include "chasles/model/state.h"
@@ -51,6 +52,19 @@ struct TimeSteppingOptions {
   ContactTolerances tolerances;
   /// The contact problem's settings (its residual tolerance, relative to the impulse scale).
   ContactProblemSettings solver;
+  /// Every pair of balls may collide (docs/contact.md, "Every pair of balls"): a ball is a body
+  /// with a sphere contact centred at its centre of mass (BallRadii). Each step a broadphase
+  /// (FindSpherePairs) finds the pairs of balls that touch at its midpoint, and each becomes an
+  /// active point of that step with pair_law's coefficients (restitution by Newton's law at all
+  /// points at once, as every point here: pair_law.law is not read), joining the islands and
+  /// the certificate like the model's points; their works go to State::unlisted_contact_work.
+  /// A pair the model lists as a sphere-sphere contact keeps its own contact. false: only the
+  /// model's points.
+  bool collide_all_pairs = false;
+  SphereCollisionLaw pair_law;
+  /// With collide_all_pairs: per body, the radius of its ball [m] (0: not a ball), the sphere
+  /// centred at its centre of mass; empty: BallRadii(model).
+  std::vector<double> ball_radii;
   /// Estimate the velocity error: each step's by step doubling (three contact solves per step)
   /// and the run's accumulated error (TimeSteppingSummary::accumulated_velocity_error).
   bool error_estimate = true;
