@@ -22,6 +22,7 @@
 #include "chasles/analysis/momentum.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/error.h"
+#include "chasles/integrate/ball_pairs.h"
 #include "chasles/integrate/run_path.h"
 #include "chasles/model/bearing.h"
 #include "chasles/model/constraints.h"
@@ -1168,6 +1169,14 @@ StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOpti
           "its restitution_law '{}' is not used (the laws agree for a frictionless collision "
           "of two bodies)",
           RestitutionLawName(sim.ball_collisions.law)));
+    }
+    if (sim.collide_all_pairs) {
+      const std::vector<double> radii = BallRadii(first);
+      if (std::count_if(radii.begin(), radii.end(), [](double r) { return r > 0.0; }) < 2) {
+        def.warnings.push_back(
+            "ball_collisions: fewer than two bodies are balls (a ball is a body with a sphere "
+            "contact centred at its centre of mass), so no pair can collide");
+      }
     }
     def.time_stepping = stepping;
   }

@@ -170,7 +170,7 @@ TEST(EventsIntegrator, RefusesWhatItCannotRun) {
   };
   const std::vector<Case> cases = {
       {"collisions_without_events", Replace(example, "  integrator: events\n", ""),
-       "ball_collisions", "only 'integrator: events' does"},
+       "ball_collisions", "only 'integrator: events' and 'integrator: stepping' do"},
       {"step", Replace(example, "  integrator: events\n", "  integrator: events\n  step: 1 ms\n"),
        "step", "takes no steps"},
       {"scene_event", example + "events:\n  - {name: half, when: cue_x, crosses: 0.25 m}\n",

@@ -12,7 +12,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "chasles/integrate/time_stepping.h"
 #include "cli_runner.h"
+#include "reference/balls_on_floor.h"
 #include "test_support.h"
 
 namespace chasles::test {
@@ -142,6 +144,101 @@ TEST(SteppingIntegrator, SaysWhichImpactLawItAppliesAndStopsAtTheStepLimit) {
       RunCli("simulate " + Quote(path) + " --max-steps 20 --out " + Quote(Out().string()));
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_THAT(r.err, testing::HasSubstr("--max-steps"));
+}
+
+// examples/pool-head-on-stepping.yaml: `ball_collisions` under time stepping, no pair listed.
+// Closed forms (the example's comments): after the collision both balls slide, then roll, the
+// cue at (5 v_A + 2 v)/7 with v_A = v (1 - e)/2, the object at 5/7 v (1 + e)/2, each final speed
+// within 5/7 mu_s g h of them (the collision's step shares the cloth's friction impulses). The
+// scene's run is the library's (SimulateTimeStepping with collide_all_pairs) to round-off, and
+// the pair's work is in the ledger's impacts.
+TEST(SteppingIntegrator, BallCollisionsRunTheLibrarysPairs) {
+  const nlohmann::json run =
+      SimulateJson(SourcePath("examples/pool-head-on-stepping.yaml"), Out(), "--strict");
+  EXPECT_EQ(run.at("warnings").size(), 0u);
+  const double v = 2.0, e = 0.93, h = 1e-3, R = 0.028575, d = 0.5;
+  const reference::Ball ball{0.17, R, 0.25, 0.2};
+  const auto& bodies = run.at("final").at("bodies");
+  const double cue = (5 * v * (1 - e) / 2 + 2 * v) / 7, object = 5.0 / 7.0 * v * (1 + e) / 2;
+  const double bound = 5.0 / 7.0 * ball.mu_s * kG * h;
+  EXPECT_LE(std::abs(ToVec(bodies[0].at("velocity")).x() - cue), bound);
+  EXPECT_LE(std::abs(ToVec(bodies[1].at("velocity")).x() - object), bound);
+  EXPECT_GT(std::abs(ToVec(bodies[1].at("velocity")).x() - object), 1e-2 * bound);  // a step's
+  // The library's run of the same balls.
+  const Model model = reference::MakeBallsOnFloor(2, ball, kG);
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Eigen::Vector3d(0, 0, R), Quat::Identity(), s);
+  SetBodyVelocity(model, 0, Eigen::Vector3d(v, 0, 0), Eigen::Vector3d(0, v / R, 0), s);
+  SetBodyPose(model, 1, Eigen::Vector3d(d, 0, R), Quat::Identity(), s);
+  SetBodyVelocity(model, 1, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), s);
+  TimeSteppingOptions o;
+  o.t_end = 1.0;
+  o.step = h;
+  o.output_interval = 0.01;
+  o.collide_all_pairs = true;
+  o.pair_law = {e, 0.0, 0.0, RestitutionLaw::kNewton};
+  const TimeSteppingResult r = SimulateTimeStepping(model, s, o);
+  for (size_t b = 0; b < 2; ++b) {
+    const BodyState& bs = r.final_state.bodies[b];
+    EXPECT_LE((ToVec(bodies[b].at("velocity")) - bs.v_WBcm_W).norm(), kRoundOff * v) << b;
+    EXPECT_LE((ToVec(bodies[b].at("center_of_mass")) - bs.p_WBcm).norm(), kRoundOff * d) << b;
+  }
+  const double E0 = r.summary.initial_energy;
+  const auto& ts = run.at("integrator").at("time_stepping");
+  EXPECT_TRUE(Near(ts.at("regime_changes").get<double>(), r.summary.regime_changes, 0.0));
+  EXPECT_TRUE(Near(ts.at("max_penetration").get<double>(), r.summary.max_penetration, 1e-9));
+  // The pair's normal impulses' work (the collision's loss) is in the ledger's impacts.
+  double impacts = r.final_state.unlisted_contact_work.impact_work;
+  for (const ContactPointState& c : r.final_state.contacts) impacts += c.impact_work;
+  EXPECT_LT(r.final_state.unlisted_contact_work.impact_work, -0.02);
+  EXPECT_TRUE(Near(run.at("ledger").at("impact_work").get<double>(), impacts, kRoundOff, E0));
+  EXPECT_TRUE(run.at("checks").at("passed").get<bool>());
+}
+
+// A pyramid of four balls on the floor (three touching in a triangle, one in their nest), no
+// pair listed: with `ball_collisions` (mu = 0.5) under `integrator: stepping` the broadphase
+// finds the six touching pairs and the exact cone holds the pile: nothing moves in 1 s.
+// `integrator: auto` is refused (its event-driven stretches are the adaptive engine's, which
+// lets no unlisted pair collide), naming the engines that can.
+TEST(SteppingIntegrator, BallCollisionsHoldAPyramidAtRest) {
+  const std::string scene = R"(chasles: 2
+parameters:
+  R: 0.028575 m
+  m: 0.17 kg
+  d: 2*R/sqrt(3)
+bodies:
+  - {name: b1, parts: [{shape: sphere, radius: R, mass: m}], initial: {position: [d, 0, R]}}
+  - {name: b2, parts: [{shape: sphere, radius: R, mass: m}], initial: {position: [-d/2, R, R]}}
+  - {name: b3, parts: [{shape: sphere, radius: R, mass: m}], initial: {position: [-d/2, -R, R]}}
+  - {name: top, parts: [{shape: sphere, radius: R, mass: m}],
+     initial: {position: [0, 0, R + sqrt(4*R^2 - d^2)]}}
+gravity: standard
+contacts:
+  - {name: floor, body: all, shape: sphere, radius: R, mu_s: 0.5, mu_k: 0.5,
+     plane: {normal: [0, 0, 1]}}
+simulation:
+  until: 1 s
+  integrator: stepping
+  step: 1 ms
+  ball_collisions: {mu_s: 0.5, mu_k: 0.5}
+)";
+  const nlohmann::json run = SimulateJson(WriteScene("pyramid.yaml", scene), Out(), "--strict");
+  const double R = 0.028575, d = 2 * R / std::sqrt(3.0);
+  const Eigen::Vector3d start[4] = {
+      {d, 0, R}, {-d / 2, R, R}, {-d / 2, -R, R}, {0, 0, R + std::sqrt(4 * R * R - d * d)}};
+  for (size_t b = 0; b < 4; ++b) {
+    const auto& body = run.at("final").at("bodies")[b];
+    EXPECT_LT((ToVec(body.at("center_of_mass")) - start[b]).norm(), 1e-12) << b;
+  }
+  const auto& ts = run.at("integrator").at("time_stepping");
+  EXPECT_EQ(ts.at("largest_island").get<int>(), 9);  // 3 floor points and the 6 pairs
+  EXPECT_TRUE(ts.at("tolerance_met").get<bool>());
+  const std::string path =
+      WriteScene("pyramid_auto.yaml", Replace(scene, "integrator: stepping", "integrator: auto"));
+  const CliResult refused = RunCli("check " + Quote(path));
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.err, testing::HasSubstr("only 'integrator: events' and 'integrator: "
+                                              "stepping' do"));
 }
 
 }  // namespace
