@@ -11,7 +11,7 @@ CONTACTS is one of
   cloth-listed  the same contacts written one by one (cloth_ball1, ...)
   pairs         `body: all` on the cloth and `between: all` (every pair of balls)
   pairs-listed  the same contacts written one by one (knock_ball1_ball2, ...)
-  collisions    `body: all` on the cloth and `ball_collisions` (integrator events only)
+  collisions    `body: all` on the cloth and `ball_collisions` (events or stepping)
 INTEGRATOR is events (default), adaptive or stepping (with a step of 1 ms)."""
 
 import math
