@@ -43,6 +43,7 @@
 #include "chasles/files/robot_model.h"
 #include "chasles/files/robot_reader.h"
 #include "chasles/files/robot_writer.h"
+#include "chasles/integrate/ball_pairs.h"
 #include "chasles/integrate/contact_problem.h"
 #include "chasles/integrate/dormand_prince.h"
 #include "chasles/integrate/energy_momentum.h"

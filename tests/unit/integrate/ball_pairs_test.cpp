@@ -223,7 +223,8 @@ TEST(BallPairs, PyramidAtRestStaysAtRest) {
 // A rack broken by a cue ball (frictionless between the balls, e = 0.93, on cloth): with
 // collide_all_pairs the pairs come from the broadphase, each built as a listed sphere-sphere
 // contact is and taking its place among the active points in the same order, so the run is
-// bit for bit that of the model with every pair listed; a listed pair keeps its own contact.
+// bit for bit that of the model with every pair listed (and on two threads); a listed pair keeps
+// its own contact.
 TEST(BallPairs, PairsRunAsTheListedPairsDo) {
   const reference::Ball ball{0.17, 0.028575, 0.2, 0.2};
   const int n = 10;
@@ -283,6 +284,17 @@ TEST(BallPairs, PairsRunAsTheListedPairsDo) {
   }
   EXPECT_NEAR(b.final_state.unlisted_contact_work.impact_work, listed_work,
               kRoundOff * std::abs(listed_work));
+
+  // On two threads over the islands: the same bits (the pair points' warm starts and regimes
+  // are per point, written by their island alone).
+  TimeSteppingOptions threads = p;
+  threads.threads = 2;
+  const TimeSteppingResult t2 = SimulateTimeStepping(bare, s, threads);
+  for (size_t i = 0; i < static_cast<size_t>(n); ++i) {
+    EXPECT_EQ(b.final_state.bodies[i].p_WBcm, t2.final_state.bodies[i].p_WBcm) << i;
+    EXPECT_EQ(b.final_state.bodies[i].v_WBcm_W, t2.final_state.bodies[i].v_WBcm_W) << i;
+  }
+  EXPECT_EQ(b.summary.accumulated_velocity_error, t2.summary.accumulated_velocity_error);
 
   // A pair listed in the model keeps its own contact: the pairs run equals the listed run when
   // the listed model is given collide_all_pairs too (nothing left for the broadphase).
