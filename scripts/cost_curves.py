@@ -20,7 +20,8 @@ figure of docs/benchmarks.md, "Sparse mode selection"):
       sideways_sparse sideways_dense lengthwise_sparse lengthwise_dense \\
       --log -o docs/images/mode-selection-costs.png
 
-A size a benchmark did not time (the dense ones stop at n = 300) is written as 0, which the
+Where a benchmark was repeated, the median of its repetitions is taken. A size a benchmark
+did not time (the dense ones stop at n = 300) is written as 0, which the
 log-log plot leaves out."""
 
 import json
@@ -53,9 +54,11 @@ def main(sources, dst, series=SERIES, clock="real_time"):
             runs += json.load(f)["benchmarks"]
     times = {}
     for r in runs:
-        if r.get("run_type") != "iteration" or "/" not in r["name"]:
+        # A single run, or the median of repetitions (--benchmark_repetitions).
+        median = r.get("run_type") == "aggregate" and r.get("aggregate_name") == "median"
+        if (r.get("run_type") != "iteration" and not median) or "/" not in r["name"]:
             continue
-        name, n = r["name"].split("/")[:2]
+        name, n = r.get("run_name", r["name"]).split("/")[:2]
         if name in series:
             times[(series[name], int(n))] = r[clock] * SCALE[r["time_unit"]]
     sizes = sorted({n for (_, n) in times})
