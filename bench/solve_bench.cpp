@@ -15,8 +15,9 @@
 // point sticks), moving sideways at 1 m/s (along y: the floor points slide, the sphere-sphere
 // points stick), or moving lengthwise at 1 m/s (along x: the floor friction spins the spheres
 // alike, the sphere-sphere points, carrying no normal force, cannot hold the spins together
-// and start to slip, one per pass of the selection: n - 1 passes). Its plan solves (the LCP on
-// the normal forces, the velocity projection) sparse against dense (internal::
+// and start to slip, one per pass of the selection: n - 1 passes); and on the hanging chain
+// whose last link's end touches a wall (5 n joint rows, one contact point). Its plan solves (the
+// LCP on the normal forces, the velocity projection) sparse against dense (internal::
 // SelectContactModes' solver; the evaluations of the chosen modes use Data's kAuto either
 // way); dense to n = 300 (lengthwise: 100).
 // Benchmarks never assert: each reports its error against the closed form as a counter.
@@ -143,7 +144,36 @@ void PileSlidingDense(benchmark::State& st) {
   Stage(st, Kind::kPileSliding, LinearSolver::kDense);
 }
 
-enum class Select { kResting, kSideways, kLengthwise };
+enum class Select { kResting, kSideways, kLengthwise, kChainOnWall };
+
+// The hanging chain at rest, the far end of its last link touching a frictionless wall with
+// normal ŷ (the direction the revolute joints, axes along x, let it swing): the plan is the 5 n
+// joint rows and the contact's normal row. The end stays in contact (sliding: frictionless)
+// with no force (nothing pushes it against the wall) and each joint carries the weight below
+// it (ChainError). (With friction the end's tangent rows would hold it up as the joints do: a
+// statically indeterminate chain.)
+Scene ChainOnWall(int n) {
+  Scene s = Chain(n);
+  const BodyState& b = s.state.bodies[static_cast<size_t>(n - 1)];
+  const Vec3 tip(0, 0, -n * kRodLength);
+  ContactSpec c;
+  c.name = "wall";
+  c.shape = ContactShape::kPointSet;
+  c.body = n - 1;
+  c.points_B = {b.q_WB.toRotationMatrix().transpose() * (tip - b.p_WBcm)};
+  c.plane_point_W = tip;
+  c.plane_normal_W = Vec3::UnitY();
+  s.model.AddContact(c);
+  s.state.contacts.assign(1, ContactPointState{});
+  return s;
+}
+
+double ChainOnWallError(const Scene& s, const Data& data) {
+  const ContactPointOutput& c = data.contact_points[0];
+  const double W = kRodMass * kGravity;
+  return std::max(
+      {ChainError(s, data), std::abs(c.normal_force) / W, c.friction_force_W.norm() / W});
+}
 
 // Sideways at 1 m/s along y: every floor point slides with N = m g and friction -mu_k m g ŷ
 // (mu_k = 0.3), the sphere-sphere points carry nothing (the floor friction spins every sphere
@@ -170,7 +200,7 @@ double SidewaysError(const Scene& s, const Data& data) {
 // closed-form error of the forces in the chosen modes (PileError, SidewaysError).
 void ModeSelection(benchmark::State& st, Select kind, LinearSolver solver) {
   const int n = static_cast<int>(st.range(0));
-  Scene s = Pile(n, kind == Select::kLengthwise);
+  Scene s = kind == Select::kChainOnWall ? ChainOnWall(n) : Pile(n, kind == Select::kLengthwise);
   for (int i = 0; kind == Select::kSideways && i < n; ++i)
     SetBodyVelocity(s.model, i, Vec3(0, 1, 0), Vec3::Zero(), s.state);
   for (ContactPointState& ps : s.state.contacts) ps = ContactPointState{};
@@ -192,8 +222,9 @@ void ModeSelection(benchmark::State& st, Select kind, LinearSolver solver) {
   Data data = MakeData(s.model);
   CalcAccelerations(s.model, x, data);
   st.SetComplexityN(n);
-  st.counters["closed_form_error"] = kind == Select::kSideways
-                                         ? SidewaysError(s, data)
+  st.counters["closed_form_error"] = kind == Select::kSideways ? SidewaysError(s, data)
+                                     : kind == Select::kChainOnWall
+                                         ? ChainOnWallError(s, data)
                                          : PileError(s, data, kind == Select::kLengthwise);
 }
 
@@ -208,6 +239,12 @@ void SelectSidewaysSparse(benchmark::State& st) {
 }
 void SelectSidewaysDense(benchmark::State& st) {
   ModeSelection(st, Select::kSideways, LinearSolver::kDense);
+}
+void SelectChainSparse(benchmark::State& st) {
+  ModeSelection(st, Select::kChainOnWall, LinearSolver::kSparse);
+}
+void SelectChainDense(benchmark::State& st) {
+  ModeSelection(st, Select::kChainOnWall, LinearSolver::kDense);
 }
 void SelectLengthwiseSparse(benchmark::State& st) {
   ModeSelection(st, Select::kLengthwise, LinearSolver::kSparse);
@@ -245,6 +282,8 @@ BENCHMARK(PileSlidingSparse)->Apply(AllSizes);
 BENCHMARK(PileSlidingDense)->Apply(DenseSizes);
 BENCHMARK(SelectRestingSparse)->Apply(AllSizes);
 BENCHMARK(SelectRestingDense)->Apply(DenseSizes);
+BENCHMARK(SelectChainSparse)->Apply(AllSizes);
+BENCHMARK(SelectChainDense)->Apply(DenseSizes);
 BENCHMARK(SelectSidewaysSparse)->Apply(AllSizes);
 BENCHMARK(SelectSidewaysDense)->Apply(DenseSizes);
 // n - 1 passes: n² sparse, n⁴ dense (4.7 s at n = 100).

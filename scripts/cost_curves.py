@@ -17,8 +17,8 @@ figure of docs/benchmarks.md, "Sparse mode selection"):
       --benchmark_out=select.json --benchmark_out_format=json
   scripts/cost_curves.py --select select.json docs/images/mode-selection-costs.csv
   build/bin/chasles plot docs/images/mode-selection-costs.csv n resting_sparse resting_dense \\
-      sideways_sparse sideways_dense lengthwise_sparse lengthwise_dense \\
-      --log -o docs/images/mode-selection-costs.png
+      sideways_sparse sideways_dense chain_sparse chain_dense lengthwise_sparse \\
+      lengthwise_dense --log -o docs/images/mode-selection-costs.png
 
 Where a benchmark was repeated, the median of its repetitions is taken. A size a benchmark
 did not time (the dense ones stop at n = 300) is written as 0, which the
@@ -41,6 +41,8 @@ SELECT_SERIES = {
     "SelectRestingDense": "resting_dense",
     "SelectSidewaysSparse": "sideways_sparse",
     "SelectSidewaysDense": "sideways_dense",
+    "SelectChainSparse": "chain_sparse",
+    "SelectChainDense": "chain_dense",
     "SelectLengthwiseSparse": "lengthwise_sparse",
     "SelectLengthwiseDense": "lengthwise_dense",
 }
