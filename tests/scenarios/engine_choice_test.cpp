@@ -202,6 +202,8 @@ TEST(EngineChoice, AnIslandThatYieldsHandsOverTheWholeModel) {
   ASSERT_EQ(r.segments.size(), 3u);
   EXPECT_TRUE(r.islands.split);
   EXPECT_EQ(r.islands.count, 2);
+  EXPECT_EQ(r.segments[0].islands, 2);
+  EXPECT_EQ(r.segments[2].islands, 2);
   EXPECT_EQ(r.segments[1].engine, StudyEngine::kStepping);
   EXPECT_NEAR(r.segments[1].t_begin, ball.TouchDown(n), kEventTime);
   EXPECT_EQ(r.segments[2].engine, StudyEngine::kAdaptive);
