@@ -515,9 +515,12 @@ void BindEngineSegments(py::module_& m) {
               "'start', 'regime changes' or 'quiet'") RO(StudyEngineSegment, changes, "")
               RO(StudyEngineSegment, span, "[s]") RO(StudyEngineSegment, where, "")
                   RO(StudyEngineSegment, quiet, "[s]") RO(StudyEngineSegment, stays, "")
-                      RO(StudyEngineSegment, stats, "") RO(StudyEngineSegment, tolerance_met, "")
-                          RO(StudyEngineSegment, projection_depth, "[m]")
-                              RO(StudyEngineSegment, projection_energy, "[J]")
+                      RO(StudyEngineSegment, islands,
+                         "an event-driven stretch: the islands it ran apart (1: one system)")
+                          RO(StudyEngineSegment, stats, "")
+                              RO(StudyEngineSegment, tolerance_met, "")
+                                  RO(StudyEngineSegment, projection_depth, "[m]")
+                                      RO(StudyEngineSegment, projection_energy, "[J]")
           .def_property_readonly(
               "stepping",
               [](const StudyEngineSegment& g) -> py::object {

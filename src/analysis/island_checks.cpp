@@ -45,7 +45,10 @@ std::function<TransitionCheck(const IslandView&)> IslandChecks::Hook() {
     // are the island's own from its start on.
     island->builder.CheckState(*view.model, *view.initial, CheckPhase::kSample);
     {
+      // An island run again (to the instant another island yielded: integrator auto) replaces
+      // its first run, whose checks went past the state the run goes on from.
       const std::lock_guard<std::mutex> lock(mutex_);
+      std::erase_if(islands_, [&](const auto& x) { return x->index == view.island; });
       islands_.push_back(island);
     }
     // Copies: the view lives only for this call; the Model outlives the island's run.

@@ -495,7 +495,9 @@ void StudyRun::RunAdaptiveStretch(double t_b) {
   state_ = r.final_state;
   if (r.stopped_by_event) stopped_ = true;
   if (def_.auto_engine) {
-    IntegratorStats& st = result_.segments.back().stats;
+    StudyEngineSegment& seg = result_.segments.back();
+    if (r.islands.split) seg.islands = std::max(seg.islands, r.islands.count);
+    IntegratorStats& st = seg.stats;
     st.steps += r.stats.steps;
     st.rejected_steps += r.stats.rejected_steps;
     st.function_evaluations += r.stats.function_evaluations;

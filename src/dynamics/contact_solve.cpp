@@ -15,6 +15,7 @@
 #include "chasles/error.h"
 #include "chasles/model/constraints.h"
 #include "dynamics/internal/contact_geometry.h"
+#include "dynamics/internal/mode_selection.h"
 #include "dynamics/internal/sparse_solve.h"
 
 namespace chasles {
@@ -891,10 +892,11 @@ struct PlanSolution {
 // hold the reference rolling directions), the rolling-resistance moment -mu_r N R ŵ_r of a
 // round feature that rolls. Without that moment here, a pair of balls rolling on a floor with
 // rolling resistance would be planned as parting while the contact stage presses them together.
-PlanSolution SolvePlan(const Model& model, const Data& data,
-                       const std::vector<ContactPointGeometry>& geo,
-                       const std::vector<PointPlan>& plan, const VectorXd& base,
-                       const VectorXd& c_constraints, bool complementary, const State* rolling) {
+PlanSolution SolvePlanDense(const Model& model, const Data& data,
+                            const std::vector<ContactPointGeometry>& geo,
+                            const std::vector<PointPlan>& plan, const VectorXd& base,
+                            const VectorXd& c_constraints, bool complementary,
+                            const State* rolling) {
   const int nb = model.num_bodies();
   const int ncr = model.num_constraint_rows();
   int n_bilateral = 0;
@@ -969,6 +971,198 @@ PlanSolution SolvePlan(const Model& model, const Data& data,
   return sol;
 }
 
+// How the plan solves of one SelectContactModes choose their path, and the round-off of the
+// sparse LCP's sign tests (forces and accelerations).
+struct PlanOptions {
+  LinearSolver solver = LinearSolver::kAuto;
+  SparseWorkspaceHandle* workspace = nullptr;
+  double f_tol = 0.0, a_tol = 0.0;
+};
+
+thread_local internal::ModeSelectionStats mode_selection_stats;
+
+// The plan's rows by body blocks, as SolvePlanDense forms them: the constraint rows, then per
+// point its normal row when it is in the pressing set `in` (force direction W_n: the normal,
+// less mu_k s where it slides, with the rolling-resistance moment where it rolls), its two
+// tangent rows when it sticks and its held rolling rows. `normal_row[i]` is the row of plan
+// entry i's normal (-1 outside the set). Returns whether W = J on every row.
+bool AppendPlanRows(const Model& model, const Data& data,
+                    const std::vector<ContactPointGeometry>& geo,
+                    const std::vector<PointPlan>& plan, const std::vector<char>& in,
+                    const VectorXd& c_constraints, const State* rolling, internal::BlockRows& rows,
+                    VectorXd& c, std::vector<int>& normal_row) {
+  using internal::Vec6;
+  const int ncr = model.num_constraint_rows();
+  int n_rows = ncr;
+  for (size_t i = 0; i < plan.size(); ++i) {
+    n_rows += in[i] != 0 ? 1 : 0;
+    if (plan[i].mode == ContactMode::kSticking) {
+      n_rows += 2 + (plan[i].held ? geo[static_cast<size_t>(plan[i].point)].num_rolling_axes : 0);
+    }
+  }
+  rows.Clear();
+  c.resize(n_rows);
+  if (ncr > 0) {
+    internal::AppendConstraintRows(model, data, rows);
+    c.head(ncr) = c_constraints;
+  }
+  normal_row.assign(plan.size(), -1);
+  bool symmetric = true;
+  int k = ncr;
+  for (size_t i = 0; i < plan.size(); ++i) {
+    const PointPlan& pp = plan[i];
+    const ContactPointGeometry& g = geo[static_cast<size_t>(pp.point)];
+    const Contact& con = model.contact(model.contact_of_point(pp.point));
+    const auto add = [&](const Vec6& jb, const Vec6& jo, const Vec6& wb, const Vec6& wo) {
+      rows.Add(g.body, jb, wb);
+      if (g.other != kWorld) rows.Add(g.other, jo, wo);
+      rows.EndRow();
+    };
+    Vec6 jb = Vec6::Zero(), jo = Vec6::Zero();
+    if (in[i] != 0) {
+      g.AddBlocks(g.n, 1.0, jb, jo);
+      Vec6 wb = jb, wo = jo;
+      if (pp.mode == ContactMode::kSliding && con.mu_k() > 0.0 && pp.s.squaredNorm() > 0.0) {
+        g.AddBlocks(pp.s, -con.mu_k(), wb, wo);
+        symmetric = false;
+      }
+      if (rolling != nullptr && pp.mode == ContactMode::kSticking && con.mu_r() > 0.0 && g.round) {
+        const Vec3 roll_dir =
+            g.RollingDirection(PointStateOf(*rolling, pp.point).rolling_direction_W);
+        if (roll_dir.squaredNorm() > 0.0) {
+          const Vec3 M = -con.mu_r() * g.radius * roll_dir;
+          wb.tail<3>() += M;
+          wo.tail<3>() -= M;
+          symmetric = false;
+        }
+      }
+      normal_row[i] = k;
+      add(jb, jo, wb, wo);
+      c[k++] = pp.target_n;
+    }
+    if (pp.mode != ContactMode::kSticking) continue;
+    for (int a = 0; a < 2; ++a) {
+      jb.setZero(), jo.setZero();
+      g.AddBlocks(a == 0 ? g.t1 : g.t2, 1.0, jb, jo);
+      add(jb, jo, jb, jo);
+      c[k++] = pp.target_t[a];
+    }
+    for (int a = 0; pp.held && a < g.num_rolling_axes; ++a) {
+      jb.setZero(), jo.setZero();
+      g.AddRollingBlocks(g.rolling_axis[a], jb, jo);
+      add(jb, jo, jb, jo);
+      c[k++] = pp.target_r[a];
+    }
+  }
+  return symmetric;
+}
+
+// The plan with the points of `in` pressing: the multipliers x of its rows (sparse LDLᵀ or LU;
+// a singular symmetric system by its least-norm solution, which leaves the velocities or
+// accelerations u unique) and u = base + M⁻¹ Wᵀ x. False where the dense path must answer.
+bool SolvePlanRows(const Model& model, const Data& data,
+                   const std::vector<ContactPointGeometry>& geo, const std::vector<PointPlan>& plan,
+                   const std::vector<char>& in, const VectorXd& base, const VectorXd& c_constraints,
+                   const State* rolling, internal::SparseWorkspace& sp,
+                   std::vector<int>& normal_row, VectorXd& x, VectorXd& u) {
+  VectorXd c;
+  const bool symmetric =
+      AppendPlanRows(model, data, geo, plan, in, c_constraints, rolling, sp.rows, c, normal_row);
+  const int rows = sp.rows.rows();
+  VectorXd r(rows);
+  for (int i = 0; i < rows; ++i) r[i] = c[i] - sp.rows.RowTimes(i, base);
+  if (!internal::SolveSparse(model, data, symmetric, sp, r, x) &&
+      !(symmetric && sp.singular_symmetric && internal::SolveSparseLeastNorm(sp, r, nullptr, x)))
+    return false;
+  u = base;
+  internal::AddMinvWTimes(sp, x, u);
+  return true;
+}
+
+// Sparse plan solve (docs/design.md, "Sparse mode selection"): the rows by body blocks through
+// the sparse factorisation, never the Schur complement D - C S⁺ B (dense even for a chain). The
+// LCP 0 <= N ⟂ w >= 0 by principal pivoting on the pressing set P (Murty's least-index rule,
+// finite for a P-matrix): solve the plan with the normal rows of P as equalities; the first
+// point with N < 0 in P or w < 0 outside it (beyond round-off) changes sides; repeat. Its end
+// is an LCP solution, checked as such: N >= 0 and w = 0 in P, w >= 0 outside. For the
+// symmetric semidefinite LCP (no sliding friction, no rolling resistance) w is the same for
+// every solution, so the points that stay are those of Lemke's method; the least-norm N of a
+// redundant set is never read for it. False (the dense path answers) when a system is singular
+// and not symmetric, when a row is released, or after 4 n + 20 pivots.
+bool SolvePlanSparse(const Model& model, const Data& data,
+                     const std::vector<ContactPointGeometry>& geo,
+                     const std::vector<PointPlan>& plan, const VectorXd& base,
+                     const VectorXd& c_constraints, bool complementary, const State* rolling,
+                     const PlanOptions& opt, PlanSolution& sol) {
+  for (char released : data.row_released) {
+    if (released != 0) return false;
+  }
+  internal::SparseWorkspace& sp = internal::GetSparseWorkspace(*opt.workspace);
+  const size_t nN = plan.size();
+  std::vector<char> in(nN, 1);
+  std::vector<int> normal_row;
+  VectorXd x, u;
+  sol.w.resize(static_cast<Eigen::Index>(nN));
+  for (size_t pivots = 0;; ++pivots) {
+    if (pivots > 4 * nN + 20) return false;
+    if (!SolvePlanRows(model, data, geo, plan, in, base, c_constraints, rolling, sp, normal_row, x,
+                       u))
+      return false;
+    for (size_t i = 0; i < nN; ++i) {
+      const ContactPointGeometry& g = geo[static_cast<size_t>(plan[i].point)];
+      sol.w[static_cast<Eigen::Index>(i)] = g.RowTimes(g.n, u) - plan[i].target_n;
+    }
+    if (!complementary) break;
+    size_t flip = nN;
+    for (size_t i = 0; i < nN && flip == nN; ++i) {
+      const bool violated = in[i] != 0 ? x[normal_row[i]] < -opt.f_tol
+                                       : sol.w[static_cast<Eigen::Index>(i)] < -opt.a_tol;
+      if (violated) flip = i;
+    }
+    if (flip == nN) break;
+    in[flip] = in[flip] != 0 ? 0 : 1;
+    ++mode_selection_stats.sparse_pivots;
+  }
+  sol.N = VectorXd::Zero(static_cast<Eigen::Index>(nN));
+  std::vector<char> is_normal(static_cast<size_t>(x.size()), 0);
+  for (size_t i = 0; i < nN; ++i) {
+    if (in[i] == 0) continue;
+    sol.N[static_cast<Eigen::Index>(i)] = x[normal_row[i]];
+    is_normal[static_cast<size_t>(normal_row[i])] = 1;
+  }
+  sol.lambda_E.resize(x.size() - static_cast<Eigen::Index>(std::count(in.begin(), in.end(), 1)));
+  Eigen::Index e = 0;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    if (is_normal[static_cast<size_t>(i)] == 0) sol.lambda_E[e++] = x[i];
+  }
+  sol.u_new = std::move(u);
+  sol.solved = true;
+  return true;
+}
+
+// The plan solve on the path `opt` chooses (kAuto: sparse from kSparseMinRows rows on).
+PlanSolution SolvePlan(const Model& model, const Data& data,
+                       const std::vector<ContactPointGeometry>& geo,
+                       const std::vector<PointPlan>& plan, const VectorXd& base,
+                       const VectorXd& c_constraints, bool complementary, const State* rolling,
+                       const PlanOptions& opt) {
+  int rows = model.num_constraint_rows() + static_cast<int>(plan.size());
+  for (const PointPlan& pp : plan) {
+    if (pp.mode != ContactMode::kSticking) continue;
+    rows += 2 + (pp.held ? geo[static_cast<size_t>(pp.point)].num_rolling_axes : 0);
+  }
+  if (opt.workspace != nullptr && internal::UseSparse(opt.solver, rows)) {
+    PlanSolution sol;
+    if (SolvePlanSparse(model, data, geo, plan, base, c_constraints, complementary, rolling, opt,
+                        sol)) {
+      ++mode_selection_stats.sparse_solves;
+      return sol;
+    }
+  }
+  ++mode_selection_stats.dense_solves;
+  return SolvePlanDense(model, data, geo, plan, base, c_constraints, complementary, rolling);
+}
+
 bool Contains(const std::vector<int>& v, int p) {
   return std::find(v.begin(), v.end(), p) != v.end();
 }
@@ -978,7 +1172,7 @@ bool Contains(const std::vector<int>& v, int p) {
 class ModeSelector {
  public:
   ModeSelector(const Model& model, const State& state, const ContactTolerances& tol,
-               const ModeHints& hints);
+               const ModeHints& hints, LinearSolver solver);
   // Candidates: touching and not moving apart.
   void PlanCandidates();
   // Passes over the plan until the modes are consistent; leaves the points in contact.
@@ -1027,10 +1221,13 @@ class ModeSelector {
   std::vector<int> jammed_;
   State trial_;
   Data tdata_;
+  // The plan solves' path and the sparse path's workspace.
+  PlanOptions opt_;
+  mutable SparseWorkspaceHandle sparse_;
 };
 
 ModeSelector::ModeSelector(const Model& model, const State& state, const ContactTolerances& tol,
-                           const ModeHints& hints)
+                           const ModeHints& hints, LinearSolver solver)
     : model_(model),
       tol_(tol),
       slip_starts_(hints.slip_starts),
@@ -1059,6 +1256,11 @@ ModeSelector::ModeSelector(const Model& model, const State& state, const Contact
   // (slip acceleration along s above tol.cone · a_scale), else it sticks. So a threshold found
   // by bisection on the regime is the exact one to round-off, from either side.
   a_cone_ = tol.cone * a_scale_;
+  // The sparse LCP's sign tests at round-off of the force and acceleration scales.
+  opt_.solver = solver;
+  opt_.workspace = &sparse_;
+  opt_.f_tol = 1e-11 * f_scale_;
+  opt_.a_tol = 1e-11 * a_scale_;
   starting_.assign(static_cast<size_t>(np_), 0);
   turns_.assign(static_cast<size_t>(np_), 0);
   rolling_starting_.assign(static_cast<size_t>(np_), 0);
@@ -1121,7 +1323,7 @@ void ModeSelector::PlanCandidates() {
 
 void ModeSelector::SelectModes() {
   for (int pass = 0; pass < 24 * np_ + 8 && !plan_.empty(); ++pass) {
-    PlanSolution sol = SolvePlan(model_, data_, geo_, plan_, u_free_, c_con_, true, &trial_);
+    PlanSolution sol = SolvePlan(model_, data_, geo_, plan_, u_free_, c_con_, true, &trial_, opt_);
     if (!sol.solved) {
       if (!TakeSlidingAsSticking()) break;
       continue;
@@ -1402,7 +1604,10 @@ void ModeSelector::ProjectVelocities(State& state, ModeSelectionNotes* notes) co
     if (pp.mode == ContactMode::kSliding) pp.s.setZero();
   }
   const VectorXd b_con = model_.num_constraints() > 0 ? VectorXd(data_.velocity_rhs) : VectorXd();
-  const PlanSolution sol = SolvePlan(model_, data_, geo_, vplan, u_, b_con, false, nullptr);
+  // A jam books the split of its impulses among the points: the dense path's split.
+  PlanOptions opt = opt_;
+  if (!jammed_.empty()) opt.solver = LinearSolver::kDense;
+  const PlanSolution sol = SolvePlan(model_, data_, geo_, vplan, u_, b_con, false, nullptr, opt);
   internal::SetVelocity(model_, data_, sol.u_new, state);
   const double dT = internal::KineticEnergy(model_, state) - T0;
   if (jammed_.empty()) {
@@ -1458,16 +1663,23 @@ void ModeSelector::BookJams(State& state, const std::vector<PointPlan>& vplan,
 
 }  // namespace
 
+namespace internal {
+
+const ModeSelectionStats& LastModeSelectionStats() {
+  return mode_selection_stats;
+}
+
 std::vector<ContactModeChange> SelectContactModes(const Model& model, State& state,
                                                   const ContactTolerances& tol,
-                                                  const ModeHints& hints,
-                                                  ModeSelectionNotes* notes) {
+                                                  const ModeHints& hints, ModeSelectionNotes* notes,
+                                                  LinearSolver solver) {
+  mode_selection_stats = ModeSelectionStats{};
   const int np = model.num_contact_points();
   if (state.contacts.size() != static_cast<size_t>(np)) {
     state.contacts.assign(static_cast<size_t>(np), ContactPointState{});
   }
   const std::vector<ContactPointState> before = state.contacts;
-  ModeSelector selector(model, state, tol, hints);
+  ModeSelector selector(model, state, tol, hints, solver);
   selector.PlanCandidates();
   selector.SelectModes();
   selector.WriteModes(state);
@@ -1480,6 +1692,15 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
       changes.push_back({p, a.mode, b.mode, a.rolling_held, b.rolling_held});
   }
   return changes;
+}
+
+}  // namespace internal
+
+std::vector<ContactModeChange> SelectContactModes(const Model& model, State& state,
+                                                  const ContactTolerances& tol,
+                                                  const ModeHints& hints,
+                                                  ModeSelectionNotes* notes) {
+  return internal::SelectContactModes(model, state, tol, hints, notes, LinearSolver::kAuto);
 }
 
 }  // namespace chasles

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <typeinfo>
 #include <utility>
@@ -254,14 +257,67 @@ class IslandRun {
     for (const std::exception_ptr& e : errors) {
       if (e) std::rethrow_exception(e);
     }
-    return Merge();
+    const std::optional<size_t> first = FirstToYield();
+    if (first) EndAtYield(*first);
+    SimulationResult r = Merge();
+    if (first) r.yielded = results_[*first].yielded;
+    return r;
   }
 
  private:
-  void RunIsland(size_t i) {
+  // The island that yielded first (ContactOptions::yield_changes: integrator auto), the lowest
+  // index at equal times; none when no island yielded.
+  std::optional<size_t> FirstToYield() const {
+    std::optional<size_t> first;
+    for (size_t i = 0; i < results_.size(); ++i) {
+      if (!results_[i].yielded) continue;
+      if (!first || results_[i].final_state.t < results_[*first].final_state.t) first = i;
+    }
+    return first;
+  }
+
+  // Island `first` yielded at t_y: the whole model is handed over there, so every island that
+  // ran on past t_y runs again from its start to t_y exactly. Its run up to t_y is the same
+  // computation as before (no island sees another), so only the last step changes, cut to end
+  // at t_y. Each keeps the samples the yielding island has: the grid times up to t_y (the final
+  // state at t_y is a sample only where t_y is itself a grid time, as in one system).
+  void EndAtYield(size_t first) {
+    const double t_y = results_[first].final_state.t;
+    const size_t samples = results_[first].samples.size();
+    std::vector<size_t> rerun;
+    for (size_t i = 0; i < results_.size(); ++i) {
+      if (i != first && results_[i].final_state.t > t_y) rerun.push_back(i);
+    }
+    std::vector<std::exception_ptr> errors(rerun.size());
+    std::atomic<size_t> next{0};
+    const auto work = [&] {
+      for (size_t k = next++; k < rerun.size(); k = next++) {
+        try {
+          RunIsland(rerun[k], t_y);
+        } catch (...) {
+          errors[k] = std::current_exception();
+        }
+      }
+    };
+    const auto threads = static_cast<size_t>(std::max(1, o_.threads));
+    RunOnThreads(static_cast<int>(std::min(threads, std::max<size_t>(rerun.size(), 1))), work);
+    for (const std::exception_ptr& e : errors) {
+      if (e) std::rethrow_exception(e);
+    }
+    for (size_t i = 0; i < results_.size(); ++i) {
+      if (i == first) continue;
+      std::vector<State>& x = results_[i].samples;
+      if (x.size() > samples) x.resize(samples);
+      // Handed over with the rest of the model: neither yielded nor ended by itself.
+      results_[i].yielded.reset();
+    }
+  }
+
+  void RunIsland(size_t i, double t_end = std::numeric_limits<double>::quiet_NaN()) {
     const IslandModel im = split_.Build(static_cast<int>(i));
     const State initial = split_.Part(im, static_cast<int>(i), initial_);
     SimulationOptions o = o_;
+    if (!std::isnan(t_end)) o.t_end = t_end;
     o.on_sample = nullptr;
     o.store_samples = true;
     o.islands = false;

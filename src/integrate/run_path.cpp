@@ -22,10 +22,6 @@ std::string OneSystemReason(const Model& model, const SimulationOptions& o, int 
            "whole system's state at that instant";
   }
   if (!o.events.empty()) return "user events are functions of the whole state";
-  if (o.contact.yield_changes > 0) {
-    return "the engine choice (integrator: auto) hands the whole model from one engine to the "
-           "other at once";
-  }
   return IslandObstacle(model);
 }
 

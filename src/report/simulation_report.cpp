@@ -259,6 +259,7 @@ nlohmann::json EngineSegmentsJson(const std::vector<StudyEngineSegment>& segment
                         {"steps", g.stats.steps},
                         {"rejected_steps", g.stats.rejected_steps},
                         {"function_evaluations", g.stats.function_evaluations}};
+    if (g.engine == StudyEngine::kAdaptive) x["islands"] = g.islands;
     switch (g.reason) {
       case EngineSwitch::kStart:
         if (!g.stays.empty()) x["stays_event_driven"] = g.stays;

@@ -159,6 +159,62 @@ TEST(EngineChoice, ZenoBouncesNotSummedSwitchToSteppingAndRest) {
   EXPECT_TRUE(r.certificate.passed());
 }
 
+// The same ball beside a second one rolling at v0 far away (its own island): the islands run
+// apart and count their regime changes apart, so the run switches at the bouncing ball's
+// touch-down T_n as alone, the whole model is handed over there and back at once, and the
+// rolling ball, which no engine disturbs (no force along the floor, its point sticking with no
+// friction), is at x0 + v0 t at the end to round-off.
+TEST(EngineChoice, AnIslandThatYieldsHandsOverTheWholeModel) {
+  const BouncingBall ball;
+  StudyDefinition def = ball.Definition(2.0);
+  def.options.contact.accumulate_bounces = false;
+  const MassProperties mp = def.bodies[0].mass_properties;
+  def.bodies.push_back({"roller", mp});
+  def.build_model = [ball, mp](const std::vector<NamedBody>& bodies, const BodyMap&) {
+    Model model;
+    for (const NamedBody& b : bodies) model.AddBody(b.name, b.mass_properties);
+    model.AddForceElement(std::make_shared<UniformGravity>("gravity", Vec3(0, 0, -kG)));
+    for (int i = 0; i < 2; ++i) {
+      ContactSpec spec;
+      spec.name = i == 0 ? "floor" : "floor_roller";
+      spec.shape = ContactShape::kSphere;
+      spec.body = i;
+      spec.radius = ball.R;
+      spec.mu_s = spec.mu_k = ball.mu;
+      spec.restitution = ball.e;
+      model.AddContact(spec);
+    }
+    return model;
+  };
+  const Model model = def.build_model(def.bodies, {});
+  const double v0 = 0.8, x0 = 5.0;
+  State s = MakeRestState(model);
+  SetBodyPose(model, 0, Vec3(0, 0, ball.R + ball.h0), Quat::Identity(), s);
+  SetBodyPose(model, 1, Vec3(x0, 0, ball.R), Quat::Identity(), s);
+  SetBodyVelocity(model, 1, Vec3(v0, 0, 0), Vec3(0, v0 / ball.R, 0), s);
+  def.initial = s;
+  const double h = DefaultEngineStep(model, def.options.output_interval);
+  def.auto_engine = StudyDefinition::AutoEngine{MakeEngineChoiceRule(h), {}};
+  const EngineChoiceRule& rule = def.auto_engine->rule;
+  int n = 7;
+  while (ball.TouchDown(n) - ball.TouchDown(n - 7) > rule.window) ++n;
+  const StudyResult r = RunStudy(def);
+  ASSERT_EQ(r.segments.size(), 3u);
+  EXPECT_TRUE(r.islands.split);
+  EXPECT_EQ(r.islands.count, 2);
+  EXPECT_EQ(r.segments[0].islands, 2);
+  EXPECT_EQ(r.segments[2].islands, 2);
+  EXPECT_EQ(r.segments[1].engine, StudyEngine::kStepping);
+  EXPECT_NEAR(r.segments[1].t_begin, ball.TouchDown(n), kEventTime);
+  EXPECT_EQ(r.segments[2].engine, StudyEngine::kAdaptive);
+  ASSERT_EQ(r.final_bodies.size(), 2u);
+  const StudyBodyState& roller = r.final_bodies[1];
+  EXPECT_NEAR(roller.p_WBcm.x(), x0 + v0 * 2.0, kProjected * x0);
+  EXPECT_NEAR(roller.v_WBcm_W.x(), v0, kProjected * v0);
+  EXPECT_NEAR(r.final_bodies[0].p_WBcm.z(), ball.R, kProjected * ball.R);
+  EXPECT_TRUE(r.certificate.passed());
+}
+
 // With the bounces summed (the default) the event-driven engine ends the same Zeno sequence in
 // closed form: a touch-down that continues a geometric sequence does not count towards the
 // bound, so auto never switches and its answer is the event-driven one, bit for bit.

@@ -491,6 +491,10 @@ struct StudyEngineSegment {
   double quiet = 0.0;
   /// An event-driven segment that cannot hand over to time stepping: why (empty when it can).
   std::string stays;
+  /// An event-driven segment: the most islands its runs split the model into, each island run
+  /// as its own hybrid system counting its own regime changes (1: one system; docs/contact.md,
+  /// "Choosing the engine").
+  int islands = 1;
   /// The engine's work in this segment: an event-driven one's integration steps, rejected steps
   /// and evaluations; a time-stepped one's steps and contact solves.
   IntegratorStats stats;

@@ -101,21 +101,74 @@ TEST(HybridYield, YieldsAtTheTouchDownThatExceedsTheBound) {
   EXPECT_TRUE(summed.impacts.back().accumulation);
 }
 
-// A run that may yield hands over the whole model at once: two balls that form two islands run
-// as one system, and the result says why.
-TEST(HybridYield, RunsTheModelAsOneSystem) {
-  const Model model = reference::MakeBallsOnFloor(2, {0.5, 0.1, 0.3, 0.3}, kG);
+// A run that may yield still runs its islands separately, each counting its own regime
+// changes, and hands the whole model over at once: ball 0 bounces (e = 1/2, bounces not summed)
+// and yields at touch-down n as alone (the test above); ball 1, its own island, slides from v0
+// and rolls from t_s = 2 v0 / (7 mu g) on at 5/7 v0, x = v0 t_s - mu g t_s² / 2 + 5/7 v0 (t - t_s).
+// Its island ran on past the yield, and is run again to end there: the result is the one
+// system's (islands = false, which yields at the same touch-down: ball 1's one change lies far
+// outside the window) to the events' tolerance.
+TEST(HybridYield, IslandsRunSeparatelyAndHandOverTogether) {
+  const double h0 = 1.0, e = 0.5, v0 = 1.0;
+  reference::Ball bouncer{0.5, 0.1, 0.3, 0.3}, slider{0.5, 0.1, 0.3, 0.3};
+  bouncer.restitution = e;
+  const Model model = reference::MakeBallsOnFloor({bouncer, slider}, kG);
   State s = MakeRestState(model);
-  SetBodyPose(model, 0, Vec3(0, 0, 0.5), Quat::Identity(), s);
-  SetBodyPose(model, 1, Vec3(1, 0, 0.5), Quat::Identity(), s);
+  SetBodyPose(model, 0, Vec3(0, 0, bouncer.radius + h0), Quat::Identity(), s);
+  SetBodyPose(model, 1, Vec3(5, 0, slider.radius), Quat::Identity(), s);
+  SetBodyVelocity(model, 1, Vec3(v0, 0, 0), Vec3::Zero(), s);
+  const EngineChoiceRule rule = MakeEngineChoiceRule(1e-3);
   SimulationOptions o;
-  o.t_end = 0.1;
-  o.contact.yield_changes = 8;
-  o.contact.yield_window = 0.016;
+  o.t_end = 2.0;
+  o.output_interval = 0.01;
+  o.adaptive.rtol = 1e-12;
+  o.adaptive.atol = 1e-14;
+  o.contact.accumulate_bounces = false;
+  o.contact.yield_changes = rule.changes;
+  o.contact.yield_window = rule.window;
+  const double t0 = std::sqrt(2 * h0 / kG);
+  const auto touch_down = [&](int n) { return t0 + 2 * t0 * e * (1 - std::pow(e, n)) / (1 - e); };
+  int n = 7;
+  while (touch_down(n) - touch_down(n - 7) > rule.window) ++n;
   const SimulationResult r = Simulate(model, s, o);
   EXPECT_EQ(r.islands.count, 2);
-  EXPECT_FALSE(r.islands.split);
-  EXPECT_THAT(r.islands.reason, ::testing::HasSubstr("integrator: auto"));
+  EXPECT_TRUE(r.islands.split);
+  ASSERT_TRUE(r.yielded.has_value());
+  EXPECT_EQ(r.yielded->where, "floor0");
+  EXPECT_NEAR(r.yielded->t_last, touch_down(n), kEventTime);
+  EXPECT_EQ(r.final_state.t, r.yielded->t_last);
+  EXPECT_EQ(r.impacts.size(), static_cast<size_t>(n + 1));
+  EXPECT_NEAR(r.final_state.bodies[0].v_WBcm_W.z(), std::pow(e, n + 1) * std::sqrt(2 * kG * h0),
+              kG * kEventTime);
+  // Ball 1 at the hand-over, in closed form.
+  const double mu_g = slider.mu_k * kG, t_s = 2 * v0 / (7 * mu_g), t = r.final_state.t;
+  const BodyState& b1 = r.final_state.bodies[1];
+  EXPECT_NEAR(b1.v_WBcm_W.x(), 5.0 / 7.0 * v0, 1e-12);
+  EXPECT_NEAR(b1.p_WBcm.x(), 5 + v0 * t_s - 0.5 * mu_g * t_s * t_s + 5.0 / 7.0 * v0 * (t - t_s),
+              1e-9);
+  // The samples are the grid times before the hand-over, every island's at the same times.
+  const size_t grid = static_cast<size_t>(std::floor(t / o.output_interval)) + 1;
+  ASSERT_EQ(r.samples.size(), grid);
+  EXPECT_LT(r.samples.back().t, t);
+  // The same run as one system.
+  SimulationOptions one = o;
+  one.islands = false;
+  const SimulationResult w = Simulate(model, s, one);
+  EXPECT_FALSE(w.islands.split);
+  ASSERT_TRUE(w.yielded.has_value());
+  EXPECT_NEAR(w.yielded->t_last, r.yielded->t_last, kEventTime);
+  ASSERT_EQ(w.samples.size(), r.samples.size());
+  for (size_t k = 0; k < r.samples.size(); ++k) {
+    EXPECT_NEAR(w.samples[k].t, r.samples[k].t, kRoundOff);
+    for (size_t b = 0; b < 2; ++b) {
+      EXPECT_NEAR((w.samples[k].bodies[b].p_WBcm - r.samples[k].bodies[b].p_WBcm).norm(), 0.0, 1e-9)
+          << "sample " << k << ", ball " << b;
+    }
+  }
+  for (size_t b = 0; b < 2; ++b) {
+    EXPECT_NEAR((w.final_state.bodies[b].v_WBcm_W - r.final_state.bodies[b].v_WBcm_W).norm(), 0.0,
+                kG * kEventTime);
+  }
   o.contact.yield_window = -1.0;
   EXPECT_THROW(Simulate(model, s, o), InputError);
 }
