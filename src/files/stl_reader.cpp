@@ -199,9 +199,13 @@ std::optional<MappedBinaryStl> MapBinaryStl(const std::string& path) {
     throw InputError(fmt::format("mesh file '{}': cannot be opened for reading ({})", path,
                                  std::strerror(e.code().value())));
   }
+  // Not a regular file at least 84 bytes long whose header can be read: ReadMeshFile says what
+  // it is (as LooksLikeBinaryStl does).
   std::array<unsigned char, kStlHeaderBytes> header{};
-  if (!file->regular() || file->size() < kStlHeaderBytes ||
-      file->ReadAt(0, header.data(), header.size()) != header.size()) {
+  if (!file->regular() || file->size() < kStlHeaderBytes) return std::nullopt;
+  try {
+    if (file->ReadAt(0, header.data(), header.size()) != header.size()) return std::nullopt;
+  } catch (const std::system_error&) {
     return std::nullopt;
   }
   const std::uint32_t n = ReadU32LE(header.data() + 80);

@@ -262,13 +262,23 @@ std::array<typename C::Value, 6> BoundingBox(const C& xyz) {
   std::array<T, 6> box = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
   U non_finite = 0;  // all exponent bits set: an infinity or a NaN
   const std::size_t nv = xyz.coordinates() / 3;
-  for (std::size_t i = 0; i < nv; ++i) {
+  const auto take = [&](const T* p) {  // one vertex
     for (std::size_t k = 0; k < 3; ++k) {
-      const T x = xyz.Get(i, k);
-      non_finite |= static_cast<U>((std::bit_cast<U>(x) & kExponent) == kExponent);
-      box[k] = std::min(box[k], x);
-      box[3 + k] = std::max(box[3 + k], x);
+      non_finite |= static_cast<U>((std::bit_cast<U>(p[k]) & kExponent) == kExponent);
+      box[k] = std::min(box[k], p[k]);
+      box[3 + k] = std::max(box[3 + k], p[k]);
     }
+  };
+  if constexpr (std::is_same_v<C, Records>) {
+    for (std::size_t t = 0; t < xyz.r.triangles; ++t) {  // a record's nine floats at once
+      float f[9];
+      std::memcpy(f, xyz.r.data + t * xyz.r.stride, sizeof f);
+      take(f);
+      take(f + 3);
+      take(f + 6);
+    }
+  } else {
+    for (std::size_t i = 0; i < nv; ++i) take(xyz.xyz.data() + 3 * i);
   }
   if (non_finite == 0) return box;
   for (std::size_t i = 0; i < nv; ++i) {
