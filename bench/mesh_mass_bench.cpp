@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -209,13 +210,35 @@ void BM_ReadBinaryStlDirect(benchmark::State& state) {
 }
 BENCHMARK(BM_ReadBinaryStlDirect)->Unit(benchmark::kMillisecond);
 
-// The same file read as the floats it stores, as LoadMeshMassProperties reads it.
+// The same file read as the floats it stores (LoadMeshMassProperties where it cannot map it).
 void BM_ReadBinaryStlFloats(benchmark::State& state) {
   const std::string& path = StlPath();
   for (auto _ : state) benchmark::DoNotOptimize(TryReadBinaryStlFloats(path)->data());
   state.SetItemsProcessed(state.iterations() * std::int64_t(Soup().triangle_count()));
 }
 BENCHMARK(BM_ReadBinaryStlFloats)->Unit(benchmark::kMillisecond);
+
+// The same file mapped, its floats left where they are (TryMapBinaryStl), as
+// LoadMeshMassProperties reads it; and welded from there (BuildTriangleSoup of the records).
+void BM_MapBinaryStl(benchmark::State& state) {
+  const std::string& path = StlPath();
+  for (auto _ : state) benchmark::DoNotOptimize(TryMapBinaryStl(path)->coordinates);
+  state.SetItemsProcessed(state.iterations() * std::int64_t(Soup().triangle_count()));
+}
+BENCHMARK(BM_MapBinaryStl)->Unit(benchmark::kMillisecond);
+
+void BM_WeldMappedBinaryStl(benchmark::State& state) {
+  const std::optional<MappedBinaryStl> stl = TryMapBinaryStl(StlPath());
+  const FloatSoupRecords records{
+      stl->coordinates, stl->triangles, MappedBinaryStl::kRecordBytes, {}};
+  for (auto _ : state) {
+    MeshRepairReport report;
+    TriangleMesh m = BuildTriangleSoup(records, 1.0, std::nan(""), &report);
+    benchmark::DoNotOptimize(m.vertices.data());
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(stl->triangles));
+}
+BENCHMARK(BM_WeldMappedBinaryStl)->Unit(benchmark::kMillisecond);
 
 void BM_ReadBinaryStlAssimp(benchmark::State& state) {
   const std::string& path = StlPath();

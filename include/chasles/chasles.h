@@ -38,6 +38,7 @@
 #include "chasles/files/atomic_file.h"
 #include "chasles/files/collada_reader.h"
 #include "chasles/files/input_file.h"
+#include "chasles/files/mapped_file.h"
 #include "chasles/files/mesh_reader.h"
 #include "chasles/files/output_set.h"
 #include "chasles/files/robot_model.h"

@@ -119,4 +119,13 @@ std::optional<std::vector<float>> TryReadBinaryStlFloats(const std::string& path
   return internal::ReadBinaryStlFloats(path);
 }
 
+std::optional<MappedBinaryStl> TryMapBinaryStl(const std::string& path) {
+  std::error_code ec;
+  if (internal::Extension(path) != ".stl" ||
+      !std::filesystem::is_regular_file(std::filesystem::status(path, ec))) {
+    return std::nullopt;
+  }
+  return internal::MapBinaryStl(path);
+}
+
 }  // namespace chasles

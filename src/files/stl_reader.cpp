@@ -12,11 +12,14 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <span>
 #include <system_error>
 
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "chasles/files/mapped_file.h"
 #include "files/internal/mesh_readers.h"
 #include "files/internal/mesh_text.h"
 
@@ -69,6 +72,12 @@ void CheckStlCount(const std::string& name, std::uint32_t n, std::uintmax_t size
   }
 }
 
+// What is wrong with coordinate k (0 to 8) of triangle t (from 0), when it is not finite.
+std::string NonFinite(std::size_t t, int k, float value) {
+  return fmt::format("triangle {} has a non-finite vertex coordinate ({}) (byte offset {})", t + 1,
+                     value, kStlHeaderBytes + kStlRecordBytes * t + 12 + 4 * k);
+}
+
 // Copies the 9 vertex coordinates of `count` records into `out` (T: float as stored, or double,
 // each float widened exactly) and checks them: the first record is `first` (for messages).
 template <typename T>
@@ -86,11 +95,7 @@ void DecodeStlRecords(const unsigned char* records, std::size_t count, std::size
     for (int k = 0; k < 9; ++k) out[k] = static_cast<T>(f[k]);
     for (int k = 0; k < 9; ++k) {
       if (!std::isfinite(f[k])) {
-        const std::size_t t = first + r;
-        throw InputError(fmt::format(
-            "mesh file '{}': triangle {} has a non-finite vertex coordinate ({}) (byte offset "
-            "{})",
-            name, t + 1, f[k], kStlHeaderBytes + kStlRecordBytes * t + 12 + 4 * k));
+        throw InputError(fmt::format("mesh file '{}': {}", name, NonFinite(first + r, k, f[k])));
       }
     }
     out += 9;
@@ -183,6 +188,46 @@ std::vector<float> ReadBinaryStlFloats(const std::string& path) {
     return xyz.data();
   });
   return xyz;
+}
+
+std::optional<MappedBinaryStl> MapBinaryStl(const std::string& path) {
+  if constexpr (std::endian::native != std::endian::little) return std::nullopt;
+  std::optional<MappedFile> file;
+  try {
+    file.emplace(path);
+  } catch (const std::system_error& e) {
+    throw InputError(fmt::format("mesh file '{}': cannot be opened for reading ({})", path,
+                                 std::strerror(e.code().value())));
+  }
+  // Not a regular file at least 84 bytes long whose header can be read: ReadMeshFile says what
+  // it is (as LooksLikeBinaryStl does).
+  std::array<unsigned char, kStlHeaderBytes> header{};
+  if (!file->regular() || file->size() < kStlHeaderBytes) return std::nullopt;
+  try {
+    if (file->ReadAt(0, header.data(), header.size()) != header.size()) return std::nullopt;
+  } catch (const std::system_error&) {
+    return std::nullopt;
+  }
+  const std::uint32_t n = ReadU32LE(header.data() + 80);
+  if (file->size() != kStlHeaderBytes + kStlRecordBytes * std::uintmax_t{n}) return std::nullopt;
+  CheckStlCount(path, n, file->size());
+  // Mapped only now that the size is known to hold the n records; see MappedFile on a file
+  // truncated while mapped.
+  std::span<const unsigned char> bytes;
+  try {
+    bytes = file->Bytes();
+  } catch (const std::system_error&) {
+    throw InputError(
+        fmt::format("mesh file '{}': read error after {} of {} triangles", path, 0, n));
+  }
+  if (bytes.size() != file->size()) {
+    const std::size_t done =
+        bytes.size() < kStlHeaderBytes ? 0 : (bytes.size() - kStlHeaderBytes) / kStlRecordBytes;
+    throw InputError(
+        fmt::format("mesh file '{}': read error after {} of {} triangles", path, done, n));
+  }
+  MappedBinaryStl stl{std::move(*file), bytes.data() + kStlHeaderBytes + 12, n};
+  return stl;
 }
 
 MeshFileData ReadBinaryStlBytes(std::string_view bytes, const std::string& name) {
@@ -318,3 +363,15 @@ MeshFileData ReadAsciiStl(std::string_view text, const std::string& name) {
 }
 
 }  // namespace chasles::internal
+
+namespace chasles {
+
+void MappedBinaryStl::ThrowIfNonFinite(std::size_t t) const {
+  float f[9];
+  std::memcpy(f, coordinates + t * kRecordBytes, sizeof f);
+  for (int k = 0; k < 9; ++k) {
+    if (!std::isfinite(f[k])) throw InputError(internal::NonFinite(t, k, f[k]));
+  }
+}
+
+}  // namespace chasles

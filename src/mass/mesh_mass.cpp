@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "mass/internal/mesh_workspace.h"
 
 namespace chasles {
 namespace {
@@ -262,11 +263,12 @@ void DescribeExtent(const TriangleMesh& mesh, double scale, MeshMassReport& repo
 
 // Validates (solid mode) and integrates `mesh`, whose vertices are in the file's unit.
 MeshMassResult Finish(TriangleMesh& mesh, const MeshMassOptions& opts, double density,
-                      const std::string& what, MeshMassReport report) {
+                      const std::string& what, MeshMassReport report,
+                      internal::MeshWorkspace& workspace) {
   auto t0 = std::chrono::steady_clock::now();
   if (opts.mode == MeshMassMode::kSolid) {
     try {
-      ValidateSolid(mesh, &report.repair);
+      internal::ValidateSolid(mesh, &report.repair, workspace);
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: {}", what, e.what()));
     }
@@ -321,9 +323,11 @@ MeshMassResult ComputeMeshMassProperties(std::vector<double>&& xyz,
   const double tolerance = FileUnitTolerance(opts, what);
   const auto t0 = std::chrono::steady_clock::now();
   TriangleMesh mesh;  // in the file's unit: Finish scales the integrals
+  internal::MeshWorkspace workspace;
   try {
-    mesh = BuildTriangleMesh(std::span<const double>(xyz), std::span<const std::uint32_t>(indices),
-                             1.0, tolerance, &report.repair);
+    mesh = internal::BuildTriangleMesh(std::span<const double>(xyz),
+                                       std::span<const std::uint32_t>(indices), 1.0, tolerance,
+                                       &report.repair, workspace);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", what, e.what()));
   }
@@ -331,7 +335,7 @@ MeshMassResult ComputeMeshMassProperties(std::vector<double>&& xyz,
   std::vector<double>().swap(xyz);
   std::vector<std::uint32_t>().swap(indices);
   report.weld_seconds = Seconds(t0);
-  return Finish(mesh, opts, density, what, std::move(report));
+  return Finish(mesh, opts, density, what, std::move(report), workspace);
 }
 
 MeshMassResult ComputeMeshMassProperties(std::vector<float>&& soup, const MeshMassOptions& opts,
@@ -340,14 +344,32 @@ MeshMassResult ComputeMeshMassProperties(std::vector<float>&& soup, const MeshMa
   const double tolerance = FileUnitTolerance(opts, what);
   const auto t0 = std::chrono::steady_clock::now();
   TriangleMesh mesh;  // in the file's unit: Finish scales the integrals
+  internal::MeshWorkspace workspace;
   try {
-    mesh = BuildTriangleSoup(std::span<const float>(soup), 1.0, tolerance, &report.repair);
+    mesh = internal::BuildTriangleSoup(std::span<const float>(soup), 1.0, tolerance, &report.repair,
+                                       workspace);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", what, e.what()));
   }
   std::vector<float>().swap(soup);  // released before validation allocates
   report.weld_seconds = Seconds(t0);
-  return Finish(mesh, opts, density, what, std::move(report));
+  return Finish(mesh, opts, density, what, std::move(report), workspace);
+}
+
+MeshMassResult ComputeMeshMassProperties(const FloatSoupRecords& soup, const MeshMassOptions& opts,
+                                         const std::string& what, MeshMassReport report) {
+  const double density = DensityFromOptions(opts, what);
+  const double tolerance = FileUnitTolerance(opts, what);
+  const auto t0 = std::chrono::steady_clock::now();
+  TriangleMesh mesh;  // in the file's unit: Finish scales the integrals
+  internal::MeshWorkspace workspace;
+  try {
+    mesh = internal::BuildTriangleSoup(soup, 1.0, tolerance, &report.repair, workspace);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", what, e.what()));
+  }
+  report.weld_seconds = Seconds(t0);
+  return Finish(mesh, opts, density, what, std::move(report), workspace);
 }
 
 MeshMassResult ComputeMeshMassProperties(const TriangleMesh& in, const MeshMassOptions& opts) {
@@ -358,14 +380,15 @@ MeshMassResult ComputeMeshMassProperties(const TriangleMesh& in, const MeshMassO
   report.format = "in-memory mesh";
   auto t0 = std::chrono::steady_clock::now();
   static_assert(sizeof(TriangleIndices) == 3 * sizeof(std::uint32_t));
-  TriangleMesh mesh = BuildTriangleMesh(
+  internal::MeshWorkspace workspace;
+  TriangleMesh mesh = internal::BuildTriangleMesh(
       std::span<const double>(in.vertices.empty() ? nullptr : in.vertices.data()->data(),
                               3 * in.vertices.size()),
       std::span<const std::uint32_t>(in.triangles.empty() ? nullptr : in.triangles.data()->data(),
                                      3 * in.triangles.size()),
-      1.0, tolerance, &report.repair);
+      1.0, tolerance, &report.repair, workspace);
   report.weld_seconds = Seconds(t0);
-  return Finish(mesh, opts, density, what, std::move(report));
+  return Finish(mesh, opts, density, what, std::move(report), workspace);
 }
 
 }  // namespace chasles

@@ -4,15 +4,20 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
 #include <fmt/format.h>
 
 #include "chasles/error.h"
+#include "chasles/files/mapped_file.h"
+#include "mass/internal/mesh_workspace.h"
 
 namespace chasles {
 namespace {
+
+using internal::MeshWorkspace;
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
@@ -58,11 +63,63 @@ inline void GrowCells(std::vector<std::uint32_t>& table,
   }
 }
 
-// The bits of input vertex i's coordinates (U: an unsigned integer of T's size).
-template <typename U, typename T>
-std::array<U, 3> CoordinateBits(std::span<const T> xyz, std::size_t i) {
-  return {std::bit_cast<U>(xyz[3 * i]), std::bit_cast<U>(xyz[3 * i + 1]),
-          std::bit_cast<U>(xyz[3 * i + 2])};
+// Reserves room for `capacity` elements in `v` and makes the pages of the first `present` of
+// them present at once (PrefaultForWrite): a fresh process pays a page fault per 4 KB page it
+// touches, and one call for the whole array costs less than a fault per page.
+template <typename T>
+void ReservePresent(std::vector<T>& v, std::size_t capacity, std::size_t present) {
+  v.reserve(capacity);
+  PrefaultForWrite(v.data(), std::min(present, capacity) * sizeof(T));
+}
+
+// The input's coordinates: Packed<T> over an array x0, y0, z0, x1, ...; Records over the
+// records of a FloatSoupRecords. Get(i, k) is coordinate k of input vertex i.
+template <typename T>
+struct Packed {
+  using Value = T;
+  std::span<const T> xyz;
+  std::size_t coordinates() const { return xyz.size(); }
+  T Get(std::size_t i, std::size_t k) const { return xyz[3 * i + k]; }
+};
+
+struct Records {
+  using Value = float;
+  FloatSoupRecords r;
+  std::size_t coordinates() const { return 9 * r.triangles; }
+  float Get(std::size_t i, std::size_t k) const {
+    float f;
+    std::memcpy(&f, r.data + i / 3 * r.stride + i % 3 * 12 + 4 * k, sizeof f);
+    return f;
+  }
+};
+
+// The bits of input vertex i's coordinates (U: an unsigned integer of the coordinates' size).
+template <typename U, typename C>
+std::array<U, 3> CoordinateBits(const C& xyz, std::size_t i) {
+  return {std::bit_cast<U>(xyz.Get(i, 0)), std::bit_cast<U>(xyz.Get(i, 1)),
+          std::bit_cast<U>(xyz.Get(i, 2))};
+}
+
+// Empties welding's arrays and makes room in them for n input vertices. The table holds, per
+// occupied cell, the index of its most recent kept vertex (the head of the cell's chain, `next`);
+// the cell key of a kept vertex sits in `keys`, in insertion order. Four bytes a slot keep the
+// table small enough for the caches: with 16-byte slots holding the key the random probes made
+// welding 1.4 times slower. It starts at the size an STL needs (about n / 6 kept vertices at a
+// load factor below 1/2), so that it is not filled again at every doubling: fresh memory costs
+// a page fault per 4 KB. The arrays are made present at once (ReservePresent), the kept
+// vertices' at the size an STL needs (n / 6: a closed surface has about half as many vertices
+// as triangles).
+void PrepareWeld(MeshWorkspace& ws, std::vector<Vec3>* kept, std::size_t n, bool soup) {
+  const std::size_t slots = std::bit_ceil(std::max<std::size_t>(16, n / 3));
+  const std::size_t expected = soup ? n / 6 : n / 4;
+  ReservePresent(ws.table, slots, slots);
+  ws.table.assign(slots, kNone);
+  ws.keys.clear();
+  ws.next.clear();
+  kept->clear();
+  ReservePresent(ws.keys, n / 4, expected);
+  ReservePresent(ws.next, n / 4, expected);
+  ReservePresent(*kept, n / 4, expected);
 }
 
 // Welding in one pass over the input vertices (an STL repeats each position once per incident
@@ -77,27 +134,19 @@ std::array<U, 3> CoordinateBits(std::span<const T> xyz, std::size_t i) {
 // grows with the number of kept vertices, not of input vertices, which keeps
 // it small enough to stay in cache.
 // `put(i, k)` receives the kept vertex k of input vertex i.
-template <typename T, typename Put>
-void Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo, double diagonal,
-          std::vector<Vec3>* kept, Put put) {
-  const std::size_t n = xyz.size() / 3;
+template <typename C, typename Put>
+void Weld(const C& xyz, bool soup, double scale, double tol, const Vec3& lo, double diagonal,
+          std::vector<Vec3>* kept, MeshWorkspace& ws, Put put) {
+  using T = typename C::Value;
+  const std::size_t n = xyz.coordinates() / 3;
   constexpr double kCellsPerDiagonal = 1 << 20;
   const double h = diagonal > 0.0 ? std::max(2.0 * tol, diagonal / kCellsPerDiagonal) : 1.0;
   const double inv_h = 1.0 / h;
   const double tol2 = tol * tol;
-  // The table holds, per occupied cell, the index of its most recent kept vertex (the head of
-  // the cell's chain); the cell key of a kept vertex sits in kept_key, in insertion order.
-  // Four bytes a slot keep the table small enough for the caches: with 16-byte slots holding
-  // the key the random probes made welding 1.4 times slower. It starts at the size an STL
-  // needs (about n / 6 kept vertices at a load factor below 1/2), so that it is not filled
-  // again at every doubling: fresh memory costs a page fault per 4 KB.
-  std::vector<std::uint32_t> table(std::bit_ceil(std::max<std::size_t>(16, n / 3)), kNone);
-  std::vector<std::uint64_t> kept_key;
-  std::vector<std::uint32_t> next;  // chain of kept vertices within a cell
-  kept_key.reserve(n / 4);
-  next.reserve(n / 4);
-  kept->clear();
-  kept->reserve(n / 4);
+  std::vector<std::uint32_t>& table = ws.table;
+  std::vector<std::uint64_t>& kept_key = ws.keys;
+  std::vector<std::uint32_t>& next = ws.next;  // chain of kept vertices within a cell
+  PrepareWeld(ws, kept, n, soup);
   const auto pack = PackCell;
   auto find = [&](std::uint64_t key) -> std::uint32_t& { return FindCell(table, kept_key, key); };
   // A small direct-mapped cache of recently seen exact positions in front of the grid: the
@@ -114,9 +163,9 @@ void Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo, doub
   std::vector<Recent> recent(kRecent);
   auto cell_key = [&](std::size_t i) {
     return pack(
-        static_cast<std::int64_t>((static_cast<double>(xyz[3 * i]) * scale - lo.x()) * inv_h),
-        static_cast<std::int64_t>((static_cast<double>(xyz[3 * i + 1]) * scale - lo.y()) * inv_h),
-        static_cast<std::int64_t>((static_cast<double>(xyz[3 * i + 2]) * scale - lo.z()) * inv_h));
+        static_cast<std::int64_t>((static_cast<double>(xyz.Get(i, 0)) * scale - lo.x()) * inv_h),
+        static_cast<std::int64_t>((static_cast<double>(xyz.Get(i, 1)) * scale - lo.y()) * inv_h),
+        static_cast<std::int64_t>((static_cast<double>(xyz.Get(i, 2)) * scale - lo.z()) * inv_h));
   };
   // The table probes are cache misses; requesting the slot of the vertex kPrefetch places
   // ahead lets several misses overlap (measured: welding 1.4 times faster). Only for a vertex
@@ -149,9 +198,9 @@ void Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo, doub
       put(i, r.id);
       continue;
     }
-    const Vec3 p(static_cast<double>(xyz[3 * i]) * scale,
-                 static_cast<double>(xyz[3 * i + 1]) * scale,
-                 static_cast<double>(xyz[3 * i + 2]) * scale);
+    const Vec3 p(static_cast<double>(xyz.Get(i, 0)) * scale,
+                 static_cast<double>(xyz.Get(i, 1)) * scale,
+                 static_cast<double>(xyz.Get(i, 2)) * scale);
     const Vec3 q = (p - lo) * inv_h;
     const std::int64_t base[3] = {static_cast<std::int64_t>(q.x()),
                                   static_cast<std::int64_t>(q.y()),
@@ -200,41 +249,70 @@ void Weld(std::span<const T> xyz, double scale, double tol, const Vec3& lo, doub
   }
 }
 
-// Throws InputError naming the first non-finite coordinate. The test runs branch-free over the
-// whole array (so it vectorises); the loop that names the offender only when one failed.
-template <typename T>
-void CheckFinite(std::span<const T> xyz) {
+// The bounding box of the input vertices (lo x, y, z, hi x, y, z, in the input's precision:
+// the minimum and maximum of floats are floats, exact in double). Throws InputError naming the
+// first non-finite coordinate. One branch-free pass over the coordinates gives both; the loop
+// that names the offender runs only when one failed.
+template <typename C>
+std::array<typename C::Value, 6> BoundingBox(const C& xyz) {
+  using T = typename C::Value;
   using U = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
   constexpr U kExponent = static_cast<U>(sizeof(T) == 4 ? 0x7f800000ull : 0x7ff0000000000000ull);
+  constexpr T kInf = std::numeric_limits<T>::infinity();
+  std::array<T, 6> box = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
   U non_finite = 0;  // all exponent bits set: an infinity or a NaN
-  for (const T x : xyz)
-    non_finite |= static_cast<U>((std::bit_cast<U>(x) & kExponent) == kExponent);
-  if (non_finite == 0) return;
-  for (std::size_t i = 0; i < xyz.size(); ++i) {
-    if (!std::isfinite(xyz[i])) {
-      throw InputError(
-          fmt::format("mesh: vertex {} has a non-finite coordinate ({}); the file is "
-                      "garbled",
-                      i / 3, static_cast<double>(xyz[i])));
+  const std::size_t nv = xyz.coordinates() / 3;
+  const auto take = [&](const T* p) {  // one vertex
+    for (std::size_t k = 0; k < 3; ++k) {
+      non_finite |= static_cast<U>((std::bit_cast<U>(p[k]) & kExponent) == kExponent);
+      box[k] = std::min(box[k], p[k]);
+      box[3 + k] = std::max(box[3 + k], p[k]);
+    }
+  };
+  if constexpr (std::is_same_v<C, Records>) {
+    for (std::size_t t = 0; t < xyz.r.triangles; ++t) {  // a record's nine floats at once
+      float f[9];
+      std::memcpy(f, xyz.r.data + t * xyz.r.stride, sizeof f);
+      take(f);
+      take(f + 3);
+      take(f + 6);
+    }
+  } else {
+    for (std::size_t i = 0; i < nv; ++i) take(xyz.xyz.data() + 3 * i);
+  }
+  if (non_finite == 0) return box;
+  for (std::size_t i = 0; i < nv; ++i) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (!std::isfinite(xyz.Get(i, k))) {
+        if constexpr (std::is_same_v<C, Records>) {
+          if (xyz.r.non_finite) xyz.r.non_finite(i / 3);  // the caller's own error
+        }
+        throw InputError(
+            fmt::format("mesh: vertex {} has a non-finite coordinate ({}); the file is "
+                        "garbled",
+                        i, static_cast<double>(xyz.Get(i, k))));
+      }
     }
   }
+  return box;
 }
 
 // `soup`: the input is a triangle soup given without indices (triangle t is vertices 3 t,
 // 3 t + 1, 3 t + 2, and `indices` is empty).
-template <typename T>
-TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> indices, bool soup,
-                       double scale, double tolerance, MeshRepairReport* report) {
+template <typename C>
+TriangleMesh BuildImpl(const C& xyz, std::span<const std::uint32_t> indices, bool soup,
+                       double scale, double tolerance, MeshRepairReport* report,
+                       MeshWorkspace& ws) {
   if (!(std::isfinite(scale) && scale > 0.0)) {
     throw InputError(
         fmt::format("mesh scale is {}; it must be a positive, finite number of "
                     "metres per file unit",
                     scale));
   }
-  if (xyz.size() % (soup ? 9 : 3) != 0 || indices.size() % 3 != 0) {
+  if (xyz.coordinates() % (soup ? 9 : 3) != 0 || indices.size() % 3 != 0) {
     throw InputError("mesh arrays: coordinates and indices must come in threes");
   }
-  const std::size_t nv = xyz.size() / 3;
+  const std::size_t nv = xyz.coordinates() / 3;
   if (nv >= kNone) throw InputError("mesh: more than 2^32 - 1 vertices are not supported");
   // The checks are done branch-free over whole arrays (so they vectorise) and the loops that
   // name the first offender run only when one failed. A triangle soup (an STL: triangle t uses
@@ -256,23 +334,13 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
       }
     }
   }
-  CheckFinite(xyz);
+  const auto box = BoundingBox(xyz);
   MeshRepairReport local;
   MeshRepairReport& rep = report ? *report : local;
   rep.vertices_in = nv;
   rep.triangles_in = soup ? nv / 3 : indices.size() / 3;
 
-  // Bounding box of the scaled input, for the default tolerance and the weld grid (in the
-  // input's precision: the minimum and maximum of floats are floats, exact in double).
-  T box[6] = {std::numeric_limits<T>::infinity(),  std::numeric_limits<T>::infinity(),
-              std::numeric_limits<T>::infinity(),  -std::numeric_limits<T>::infinity(),
-              -std::numeric_limits<T>::infinity(), -std::numeric_limits<T>::infinity()};
-  for (std::size_t i = 0; i < nv; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      box[k] = std::min(box[k], xyz[3 * i + k]);
-      box[3 + k] = std::max(box[3 + k], xyz[3 * i + k]);
-    }
-  }
+  // The bounding box of the scaled input, for the default tolerance and the weld grid.
   Vec3 lo(static_cast<double>(box[0]), static_cast<double>(box[1]), static_cast<double>(box[2]));
   Vec3 hi(static_cast<double>(box[3]), static_cast<double>(box[4]), static_cast<double>(box[5]));
   lo *= scale;
@@ -293,13 +361,14 @@ TriangleMesh BuildImpl(std::span<const T> xyz, std::span<const std::uint32_t> in
   // A triangle soup is welded straight into the triangle array, without a separate vertex
   // map: 12 bytes a triangle less memory.
   if (soup) {
+    ReservePresent(mesh.triangles, nv / 3, nv / 3);
     mesh.triangles.resize(nv / 3);
     TriangleIndices* tris = mesh.triangles.data();
-    Weld(xyz, scale, tol, lo, diagonal, &mesh.vertices,
+    Weld(xyz, true, scale, tol, lo, diagonal, &mesh.vertices, ws,
          [tris](std::size_t i, std::uint32_t k) { tris[i / 3][i % 3] = k; });
   } else {
     std::vector<std::uint32_t> remap(nv);
-    Weld(xyz, scale, tol, lo, diagonal, &mesh.vertices,
+    Weld(xyz, false, scale, tol, lo, diagonal, &mesh.vertices, ws,
          [&remap](std::size_t i, std::uint32_t k) { remap[i] = k; });
     mesh.triangles.resize(indices.size() / 3);
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -346,54 +415,59 @@ inline std::uint32_t To(const std::vector<TriangleIndices>& tris, std::uint32_t 
 
 TriangleMesh BuildTriangleMesh(std::span<const float> xyz, std::span<const std::uint32_t> indices,
                                double scale, double tolerance, MeshRepairReport* report) {
-  return BuildImpl(xyz, indices, false, scale, tolerance, report);
+  MeshWorkspace ws;
+  return BuildImpl(Packed<float>{xyz}, indices, false, scale, tolerance, report, ws);
 }
 
 TriangleMesh BuildTriangleMesh(std::span<const double> xyz, std::span<const std::uint32_t> indices,
                                double scale, double tolerance, MeshRepairReport* report) {
-  return BuildImpl(xyz, indices, false, scale, tolerance, report);
+  MeshWorkspace ws;
+  return internal::BuildTriangleMesh(xyz, indices, scale, tolerance, report, ws);
 }
 
 TriangleMesh BuildTriangleSoup(std::span<const float> xyz, double scale, double tolerance,
                                MeshRepairReport* report) {
-  return BuildImpl(xyz, {}, true, scale, tolerance, report);
+  MeshWorkspace ws;
+  return internal::BuildTriangleSoup(xyz, scale, tolerance, report, ws);
+}
+
+TriangleMesh BuildTriangleSoup(const FloatSoupRecords& records, double scale, double tolerance,
+                               MeshRepairReport* report) {
+  MeshWorkspace ws;
+  return internal::BuildTriangleSoup(records, scale, tolerance, report, ws);
+}
+
+TriangleMesh internal::BuildTriangleMesh(std::span<const double> xyz,
+                                         std::span<const std::uint32_t> indices, double scale,
+                                         double tolerance, MeshRepairReport* report,
+                                         MeshWorkspace& workspace) {
+  return BuildImpl(Packed<double>{xyz}, indices, false, scale, tolerance, report, workspace);
+}
+
+TriangleMesh internal::BuildTriangleSoup(std::span<const float> xyz, double scale, double tolerance,
+                                         MeshRepairReport* report, MeshWorkspace& workspace) {
+  return BuildImpl(Packed<float>{xyz}, {}, true, scale, tolerance, report, workspace);
+}
+
+TriangleMesh internal::BuildTriangleSoup(const FloatSoupRecords& records, double scale,
+                                         double tolerance, MeshRepairReport* report,
+                                         MeshWorkspace& workspace) {
+  return BuildImpl(Records{records}, {}, true, scale, tolerance, report, workspace);
 }
 
 namespace {
 
-// Calls pair(he0, he1) for the two half-edges of every undirected edge and returns the number
-// of edges whose two triangles traverse it in the same direction (inconsistent orientation).
-// Throws InputError for a boundary or non-manifold edge.
-template <typename Pair>
-std::size_t MatchEdges(const TriangleMesh& mesh, Pair pair) {
-  const std::vector<TriangleIndices>& tris = mesh.triangles;
-  const std::size_t nt = tris.size();
-  const std::size_t nv = mesh.vertices.size();
-  // Edges bucketed by their lower vertex (compressed rows): each half-edge he is stored at its
-  // lower endpoint as (upper endpoint << 32 | he). Sorting a bucket groups the uses of each
-  // undirected edge; buckets hold about six entries, so this is linear in practice and needs
-  // 8 bytes per half-edge, less than a hash table of edges.
-  std::vector<std::uint32_t> offset(nv + 1, 0);
-  for (const TriangleIndices& t : tris) {
-    for (int k = 0; k < 3; ++k) ++offset[std::min(t[k], t[(k + 1) % 3]) + 1];
-  }
-  for (std::size_t i = 0; i < nv; ++i) offset[i + 1] += offset[i];
-  std::vector<std::uint64_t> entries(3 * nt);
-  {
-    // offset[v] serves as the fill position of bucket v, and ends as the start of bucket v + 1.
-    for (std::uint32_t t = 0; t < nt; ++t) {
-      for (std::uint32_t k = 0; k < 3; ++k) {
-        const std::uint32_t a = tris[t][k], b = tris[t][(k + 1) % 3];
-        entries[offset[std::min(a, b)]++] = (std::uint64_t{std::max(a, b)} << 32) | (3 * t + k);
-      }
-    }
-  }
+// What MatchEdges finds in the buckets: the counts of bad edges and a half-edge of the first.
+struct EdgeTally {
   std::size_t boundary = 0, nonmanifold = 0, inconsistent = 0;
-  std::uint32_t first_bad = kNone;  // a half-edge of the first offending edge
+  std::uint32_t first_bad = kNone;
   const char* first_kind = "";
-  for (std::size_t v = 0; v < nv; ++v) {
-    std::uint64_t* b = entries.data() + (v == 0 ? 0 : offset[v - 1]);
-    std::uint64_t* e = entries.data() + offset[v];
+
+  // Sorts the bucket [b, e) of one vertex, calls pair(he0, he1) for each edge used twice and
+  // counts the others.
+  template <typename Pair>
+  void Match(std::uint64_t* b, std::uint64_t* e, const std::vector<TriangleIndices>& tris,
+             Pair& pair) {
     if (e - b <= 16) {
       for (std::uint64_t* i = b + 1; i < e; ++i) {  // insertion sort: buckets are tiny
         const std::uint64_t x = *i;
@@ -426,17 +500,86 @@ std::size_t MatchEdges(const TriangleMesh& mesh, Pair pair) {
       g = h;
     }
   }
-  if (boundary > 0 || nonmanifold > 0) {
-    const Vec3& a = mesh.vertices[From(tris, first_bad)];
-    const Vec3& b = mesh.vertices[To(tris, first_bad)];
+};
+
+// Calls pair(he0, he1) for the two half-edges of every undirected edge and returns the number
+// of edges whose two triangles traverse it in the same direction (inconsistent orientation).
+// Throws InputError for a boundary or non-manifold edge.
+//
+// Edges bucketed by their lower vertex (compressed rows): each half-edge he is stored at its
+// lower endpoint as (upper endpoint << 32 | he). Sorting a bucket groups the uses of each
+// undirected edge; buckets hold about six entries, so this is linear in practice and needs
+// 8 bytes per half-edge, less than a hash table of edges. The buckets are filled and matched a
+// range of vertices at a time, in `ws.keys` (room for 3/8 of all the half-edges, or more when
+// welding left it larger), the pairs coming in the same order as from all the buckets at once:
+// fresh memory costs a page fault a page. The triangles scanned for a range are only those
+// from the first to the last with a half-edge there, usually a narrow band (vertices are
+// numbered in the order the triangles first use them).
+template <typename Pair>
+std::size_t MatchEdges(const TriangleMesh& mesh, MeshWorkspace& ws, Pair pair) {
+  const std::vector<TriangleIndices>& tris = mesh.triangles;
+  const auto nt = static_cast<std::uint32_t>(tris.size());
+  const std::size_t nv = mesh.vertices.size();
+  // offset[v]: the start of bucket v. first[b] to last[b]: the triangles with a half-edge in
+  // block b of vertices (2^kBlockBits of them).
+  constexpr unsigned kBlockBits = 12;
+  const std::size_t nb = (nv >> kBlockBits) + 1;
+  std::vector<std::uint32_t> first(nb, kNone), last(nb, 0);
+  std::vector<std::uint32_t>& offset = ws.next;
+  ReservePresent(offset, nv + 1, nv + 1);
+  offset.assign(nv + 1, 0);
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t low = std::min(tris[t][k], tris[t][(k + 1) % 3]);
+      ++offset[low + 1];
+      first[low >> kBlockBits] = std::min(first[low >> kBlockBits], t);
+      last[low >> kBlockBits] = t;
+    }
+  }
+  for (std::size_t i = 0; i < nv; ++i) offset[i + 1] += offset[i];
+  std::vector<std::uint64_t>& entries = ws.keys;
+  const std::size_t room = std::max<std::size_t>(entries.capacity(), (3 * std::size_t{nt} + 7) / 8);
+  ReservePresent(entries, room, room);
+  const auto block_end = [nv](std::size_t b) { return std::min(nv, (b + 1) << kBlockBits); };
+  EdgeTally tally;
+  for (std::size_t b0 = 0, b1 = 1; b0 < nb; b0 = b1++) {
+    // The blocks [b0, b1), as many as there is room for (at least one): vertices [v0, v1).
+    const std::size_t v0 = b0 << kBlockBits;
+    while (b1 < nb && offset[block_end(b1)] - offset[v0] <= room) ++b1;
+    const std::size_t v1 = block_end(b1 - 1);
+    const std::uint32_t base = offset[v0];
+    entries.resize(std::max<std::size_t>(entries.size(), offset[v1] - base));
+    std::uint32_t t0 = kNone, t1 = 0;
+    for (std::size_t b = b0; b < b1; ++b) {
+      if (first[b] == kNone) continue;
+      t0 = std::min(t0, first[b]);
+      t1 = std::max(t1, last[b]);
+    }
+    // offset[v] serves as the fill position of bucket v, and ends as the start of bucket v + 1.
+    for (std::uint32_t t = t0; t0 != kNone && t <= t1; ++t) {
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const std::uint32_t a = tris[t][k], b = tris[t][(k + 1) % 3];
+        const std::uint32_t low = std::min(a, b);
+        if (low - v0 >= v1 - v0) continue;  // outside [v0, v1)
+        entries[offset[low]++ - base] = (std::uint64_t{std::max(a, b)} << 32) | (3 * t + k);
+      }
+    }
+    for (std::size_t v = v0; v < v1; ++v) {
+      tally.Match(entries.data() + ((v == 0 ? 0 : offset[v - 1]) - base),
+                  entries.data() + (offset[v] - base), tris, pair);
+    }
+  }
+  if (tally.boundary > 0 || tally.nonmanifold > 0) {
+    const Vec3& a = mesh.vertices[From(tris, tally.first_bad)];
+    const Vec3& b = mesh.vertices[To(tris, tally.first_bad)];
     throw InputError(fmt::format(
         "mesh is not a closed manifold surface, so it encloses no well-defined solid: {} "
         "boundary edge(s) (used by one triangle) and {} non-manifold edge(s) (used by three or "
         "more); the first is the {} edge from {} to {}. Close the mesh in the CAD tool, or use "
         "mode: shell with a thickness or areal density for sheet parts",
-        boundary, nonmanifold, first_kind, FormatPoint(a), FormatPoint(b)));
+        tally.boundary, tally.nonmanifold, tally.first_kind, FormatPoint(a), FormatPoint(b)));
   }
-  return inconsistent;
+  return tally.inconsistent;
 }
 
 // Twin of each half-edge, and the number of inconsistently oriented edges (see MatchEdges).
@@ -618,25 +761,35 @@ Components LabelComponents(std::vector<std::uint32_t>&& parent) {
 }  // namespace
 
 void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
+  MeshWorkspace ws;
+  internal::ValidateSolid(mesh, report, ws);
+}
+
+void internal::ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report,
+                             MeshWorkspace& workspace) {
   MeshRepairReport local;
   MeshRepairReport& rep = report ? *report : local;
   const std::size_t nt = mesh.triangles.size();
   if (3 * nt >= kNone) throw InputError("mesh: more than 2^32 / 3 triangles are not supported");
-  // First pass: closed and manifold, consistently oriented, and the components by union–find.
-  std::vector<std::uint32_t> parent(nt);
+  // First pass: closed and manifold, consistently oriented, and the components by union–find
+  // (in welding's hash table, which has a slot per triangle at least).
+  std::vector<std::uint32_t> parent = std::move(workspace.table);
+  ReservePresent(parent, nt, nt);
+  parent.resize(nt);
   for (std::uint32_t t = 0; t < nt; ++t) parent[t] = t;
   const auto root = [&parent](std::uint32_t t) {
     while (parent[t] != t) t = parent[t] = parent[parent[t]];
     return t;
   };
-  const std::size_t inconsistent = MatchEdges(mesh, [&](std::uint32_t he0, std::uint32_t he1) {
-    const std::uint32_t a = root(he0 / 3), b = root(he1 / 3);
-    if (a < b) {
-      parent[b] = a;
-    } else if (b < a) {
-      parent[a] = b;
-    }
-  });
+  const std::size_t inconsistent =
+      MatchEdges(mesh, workspace, [&](std::uint32_t he0, std::uint32_t he1) {
+        const std::uint32_t a = root(he0 / 3), b = root(he1 / 3);
+        if (a < b) {
+          parent[b] = a;
+        } else if (b < a) {
+          parent[a] = b;
+        }
+      });
   if (inconsistent == 0) {
     const Components components = LabelComponents(std::move(parent));
     rep.components = components.count();
@@ -648,7 +801,7 @@ void ValidateSolid(TriangleMesh& mesh, MeshRepairReport* report) {
   EdgeMatch edges;
   edges.twin.assign(3 * nt, kNone);
   std::vector<std::uint32_t>& twin = edges.twin;
-  edges.inconsistent = MatchEdges(mesh, [&twin](std::uint32_t he0, std::uint32_t he1) {
+  edges.inconsistent = MatchEdges(mesh, workspace, [&twin](std::uint32_t he0, std::uint32_t he1) {
     twin[he0] = he1;
     twin[he1] = he0;
   });

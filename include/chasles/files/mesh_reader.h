@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "chasles/files/mapped_file.h"
+
 namespace chasles {
 
 /// The largest magnitude of a mesh coordinate, in the file's own unit: 3.4028234663852886e38,
@@ -57,5 +59,33 @@ MeshFileData ReadMeshFile(const std::string& path);
 /// Throws InputError as ReadMeshFile does on an unreadable file or a non-finite coordinate.
 /// For the mass of a large binary STL: 36 bytes of coordinates a triangle instead of 84.
 std::optional<std::vector<float>> TryReadBinaryStlFloats(const std::string& path);
+
+/// A binary STL read in place (TryMapBinaryStl): the open file and where its floats lie.
+struct MappedBinaryStl {
+  /// The file, mapped into memory (or read into a buffer where it cannot be mapped).
+  MappedFile file;
+  /// Triangle t's nine vertex coordinates x0, y0, z0, x1, ..., z2, as floats in the machine's
+  /// byte order (not aligned), start at coordinates + t * kRecordBytes.
+  const unsigned char* coordinates = nullptr;
+  /// The number of triangles.
+  std::uint32_t triangles = 0;
+  /// The size of a binary STL record: normal, three vertices, attribute word.
+  static constexpr std::size_t kRecordBytes = 50;
+
+  /// Throws the InputError ReadMeshFile gives for the first non-finite coordinate of triangle
+  /// `t` (from 0), without the "mesh file 'PATH': " that starts it; returns when all nine are
+  /// finite.
+  void ThrowIfNonFinite(std::size_t t) const;
+};
+
+/// TryReadBinaryStlFloats without copying the floats: for the same files, the same floats,
+/// read where they lie in the file mapped into memory (MappedFile, with its caveat on a file
+/// truncated while it is read), with the same errors except that the coordinates are not
+/// checked for finiteness here: the caller, who reads them anyway, checks them and calls
+/// ThrowIfNonFinite for the first bad triangle. Nothing where TryReadBinaryStlFloats gives
+/// nothing, and on a machine whose floats are not little-endian (use TryReadBinaryStlFloats
+/// there). For the mass of a large binary STL: no memory of its own for the coordinates, and no
+/// copy.
+std::optional<MappedBinaryStl> TryMapBinaryStl(const std::string& path);
 
 }  // namespace chasles

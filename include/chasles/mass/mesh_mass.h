@@ -141,6 +141,12 @@ MeshMassResult ComputeMeshMassProperties(std::vector<double>&& xyz,
 MeshMassResult ComputeMeshMassProperties(std::vector<float>&& soup, const MeshMassOptions& opts,
                                          const std::string& what, MeshMassReport report = {});
 
+/// The same for a triangle soup of floats read in place (a binary STL mapped into memory; see
+/// FloatSoupRecords): no copy of the coordinates at all. The records must stay readable until
+/// this returns.
+MeshMassResult ComputeMeshMassProperties(const FloatSoupRecords& soup, const MeshMassOptions& opts,
+                                         const std::string& what, MeshMassReport report = {});
+
 /// The same for an in-memory mesh whose vertices are in the unit given by opts.scale (welded,
 /// validated and integrated in that unit too).
 MeshMassResult ComputeMeshMassProperties(const TriangleMesh& mesh, const MeshMassOptions& opts);

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -75,6 +76,24 @@ TriangleMesh BuildTriangleMesh(std::span<const double> xyz, std::span<const std:
 /// 3 t + 2, i.e. BuildTriangleMesh with the indices 0, 1, 2, ..., without storing them. The
 /// number of coordinates must be a multiple of 9.
 TriangleMesh BuildTriangleSoup(std::span<const float> xyz, double scale, double tolerance,
+                               MeshRepairReport* report);
+
+/// A triangle soup of floats laid out in fixed-size records, read in place: triangle t's nine
+/// coordinates x0, y0, z0, x1, ..., z2 (floats in the machine's byte order, at any alignment)
+/// start at `data + t * stride`. A binary STL in memory is one: its records are 50 bytes, the
+/// coordinates 12 bytes into each, after the normal.
+struct FloatSoupRecords {
+  const unsigned char* data = nullptr;
+  std::size_t triangles = 0;
+  std::size_t stride = 36;
+  /// When set, called with the triangle (from 0) of the first non-finite coordinate, to throw
+  /// an InputError that names it in the caller's terms (a file's byte offset); otherwise, or
+  /// when it returns, BuildTriangleSoup's own error names the vertex.
+  std::function<void(std::size_t triangle)> non_finite;
+};
+
+/// BuildTriangleSoup for the floats of `records`, read where they lie (no copy).
+TriangleMesh BuildTriangleSoup(const FloatSoupRecords& records, double scale, double tolerance,
                                MeshRepairReport* report);
 
 /// Makes `mesh` a valid solid boundary or throws InputError. Rules: every undirected edge is

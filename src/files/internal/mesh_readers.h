@@ -9,6 +9,7 @@
 /// See docs/reliability-mesh.md.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,6 +32,11 @@ MeshFileData ReadBinaryStl(const std::string& path);
 /// The same, keeping the coordinates as the floats the file stores (9 a triangle, triangle t
 /// the vertices 3 t, 3 t + 1, 3 t + 2): half the memory of ReadBinaryStl's doubles.
 std::vector<float> ReadBinaryStlFloats(const std::string& path);
+
+/// The binary STL `path` in place, for TryMapBinaryStl: nothing when it is not a regular file
+/// of exactly 84 + 50 n bytes for the count n in its header, or on a machine whose floats are
+/// not little-endian; else the errors of ReadBinaryStlFloats but for non-finite coordinates.
+std::optional<MappedBinaryStl> MapBinaryStl(const std::string& path);
 
 /// The same from memory.
 MeshFileData ReadBinaryStlBytes(std::string_view bytes, const std::string& name);

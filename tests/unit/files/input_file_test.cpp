@@ -1,5 +1,7 @@
 #include "chasles/files/input_file.h"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <filesystem>
 #include <fstream>
@@ -31,7 +33,10 @@ CappedReadFailure FailureOf(const std::string& path, size_t max_bytes) {
 class CappedRead : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() / "chasles_capped_read_test";
+    // One folder per process and test: ctest runs the tests of this file in parallel.
+    dir_ = std::filesystem::temp_directory_path() /
+           ("chasles_capped_read_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }

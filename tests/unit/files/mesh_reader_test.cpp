@@ -8,7 +8,9 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <fmt/format.h>
@@ -16,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include "chasles/error.h"
+#include "chasles/files/mapped_file.h"
 #include "chasles/mass/mesh_mass.h"
 #include "chasles/scene/mesh_file.h"
 #include "test_support.h"
@@ -369,14 +372,84 @@ TEST_F(MeshReaderTest, OnlyConsistentBinaryStlIsReadAsFloats) {
   const std::string p = WriteText("nan.stl", nan);
   MeshMassOptions o;
   o.density = 1000;
+  const std::string message =
+      "mesh file '" + p +
+      "': triangle 4 has a non-finite vertex coordinate (nan) (byte offset 250)";
+  // LoadMeshMassProperties reads it in place (TryMapBinaryStl), the others copy it.
   EXPECT_THAT([&] { LoadMeshMassProperties(p, o); },
-              ::testing::ThrowsMessage<InputError>(
-                  HasSubstr("mesh file '" + p +
-                            "': triangle 4 has a non-finite vertex coordinate (nan) "
-                            "(byte offset 250)")));
+              ::testing::ThrowsMessage<InputError>(::testing::StrEq(message)));
+  EXPECT_THAT([&] { TryReadBinaryStlFloats(p); },
+              ::testing::ThrowsMessage<InputError>(::testing::StrEq(message)));
   EXPECT_THAT([&] { ReadMeshFile(p); },
-              ::testing::ThrowsMessage<InputError>(
-                  HasSubstr("triangle 4 has a non-finite vertex coordinate (nan)")));
+              ::testing::ThrowsMessage<InputError>(::testing::StrEq(message)));
+}
+
+TEST_F(MeshReaderTest, BinaryStlReadInPlaceHoldsTheFloatsOfTheFile) {
+  const std::string p = WriteText("torus.stl", TorusStlBytes());
+  const std::optional<std::vector<float>> floats = TryReadBinaryStlFloats(p);
+  std::optional<MappedBinaryStl> stl = TryMapBinaryStl(p);
+  ASSERT_TRUE(floats.has_value());
+  ASSERT_TRUE(stl.has_value());
+  ASSERT_EQ(std::size_t{stl->triangles} * 9, floats->size());
+  for (std::size_t t = 0; t < stl->triangles; ++t) {
+    float f[9];
+    std::memcpy(f, stl->coordinates + t * MappedBinaryStl::kRecordBytes, sizeof f);
+    for (int k = 0; k < 9; ++k) ASSERT_EQ(f[k], (*floats)[9 * t + k]);
+    stl->ThrowIfNonFinite(t);  // returns: all finite
+  }
+  EXPECT_TRUE(stl->file.mapped());  // a regular file on a POSIX system
+  // The same files are refused as by TryReadBinaryStlFloats, the same way.
+  EXPECT_FALSE(TryMapBinaryStl(WriteText("box.stl", AsciiStl())).has_value());
+  EXPECT_FALSE(TryMapBinaryStl(WriteText("box.obj", Obj())).has_value());
+  EXPECT_FALSE(TryMapBinaryStl(Path("missing.stl")).has_value());
+  EXPECT_FALSE(TryMapBinaryStl(Path("")).has_value());
+  std::string cut = TorusStlBytes();
+  cut.resize(cut.size() - 1);
+  EXPECT_FALSE(TryMapBinaryStl(WriteText("cut.stl", cut)).has_value());
+  const std::string empty = WriteText("empty.stl", std::string(80, ' ') + std::string(4, '\0'));
+  EXPECT_THAT([&] { TryMapBinaryStl(empty); },
+              ::testing::ThrowsMessage<InputError>(::testing::StrEq(
+                  "mesh file '" + empty + "': empty mesh (the binary STL holds 0 triangles)")));
+  EXPECT_THAT([&] { ReadMeshFile(empty); },
+              ::testing::ThrowsMessage<InputError>(::testing::StrEq(
+                  "mesh file '" + empty + "': empty mesh (the binary STL holds 0 triangles)")));
+}
+
+TEST_F(MeshReaderTest, MappedFileMapsRegularFilesAndReadsTheRest) {
+  const std::string p = WriteText("bytes.bin", "0123456789");
+  MappedFile f(p);
+  EXPECT_TRUE(f.regular());
+  EXPECT_EQ(f.size(), 10u);
+  char head[4] = {};
+  EXPECT_EQ(f.ReadAt(8, head, 4), 2u);  // fewer at the end
+  EXPECT_EQ(std::string(head, 2), "89");
+  const std::span<const unsigned char> bytes = f.Bytes();
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()), "0123456789");
+  EXPECT_TRUE(f.mapped());
+  EXPECT_EQ(f.Bytes().data(), bytes.data());  // the same bytes again
+  MappedFile moved = std::move(f);
+  EXPECT_EQ(moved.Bytes().data(), bytes.data());
+  // Not a regular file: read to its end, not mapped.
+  MappedFile null("/dev/null");
+  EXPECT_FALSE(null.regular());
+  EXPECT_TRUE(null.Bytes().empty());
+  EXPECT_FALSE(null.mapped());
+  // An empty regular file.
+  MappedFile none(WriteText("none.bin", ""));
+  EXPECT_TRUE(none.Bytes().empty());
+  EXPECT_THROW(MappedFile(Path("missing.bin")), std::system_error);
+}
+
+TEST(PrefaultForWrite, LeavesTheContentsAsTheyWere) {
+  std::vector<std::uint32_t> v(1 << 20);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<std::uint32_t>(i * 2654435761u);
+  v.reserve(v.size() * 3);
+  PrefaultForWrite(v.data(), v.capacity() * sizeof(std::uint32_t));
+  PrefaultForWrite(v.data() + 1, 100);  // too small to bother: nothing
+  PrefaultForWrite(nullptr, 1 << 20);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    ASSERT_EQ(v[i], static_cast<std::uint32_t>(i * 2654435761u));
+  }
 }
 
 }  // namespace

@@ -1,7 +1,12 @@
 #include "chasles/mass/triangle_mesh.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <random>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -191,6 +196,96 @@ TEST(TriangleMesh, FlatClosedSurfaceEnclosesNoVolume) {
   m.triangles = {{0, 1, 2}, {0, 2, 3}, {1, 0, 3}, {1, 3, 2}};  // back split the other way
   EXPECT_THAT([&] { ValidateSolid(m, nullptr); },
               ::testing::ThrowsMessage<InputError>(HasSubstr("encloses no volume")));
+}
+
+// A torus of nu x nv quads (2 nu nv triangles on nu nv vertices, R = 3, r = 1), vertex (i, j)
+// numbered number[i nv + j].
+TriangleMesh GridTorus(int nu, int nv, const std::vector<std::uint32_t>& number) {
+  TriangleMesh m;
+  m.vertices.resize(static_cast<std::size_t>(nu) * nv);
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * std::numbers::pi * i / nu, v = 2 * std::numbers::pi * j / nv;
+      m.vertices[number[i * nv + j]] =
+          Vec3((3 + std::cos(v)) * std::cos(u), (3 + std::cos(v)) * std::sin(u), std::sin(v));
+    }
+  }
+  const auto id = [&](int i, int j) { return number[(i % nu) * nv + j % nv]; };
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  return m;
+}
+
+std::string Point(const Vec3& p) {
+  return fmt::format("({:.9g}, {:.9g}, {:.9g})", p.x(), p.y(), p.z());
+}
+
+// ValidateSolid matches the edges a range of vertices at a time when the mesh is large (here
+// 30,000 vertices, several ranges), scanning for each range only the triangles from the first
+// to the last that use it: with the vertices numbered along the torus those are narrow bands,
+// with them scrambled every range's triangles spread over the whole mesh. Either way the
+// outcome is that of matching all the edges at once: the same repairs and the same first bad
+// edge (the boundary edge of lowest vertices).
+TEST(TriangleMesh, ValidatesLargeMeshesARangeOfVerticesAtATime) {
+  constexpr int kNu = 300, kNv = 100;
+  for (const bool scrambled : {false, true}) {
+    SCOPED_TRACE(scrambled ? "scrambled" : "in order");
+    std::vector<std::uint32_t> number(kNu * kNv);
+    for (std::size_t k = 0; k < number.size(); ++k) number[k] = static_cast<std::uint32_t>(k);
+    if (scrambled) std::shuffle(number.begin(), number.end(), std::mt19937(12345));
+    const TriangleMesh torus = GridTorus(kNu, kNv, number);
+    const std::size_t nt = torus.triangles.size();
+
+    TriangleMesh clean = torus;
+    MeshRepairReport rep;
+    ValidateSolid(clean, &rep);
+    EXPECT_EQ(rep.components, 1u);
+    EXPECT_EQ(rep.triangles_flipped, 0u);
+    EXPECT_FALSE(rep.inside_out_flipped);  // (i, j), (i + 1, j), (i + 1, j + 1) faces outwards
+    EXPECT_TRUE(rep.warnings.empty());
+
+    // Five triangles reversed: found and turned back.
+    TriangleMesh flipped = torus;
+    for (std::size_t t : {0ul, 999ul, 12345ul, 40000ul, nt - 1}) {
+      std::swap(flipped.triangles[t][1], flipped.triangles[t][2]);
+    }
+    MeshRepairReport frep;
+    ValidateSolid(flipped, &frep);
+    EXPECT_EQ(frep.triangles_flipped, 5u);
+    EXPECT_EQ(frep.components, 1u);
+    EXPECT_EQ(flipped.triangles, clean.triangles);
+
+    // One triangle removed: three boundary edges; the first named is the one of lowest lower
+    // vertex, then lowest upper vertex, traversed by the neighbour the other way.
+    const std::size_t removed = 23456;
+    TriangleMesh open = torus;
+    const TriangleIndices tri = open.triangles[removed];
+    open.triangles.erase(open.triangles.begin() + static_cast<std::ptrdiff_t>(removed));
+    std::array<std::pair<std::uint32_t, std::uint32_t>, 3> edges;
+    for (int k = 0; k < 3; ++k) edges[k] = {tri[k], tri[(k + 1) % 3]};
+    const auto key = [](const std::pair<std::uint32_t, std::uint32_t>& e) {
+      return std::pair(std::min(e.first, e.second), std::max(e.first, e.second));
+    };
+    const auto first = *std::min_element(edges.begin(), edges.end(),
+                                         [&](auto& a, auto& b) { return key(a) < key(b); });
+    EXPECT_THAT(
+        [&] { ValidateSolid(open, nullptr); },
+        ::testing::ThrowsMessage<InputError>(HasSubstr(
+            "3 boundary edge(s) (used by one triangle) and 0 non-manifold edge(s) (used by three "
+            "or more); the first is the boundary edge from " +
+            Point(torus.vertices[first.second]) + " to " + Point(torus.vertices[first.first]))));
+
+    // One triangle twice: its three edges are used three times each.
+    TriangleMesh doubled = torus;
+    doubled.triangles.push_back(doubled.triangles[removed]);
+    EXPECT_THAT([&] { ValidateSolid(doubled, nullptr); },
+                ::testing::ThrowsMessage<InputError>(
+                    HasSubstr("0 boundary edge(s) (used by one triangle) and 3 non-manifold")));
+  }
 }
 
 }  // namespace
