@@ -1177,6 +1177,13 @@ StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOpti
             "ball_collisions: fewer than two bodies are balls (a ball is a body with a sphere "
             "contact centred at its centre of mass), so no pair can collide");
       }
+      // The rows' contact forces are the smooth engine's at each sample, over the listed
+      // contacts (docs/contact.md, "Every pair of balls"): say that they do not see the pairs.
+      def.warnings.push_back(
+          "ball_collisions: the contact forces in the rows and in the contacts at the end are "
+          "those of the listed contacts alone, found at each sample as if no two balls touched: "
+          "a ball pressed by another shows less than it carries (the pairs' impulses are in "
+          "every step's certificate)");
     }
     def.time_stepping = stepping;
   }
