@@ -82,6 +82,12 @@ struct BouncingBall {
   double t0() const { return std::sqrt(2 * h0 / kG); }
   double TouchDown(int n) const { return t0() + 2 * t0() * e * (1 - std::pow(e, n)) / (1 - e); }
   double Rest() const { return t0() * (1 + e) / (1 - e); }
+  // The first touch-down n >= 7 with T_n - T_(n-7) within `window`: where auto yields.
+  int FirstYield(double window) const {
+    int n = 7;
+    while (TouchDown(n) - TouchDown(n - 7) > window) ++n;
+    return n;
+  }
 };
 
 // The contacts' normal force on body 0 at the end, summed over its points.
@@ -110,8 +116,7 @@ TEST(EngineChoice, ZenoBouncesNotSummedSwitchToSteppingAndRest) {
   EXPECT_TRUE(Near(h, 0.01 * std::sqrt(std::sqrt(0.4) * ball.R / kG), 1e-15));
   def.auto_engine = StudyDefinition::AutoEngine{MakeEngineChoiceRule(h), {}};
   const EngineChoiceRule& rule = def.auto_engine->rule;
-  int n = 7;
-  while (ball.TouchDown(n) - ball.TouchDown(n - 7) > rule.window) ++n;
+  const int n = ball.FirstYield(rule.window);
   const StudyResult r = RunStudy(def);
   ASSERT_EQ(r.segments.size(), 3u);
   const StudyEngineSegment& events = r.segments[0];
@@ -196,8 +201,7 @@ TEST(EngineChoice, AnIslandThatYieldsHandsOverTheWholeModel) {
   const double h = DefaultEngineStep(model, def.options.output_interval);
   def.auto_engine = StudyDefinition::AutoEngine{MakeEngineChoiceRule(h), {}};
   const EngineChoiceRule& rule = def.auto_engine->rule;
-  int n = 7;
-  while (ball.TouchDown(n) - ball.TouchDown(n - 7) > rule.window) ++n;
+  const int n = ball.FirstYield(rule.window);
   const StudyResult r = RunStudy(def);
   ASSERT_EQ(r.segments.size(), 3u);
   EXPECT_TRUE(r.islands.split);

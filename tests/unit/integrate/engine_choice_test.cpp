@@ -57,6 +57,32 @@ TEST(EngineChoiceRule, DefaultStepFromTheSmallestBodyAndGravity) {
   EXPECT_THROW(DefaultEngineStep(weightless, 0.0), InputError);
 }
 
+// The yield tests' run: 2 s, rows every 0.01 s, tolerance 1e-12, bounces not summed, `rule`'s
+// bound.
+SimulationOptions YieldOptions(const EngineChoiceRule& rule) {
+  SimulationOptions o;
+  o.t_end = 2.0;
+  o.output_interval = 0.01;
+  o.adaptive.rtol = 1e-12;
+  o.adaptive.atol = 1e-14;
+  o.contact.accumulate_bounces = false;
+  o.contact.yield_changes = rule.changes;
+  o.contact.yield_window = rule.window;
+  return o;
+}
+
+// Touch-down n of a ball dropped from h0 with restitution e, T_n = t0 + 2 t0 e (1 - e^n)/(1 - e)
+// with t0 = √(2 h0 / g), and the first n >= 7 with T_n - T_(n-7) within `window`.
+double TouchDown(double h0, double e, int n) {
+  const double t0 = std::sqrt(2 * h0 / kG);
+  return t0 + 2 * t0 * e * (1 - std::pow(e, n)) / (1 - e);
+}
+int FirstYield(double h0, double e, double window) {
+  int n = 7;
+  while (TouchDown(h0, e, n) - TouchDown(h0, e, n - 7) > window) ++n;
+  return n;
+}
+
 // A ball dropped from h0 with restitution e and its bounces not summed: touch-down n at
 // T_n = t0 + 2 t0 e (1 - e^n)/(1 - e), t0 = √(2 h0 / g). The run yields at the first n >= 7
 // with T_n - T_(n-7) <= the window, at the state just after that touch-down, which is not a
@@ -69,18 +95,9 @@ TEST(HybridYield, YieldsAtTheTouchDownThatExceedsTheBound) {
   State s = MakeRestState(model);
   SetBodyPose(model, 0, Vec3(0, 0, ball.radius + h0), Quat::Identity(), s);
   const EngineChoiceRule rule = MakeEngineChoiceRule(1e-3);
-  SimulationOptions o;
-  o.t_end = 2.0;
-  o.output_interval = 0.01;
-  o.adaptive.rtol = 1e-12;
-  o.adaptive.atol = 1e-14;
-  o.contact.accumulate_bounces = false;
-  o.contact.yield_changes = rule.changes;
-  o.contact.yield_window = rule.window;
-  const double t0 = std::sqrt(2 * h0 / kG);
-  const auto touch_down = [&](int n) { return t0 + 2 * t0 * e * (1 - std::pow(e, n)) / (1 - e); };
-  int n = 7;
-  while (touch_down(n) - touch_down(n - 7) > rule.window) ++n;
+  SimulationOptions o = YieldOptions(rule);
+  const auto touch_down = [&](int n) { return TouchDown(h0, e, n); };
+  const int n = FirstYield(h0, e, rule.window);
   const SimulationResult r = Simulate(model, s, o);
   ASSERT_TRUE(r.yielded.has_value());
   EXPECT_EQ(r.yielded->changes, 8);
@@ -118,18 +135,9 @@ TEST(HybridYield, IslandsRunSeparatelyAndHandOverTogether) {
   SetBodyPose(model, 1, Vec3(5, 0, slider.radius), Quat::Identity(), s);
   SetBodyVelocity(model, 1, Vec3(v0, 0, 0), Vec3::Zero(), s);
   const EngineChoiceRule rule = MakeEngineChoiceRule(1e-3);
-  SimulationOptions o;
-  o.t_end = 2.0;
-  o.output_interval = 0.01;
-  o.adaptive.rtol = 1e-12;
-  o.adaptive.atol = 1e-14;
-  o.contact.accumulate_bounces = false;
-  o.contact.yield_changes = rule.changes;
-  o.contact.yield_window = rule.window;
-  const double t0 = std::sqrt(2 * h0 / kG);
-  const auto touch_down = [&](int n) { return t0 + 2 * t0 * e * (1 - std::pow(e, n)) / (1 - e); };
-  int n = 7;
-  while (touch_down(n) - touch_down(n - 7) > rule.window) ++n;
+  SimulationOptions o = YieldOptions(rule);
+  const auto touch_down = [&](int n) { return TouchDown(h0, e, n); };
+  const int n = FirstYield(h0, e, rule.window);
   const SimulationResult r = Simulate(model, s, o);
   EXPECT_EQ(r.islands.count, 2);
   EXPECT_TRUE(r.islands.split);
