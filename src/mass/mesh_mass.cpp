@@ -315,61 +315,59 @@ MassProperties MassPropertiesFromIntegrals(const MeshIntegrals& g, double densit
   return MassProperties(density * g.measure, g.p_BoR_B + c, RotationalInertia::FromMatrix(I));
 }
 
+namespace {
+
+// Welds by `weld(tolerance, repair, workspace)` in the file's unit (Finish scales the
+// integrals), its error prefixed with `what` and its time in the report, then Finish.
+template <class Weld>
+MeshMassResult WeldAndFinish(const MeshMassOptions& opts, const std::string& what,
+                             MeshMassReport report, Weld weld) {
+  const double density = DensityFromOptions(opts, what);
+  const double tolerance = FileUnitTolerance(opts, what);
+  const auto t0 = std::chrono::steady_clock::now();
+  TriangleMesh mesh;
+  internal::MeshWorkspace workspace;
+  try {
+    mesh = weld(tolerance, &report.repair, workspace);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", what, e.what()));
+  }
+  report.weld_seconds = Seconds(t0);
+  return Finish(mesh, opts, density, what, std::move(report), workspace);
+}
+
+}  // namespace
+
 MeshMassResult ComputeMeshMassProperties(std::vector<double>&& xyz,
                                          std::vector<std::uint32_t>&& indices,
                                          const MeshMassOptions& opts, const std::string& what,
                                          MeshMassReport report) {
-  const double density = DensityFromOptions(opts, what);
-  const double tolerance = FileUnitTolerance(opts, what);
-  const auto t0 = std::chrono::steady_clock::now();
-  TriangleMesh mesh;  // in the file's unit: Finish scales the integrals
-  internal::MeshWorkspace workspace;
-  try {
-    mesh = internal::BuildTriangleMesh(std::span<const double>(xyz),
-                                       std::span<const std::uint32_t>(indices), 1.0, tolerance,
-                                       &report.repair, workspace);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", what, e.what()));
-  }
-  // Release the raw arrays before validation allocates.
-  std::vector<double>().swap(xyz);
-  std::vector<std::uint32_t>().swap(indices);
-  report.weld_seconds = Seconds(t0);
-  return Finish(mesh, opts, density, what, std::move(report), workspace);
+  return WeldAndFinish(opts, what, std::move(report), [&](double tol, auto* repair, auto& ws) {
+    TriangleMesh mesh =
+        internal::BuildTriangleMesh(std::span<const double>(xyz),
+                                    std::span<const std::uint32_t>(indices), 1.0, tol, repair, ws);
+    // Release the raw arrays before validation allocates.
+    std::vector<double>().swap(xyz);
+    std::vector<std::uint32_t>().swap(indices);
+    return mesh;
+  });
 }
 
 MeshMassResult ComputeMeshMassProperties(std::vector<float>&& soup, const MeshMassOptions& opts,
                                          const std::string& what, MeshMassReport report) {
-  const double density = DensityFromOptions(opts, what);
-  const double tolerance = FileUnitTolerance(opts, what);
-  const auto t0 = std::chrono::steady_clock::now();
-  TriangleMesh mesh;  // in the file's unit: Finish scales the integrals
-  internal::MeshWorkspace workspace;
-  try {
-    mesh = internal::BuildTriangleSoup(std::span<const float>(soup), 1.0, tolerance, &report.repair,
-                                       workspace);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", what, e.what()));
-  }
-  std::vector<float>().swap(soup);  // released before validation allocates
-  report.weld_seconds = Seconds(t0);
-  return Finish(mesh, opts, density, what, std::move(report), workspace);
+  return WeldAndFinish(opts, what, std::move(report), [&](double tol, auto* repair, auto& ws) {
+    TriangleMesh mesh =
+        internal::BuildTriangleSoup(std::span<const float>(soup), 1.0, tol, repair, ws);
+    std::vector<float>().swap(soup);  // released before validation allocates
+    return mesh;
+  });
 }
 
 MeshMassResult ComputeMeshMassProperties(const FloatSoupRecords& soup, const MeshMassOptions& opts,
                                          const std::string& what, MeshMassReport report) {
-  const double density = DensityFromOptions(opts, what);
-  const double tolerance = FileUnitTolerance(opts, what);
-  const auto t0 = std::chrono::steady_clock::now();
-  TriangleMesh mesh;  // in the file's unit: Finish scales the integrals
-  internal::MeshWorkspace workspace;
-  try {
-    mesh = internal::BuildTriangleSoup(soup, 1.0, tolerance, &report.repair, workspace);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", what, e.what()));
-  }
-  report.weld_seconds = Seconds(t0);
-  return Finish(mesh, opts, density, what, std::move(report), workspace);
+  return WeldAndFinish(opts, what, std::move(report), [&](double tol, auto* repair, auto& ws) {
+    return internal::BuildTriangleSoup(soup, 1.0, tol, repair, ws);
+  });
 }
 
 MeshMassResult ComputeMeshMassProperties(const TriangleMesh& in, const MeshMassOptions& opts) {

@@ -231,32 +231,9 @@ TEST(BallPairs, PairsRunAsTheListedPairsDo) {
   const double R = ball.radius, e = 0.93;
   Model bare = reference::MakeBallsOnFloor(n, ball, kG);
   Model listed = bare;
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) {
-      ContactSpec c;
-      c.name = fmt::format("pair{}_{}", i, j);
-      c.shape = ContactShape::kSphereSphere;
-      c.body = i;
-      c.other_body = j;
-      c.radius = c.other_radius = R;
-      c.restitution = e;
-      listed.AddContact(c);
-    }
-  }
+  reference::AddSpherePairs(listed, n, R, e);
   State s = MakeRestState(bare);
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> jitter(-0.4e-3, 0.4e-3);
-  const double pitch = 2 * R + 2e-3;
-  int k = 1;
-  for (int row = 0; k < n; ++row) {
-    for (int j = 0; j <= row && k < n; ++j, ++k) {
-      const Vec3 p(0.1 + row * pitch * std::sqrt(3.0) / 2 + jitter(rng),
-                   (j - row / 2.0) * pitch + jitter(rng), R);
-      SetBodyPose(bare, k, p, Quat::Identity(), s);
-    }
-  }
-  SetBodyPose(bare, 0, Vec3(-0.05, 0.0, R), Quat::Identity(), s);
-  SetBodyVelocity(bare, 0, Vec3(2.0, 0, 0), Vec3(0, 2.0 / R, 0), s);
+  reference::SetRack(bare, n, R, 7, s);
   TimeSteppingOptions o;
   o.t_end = 0.3;
   o.step = 1e-3;

@@ -125,33 +125,9 @@ struct Rack {
 Rack MakeRack(int n, unsigned seed) {
   const reference::Ball ball{0.17, 0.028575, 0.2, 0.2};
   Rack r{reference::MakeBallsOnFloor(n, ball, kG), {}};
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) {
-      ContactSpec c;
-      c.name = fmt::format("pair{}_{}", i, j);
-      c.shape = ContactShape::kSphereSphere;
-      c.body = i;
-      c.other_body = j;
-      c.radius = c.other_radius = ball.radius;
-      c.restitution = 0.93;
-      r.model.AddContact(c);
-    }
-  }
+  reference::AddSpherePairs(r.model, n, ball.radius, 0.93);
   r.state = MakeRestState(r.model);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> jitter(-0.4e-3, 0.4e-3);
-  const double R = ball.radius, pitch = 2 * R + 2e-3;
-  int k = 1;
-  for (int row = 0; k < n; ++row) {
-    for (int j = 0; j <= row && k < n; ++j, ++k) {
-      const Vec3 p(0.1 + row * pitch * std::sqrt(3.0) / 2 + jitter(rng),
-                   (j - row / 2.0) * pitch + jitter(rng), R);
-      SetBodyPose(r.model, k, p, Quat::Identity(), r.state);
-      SetBodyVelocity(r.model, k, Vec3::Zero(), Vec3::Zero(), r.state);
-    }
-  }
-  SetBodyPose(r.model, 0, Vec3(-0.05, 0.0, R), Quat::Identity(), r.state);
-  SetBodyVelocity(r.model, 0, Vec3(2.0, 0, 0), Vec3(0, 2.0 / R, 0), r.state);
+  reference::SetRack(r.model, n, ball.radius, seed, r.state);
   return r;
 }
 
@@ -440,18 +416,7 @@ TEST(TimeStepping, NewtonsCradleUnderMoreausSimultaneousLaw) {
       model.AddBody(fmt::format("ball{}", i),
                     MassProperties(m, Vec3::Zero(), RotationalInertia(I, I, I)));
     }
-    for (int i = 0; i < 3; ++i) {
-      for (int j = i + 1; j < 3; ++j) {
-        ContactSpec c;
-        c.name = fmt::format("pair{}{}", i, j);
-        c.shape = ContactShape::kSphereSphere;
-        c.body = i;
-        c.other_body = j;
-        c.radius = c.other_radius = R;
-        c.restitution = e;
-        model.AddContact(c);
-      }
-    }
+    reference::AddSpherePairs(model, 3, R, e);
     State s = MakeRestState(model);
     for (int i = 0; i < 3; ++i) {
       SetBodyPose(model, i, Vec3(2 * R * i, 0, 0), Quat::Identity(), s);
@@ -472,18 +437,7 @@ TEST(TimeStepping, NewtonsCradleUnderMoreausSimultaneousLaw) {
 TEST(TimeStepping, BallPileAtRestStaysAtRest) {
   const reference::Ball ball{0.17, 0.028575, 0.5, 0.5};
   Model model = reference::MakeBallsOnFloor(4, ball, kG);
-  for (int i = 0; i < 4; ++i) {
-    for (int j = i + 1; j < 4; ++j) {
-      ContactSpec c;
-      c.name = fmt::format("pair{}{}", i, j);
-      c.shape = ContactShape::kSphereSphere;
-      c.body = i;
-      c.other_body = j;
-      c.radius = c.other_radius = ball.radius;
-      c.mu_s = c.mu_k = 0.5;
-      model.AddContact(c);
-    }
-  }
+  reference::AddSpherePairs(model, 4, ball.radius, 0.0, 0.5);
   State s = MakeRestState(model);
   const double R = ball.radius, d = 2 * R / std::sqrt(3.0);  // circumradius of the triangle
   for (int i = 0; i < 3; ++i) {
