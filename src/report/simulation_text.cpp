@@ -169,11 +169,13 @@ std::string EnginesText(const StudyResult& r, const Show& u) {
     out += fmt::format("  {} to {}: {}, {}\n", u.Time(g.t_begin), u.Time(g.t_end),
                        StudyEngineName(g.engine), SwitchText(g, u));
     if (g.engine == StudyEngine::kAdaptive) {
-      out += fmt::format("    {} steps, {} rejected, {} evaluations{}\n", g.stats.steps,
-                         g.stats.rejected_steps, g.stats.function_evaluations,
-                         g.islands > 1
-                             ? fmt::format("; {} islands, each its own hybrid system", g.islands)
-                             : std::string());
+      out += fmt::format(
+          "    {} steps, {} rejected, {} evaluations{}\n", g.stats.steps, g.stats.rejected_steps,
+          g.stats.function_evaluations,
+          g.islands > 1
+              ? fmt::format("; {} islands, each its own hybrid system (the counts are their sums)",
+                            g.islands)
+              : std::string());
       continue;
     }
     out +=

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -179,6 +181,55 @@ TEST(HybridYield, IslandsRunSeparatelyAndHandOverTogether) {
   }
   o.contact.yield_window = -1.0;
   EXPECT_THROW(Simulate(model, s, o), InputError);
+}
+
+// Seeded: three balls dropped from random heights h_i in U(0.3, 2) m (e = 1/2, bounces not
+// summed), each its own island. Each island counts its own touch-downs, so the run yields at the
+// earliest of the balls' own yield instants T_(n_i)(h_i), and every other ball is handed over
+// where its bounces put it then: after touch-down k (T_k <= t < T_(k+1)) at height
+// u_k τ - g τ²/2 with speed u_k - g τ, τ = t - T_k, u_k = e^(k+1) √(2 g h) (before the first,
+// h - g t²/2 falling at g t).
+TEST(HybridYield, SeededDropsHandOverAtTheEarliestIslandsYield) {
+  const double e = 0.5;
+  const EngineChoiceRule rule = MakeEngineChoiceRule(1e-3);
+  for (const unsigned seed : {1u, 2u, 3u, 4u, 5u}) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> height(0.3, 2.0);
+    reference::Ball ball{0.5, 0.1, 0.3, 0.3};
+    ball.restitution = e;
+    const Model model = reference::MakeBallsOnFloor(3, ball, kG);
+    State s = MakeRestState(model);
+    std::vector<double> h(3);
+    double t_y = HUGE_VAL;
+    for (int i = 0; i < 3; ++i) {
+      h[static_cast<size_t>(i)] = height(rng);
+      SetBodyPose(model, i, Vec3(3.0 * i, 0, ball.radius + h[static_cast<size_t>(i)]),
+                  Quat::Identity(), s);
+      const double h_i = h[static_cast<size_t>(i)];
+      t_y = std::min(t_y, TouchDown(h_i, e, FirstYield(h_i, e, rule.window)));
+    }
+    SimulationOptions o = YieldOptions(rule);
+    o.t_end = 3.0;
+    const SimulationResult r = Simulate(model, s, o);
+    ASSERT_TRUE(r.islands.split) << seed;
+    ASSERT_TRUE(r.yielded.has_value()) << seed;
+    EXPECT_NEAR(r.final_state.t, t_y, kEventTime) << seed;
+    const double t = r.final_state.t;
+    for (int i = 0; i < 3; ++i) {
+      const double h_i = h[static_cast<size_t>(i)];
+      double z = h_i - 0.5 * kG * t * t, vz = -kG * t;
+      // (The yielding ball is handed over just after its touch-down, located to kEventTime.)
+      for (int k = 0; TouchDown(h_i, e, k) <= t + kEventTime; ++k) {
+        const double tau = t - TouchDown(h_i, e, k);
+        const double u = std::pow(e, k + 1) * std::sqrt(2 * kG * h_i);
+        z = u * tau - 0.5 * kG * tau * tau;
+        vz = u - kG * tau;
+      }
+      const BodyState& b = r.final_state.bodies[static_cast<size_t>(i)];
+      EXPECT_NEAR(b.p_WBcm.z() - ball.radius, z, 1e-9) << seed << ", ball " << i;
+      EXPECT_NEAR(b.v_WBcm_W.z(), vz, kG * kEventTime) << seed << ", ball " << i;
+    }
+  }
 }
 
 // A ball set down touching the floor at rest: the first step finds it touching (sticking, a
