@@ -23,7 +23,7 @@ const std::string& SceneText(int n) {
   static std::map<int, std::string> texts;
   std::string& text = texts[n];
   if (text.empty()) {
-    text = "chasles: 2\nbodies:\n";
+    text = "chasles: 3\nbodies:\n";
     for (int i = 0; i < n; ++i) {
       text += fmt::format(
           "  - name: b{}\n    parts:\n      - {{shape: sphere, radius: 0.1 m, mass: 1 kg}}\n"

@@ -23,7 +23,7 @@ KNOCK = "shape: sphere, radius: R, restitution: 0.9"
 
 def scene(n, contacts, integrator):
     side = math.ceil(math.sqrt(n))
-    lines = ["chasles: 2", "parameters: {R: 28.575 mm, m: 0.17 kg}", "bodies:"]
+    lines = ["chasles: 3", "parameters: {R: 28.575 mm, m: 0.17 kg}", "bodies:"]
     for i in range(n):
         moving = ", velocity: [2 m/s, 0.3 m/s, 0]" if i == 0 else ""
         lines.append(f"  - {{name: ball{i + 1}, parts: [{{shape: sphere, radius: R, mass: m}}], "

@@ -5,7 +5,7 @@ namespace chasles::cli {
 // Section 8.3 of the chapter: a thin disk of mass m and radius r on an axle of mass 9/16 m and
 // length 2r pivoting at O. Centre of mass at 41/25 r from O; inertia about O
 // diag(5, 1/2, 5) m r^2; about the centre of mass diag(319/400, 1/2, 319/400) m r^2.
-const char* const kDemoScene = R"(chasles: 2
+const char* const kDemoScene = R"(chasles: 3
 title: Disk and axle assembly (Section 8.3)
 description: >
   A thin disk of mass m and radius r rolls on a circle; its axle OA, of mass 9/16 m and

@@ -17,9 +17,10 @@ namespace chasles::cli {
 CLI::App* AddUpgradeCommand(CLI::App& app, UpgradeArgs& args) {
   CLI::App* cmd = app.add_subcommand(
       "upgrade",
-      fmt::format("Rewrite a scene as format version {}: the version line and each version-1 "
-                  "spelling are edited where they stand (comments and layout kept); the "
-                  "unified diff goes to standard output",
+      fmt::format("Rewrite a scene as format version {}: the version line and each older "
+                  "version's spelling are edited where they stand, and 'integrator: adaptive' "
+                  "written where a scene with contacts names none (comments and layout kept); "
+                  "the unified diff goes to standard output",
                   kSceneFormatVersion));
   cmd->add_option("scene", args.scene, "Scene file (YAML)")->required();
   CLI::Option* out = cmd->add_option("-o,--out", args.output,

@@ -562,6 +562,9 @@ void BindStudy(py::module_& m) {
                           .def_property_readonly("integrator", &RunIntegratorName)
                               RO(StudyResult, stats, "")
                               RO(StudyResult, notes, "") RO(StudyResult, segments, "")
+                                  RO(StudyResult, engine_by_default,
+                                     "integrator: auto because the scene named none (format "
+                                     "version 3's default for a scene with contacts)")
                                   RO(StudyResult, warnings, "")
                                       RO(StudyResult, certificate, "")
                                           .def_property_readonly(

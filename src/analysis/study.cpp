@@ -246,6 +246,7 @@ void StudyRun::Start() {
           rule.step, rule.changes, rule.window, rule.quiet_span));
     }
     result_.engine_rule = def_.auto_engine->rule;
+    result_.engine_by_default = def_.auto_engine->by_default;
     StudyEngineSegment first;
     first.t_begin = def_.initial.t;
     result_.segments.push_back(std::move(first));

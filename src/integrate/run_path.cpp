@@ -126,9 +126,9 @@ RunPathChoice ChooseRunPath(const Model& model, const SimulationOptions& options
       c.path = RunPath::kAuto;
       const std::string stays = AutoHandoverObstacle(model, !options.events.empty());
       c.reason = stays.empty()
-                     ? "integrator: auto: the hybrid run while regime changes come slower than "
-                       "the rule allows, time stepping while they come faster"
-                     : "integrator: auto: the hybrid run throughout: " + stays;
+                     ? "the hybrid run while regime changes come slower than the rule allows, "
+                       "time stepping while they come faster"
+                     : "the hybrid run throughout: " + stays;
       return c;
     }
     case EngineRequest::kIntegrator:

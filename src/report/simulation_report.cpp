@@ -349,7 +349,8 @@ nlohmann::json SimulationJson(const StudyResult& r, const ReportHeader& header,
     j["integrator"]["auto"] = {{"step", rule.step},
                                {"changes", rule.changes},
                                {"window", rule.window},
-                               {"quiet_span", rule.quiet_span}};
+                               {"quiet_span", rule.quiet_span},
+                               {"default", r.engine_by_default}};
     j["integrator"]["segments"] = EngineSegmentsJson(r.segments);
     j["ledger"]["time_stepping_error"] = r.ledger.time_stepping_error;
   }

@@ -161,9 +161,10 @@ std::string SwitchText(const StudyEngineSegment& g, const Show& u) {
 std::string EnginesText(const StudyResult& r, const Show& u) {
   const EngineChoiceRule& rule = *r.engine_rule;
   std::string out = fmt::format(
-      "\nIntegrator: auto (event-driven, time stepped with step {} while {} regime changes come "
-      "within {}, back after {} without one): {} steps, {} rejected, {} evaluations\n",
-      u.Time(rule.step), rule.changes, u.Time(rule.window), u.Time(rule.quiet_span), r.stats.steps,
+      "\nIntegrator: auto{} (event-driven, time stepped with step {} while {} regime changes "
+      "come within {}, back after {} without one): {} steps, {} rejected, {} evaluations\n",
+      r.engine_by_default ? ", the default for a scene with contacts" : "", u.Time(rule.step),
+      rule.changes, u.Time(rule.window), u.Time(rule.quiet_span), r.stats.steps,
       r.stats.rejected_steps, r.stats.function_evaluations);
   for (const StudyEngineSegment& g : r.segments) {
     out += fmt::format("  {} to {}: {}, {}\n", u.Time(g.t_begin), u.Time(g.t_end),
@@ -476,7 +477,10 @@ std::string LedgerText(const Scene& scene, const StudyResult& r, const Show& u) 
   out += fmt::format(
       "  balance residual    {} ({:.2e} of the energy scale {})\n", u.Energy(L.residual),
       L.energy_scale > 0 ? std::abs(L.residual) / L.energy_scale : 0.0, u.Energy(L.energy_scale));
-  if (r.engine_rule) {
+  // Time stepping's own term, where a stretch was time stepped (an auto run that stayed
+  // event-driven has none).
+  if (std::any_of(r.segments.begin(), r.segments.end(),
+                  [](const StudyEngineSegment& g) { return g.engine == StudyEngine::kStepping; })) {
     out += fmt::format(
         "    time stepping's own {} (its scheme's energy error, and the projections of its "
         "penetration at the handovers to events)\n",

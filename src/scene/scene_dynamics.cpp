@@ -692,6 +692,7 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
       ReadBallCollisions(root.Child("simulation").Child("ball_collisions"), scene);
     }
   }
+  DefaultIntegrator(root, scene);
 
   if (root.Has("events")) {
     const At events = root.Child("events");

@@ -1,5 +1,5 @@
 // A scene file rewritten to the current format version (chasles/scene/scene_upgrade.h): the
-// reader records each version-1 spelling with the marks of its nodes
+// reader records each old version's spelling with the marks of its nodes
 // (scene_versions.cpp); here each becomes an edit of the file's bytes at those marks.
 
 #include "chasles/scene/scene_upgrade.h"
@@ -42,6 +42,8 @@ class EditPlanner {
         return Version(r);
       case SceneRewrite::Kind::kDropZ:
         return DropZ(r);
+      case SceneRewrite::Kind::kKeepAdaptive:
+        return KeepAdaptive(r);
       case SceneRewrite::Kind::kRename:
         break;
     }
@@ -89,19 +91,44 @@ class EditPlanner {
     }
     // No `chasles` key: a line of its own before the first key (after any leading comments),
     // or the first entry of a flow mapping.
+    return EntryBefore(r, fmt::format("chasles: {}", current),
+                       fmt::format("add 'chasles: {}' as the file's first key by hand", current));
+  }
+
+  /// `entry` ("key: value") inserted before the mapping key at r.scalar.mark: a line of its own
+  /// indented as that key, ended as that key's line is (CR LF or LF), or in a flow mapping
+  /// (r.flow) an entry before it. `by_hand` says what to do where the key's line holds more.
+  TextEdit EntryBefore(const SceneRewrite& r, const std::string& entry,
+                       const std::string& by_hand) const {
     const size_t key = Pos(r.scalar);
-    if (r.flow) return {key, key, fmt::format("chasles: {}, ", current)};
+    if (r.flow) return {key, key, entry + ", "};
     const auto column = static_cast<size_t>(std::max(r.scalar.mark.column, 0));
     const size_t line = key >= column ? key - column : key;
     if (source_.substr(line, key - line).find_first_not_of(' ') != std::string_view::npos) {
-      Refuse(r, fmt::format("add 'chasles: {}' as the file's first key by hand", current));
+      Refuse(r, by_hand);
     }
-    // The line ends as the first key's line does (CR LF or LF).
-    const size_t eol = source_.find('\n', key);
-    const bool crlf = eol != std::string_view::npos && eol > key && source_[eol - 1] == '\r';
-    return {line, line,
-            fmt::format("{}chasles: {}{}", std::string(key - line, ' '), current,
-                        crlf ? "\r\n" : "\n")};
+    return {line, line, fmt::format("{}{}{}", std::string(key - line, ' '), entry, LineEnd(key))};
+  }
+
+  /// How the line holding byte `at` ends ("\r\n" or "\n").
+  std::string LineEnd(size_t at) const {
+    const size_t eol = source_.find('\n', at);
+    return eol != std::string_view::npos && eol > 0 && source_[eol - 1] == '\r' ? "\r\n" : "\n";
+  }
+
+  /// `integrator: adaptive` as the first key of `simulation`, or a `simulation` section of its
+  /// own at the end of a file that has none.
+  TextEdit KeepAdaptive(const SceneRewrite& r) const {
+    const std::string keep = "integrator: adaptive";
+    if (r.insert) {
+      if (r.flow) Refuse(r, "add 'simulation: {integrator: adaptive}' to the scene by hand");
+      const std::string eol = LineEnd(0);
+      const bool ends_line = source_.empty() || source_.back() == '\n';
+      return {source_.size(), source_.size(),
+              fmt::format("{}simulation:{}  {}{}", ends_line ? "" : eol, eol, keep, eol)};
+    }
+    if (r.scalar.mark.line < 0) Refuse(r, "add 'integrator: adaptive' to 'simulation' by hand");
+    return EntryBefore(r, keep, "add 'integrator: adaptive' to 'simulation' by hand");
   }
 
   TextEdit DropZ(const SceneRewrite& r) const {
@@ -124,9 +151,9 @@ class EditPlanner {
 
   [[noreturn]] void Refuse(const SceneRewrite& r, const std::string& what) const {
     throw SceneError(file_, r.spot.line, r.spot.column, r.spot.key,
-                     fmt::format("this version-1 spelling cannot be rewritten in place (the "
-                                 "value is escaped, folded or laid out unusually); {} and run "
-                                 "chasles upgrade again",
+                     fmt::format("this old version's spelling cannot be rewritten in place "
+                                 "(the value is escaped, folded or laid out unusually); {} and "
+                                 "run chasles upgrade again",
                                  what));
   }
 
@@ -144,6 +171,10 @@ std::string ChangeLine(const std::string& file, const SceneRewrite& r, std::stri
                : fmt::format("chasles: {} -> chasles: {}", r.scalar.value, kSceneFormatVersion);
   } else if (r.kind == SceneRewrite::Kind::kDropZ) {
     what = fmt::format("third value '{}' of a planar world vector removed", r.last.value);
+  } else if (r.kind == SceneRewrite::Kind::kKeepAdaptive) {
+    what =
+        "integrator: adaptive added (what a scene with contacts that names none ran before "
+        "version 3, which runs auto there)";
   } else {
     what = fmt::format("'{}' -> '{}'", source.substr(e.begin, e.end - e.begin), e.text);
   }

@@ -1,9 +1,10 @@
 // Format versions (docs/scene-format.md, "Changes between versions"). A file says its version
 // with `chasles: N` (a file without the key is version 1, the format before versions meant
-// anything). This chasles writes version 2 and reads version 1 with the meanings it had: each
-// version-1 spelling that version 2 changed is read as before, with a warning naming its place
-// and its new spelling, and recorded as a rewrite for `chasles upgrade` (scene_upgrade.cpp).
-// A version-2 file refuses the old spellings, naming the new ones.
+// anything). This chasles writes version 3 and reads versions 1 and 2 with the meanings they
+// had: each spelling that a later version reads differently is read as before, with a warning
+// naming its place and its new spelling, and recorded as a rewrite for `chasles upgrade`
+// (scene_upgrade.cpp). A file of a later version refuses the old spellings, naming the new
+// ones.
 //
 // Version 1 -> 2 (all in planar scenes, from the planar work's renames):
 //  - a world vector written [x, y, 0] (contact planes and gear centres took three values
@@ -11,6 +12,12 @@
 //  - the body variables <body>_wz and <body>_wbz are <body>_omega (the signed rate about z, the
 //    same quantity in plane motion), <body>_yaw is <body>_theta (the angle about z; yaw wrapped
 //    at ±180°, theta does not, so the two agree while |theta| < 180°).
+//
+// Version 2 -> 3: a scene with contacts that names no integrator runs `auto` (event-driven while
+// the contacts' regimes change slowly, time stepped while they chatter), where it ran
+// `adaptive`. The two agree bit for bit where auto never switches; where it does, auto finishes
+// a run that adaptive would stop in chatter, at first order. An older file keeps `adaptive`, and
+// its upgrade writes `integrator: adaptive`.
 
 #include <algorithm>
 #include <array>
@@ -72,13 +79,13 @@ void SceneReader::ReadVersion(const At& root, Scene& scene) {
   if (root.Has("chasles")) {
     const At v = root.Child("chasles");
     const std::string text = report_.Text(v, "the format version");
-    if (text == "1" || text == "2") {
-      version_ = text == "1" ? 1 : 2;
+    if (text == "1" || text == "2" || text == "3") {
+      version_ = text[0] - '0';
     } else {
       report_.Fail(v, fmt::format("format version '{}' is not known; this chasles reads versions "
-                                  "1 and 2 (it writes 2: docs/scene-format.md, \"Changes "
+                                  "1 to {} (it writes {}: docs/scene-format.md, \"Changes "
                                   "between versions\")",
-                                  text));
+                                  text, kSceneFormatVersion, kSceneFormatVersion));
     }
     r.scalar = SourceOf(v.node);
     r.spot = SpotAt(v);
@@ -92,6 +99,39 @@ void SceneReader::ReadVersion(const At& root, Scene& scene) {
   }
   scene.format_version = version_;
   if (version_ < kSceneFormatVersion) rewrites_.push_back(std::move(r));
+}
+
+void SceneReader::DefaultIntegrator(const At& root, Scene& scene) {
+  SceneSimulation& sim = scene.dynamics.simulation;
+  const bool has_simulation = root.Has("simulation");
+  if (scene.dynamics.contacts.empty() ||
+      (has_simulation && root.Child("simulation").Has("integrator"))) {
+    return;
+  }
+  if (version_ >= 3) {
+    sim.auto_engine = true;
+    sim.auto_by_default = true;
+    return;
+  }
+  SceneRewrite r;
+  r.kind = SceneRewrite::Kind::kKeepAdaptive;
+  if (has_simulation) {
+    const At at = root.Child("simulation");
+    r.spot = KeySpotAt(root, "simulation");
+    r.flow = at.node.Flow();
+    r.scalar.mark.line = -1;  // no keys: the upgrade leaves it to the user
+    if (at.node.IsMap() && at.node.size() > 0) r.scalar.mark = (*at.node.begin()).first.Mark();
+  } else {
+    r.insert = true;
+    r.flow = root.node.Flow();
+    r.spot = {1, 1, "simulation"};
+  }
+  OldSpelling(std::move(r),
+              fmt::format("a version-{} scene with contacts that names no integrator runs "
+                          "'adaptive' (version 3 runs 'auto' there: event-driven while the "
+                          "contacts' regimes change slowly, time stepped while they chatter); "
+                          "write 'integrator: adaptive' to keep that",
+                          version_));
 }
 
 void SceneReader::OldSpelling(SceneRewrite rewrite, const std::string& what) {

@@ -1192,6 +1192,7 @@ StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOpti
     StudyDefinition::AutoEngine engines;
     engines.rule = MakeEngineChoiceRule(
         std::isfinite(sim.step) ? sim.step : DefaultEngineStep(first, def.options.output_interval));
+    engines.by_default = sim.auto_by_default;
     def.auto_engine = engines;
   }
   // The run settles it: on the constraints, or an error, or projected with each change a

@@ -88,7 +88,7 @@ TEST(ContactSets, RackExampleMeetsItsClosedFormAndTheListedScene) {
 
 // `count` balls in a square grid on a plane, one set entry for the cloth, and `extra` after it.
 std::string ManyBalls(int count, const std::string& extra) {
-  std::string text = "chasles: 2\nparameters: {R: 28.575 mm}\nbodies:\n";
+  std::string text = "chasles: 3\nparameters: {R: 28.575 mm}\nbodies:\n";
   const int side = static_cast<int>(std::ceil(std::sqrt(count)));
   for (int i = 0; i < count; ++i) {
     text += fmt::format(

@@ -237,7 +237,7 @@ gravity: standard
 contacts:
   - {{name: floor, body: rod, shape: points, points: [[0, 0, 0]], mu_s: 1.5, mu_k: 1.5,
      plane: {{point: [0, 0, 0], normal: [0, 0, 1]}}}}
-simulation: {{until: 0.1 s, tolerance: 1e-12, output_interval: 0.05 s}}
+simulation: {{until: 0.1 s, integrator: adaptive, tolerance: 1e-12, output_interval: 0.05 s}}
 )yaml",
                      v);
 }

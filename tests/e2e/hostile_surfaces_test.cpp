@@ -265,7 +265,7 @@ TEST(FullDisk, EveryCommandThatWritesIsExit2AndLeavesNothing) {
   }
   const std::string scene = Quote(SourcePath(kSpring));
   std::string v1 = ReadText(SourcePath(kSpring));
-  v1.replace(v1.find("chasles: 2"), 10, "chasles: 1");  // a scene upgrade rewrites
+  v1.replace(v1.find("chasles: 3"), 10, "chasles: 1");  // a scene upgrade rewrites
   WriteText(dir / "v1.yaml", v1);
   const auto in = [&](const std::string& name) { return Quote((disk / name).string()); };
   const std::vector<std::string> commands = {

@@ -250,7 +250,7 @@ TEST(RedundantSupports, RedundantReactionsDoNotDependOnTheUnitOfLength) {
   const std::string metres = SourcePath("examples/door-on-two-hinges.yaml");
   // The same door with every length in millimetres.
   std::string mm = ReadText(metres);
-  mm = Replace(mm, "chasles: 2\n", "chasles: 2\nunits: mm, kg\n");
+  mm = Replace(mm, "chasles: 3\n", "chasles: 3\nunits: mm, kg\n");
   mm = Replace(mm, "H: 2 m", "H: 2000 mm");
   mm = Replace(mm, "w: 1 m", "w: 1000 mm");
   mm = Replace(mm, "t: 40 mm", "t: 40 mm");

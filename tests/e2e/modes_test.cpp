@@ -450,7 +450,7 @@ TEST(Modes, HtmlReportBadInputLeavesNothing) {
   // A block falling freely: no static equilibrium anywhere.
   const std::string falling = Quote(WriteSceneFile(
       "falling_block.yaml",
-      "chasles: 2\nbodies:\n  - name: block\n    parts: [{shape: box, size: [0.1, 0.2, 0.3], "
+      "chasles: 3\nbodies:\n  - name: block\n    parts: [{shape: box, size: [0.1, 0.2, 0.3], "
       "mass: 2}]\ngravity: standard\n"));
   const std::string page = Quote((dir / "modes.html").string());
   for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{

@@ -367,14 +367,15 @@ TEST(SimulateCli, Rk4OnFreeBodiesUnderGravityNamesTheFreeBodyBatch) {
 }
 
 // The JSON summary names the run path (ChooseRunPath, docs/contact.md "Run paths") of each
-// kind of scene: a free body (smooth), a ball bouncing on a floor (hybrid: one body, one
-// island), balls on a table (event-driven spheres), a box held on a slope time stepped, the
-// tumbling cube under integrator: auto, and free bodies under gravity stepped by rk4 (free-body
-// batch); the text report has the same line.
+// kind of scene: a free body (smooth), a ball bouncing on a floor (auto, the default for a
+// scene with contacts; hybrid under integrator: adaptive, one body, one island), balls on a
+// table (event-driven spheres), a box held on a slope time stepped, the tumbling cube under
+// integrator: auto, and free bodies under gravity stepped by rk4 (free-body batch); the text
+// report has the same line.
 TEST(SimulateCli, TheSummaryNamesTheRunPath) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"examples/dzhanibekov.yaml", "smooth"},
-      {"examples/contact-bouncing-ball.yaml", "hybrid"},
+      {"examples/contact-bouncing-ball.yaml", "auto"},
       {"examples/pool-head-on-events.yaml", "event-driven spheres"},
       {"examples/contact-box-held-on-slope.yaml", "time stepping"},
       {"examples/contact-cube-tumbles-auto.yaml", "auto"}};
@@ -394,6 +395,15 @@ TEST(SimulateCli, TheSummaryNamesTheRunPath) {
   const CliResult text = RunCli("simulate '" + free.string() + "' --out '" + dir.string() + "'");
   EXPECT_THAT(text.out, ::testing::HasSubstr("Run path: free-body batch: free bodies under "
                                              "uniform gravity alone, stepped by RK4"));
+  // The bouncing ball under integrator: adaptive: the hybrid path, one body, one island.
+  std::ifstream in(SourcePath("examples/contact-bouncing-ball.yaml"));
+  std::string ball((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ball.replace(ball.find("\nsimulation:\n"), 13, "\nsimulation:\n  integrator: adaptive\n");
+  std::ofstream(dir / "run-path-ball.yaml") << ball;
+  const nlohmann::json h = SimulateJson((dir / "run-path-ball.yaml").string(), dir);
+  EXPECT_EQ(h.at("run_path").at("path"), "hybrid");
+  EXPECT_THAT(h.at("run_path").at("reason").get<std::string>(),
+              ::testing::HasSubstr("the bodies form one island"));
 }
 
 // `integrator: splitting` runs the batch's symplectic splitting and says so; a scene it cannot

@@ -204,7 +204,7 @@ TEST(SteppingIntegrator, BallCollisionsRunTheLibrarysPairs) {
 // `integrator: auto` is refused (its event-driven stretches are the adaptive engine's, which
 // lets no unlisted pair collide), naming the engines that can.
 TEST(SteppingIntegrator, BallCollisionsHoldAPyramidAtRest) {
-  const std::string scene = R"(chasles: 2
+  const std::string scene = R"(chasles: 3
 parameters:
   R: 0.028575 m
   m: 0.17 kg

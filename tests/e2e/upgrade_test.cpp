@@ -3,7 +3,8 @@
 // loads with a warning for each old spelling in every report; and an upgraded scene gives the
 // same mass, solve and simulate outputs, byte for byte apart from those warnings, as the
 // version-1 file it came from: every scene in tests/format_v1 and every example as it was
-// before the examples became version 2 (the upgrade changed only their version line).
+// before the examples became version 2 (the upgrade changed only their version line); and a
+// version-2 scene with contacts, which runs adaptive where version 3 runs auto.
 
 #include <algorithm>
 #include <cstdlib>
@@ -82,12 +83,12 @@ TEST(Upgrade, ShowsTheDiffAndWritesNothingWithoutAnOutput) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(ReadText(scene), before);
   EXPECT_THAT(r.out, HasSubstr("--- " + scene.string() + "\n+++ " + scene.string() + "\n"));
-  EXPECT_THAT(r.out, HasSubstr("-chasles: 1\n+chasles: 2\n"));
+  EXPECT_THAT(r.out, HasSubstr("-chasles: 1\n+chasles: 3\n"));
   EXPECT_THAT(r.out, HasSubstr("\n-  - {name: fast, when: 'rod_wz', crosses: -2 rad/s, "
                                "action: record}\n"));
   EXPECT_THAT(r.out, HasSubstr("\n+  - {name: fast, when: 'rod_omega', crosses: -2 rad/s, "
                                "action: record}\n"));
-  EXPECT_THAT(r.err, HasSubstr("format version 1 -> 2, 10 changes; nothing written"));
+  EXPECT_THAT(r.err, HasSubstr("format version 1 -> 3, 10 changes; nothing written"));
   // The diff is the edit -o writes.
   const CliResult o =
       RunCli("upgrade " + Quote(scene.string()) + " -o " + Quote((dir / "new.yaml").string()));
@@ -95,7 +96,7 @@ TEST(Upgrade, ShowsTheDiffAndWritesNothingWithoutAnOutput) {
   EXPECT_EQ(o.out, r.out.substr(0, r.out.find('\n') + 1) + "+++ " + (dir / "new.yaml").string() +
                        r.out.substr(r.out.find('\n', r.out.find('\n') + 1)));
   EXPECT_EQ(ApplyDiff(before, r.out), ReadText(dir / "new.yaml"));
-  // What it wrote reads as version 2 without a warning.
+  // What it wrote reads as version 3 without a warning.
   const CliResult check = RunCli("check " + Quote((dir / "new.yaml").string()));
   EXPECT_EQ(check.exit_code, 0) << check.err;
   EXPECT_THAT(check.out, ::testing::Not(HasSubstr("warning")));
@@ -137,8 +138,8 @@ TEST(Upgrade, InPlaceReplacesTheFileOnceAndCheckSaysWhetherItIsNeeded) {
   fs::copy_file(SourcePath(kOld), scene);
   const CliResult check = RunCli("upgrade " + Quote(scene.string()) + " --check");
   EXPECT_EQ(check.exit_code, 3) << check.err;
-  EXPECT_THAT(check.out, HasSubstr("+chasles: 2\n"));
-  EXPECT_THAT(check.err, HasSubstr("format version 1 -> 2"));
+  EXPECT_THAT(check.out, HasSubstr("+chasles: 3\n"));
+  EXPECT_THAT(check.err, HasSubstr("format version 1 -> 3"));
   EXPECT_EQ(ReadText(scene), ReadText(SourcePath(kOld)));
 
   const CliResult r = RunCli("upgrade " + Quote(scene.string()) + " --in-place");
@@ -152,7 +153,7 @@ TEST(Upgrade, InPlaceReplacesTheFileOnceAndCheckSaysWhetherItIsNeeded) {
     const CliResult again = RunCli("upgrade " + Quote(scene.string()) + " " + flags);
     EXPECT_EQ(again.exit_code, 0) << flags << again.err;
     EXPECT_TRUE(again.out.empty()) << flags;
-    EXPECT_THAT(again.err, HasSubstr("is format version 2 already; nothing to change"));
+    EXPECT_THAT(again.err, HasSubstr("is format version 3 already; nothing to change"));
   }
 }
 
@@ -171,9 +172,9 @@ TEST(Upgrade, BadInputExitsTwoAndWritesNothing) {
   expect_bad(Quote(scene.string()) + " --check --in-place", "excludes");
   expect_bad(Quote(scene.string()) + " -o " + Quote((dir / "no" / "x.yaml").string()), "no");
   expect_bad(Quote((dir / "missing.yaml").string()), "missing.yaml");
-  WriteText(dir / "v3.yaml", "chasles: 3\nbodies: [{parts: [{shape: point, mass: 1 kg}]}]\n");
-  expect_bad(Quote((dir / "v3.yaml").string()),
-             "format version '3' is not known; this chasles reads versions 1 and 2");
+  WriteText(dir / "v4.yaml", "chasles: 4\nbodies: [{parts: [{shape: point, mass: 1 kg}]}]\n");
+  expect_bad(Quote((dir / "v4.yaml").string()),
+             "format version '4' is not known; this chasles reads versions 1 to 3");
   WriteText(dir / "broken.yaml", "chasles: 1\nbodies: [{parts: [{shape: sphere, mass: 1 kg}]}]\n");
   expect_bad(Quote((dir / "broken.yaml").string()), "needs the key 'radius'");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);
@@ -186,7 +187,7 @@ TEST(Upgrade, VersionOneWarningsAreInEveryReport) {
   const std::string expected =
       "pinned-rod-old-spellings.yaml:21:64: joints[0].at: version-1 "
       "spelling [0, 0, 0 m] of a planar scene's world vector: write "
-      "[0, 0]; chasles upgrade rewrites the file as version 2";
+      "[0, 0]; chasles upgrade rewrites the file as version 3";
   for (const std::string& command : {std::string("mass"), std::string("solve"),
                                      "simulate --out " + Quote(Scratch("warnings").string())}) {
     const CliResult text = RunCli(command + " " + scene);
@@ -205,6 +206,51 @@ TEST(Upgrade, VersionOneWarningsAreInEveryReport) {
     EXPECT_TRUE(has(expected)) << command << warnings.dump();
     EXPECT_TRUE(has("version-1 name 'rod_wbz' of a planar scene, read as 'rod_omega'")) << command;
   }
+}
+
+// A version-2 scene with contacts and no integrator runs adaptive with a warning; as version 3
+// it runs auto, which says that it is the default, and gives the same rows bit for bit where it
+// never switches (the bouncing ball sums its bounces in closed form); the upgrade keeps
+// adaptive, written out.
+TEST(Upgrade, AVersionTwoSceneWithContactsKeepsAdaptiveAndVersionThreeRunsAuto) {
+  const fs::path dir = Scratch("default-integrator");
+  std::string v3 = ReadText(SourcePath("examples/contact-bouncing-ball.yaml"));
+  ASSERT_EQ(v3.find("integrator"), std::string::npos);
+  std::string v2 = v3;
+  v2.replace(v2.find("\nchasles: 3\n"), 12, "\nchasles: 2\n");
+  WriteText(dir / "v2.yaml", v2);
+  WriteText(dir / "v3.yaml", v3);
+  const auto simulate = [&](const std::string& name, const std::string& format) {
+    return RunCli("simulate " + Quote((dir / name).string()) + " --quiet --out " +
+                  Quote(dir.string()) + " --format " + format);
+  };
+  const CliResult old = simulate("v2.yaml", "text");
+  ASSERT_EQ(old.exit_code, 0) << old.err;
+  EXPECT_THAT(old.out, HasSubstr("Integrator: adaptive Dormand-Prince 5(4)"));
+  EXPECT_THAT(old.out, HasSubstr("v2.yaml:21:1: simulation: a version-2 scene with contacts that "
+                                 "names no integrator runs 'adaptive' (version 3 runs 'auto' "
+                                 "there"));
+  const std::string old_csv = ReadText(dir / "v2.csv");
+  const CliResult now = simulate("v3.yaml", "text");
+  ASSERT_EQ(now.exit_code, 0) << now.err;
+  EXPECT_THAT(now.out, HasSubstr("Integrator: auto, the default for a scene with contacts ("));
+  EXPECT_THAT(now.out, HasSubstr("  0 s to 2 s: adaptive, start\n"));
+  EXPECT_THAT(now.out, ::testing::Not(HasSubstr("warning")));
+  EXPECT_EQ(ReadText(dir / "v3.csv"), old_csv);
+  const CliResult json = simulate("v3.yaml", "json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_TRUE(
+      nlohmann::json::parse(json.out).at("integrator").at("auto").at("default").get<bool>());
+  const CliResult up = RunCli("upgrade " + Quote((dir / "v2.yaml").string()) + " -o " +
+                              Quote((dir / "up.yaml").string()));
+  ASSERT_EQ(up.exit_code, 0) << up.err;
+  EXPECT_THAT(up.out, HasSubstr("-chasles: 2\n+chasles: 3\n"));
+  EXPECT_THAT(up.out, HasSubstr("\n simulation:\n+  integrator: adaptive\n   until: 2 s\n"));
+  const CliResult kept = simulate("up.yaml", "text");
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  EXPECT_THAT(kept.out, HasSubstr("Integrator: adaptive Dormand-Prince 5(4)"));
+  EXPECT_THAT(kept.out, ::testing::Not(HasSubstr("warning")));
+  EXPECT_EQ(ReadText(dir / "up.csv"), old_csv);
 }
 
 /// The report with its warnings taken out, and the scratch folder's name made `to`'s.
@@ -253,7 +299,7 @@ void ExpectSameOutputs(const std::string& name, const std::string& text, const s
   const CliResult up =
       RunCli("upgrade " + Quote((a / "s.yaml").string()) + " -o " + Quote((b / "s.yaml").string()));
   ASSERT_EQ(up.exit_code, 0) << up.err;
-  ASSERT_THAT(up.out, HasSubstr("+chasles: 2\n"));
+  ASSERT_THAT(up.out, HasSubstr("+chasles: 3\n"));
   const Outputs old = Run(a, extra), now = Run(b, extra);
   EXPECT_EQ(old.mass, now.mass);
   EXPECT_EQ(old.solve, now.solve);
@@ -283,16 +329,17 @@ TEST(Upgrade, VersionOneScenesGiveTheSameOutputsUpgraded) {
   EXPECT_GE(count, 10);
 }
 
-// Every example as it was in version 1 (its version line was all the upgrade changed), the
-// runs cut to 50 ms.
+// Every example as it was in version 1 (its version line was all the upgrades changed, and the
+// upgrade to version 3 writes `integrator: adaptive` into a scene with contacts that named
+// none), the runs cut to 50 ms.
 TEST(Upgrade, EveryExampleAsVersionOneGivesTheSameOutputsUpgraded) {
   int count = 0;
   for (const auto& entry : fs::directory_iterator(SourcePath("examples"))) {
     if (entry.path().extension() != ".yaml") continue;
     // The version line, which may be the first.
     std::string text = "\n" + ReadText(entry.path());
-    const size_t at = text.find("\nchasles: 2\n");
-    ASSERT_NE(at, std::string::npos) << entry.path() << " is not version 2";
+    const size_t at = text.find("\nchasles: 3\n");
+    ASSERT_NE(at, std::string::npos) << entry.path() << " is not version 3";
     text.replace(at, 12, "\nchasles: 1\n");
     text.erase(0, 1);
     if (!Sampled(count++)) continue;

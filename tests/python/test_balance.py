@@ -90,7 +90,7 @@ def test_whirl_rows_are_the_json_s(chasles):
 M_S, L_S, M, R, PHI, Z0 = 4.0, 0.6, 0.03, 0.05, math.radians(30.0), 0.1
 Z_A, Z_B, R_C, W, G = -0.25, 0.2, 0.08, 300.0, 2.5
 
-POINT_MASS_ROTOR = f"""chasles: 2
+POINT_MASS_ROTOR = f"""chasles: 3
 title: "Point mass on a shaft"
 bodies:
   - name: rotor

@@ -103,7 +103,7 @@ def test_bad_sets_leave_the_model_as_it_was():
 
 
 def test_scene_text_with_sets():
-    text = """chasles: 2
+    text = """chasles: 3
 parameters: {R: 0.05 m}
 bodies:
   - {name: ball1, parts: [{shape: sphere, radius: R, mass: 0.2 kg}],

@@ -306,8 +306,10 @@ def test_pool_balls_event_driven():
     assert_rel(cue.velocity, [(5 * v * (1 - e) / 2 + 2 * v) / 7, 0, 0])
     assert_rel(obj.velocity, [5 / 7 * v * (1 + e) / 2, 0, 0])
     assert run.certificate.passed
-    assert chasles.run(chasles.load_scene(example("problem-8.26-spinning-ball.yaml"))) \
-        .event_driven is None
+    # A scene with contacts that names no integrator runs auto (format version 3), and says so.
+    spinning = chasles.run(chasles.load_scene(example("problem-8.26-spinning-ball.yaml")))
+    assert spinning.event_driven is None
+    assert spinning.integrator == "auto" and spinning.engine_by_default
 
 
 def test_auto_engine_segments():
@@ -316,6 +318,7 @@ def test_auto_engine_segments():
     # J = 0.6 N*s through its centre, the cube slides until t_k + v0/(mu g), v0 = J/m.
     run = chasles.run(chasles.load_scene(example("contact-cube-tumbles-auto.yaml")))
     assert run.integrator == "auto"
+    assert not run.engine_by_default  # the scene names it
     engines = [g.engine for g in run.segments]
     assert engines[0] == "adaptive" and engines[-1] == "adaptive" and "stepping" in engines
     assert [g.reason for g in run.segments][:2] == ["start", "regime changes"]
@@ -325,8 +328,10 @@ def test_auto_engine_segments():
     stop = next(e for e in run.contact_events if e.reason == "slip stopped")
     assert abs(stop.t - (1.2 + 0.6 / (0.3 * G0))) < 1e-10
     assert run.certificate.passed
-    assert chasles.run(chasles.load_scene(example("problem-8.26-spinning-ball.yaml"))) \
-        .segments == []
+    # Auto by default (a scene with contacts that names no integrator): one event-driven stretch.
+    spinning = chasles.run(chasles.load_scene(example("problem-8.26-spinning-ball.yaml")))
+    assert [(g.engine, g.reason) for g in spinning.segments] == [("adaptive", "start")]
+    assert chasles.run(chasles.load_scene(example("pendulum.yaml"))).segments == []
 
 
 def test_struck_double_pendulum_pin_impulses():

@@ -20,7 +20,7 @@ constexpr int kBalls = 10;
 // The cue ball (ball1) rolls at 2 m/s (ω = v/R) along x into a 3-3-3 block of balls 1 mm
 // apart, slightly off its line so the block scatters.
 std::string Balls() {
-  std::string text = R"(chasles: 2
+  std::string text = R"(chasles: 3
 parameters:
   R: 28.575 mm
   m: 0.17 kg

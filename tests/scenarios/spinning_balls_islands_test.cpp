@@ -1,7 +1,8 @@
 // Spinning balls set down on a floor (Problems 8.26/8.27, examples/problem-8.26-spinning-ball.yaml)
-// through the scene's study, as `chasles simulate` runs them with no integrator named: the balls
-// share no element but gravity, so the run splits them into islands although the certificate
-// checks every contact transition (each island its own, docs/contact.md "Islands").
+// through the scene's study, as `chasles simulate` runs them with `integrator: adaptive` (the
+// default before scene format version 3): the balls share no element but gravity, so the run
+// splits them into islands although the certificate checks every contact transition (each
+// island its own, docs/contact.md "Islands").
 //
 // Ball i (radius R, mass m, I = 2/5 m R²) is set down with its centre at rest spinning at w_i
 // about y. Its contact point then slides at v - w R < 0 along x, so kinetic friction mu_k m g
@@ -38,7 +39,7 @@ double TStar(int i) {
 
 // The scene: one contact entry for all balls (`body: all`).
 std::string SceneText() {
-  std::string text = fmt::format(R"(chasles: 2
+  std::string text = fmt::format(R"(chasles: 3
 parameters:
   R: 9/8 in
   m: 0.17 kg
@@ -55,6 +56,7 @@ contacts:
   - {{name: floor, body: all, shape: sphere, radius: R, mu_s: 0.5, mu_k: {},
      plane: {{point: [0, 0, 0], normal: [0, 0, 1]}}}}
 simulation:
+  integrator: adaptive
   until: 90 ms  # past the last t* (84 ms)
   tolerance: 1e-12
   output_interval: 1 ms

@@ -117,7 +117,8 @@ class Run(Table):
     JSON's ``run_path.path``, and ``reason``), ``event_driven`` (``integrator: events``: collisions, impacts,
     regime changes, pressing groups and the closed-form energy balance; None otherwise),
     ``segments`` (``integrator: auto``: each engine's stretch of the run and why it took over;
-    empty otherwise);
+    empty otherwise), ``engine_by_default`` (True when auto ran because the scene named no
+    integrator: format version 3's default for a scene with contacts);
     ``result`` is the StudyResult itself. ``to_csv()`` and
     ``to_json()`` give the two files ``chasles simulate`` writes; ``text()`` the report it
     prints.
@@ -132,7 +133,7 @@ class Run(Table):
         for name in ("events", "jumps", "contact_events", "impacts", "final_contacts",
                      "final_bodies", "final_reactions", "ledger", "certificate", "notes",
                      "warnings", "t_end", "stopped_by_event", "integrator", "stats",
-                     "run_path", "event_driven", "segments"):
+                     "run_path", "event_driven", "segments", "engine_by_default"):
             setattr(self, name, getattr(result, name))
 
     def to_csv(self, full_precision=False):

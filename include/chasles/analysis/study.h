@@ -187,6 +187,9 @@ struct StudyDefinition {
     /// Time stepping's other settings (its step, end, output interval and quiet span are the
     /// run's).
     TimeSteppingOptions stepping;
+    /// The run chose auto because its definition named no engine (a scene of format version
+    /// 3 with contacts and no integrator); the report says so.
+    bool by_default = false;
   };
   std::optional<AutoEngine> auto_engine;
   /// Output columns (t first, by convention).
@@ -570,6 +573,8 @@ struct StudyResult {
   std::vector<StudyEngineSegment> segments;
   /// integrator: auto: the rule it followed (step, bound on regime changes, quiet span).
   std::optional<EngineChoiceRule> engine_rule;
+  /// integrator: auto because the definition named no engine (AutoEngine::by_default).
+  bool engine_by_default = false;
   /// Things to tell the user (impulses after the end time, ...).
   std::vector<std::string> notes;
   /// Things the user must know: initial values changed to satisfy the constraints

@@ -18,9 +18,10 @@
 
 namespace chasles {
 
-/// The scene format version this chasles writes (`chasles: 2`). It also reads version 1, with a
-/// warning for each version-1 spelling (docs/scene-format.md, "Changes between versions").
-inline constexpr int kSceneFormatVersion = 2;
+/// The scene format version this chasles writes (`chasles: 3`). It also reads versions 1 and 2
+/// with the meanings they had, with a warning for each spelling a later version reads
+/// differently (docs/scene-format.md, "Changes between versions").
+inline constexpr int kSceneFormatVersion = 3;
 
 /// What a drawing of a part needs (the browser report, docs/report.md): the shape's dimensions
 /// and the part's own frame P in the body frame B.

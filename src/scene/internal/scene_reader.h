@@ -197,7 +197,7 @@ class SceneReader {
 
   // Format versions (scene_versions.cpp) ----------------------------------------------------
   /// Reads `chasles` (the format version; a file without it is version 1) into version_ and
-  /// scene.format_version; a version-1 file gets the rewrite of its version line.
+  /// scene.format_version; a file of an older version gets the rewrite of its version line.
   void ReadVersion(const At& root, Scene& scene);
   /// A world vector of a planar scene given as three values at `at` (`form` is its planar
   /// form, "[x, y]" or "[Fx, Fy]"): in a version-1 file whose third value is 0 (`zero_z`,
@@ -210,7 +210,11 @@ class SceneReader {
   /// the expression at `at`; in a later one fails naming the new name. nullopt for any other
   /// name.
   std::optional<Symbol> PlanarOldName(const At& at, std::string_view name);
-  /// A warning naming the place and the new spelling of a version-1 one (rewritten by
+  /// After `simulation`: a scene with contacts that names no integrator runs `auto` in version
+  /// 3 (sim.auto_by_default); in versions 1 and 2 it runs `adaptive`, with a warning and a
+  /// rewrite that writes `integrator: adaptive` into the file.
+  void DefaultIntegrator(const At& root, Scene& scene);
+  /// A warning naming the place and the new spelling of an old version's one (rewritten by
   /// `chasles upgrade`), and the rewrite.
   void OldSpelling(SceneRewrite rewrite, const std::string& what);
 

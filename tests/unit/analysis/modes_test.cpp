@@ -121,7 +121,7 @@ TEST(Modes, PlanarPendulumEquilibriumFromAnyAngle) {
     const double th = deg * std::numbers::pi / 180.0;
     const Study s =
         Build(fmt::format(R"(
-chasles: 2
+chasles: 3
 planar: true
 bodies:
   - name: ball
@@ -330,7 +330,7 @@ TEST(Modes, TorqueFreeRotationMajorMinorIntermediate) {
 // motion is another such precession).
 TEST(Modes, TorqueFreePrecessionIsASteadyMotion) {
   const Study s = Build(R"(
-chasles: 2
+chasles: 3
 bodies:
   - name: disk
     parts: [{shape: cylinder, radius: 0.2, length: 0.05, mass: 3}]
@@ -350,7 +350,7 @@ gravity: [0, 0, 0]
 // Ω √((I2 - I1)(I3 - I2)/(I1 I3)) = 10/√3 within that bound.
 TEST(Modes, NearlySteadyMotionIsAnalysedWithAWarning) {
   const Study s = Build(R"(
-chasles: 2
+chasles: 3
 bodies:
   - name: handle
     parts: [{shape: custom, mass: 1 kg, inertia: {Ixx: 1 kg*m^2, Iyy: 2 kg*m^2, Izz: 3 kg*m^2}}]
@@ -370,7 +370,7 @@ gravity: [0, 0, 0]
 // c/m) has no modes: an error, not a linearisation about a state that does not stay.
 TEST(Modes, MotionThatIsNotSteadyIsAnError) {
   const Study s = Build(R"(
-chasles: 2
+chasles: 3
 bodies:
   - name: ball
     parts: [{shape: sphere, radius: 0.1, mass: 1}]

@@ -21,7 +21,7 @@ using ::testing::HasSubstr;
 
 // Three balls, one with a named point `top`, and a crate; the contacts follow.
 std::string Scene4(const std::string& contacts) {
-  return R"(chasles: 2
+  return R"(chasles: 3
 parameters:
   R: 0.1 m
 bodies:
@@ -135,7 +135,7 @@ TEST(ContactSets, AllAndNamesThatLookLikeSets) {
   EXPECT_EQ(all.contacts[3].name, "f_crate");
   EXPECT_EQ(all.point_labels()[3], "f_crate");  // one point: the contact's name
   // A body named `all` or `b*` keeps its name's meaning: one contact, named as written.
-  const std::string text = R"(chasles: 2
+  const std::string text = R"(chasles: 3
 bodies:
   - {name: all, parts: [{shape: sphere, radius: 0.1 m, mass: 1 kg}]}
   - {name: b*, parts: [{shape: sphere, radius: 0.1 m, mass: 1 kg}]}

@@ -1,7 +1,9 @@
 // Format versions and the upgrade (docs/scene-format.md, "Changes between versions"): a
 // version-1 file is read with the meanings it had, each version-1 spelling a warning at its
-// place naming the new one; version 2 refuses them naming the new one; UpgradeSceneText edits
-// the text at the nodes' places only, and what it writes reads as the old file did.
+// place naming the new one; versions 2 and 3 refuse them naming the new one; a version-1 or -2
+// scene with contacts and no integrator runs adaptive (version 3: auto), with a warning;
+// UpgradeSceneText edits the text at the nodes' places only, and what it writes reads as the
+// old file did.
 
 #include "chasles/scene/scene_upgrade.h"
 
@@ -49,17 +51,18 @@ std::string WithVersion(const std::string& version) {
 
 TEST(SceneVersions, TheVersionLineSaysHowTheFileIsRead) {
   const char* body = "bodies: [{parts: [{shape: sphere, radius: 1 m, mass: 1 kg}]}]\n";
+  EXPECT_EQ(LoadSceneText(std::string("chasles: 3\n") + body, "t.yaml").format_version, 3);
   EXPECT_EQ(LoadSceneText(std::string("chasles: 2\n") + body, "t.yaml").format_version, 2);
   EXPECT_EQ(LoadSceneText(std::string("chasles: 1\n") + body, "t.yaml").format_version, 1);
   // A file without the key is version 1: the format as it was before versions meant anything.
   EXPECT_EQ(LoadSceneText(body, "t.yaml").format_version, 1);
   try {
-    LoadSceneText(std::string("chasles: 3\n") + body, "t.yaml");
-    FAIL() << "version 3 read";
+    LoadSceneText(std::string("chasles: 4\n") + body, "t.yaml");
+    FAIL() << "version 4 read";
   } catch (const SceneError& e) {
     EXPECT_EQ(e.line(), 1);
-    EXPECT_THAT(e.message(), HasSubstr("format version '3' is not known; this chasles reads "
-                                       "versions 1 and 2"));
+    EXPECT_THAT(e.message(), HasSubstr("format version '4' is not known; this chasles reads "
+                                       "versions 1 to 3 (it writes 3"));
   }
 }
 
@@ -90,7 +93,7 @@ TEST(SceneVersions, VersionOneSpellingsAreReadAsBeforeWithAWarningEach) {
   };
   ASSERT_EQ(old.warnings.size(), expected.size());
   for (size_t i = 0; i < expected.size(); ++i) {
-    EXPECT_EQ(old.warnings[i], expected[i] + "; chasles upgrade rewrites the file as version 2");
+    EXPECT_EQ(old.warnings[i], expected[i] + "; chasles upgrade rewrites the file as version 3");
   }
   // Read as the version-2 spellings are: the same values and the same state variables.
   std::string v2 = WithVersion("chasles: 2");
@@ -156,8 +159,8 @@ events:
   EXPECT_EQ(message(scene("[0, 0]", "rod_yaw")),
             "9:21: 'rod_yaw' is the version-1 name of 'rod_theta' in a planar scene (the angle "
             "about z, which does not wrap at ±180° as yaw did); write 'rod_theta'");
-  // A 3-D name with no planar counterpart stays refused in both versions, with the list.
-  for (const char* version : {"chasles: 1", "chasles: 2"}) {
+  // A 3-D name with no planar counterpart stays refused in every version, with the list.
+  for (const char* version : {"chasles: 1", "chasles: 2", "chasles: 3"}) {
     std::string text = scene("[0, 0]", "rod_tilt");
     text.replace(0, 10, version);
     EXPECT_THAT(message(text), HasSubstr("'rod_tilt' is a 3-D state variable; a planar scene's "
@@ -178,7 +181,7 @@ TEST(SceneUpgrade, EditsTheTextWhereTheOldSpellingsStand) {
   EXPECT_EQ(u.before, WithVersion("chasles: 1"));
   // Comments, quotes, layout and key order stay; only the spellings change.
   EXPECT_EQ(u.text, R"(# comment kept
-chasles: 2
+chasles: 3
 planar: true
 bodies:
   - name: rod
@@ -199,7 +202,7 @@ events:
   - {name: c, when: "rod_omega", crosses: -3 rad/s}
 )");
   ASSERT_EQ(u.changes.size(), 10u);
-  EXPECT_EQ(u.changes[0], "old.yaml:2:10: chasles: chasles: 1 -> chasles: 2");
+  EXPECT_EQ(u.changes[0], "old.yaml:2:10: chasles: chasles: 1 -> chasles: 3");
   EXPECT_EQ(u.changes[9], "old.yaml:21:22: events[2].when: 'rod_wbz' -> 'rod_omega'");
   // Upgrading again changes nothing.
   const SceneUpgrade again = UpgradeSceneText(u.text, "new.yaml");
@@ -210,24 +213,120 @@ events:
 TEST(SceneUpgrade, AFileWithoutAVersionGetsTheLineBeforeItsFirstKey) {
   const char* body = "bodies: [{parts: [{shape: sphere, radius: 1 m, mass: 1 kg}]}]\n";
   EXPECT_EQ(UpgradeSceneText(std::string("# a sphere\n\n") + body, "t.yaml").text,
-            std::string("# a sphere\n\nchasles: 2\n") + body);
+            std::string("# a sphere\n\nchasles: 3\n") + body);
   EXPECT_EQ(UpgradeSceneText(R"({bodies: [{parts: [{shape: point, mass: 1 kg}]}]})", "t.yaml").text,
-            R"({chasles: 2, bodies: [{parts: [{shape: point, mass: 1 kg}]}]})");
+            R"({chasles: 3, bodies: [{parts: [{shape: point, mass: 1 kg}]}]})");
   // A quoted version keeps its quotes, a byte-order mark stays, CR LF line ends stay.
   EXPECT_EQ(UpgradeSceneText(std::string("chasles: '1'\n") + body, "t.yaml").text,
-            std::string("chasles: '2'\n") + body);
+            std::string("chasles: '3'\n") + body);
   EXPECT_EQ(UpgradeSceneText(std::string("\xEF\xBB\xBF"
                                          "chasles: 1\n") +
                                  body,
                              "t.yaml")
                 .text,
             std::string("\xEF\xBB\xBF"
-                        "chasles: 2\n") +
+                        "chasles: 3\n") +
                 body);
   EXPECT_EQ(
       UpgradeSceneText("# a point\r\nbodies: [{parts: [{shape: point, mass: 1 kg}]}]\r\n", "t.yaml")
           .text,
-      "# a point\r\nchasles: 2\r\nbodies: [{parts: [{shape: point, mass: 1 kg}]}]\r\n");
+      "# a point\r\nchasles: 3\r\nbodies: [{parts: [{shape: point, mass: 1 kg}]}]\r\n");
+}
+
+// Version 3's one change: a scene with contacts that names no integrator runs auto. A version-1
+// or -2 file keeps adaptive, with a warning at `simulation` (line 1 without one), and its
+// upgrade writes `integrator: adaptive` where the file's layout has it: a line of the block
+// mapping indented as its keys, an entry of a flow mapping, or a section at the end.
+constexpr const char* kBallOnFloor = R"(VERSION
+bodies:
+  - name: ball
+    parts: [{shape: sphere, radius: 0.1 m, mass: 1 kg}]
+    initial: {position: [0, 0, 1 m]}
+gravity: [0, 0, -9.81 m/s^2]
+contacts:
+  - {name: floor, body: ball, shape: sphere, radius: 0.1 m, mu_s: 0.5, mu_k: 0.4,
+     plane: {point: [0, 0, 0], normal: [0, 0, 1]}}
+SIMULATION)";
+
+std::string BallOnFloor(const std::string& version, const std::string& simulation) {
+  std::string text = kBallOnFloor;
+  text.replace(text.find("VERSION"), 7, version);
+  text.replace(text.find("SIMULATION"), 10, simulation);
+  return text;
+}
+
+TEST(SceneVersions, AScenesDefaultIntegratorWithContactsIsAutoFromVersionThree) {
+  const std::string block = "simulation:\n    until: 1 s  # a comment\n    tolerance: 1e-9\n";
+  const Scene v3 = LoadSceneText(BallOnFloor("chasles: 3", block), "new.yaml");
+  EXPECT_TRUE(v3.dynamics.simulation.auto_engine);
+  EXPECT_TRUE(v3.dynamics.simulation.auto_by_default);
+  EXPECT_TRUE(v3.warnings.empty());
+  for (const char* version : {"chasles: 2", "chasles: 1"}) {
+    const Scene old = LoadSceneText(BallOnFloor(version, block), "old.yaml");
+    EXPECT_FALSE(old.dynamics.simulation.auto_engine) << version;
+    ASSERT_EQ(old.warnings.size(), 1u) << version;
+    EXPECT_EQ(old.warnings[0],
+              fmt::format("old.yaml:10:1: simulation: a version-{} scene with contacts that names "
+                          "no integrator runs 'adaptive' (version 3 runs 'auto' there: "
+                          "event-driven while the contacts' regimes change slowly, time stepped "
+                          "while they chatter); write 'integrator: adaptive' to keep that; "
+                          "chasles upgrade rewrites the file as version 3",
+                          version[9]));
+  }
+  // A named integrator is kept in every version, and a scene without contacts is not touched.
+  for (const char* version : {"chasles: 2", "chasles: 3"}) {
+    const Scene named = LoadSceneText(
+        BallOnFloor(version, "simulation: {until: 1 s, integrator: adaptive}\n"), "t.yaml");
+    EXPECT_FALSE(named.dynamics.simulation.auto_engine);
+    EXPECT_TRUE(named.warnings.empty());
+  }
+  std::string free = BallOnFloor("chasles: 2", block);
+  free.erase(free.find("contacts:"), free.find("simulation:") - free.find("contacts:"));
+  const Scene no_contacts = LoadSceneText(free, "t.yaml");
+  EXPECT_FALSE(no_contacts.dynamics.simulation.auto_engine);
+  EXPECT_TRUE(no_contacts.warnings.empty());
+}
+
+TEST(SceneUpgrade, AVersionTwoSceneWithContactsKeepsAdaptiveWrittenOut) {
+  const std::string block = "simulation:\n    until: 1 s  # a comment\n    tolerance: 1e-9\n";
+  const SceneUpgrade u = UpgradeSceneText(BallOnFloor("chasles: 2", block), "old.yaml");
+  EXPECT_EQ(u.from_version, 2);
+  EXPECT_EQ(u.text, BallOnFloor("chasles: 3",
+                                "simulation:\n    integrator: adaptive\n    until: "
+                                "1 s  # a comment\n    tolerance: 1e-9\n"));
+  ASSERT_EQ(u.changes.size(), 2u);
+  EXPECT_EQ(u.changes[0], "old.yaml:1:10: chasles: chasles: 2 -> chasles: 3");
+  EXPECT_EQ(u.changes[1],
+            "old.yaml:10:1: simulation: integrator: adaptive added (what a scene with contacts "
+            "that names none ran before version 3, which runs auto there)");
+  const Scene now = LoadSceneText(u.text, "new.yaml");
+  EXPECT_FALSE(now.dynamics.simulation.auto_engine);
+  EXPECT_TRUE(now.warnings.empty());
+  // A flow mapping gets an entry; a file without `simulation` gets one at its end, ended as
+  // its lines are (with a line end added where the last line has none).
+  EXPECT_EQ(
+      UpgradeSceneText(BallOnFloor("chasles: 2", "simulation: {until: 1 s}\n"), "t.yaml").text,
+      BallOnFloor("chasles: 3", "simulation: {integrator: adaptive, until: 1 s}\n"));
+  EXPECT_EQ(UpgradeSceneText(BallOnFloor("chasles: 2", ""), "t.yaml").text,
+            BallOnFloor("chasles: 3", "simulation:\n  integrator: adaptive\n"));
+  std::string crlf = BallOnFloor("chasles: 1", "");
+  for (size_t at = crlf.find('\n'); at != std::string::npos; at = crlf.find('\n', at + 2)) {
+    crlf.replace(at, 1, "\r\n");
+  }
+  crlf.resize(crlf.size() - 2);  // no line end after the last line
+  std::string expected = BallOnFloor("chasles: 3", "simulation:\r\n  integrator: adaptive\r\n");
+  for (size_t at = expected.find('\n'); at != std::string::npos; at = expected.find('\n', at + 2)) {
+    if (expected[at - 1] != '\r') expected.replace(at, 1, "\r\n");
+  }
+  EXPECT_EQ(UpgradeSceneText(crlf, "t.yaml").text, expected);
+  // `simulation:` with no keys cannot take the entry in place: the user is told what to write.
+  try {
+    UpgradeSceneText(BallOnFloor("chasles: 2", "simulation: {}\n"), "t.yaml");
+    FAIL() << "rewritten";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 10);
+    EXPECT_THAT(e.message(), HasSubstr("add 'integrator: adaptive' to 'simulation' by hand"));
+  }
 }
 
 TEST(SceneUpgrade, AnOldSpellingAnEditCannotReachIsAnErrorSayingWhatToWrite) {
