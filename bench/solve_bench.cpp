@@ -197,7 +197,8 @@ double SidewaysError(const Scene& s, const Data& data) {
 // Mode selection from all points newly touching (see the file comment). Counters: the modes
 // chosen (points separated, sliding, sticking), the plan solves (passes of the selection and
 // the velocity projection), those of them the dense path made, the sparse LCP's pivots, and the
-// closed-form error of the forces in the chosen modes (PileError, SidewaysError).
+// closed-form error of the forces in the chosen modes (PileError, SidewaysError), and whether
+// the selection's Data had the dense Data::J sized (1: below kSparseMinRows rows, MakeData's).
 void ModeSelection(benchmark::State& st, Select kind, LinearSolver solver) {
   const int n = static_cast<int>(st.range(0));
   Scene s = kind == Select::kChainOnWall ? ChainOnWall(n) : Pile(n, kind == Select::kLengthwise);
@@ -219,6 +220,7 @@ void ModeSelection(benchmark::State& st, Select kind, LinearSolver solver) {
   st.counters["plan_solves"] = stats.sparse_solves + stats.dense_solves;
   st.counters["sparse_pivots"] = stats.sparse_pivots;
   st.counters["dense_plan_solves"] = stats.dense_solves;
+  st.counters["dense_jacobian"] = stats.dense_jacobian ? 1 : 0;
   Data data = MakeData(s.model);
   CalcAccelerations(s.model, x, data);
   st.SetComplexityN(n);

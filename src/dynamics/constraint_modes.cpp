@@ -150,6 +150,8 @@ std::vector<ConstraintImpulse> ResolveConstraintImpacts(const Model& model, Stat
     target[o] = -model.constraint(ci.constraint).restitution() *
                 rate_before[static_cast<size_t>(ci.constraint)];
   }
+  // A dense least-norm solve over every row.
+  internal::EnsureDenseJacobian(model, data);
   Eigen::VectorXd r = target - data.J * u;
   internal::TimesMassInverse(model, data, data.J, data.JMinv);
   Eigen::MatrixXd A = data.JMinv * data.J.transpose();

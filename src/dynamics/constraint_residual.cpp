@@ -49,7 +49,9 @@ std::vector<ConstraintResidual> FindConstraintViolations(const Model& model, con
   CalcKinematics(model, state, data);
   CalcConstraintRows(model, state, data);
   internal::GetVelocity(model, state, data, data.u);
-  const Eigen::VectorXd res = data.J * data.u - data.velocity_rhs;
+  Eigen::VectorXd res(model.num_constraint_rows());
+  internal::ConstraintJacobianTimes(model, data, data.u, res);  // O(rows) on the sparse path
+  res -= data.velocity_rhs;
   const double tol_length = relative_tolerance * scales.length;
   const double tol_angle = relative_tolerance;
   const double tol_speed = relative_tolerance * scales.velocity;

@@ -132,6 +132,9 @@ std::vector<int> RowOwners(const Model& model) {
 
 void CalcConstraintRows(const Model& model, const State& state, Data& data) {
   CheckDataFor(model, data);
+  // The dense Data::J only where it is sized (MakeData below kSparseMinRows rows, a dense
+  // consumer through internal::EnsureDenseJacobian); otherwise the rows live in `e` alone.
+  const bool dense = data.J.size() != 0;
   for (int c = 0; c < model.num_constraints(); ++c) {
     const Constraint& con = model.constraint(c);
     ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
@@ -139,10 +142,12 @@ void CalcConstraintRows(const Model& model, const State& state, Data& data) {
     const int n = con.num_rows();
     // J's only non-zero entries are the blocks written here last time (its parent's, child's
     // and extra bodies' columns, still named by `e`); zeroing just those keeps J's fill O(rows).
-    if (con.parent() != kWorld) data.J.block(o, 6 * con.parent(), n, 6).setZero();
-    data.J.block(o, 6 * con.child(), n, 6).setZero();
-    for (int k = 0; k < e.num_extra; ++k)
-      data.J.block(o, 6 * e.extra_body[static_cast<size_t>(k)], n, 6).setZero();
+    if (dense) {
+      if (con.parent() != kWorld) data.J.block(o, 6 * con.parent(), n, 6).setZero();
+      data.J.block(o, 6 * con.child(), n, 6).setZero();
+      for (int k = 0; k < e.num_extra; ++k)
+        data.J.block(o, 6 * e.extra_body[static_cast<size_t>(k)], n, 6).setZero();
+    }
     e = ConstraintEval{};
     try {
       con.Evaluate(model, state, data, e);
@@ -163,12 +168,7 @@ void CalcConstraintRows(const Model& model, const State& state, Data& data) {
       data.position_error.segment(o, n).setZero();
       continue;
     }
-    if (con.parent() != kWorld) data.J.block(o, 6 * con.parent(), n, 6) = e.J_parent.topRows(n);
-    data.J.block(o, 6 * con.child(), n, 6) = e.J_child.topRows(n);
-    for (int k = 0; k < e.num_extra; ++k) {
-      const auto j = static_cast<size_t>(k);
-      data.J.block(o, 6 * e.extra_body[j], n, 6) = e.J_extra[j].topRows(n);
-    }
+    if (dense) internal::WriteConstraintBlocks(model, data, c, data.J);
     data.velocity_rhs.segment(o, n) = e.velocity_rhs.head(n);
     data.acceleration_rhs.segment(o, n) = e.acceleration_rhs.head(n);
     data.position_error.segment(o, n) = e.position_error.head(n);
@@ -192,6 +192,7 @@ void SolveConstraintForces(const Model& model, const State& state, Data& data) {
     internal::FillConstraintReactions(model, state, data);
     return;
   }
+  internal::EnsureDenseJacobian(model, data);
   internal::TimesMassInverse(model, data, data.J, data.JMinv);
   data.schur.noalias() = data.JMinv * data.J.transpose();
   data.Ju.noalias() = data.J * u_dot;  // J u̇_free here; J u below
@@ -217,7 +218,9 @@ ConstraintViolation CalcConstraintViolation(const Model& model, const State& sta
   CalcKinematics(model, state, data);
   CalcConstraintRows(model, state, data);
   internal::GetVelocity(model, state, data, data.u);
-  const VectorXd res = data.J * data.u - data.velocity_rhs;
+  VectorXd res(model.num_constraint_rows());
+  internal::ConstraintJacobianTimes(model, data, data.u, res);  // O(rows) on the sparse path
+  res -= data.velocity_rhs;
   double worst = -1.0;
   for (int c = 0; c < model.num_constraints(); ++c) {
     const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
@@ -247,6 +250,8 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
   for (int iter = 0; iter <= options.max_iterations; ++iter) {
     CalcKinematics(model, state, data);
     CalcConstraintRows(model, state, data);
+    // A dense solve over every row (the Gauss-Newton steps and the velocity projection).
+    internal::EnsureDenseJacobian(model, data);
     if (iter == 0) {
       for (int c = 0; c < model.num_constraints(); ++c) {
         const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
@@ -300,6 +305,7 @@ void ProjectOntoConstraints(const Model& model, State& state, Data& data,
   // Velocities: J u = b at the projected configuration.
   CalcKinematics(model, state, data);
   CalcConstraintRows(model, state, data);
+  internal::EnsureDenseJacobian(model, data);
   internal::GetVelocity(model, state, data, data.u);
   const VectorXd res = data.J * data.u - data.velocity_rhs;
   if (res.size() == 0 || res.cwiseAbs().maxCoeff() == 0.0) return;

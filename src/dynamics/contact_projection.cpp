@@ -9,6 +9,7 @@
 #include "chasles/error.h"
 #include "chasles/math/quaternion.h"
 #include "dynamics/internal/contact_geometry.h"
+#include "dynamics/internal/generalized.h"
 #include "dynamics/internal/sparse_solve.h"
 
 namespace chasles {
@@ -204,7 +205,7 @@ void ProjectOntoContactModes(const Model& model, State& state, Data& data,
   internal::GetVelocity(model, state, data, data.u);
   if (has_constraints) {
     internal::AppendConstraintRows(model, data, sp.rows);
-    ws.c.head(nc_rows).noalias() = data.J * data.u;
+    internal::ConstraintJacobianTimes(model, data, data.u, ws.c.head(nc_rows));
     ws.c.head(nc_rows) -= data.velocity_rhs;
   }
   AppendVelocityRows(model, state, data, sp.rows, ws.c, nc_rows);

@@ -909,7 +909,11 @@ PlanSolution SolvePlanDense(const Model& model, const Data& data,
   MatrixXd JE = MatrixXd::Zero(nE, 6 * nb), Jn = MatrixXd::Zero(nN, 6 * nb);
   MatrixXd Wn = MatrixXd::Zero(nN, 6 * nb);
   VectorXd cE(nE), cn(nN);
-  if (ncr > 0) JE.topRows(ncr) = data.J, cE.head(ncr) = c_constraints;
+  // The constraint rows from their blocks (Data::J, which may be empty: a sparse selection's
+  // Data keeps none).
+  for (int c = 0; c < model.num_constraints(); ++c)
+    internal::WriteConstraintBlocks(model, data, c, JE.topRows(ncr));
+  if (ncr > 0) cE.head(ncr) = c_constraints;
   Eigen::Index e = ncr;
   for (Eigen::Index i = 0; i < nN; ++i) {
     const PointPlan& pp = plan[static_cast<size_t>(i)];
@@ -1181,6 +1185,8 @@ class ModeSelector {
   void WriteModes(State& state) const;
   // Velocity projection onto the chosen rows (see the definition).
   void ProjectVelocities(State& state, ModeSelectionNotes* notes) const;
+  // Whether either Data ended with its dense Data::J sized (ModeSelectionStats).
+  bool DenseJacobianSized() const { return data_.J.size() != 0 || tdata_.J.size() != 0; }
 
  private:
   bool TakeSlidingAsSticking();
@@ -1684,6 +1690,7 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
   selector.SelectModes();
   selector.WriteModes(state);
   selector.ProjectVelocities(state, notes);
+  mode_selection_stats.dense_jacobian = selector.DenseJacobianSized();
   std::vector<ContactModeChange> changes;
   for (int p = 0; p < np; ++p) {
     const ContactPointState& a = before[static_cast<size_t>(p)];

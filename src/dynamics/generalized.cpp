@@ -52,6 +52,53 @@ void HoldReleasedRows(const std::vector<char>& released, Eigen::MatrixXd& A, Eig
   }
 }
 
+void WriteConstraintBlocks(const Model& model, const Data& data, int c,
+                           Eigen::Ref<Eigen::MatrixXd> J) {
+  const Constraint& con = model.constraint(c);
+  const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+  const int o = model.constraint_row_offset(c);
+  const int n = con.num_rows();
+  if (data.row_released[static_cast<size_t>(o)] != 0) return;
+  if (con.parent() != kWorld) J.block(o, 6 * con.parent(), n, 6) = e.J_parent.topRows(n);
+  J.block(o, 6 * con.child(), n, 6) = e.J_child.topRows(n);
+  for (int k = 0; k < e.num_extra; ++k) {
+    const auto j = static_cast<size_t>(k);
+    J.block(o, 6 * e.extra_body[j], n, 6) = e.J_extra[j].topRows(n);
+  }
+}
+
+void EnsureDenseJacobian(const Model& model, Data& data) {
+  const int rows = model.num_constraint_rows(), cols = 6 * model.num_bodies();
+  if (data.J.rows() == rows && data.J.cols() == cols) return;
+  data.J.setZero(rows, cols);
+  for (int c = 0; c < model.num_constraints(); ++c) WriteConstraintBlocks(model, data, c, data.J);
+}
+
+void ConstraintJacobianTimes(const Model& model, const Data& data, const Eigen::VectorXd& x,
+                             Eigen::Ref<Eigen::VectorXd> out) {
+  const int rows = model.num_constraint_rows();
+  if (rows < kSparseMinRows && data.J.rows() == rows && data.J.cols() == x.size()) {
+    out.noalias() = data.J * x;
+    return;
+  }
+  for (int c = 0; c < model.num_constraints(); ++c) {
+    const Constraint& con = model.constraint(c);
+    const ConstraintEval& e = data.constraint_rows[static_cast<size_t>(c)];
+    const int o = model.constraint_row_offset(c);
+    const int n = con.num_rows();
+    auto y = out.segment(o, n);
+    y.setZero();
+    if (data.row_released[static_cast<size_t>(o)] != 0) continue;
+    if (con.parent() != kWorld)
+      y.noalias() += e.J_parent.topRows(n) * x.segment<6>(6 * con.parent());
+    y.noalias() += e.J_child.topRows(n) * x.segment<6>(6 * con.child());
+    for (int k = 0; k < e.num_extra; ++k) {
+      const auto j = static_cast<size_t>(k);
+      y.noalias() += e.J_extra[j].topRows(n) * x.segment<6>(6 * e.extra_body[j]);
+    }
+  }
+}
+
 double KineticEnergy(const Model& model, const State& state) {
   double T = 0.0;
   for (int b = 0; b < model.num_bodies(); ++b) {

@@ -499,6 +499,7 @@ ImpactResult ImpactsImpl(const Model& model, State& state, const ContactToleranc
   internal::TimesMassInverse(model, data, J, JMi);
   MatrixXd Y = JMi.transpose();
   if (ncr > 0) {
+    internal::EnsureDenseJacobian(model, data);  // G for the dense decomposition below
     MatrixXd GMi;
     internal::TimesMassInverse(model, data, data.J, GMi);
     Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod;

@@ -363,6 +363,7 @@ Redundancy AnalyseRedundancy(const Model& model, const State& state, Data& data)
   if (nc == 0) return r;
   CalcKinematics(model, state, data);
   CalcConstraintRows(model, state, data);
+  internal::EnsureDenseJacobian(model, data);  // a dense eigendecomposition over every row
   r.length = CalcMechanismLength(model, data);
   const VectorXd d = CalcReactionWeights(model, data);
 

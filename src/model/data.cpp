@@ -26,7 +26,6 @@ Data MakeData(const Model& model) {
   const int rows = model.num_constraint_rows();
   d.constraint_rows.assign(nc, ConstraintEval{});
   d.constraints.assign(nc, ConstraintOutput{});
-  d.J = Eigen::MatrixXd::Zero(rows, 6 * model.num_bodies());
   d.velocity_rhs = Eigen::VectorXd::Zero(rows);
   d.acceleration_rhs = Eigen::VectorXd::Zero(rows);
   d.position_error = Eigen::VectorXd::Zero(rows);
@@ -34,9 +33,12 @@ Data MakeData(const Model& model) {
   d.row_released.assign(static_cast<size_t>(rows), 0);
   d.constraint_gap.assign(nc, 0.0);
   d.constraint_rank = rows;
-  // The dense path's workspace only where LinearSolver::kAuto takes it (the sparse path keeps
-  // its own; a dense solve of a larger system sizes these on first use).
+  // The dense Jacobian and the dense path's workspace only where LinearSolver::kAuto takes that
+  // path (the sparse path keeps its own rows and workspace; a dense solve of a larger system
+  // sizes these on first use, J through internal::EnsureDenseJacobian). A chain of 1,000 links
+  // would otherwise zero a 5,000 × 6,000 J for every Data made.
   if (rows < kSparseMinRows) {
+    d.J = Eigen::MatrixXd::Zero(rows, 6 * model.num_bodies());
     d.JMinv = Eigen::MatrixXd::Zero(rows, 6 * model.num_bodies());
     d.schur = Eigen::MatrixXd::Zero(rows, rows);
   }

@@ -222,9 +222,10 @@ struct Data {
   std::vector<ConstraintEval> constraint_rows;
   /// Per constraint (Model order): multipliers and reactions.
   std::vector<ConstraintOutput> constraints;
-  /// Stacked Jacobian J (num_constraint_rows × 6 num_bodies); columns per body
-  /// [v_WBcm_W, w_WB_W]. CalcConstraintRows rewrites only the blocks of the constraints'
-  /// bodies (the rest stays zero from MakeData), so filling it costs O(rows).
+  /// Stacked Jacobian J (rows × 6 num_bodies; columns per body [v_WBcm_W, w_WB_W]), dense, sized
+  /// only where a dense solve reads it: by MakeData below kSparseMinRows rows, else by the first
+  /// dense consumer (kDense, ProjectOntoConstraints, impacts, AnalyseRedundancy); till then 0 × 0
+  /// (the rows are in constraint_rows). Sized, CalcConstraintRows keeps it current in O(rows).
   Eigen::MatrixXd J;
   /// Stacked velocity right-hand side b, acceleration right-hand side c, position error g.
   Eigen::VectorXd velocity_rhs, acceleration_rhs, position_error;
@@ -239,9 +240,8 @@ struct Data {
   /// Rank of J M⁻¹ Jᵀ found by the solve (< rows when constraints are redundant).
   int constraint_rank = 0;
   /// Workspace of the constraint solve, sized once by MakeData so that the derivative
-  /// evaluations do not allocate: J M⁻¹, J M⁻¹ Jᵀ and its factorisation (dense path; MakeData
-  /// sizes these two only for models with fewer than kSparseMinRows constraint rows), the
-  /// generalised velocity u and acceleration u̇, J u, and the right-hand side of the
+  /// evaluations do not allocate: J M⁻¹, J M⁻¹ Jᵀ and its factorisation (dense path; sized as
+  /// J is), the generalised velocity u and acceleration u̇, J u, and the right-hand side of the
   /// multiplier system.
   Eigen::MatrixXd JMinv, schur;
   SchurFactorization schur_ldlt;

@@ -25,6 +25,21 @@ void SetVelocity(const Model& model, const Data& data, const Eigen::VectorXd& u,
 /// so A has a zero row and column there; they become x_k = 0 (A_kk = 1, r_k = 0), which keeps
 /// the system regular and the multiplier of a slack string at 0.
 void HoldReleasedRows(const std::vector<char>& released, Eigen::MatrixXd& A, Eigen::VectorXd& r);
+/// Writes the rows of constraint c (Data::constraint_rows, after CalcConstraintRows) into its
+/// rows of `J` (num_constraint_rows × 6 num_bodies): its blocks on the parent, the child and
+/// any further bodies, in that order; a released constraint's rows are left as they are (zero).
+void WriteConstraintBlocks(const Model& model, const Data& data, int c,
+                           Eigen::Ref<Eigen::MatrixXd> J);
+/// Data::J for a dense consumer (a dense factorisation over the constraint rows): sizes it and
+/// fills it from Data::constraint_rows (after CalcConstraintRows; released rows zero) unless
+/// it is sized already, entry for entry the matrix MakeData and CalcConstraintRows keep below
+/// kSparseMinRows rows. Sized, it is kept current by CalcConstraintRows from then on.
+void EnsureDenseJacobian(const Model& model, Data& data);
+/// J x over the constraint rows into `out` (num_constraint_rows): below kSparseMinRows rows the
+/// dense product with Data::J (MakeData sizes it there: the dense path's numbers), otherwise by
+/// each constraint's own blocks in Data::constraint_rows (zero for a released one), O(rows).
+void ConstraintJacobianTimes(const Model& model, const Data& data, const Eigen::VectorXd& x,
+                             Eigen::Ref<Eigen::VectorXd> out);
 /// Total kinetic energy [J].
 double KineticEnergy(const Model& model, const State& state);
 /// Data::constraints from the constraint multipliers in Data::lambda and the rows in

@@ -24,11 +24,15 @@ std::vector<ContactModeChange> SelectContactModes(const Model& model, State& sta
 
 /// What the plan solves of the last SelectContactModes on this thread did: the number of
 /// plan solves that took the sparse path, the number that fell back to the dense one, and the
-/// pivots (changes of the pressing set) of the sparse LCP. For tests and benchmarks.
+/// pivots (changes of the pressing set) of the sparse LCP, and whether either Data of the
+/// selection (its working Data and the one its evaluations use) ended with its dense Data::J
+/// sized (made so by MakeData below kSparseMinRows rows, else by a dense solve that needed it).
+/// For tests and benchmarks.
 struct ModeSelectionStats {
   int sparse_solves = 0;
   int dense_solves = 0;
   int sparse_pivots = 0;
+  bool dense_jacobian = false;
 };
 const ModeSelectionStats& LastModeSelectionStats();
 

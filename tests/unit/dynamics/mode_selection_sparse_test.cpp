@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "chasles/dynamics/contact_projection.h"
 #include "chasles/dynamics/contact_solve.h"
 #include "chasles/dynamics/newton_euler.h"
 #include "chasles/model/data.h"
@@ -265,6 +266,60 @@ TEST(SparseModeSelection, LengthwiseRowStartsSlippingAtEveryTouchAsDense) {
     EXPECT_EQ(ps.mode, ContactMode::kSliding);
   }
   ExpectSameSelection(s, sparse, dense);
+}
+
+// The hanging chain of n rods (1 kg, 0.25 m) at rest, the far end of its last rod touching a
+// frictionless wall with normal ŷ (the direction its joints let it swing; bench/solve_bench.cpp's
+// ChainOnWall): 5 n joint rows and one normal row.
+Scene ChainOnWall(int n) {
+  Scene s = reference::MakeChain(n, std::vector<double>(static_cast<size_t>(n), 1.0), 0.25);
+  const BodyState& b = s.state.bodies[static_cast<size_t>(n - 1)];
+  const Vec3 tip(0, 0, -n * 0.25);
+  ContactSpec c;
+  c.name = "wall";
+  c.shape = ContactShape::kPointSet;
+  c.body = n - 1;
+  c.points_B = {b.q_WB.toRotationMatrix().transpose() * (tip - b.p_WBcm)};
+  c.plane_point_W = tip;
+  c.plane_normal_W = Vec3::UnitY();
+  s.model.AddContact(c);
+  s.state.contacts.assign(1, ContactPointState{});
+  return s;
+}
+
+// The chain of 60 rods on the wall (300 joint rows): the end stays on the wall (sliding,
+// frictionless) with no force, and each joint carries the weight of the rods below it. Every
+// plan solve is sparse, and neither Data of the selection sizes the dense Data::J (nor does the
+// dense selection, whose plan solves copy the rows from their blocks), nor the contact stage
+// or the projection onto the chosen modes; a chain of 4 rods (20 rows) has it from MakeData.
+TEST(SparseModeSelection, LargeChainOnAWallMeetsTheClosedFormsWithoutTheDenseJacobian) {
+  const int n = 60;
+  const double W = 1.0 * kGravity;  // one rod's weight
+  const Scene s = ChainOnWall(n);
+  const Selected sel = Select(s, LinearSolver::kAuto);
+  EXPECT_GT(sel.stats.sparse_solves, 0);
+  EXPECT_EQ(sel.stats.dense_solves, 0);
+  EXPECT_FALSE(sel.stats.dense_jacobian);
+  ASSERT_EQ(sel.state.contacts[0].mode, ContactMode::kSliding);
+  EXPECT_LE(std::abs(sel.out[0].normal_force), 1e-12 * W);
+  EXPECT_LE(sel.out[0].friction_force_W.norm(), 1e-12 * W);
+  Data data = MakeData(s.model);
+  EXPECT_EQ(data.J.size(), 0);
+  CalcAccelerations(s.model, sel.state, data);
+  for (int i = 0; i < n; ++i) {
+    EXPECT_TRUE(test::MatNear(data.constraints[static_cast<size_t>(i)].F_Jc_W,
+                              Vec3(0, 0, W * (n - i)), 1e-12))
+        << "joint " << i;
+  }
+  State projected = sel.state;
+  ProjectOntoContactModes(s.model, projected, data);
+  for (const BodyState& b : projected.bodies) EXPECT_LE(b.v_WBcm_W.norm(), 1e-12);
+  EXPECT_EQ(data.J.size(), 0);
+  const Selected dense = Select(s, LinearSolver::kDense);
+  EXPECT_GT(dense.stats.dense_solves, 0);
+  EXPECT_FALSE(dense.stats.dense_jacobian);
+  EXPECT_EQ(dense.state.contacts[0].mode, ContactMode::kSliding);
+  EXPECT_TRUE(Select(ChainOnWall(4), LinearSolver::kAuto).stats.dense_jacobian);
 }
 
 // The chain of 8 links with the end of every link on its plane (ChainOnPlanes with every = 1:
