@@ -153,19 +153,8 @@ enum class Select { kResting, kSideways, kLengthwise, kChainOnWall };
 // it (ChainError). (With friction the end's tangent rows would hold it up as the joints do: a
 // statically indeterminate chain.)
 Scene ChainOnWall(int n) {
-  Scene s = Chain(n);
-  const BodyState& b = s.state.bodies[static_cast<size_t>(n - 1)];
-  const Vec3 tip(0, 0, -n * kRodLength);
-  ContactSpec c;
-  c.name = "wall";
-  c.shape = ContactShape::kPointSet;
-  c.body = n - 1;
-  c.points_B = {b.q_WB.toRotationMatrix().transpose() * (tip - b.p_WBcm)};
-  c.plane_point_W = tip;
-  c.plane_normal_W = Vec3::UnitY();
-  s.model.AddContact(c);
-  s.state.contacts.assign(1, ContactPointState{});
-  return s;
+  return reference::MakeChainOnWall(n, std::vector<double>(static_cast<size_t>(n), kRodMass),
+                                    kRodLength);
 }
 
 double ChainOnWallError(const Scene& s, const Data& data) {

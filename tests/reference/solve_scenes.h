@@ -106,6 +106,26 @@ inline Scene MakeChain(int n, const std::vector<double>& masses, double L,
   return s;
 }
 
+/// MakeChain(n, masses, L) hanging at rest, the far end of its last rod touching a frictionless
+/// wall with normal ŷ (the direction its joints, axes along x, let it swing): 5 n joint rows and
+/// one normal row. The end stays on the wall with no force (nothing pushes it against the wall)
+/// and each joint carries the weight below it.
+inline Scene MakeChainOnWall(int n, const std::vector<double>& masses, double L) {
+  Scene s = MakeChain(n, masses, L);
+  const BodyState& b = s.state.bodies[static_cast<size_t>(n - 1)];
+  const Vec3 tip(0, 0, -n * L);
+  ContactSpec c;
+  c.name = "wall";
+  c.shape = ContactShape::kPointSet;
+  c.body = n - 1;
+  c.points_B = {b.q_WB.toRotationMatrix().transpose() * (tip - b.p_WBcm)};
+  c.plane_point_W = tip;
+  c.plane_normal_W = Vec3::UnitY();
+  s.model.AddContact(c);
+  s.state.contacts.assign(1, ContactPointState{});
+  return s;
+}
+
 /// The row of `n` spheres of radius radii[i] and mass masses[i] on the floor z = 0, each
 /// touching the next: centres at height R_i, 2 √(R_i R_{i+1}) apart along x. The floor points
 /// stick, or slide along +x (each sphere moving at 1 m/s along x without spin) with

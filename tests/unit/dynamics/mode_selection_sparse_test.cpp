@@ -268,23 +268,10 @@ TEST(SparseModeSelection, LengthwiseRowStartsSlippingAtEveryTouchAsDense) {
   ExpectSameSelection(s, sparse, dense);
 }
 
-// The hanging chain of n rods (1 kg, 0.25 m) at rest, the far end of its last rod touching a
-// frictionless wall with normal ŷ (the direction its joints let it swing; bench/solve_bench.cpp's
-// ChainOnWall): 5 n joint rows and one normal row.
+// The hanging chain of n rods (1 kg, 0.25 m) at rest on a frictionless wall
+// (reference::MakeChainOnWall, also bench/solve_bench.cpp's): 5 n joint rows and one normal row.
 Scene ChainOnWall(int n) {
-  Scene s = reference::MakeChain(n, std::vector<double>(static_cast<size_t>(n), 1.0), 0.25);
-  const BodyState& b = s.state.bodies[static_cast<size_t>(n - 1)];
-  const Vec3 tip(0, 0, -n * 0.25);
-  ContactSpec c;
-  c.name = "wall";
-  c.shape = ContactShape::kPointSet;
-  c.body = n - 1;
-  c.points_B = {b.q_WB.toRotationMatrix().transpose() * (tip - b.p_WBcm)};
-  c.plane_point_W = tip;
-  c.plane_normal_W = Vec3::UnitY();
-  s.model.AddContact(c);
-  s.state.contacts.assign(1, ContactPointState{});
-  return s;
+  return reference::MakeChainOnWall(n, std::vector<double>(static_cast<size_t>(n), 1.0), 0.25);
 }
 
 // The chain of 60 rods on the wall (300 joint rows): the end stays on the wall (sliding,
