@@ -6,6 +6,7 @@
 
 #include "chasles/error.h"
 #include "chasles/model/forces.h"
+#include "integrate/internal/collision_law.h"
 #include "integrate/internal/sphere_runner.h"
 
 namespace chasles {
@@ -377,20 +378,8 @@ SphereEventResult Runner::Run(const State& initial) {
         fmt::format("output_interval = {} s must be >= 0 (0: first and last state only)",
                     options_.output_interval));
   }
-  if (options_.collide_all_pairs) {
-    // The coefficients as a contact would have them (ValidateContactSpec names the rule).
-    ContactSpec law;
-    law.name = "pair_law";
-    law.shape = ContactShape::kSphereSphere;
-    law.radius = law.other_radius = R_max_;
-    law.body = 0;
-    law.other_body = model_.num_bodies() > 1 ? 1 : 0;
-    law.restitution = options_.pair_law.restitution;
-    law.mu_s = options_.pair_law.mu_s;
-    law.mu_k = options_.pair_law.mu_k;
-    law.restitution_law = options_.pair_law.law;
-    ValidateContactSpec(law);
-  }
+  if (options_.collide_all_pairs)
+    internal::ValidateSphereCollisionLaw(options_.pair_law, model_, R_max_);
   const auto n = balls_.size();
   chain_.resize(n);
   ver_.assign(n, 0);
@@ -465,5 +454,23 @@ SphereEventResult SimulateSphereEvents(const Model& model, const State& initial,
   Runner runner(model, options);
   return runner.Run(initial);
 }
+
+namespace internal {
+
+void ValidateSphereCollisionLaw(const SphereCollisionLaw& law, const Model& model, double radius) {
+  ContactSpec spec;
+  spec.name = "pair_law";
+  spec.shape = ContactShape::kSphereSphere;
+  spec.radius = spec.other_radius = radius;
+  spec.body = 0;
+  spec.other_body = model.num_bodies() > 1 ? 1 : 0;
+  spec.restitution = law.restitution;
+  spec.mu_s = law.mu_s;
+  spec.mu_k = law.mu_k;
+  spec.restitution_law = law.law;
+  ValidateContactSpec(spec);
+}
+
+}  // namespace internal
 
 }  // namespace chasles

@@ -16,6 +16,7 @@
 #include "chasles/math/quaternion.h"
 #include "chasles/model/constraints.h"
 #include "chasles/model/data.h"
+#include "integrate/internal/collision_law.h"
 
 // Moreau–Jean time stepping (J. J. Moreau, "Unilateral contact and dry friction in finite
 // freedom dynamics", CISM 302, 1988; M. Jean, Comput. Methods Appl. Mech. Eng. 177, 1999) with
@@ -1127,18 +1128,8 @@ TimeSteppingResult SimulateTimeStepping(const Model& model, const State& initial
     throw InputError(fmt::format("time stepping: threads is {}; it must be >= 1", options.threads));
   }
   if (options.collide_all_pairs) {
-    // The coefficients as a contact would have them (ValidateContactSpec names the rule).
-    ContactSpec law;
-    law.name = "pair_law";
-    law.shape = ContactShape::kSphereSphere;
-    law.radius = law.other_radius = 1.0;
-    law.body = 0;
-    law.other_body = model.num_bodies() > 1 ? 1 : 0;
-    law.restitution = options.pair_law.restitution;
-    law.mu_s = options.pair_law.mu_s;
-    law.mu_k = options.pair_law.mu_k;
-    law.restitution_law = options.pair_law.law;
-    ValidateContactSpec(law);
+    // The coefficients alone (the radii are checked below).
+    internal::ValidateSphereCollisionLaw(options.pair_law, model, 1.0);
     if (!options.ball_radii.empty()) {
       if (options.ball_radii.size() != static_cast<size_t>(model.num_bodies())) {
         throw InputError(fmt::format("time stepping: ball_radii has {} entries for {} bodies",
