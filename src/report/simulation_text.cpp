@@ -160,12 +160,25 @@ std::string SwitchText(const StudyEngineSegment& g, const Show& u) {
 /// work (a time-stepped one with the certificate of its steps).
 std::string EnginesText(const StudyResult& r, const Show& u) {
   const EngineChoiceRule& rule = *r.engine_rule;
+  const char* named = r.engine_by_default ? ", the default for a scene with contacts" : "";
+  // A run that cannot hand over to time stepping: the rule has nothing to say, only why.
+  if (r.segments.size() == 1 && !r.segments[0].stays.empty()) {
+    const int islands = r.segments[0].islands;
+    return fmt::format(
+        "\nIntegrator: auto{} (event-driven throughout: {}): {} steps, {} rejected, {} "
+        "evaluations{}\n",
+        named, r.segments[0].stays, r.stats.steps, r.stats.rejected_steps,
+        r.stats.function_evaluations,
+        islands > 1 ? fmt::format("; {} islands, each its own hybrid system (the counts are "
+                                  "their sums)",
+                                  islands)
+                    : std::string());
+  }
   std::string out = fmt::format(
       "\nIntegrator: auto{} (event-driven, time stepped with step {} while {} regime changes "
       "come within {}, back after {} without one): {} steps, {} rejected, {} evaluations\n",
-      r.engine_by_default ? ", the default for a scene with contacts" : "", u.Time(rule.step),
-      rule.changes, u.Time(rule.window), u.Time(rule.quiet_span), r.stats.steps,
-      r.stats.rejected_steps, r.stats.function_evaluations);
+      named, u.Time(rule.step), rule.changes, u.Time(rule.window), u.Time(rule.quiet_span),
+      r.stats.steps, r.stats.rejected_steps, r.stats.function_evaluations);
   for (const StudyEngineSegment& g : r.segments) {
     out += fmt::format("  {} to {}: {}, {}\n", u.Time(g.t_begin), u.Time(g.t_end),
                        StudyEngineName(g.engine), SwitchText(g, u));
