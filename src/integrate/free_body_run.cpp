@@ -25,7 +25,8 @@ constexpr long long kChunkSteps = 128;
 ///   impulse    ∫ Σ m g_e dτ = h M g_e,
 ///   angular    ∫ Σ m p × g_e dτ = (h S + ½h² P + ⅙h³ M g) × g_e  (about Wo),
 /// and then S ← S + h P + ½h² M g, P ← P + h M g: the sums follow the bodies in closed form
-/// between output times and are taken from the bodies again at each.
+/// between output times and are taken from the bodies again at each (FreeBodyRunBatch sums
+/// them as it loads and stores the bodies).
 class GravityLedger {
  public:
   explicit GravityLedger(const Model& model) {
@@ -33,18 +34,13 @@ class GravityLedger {
       element_g_W_.push_back(static_cast<const UniformGravity&>(model.force_element(e)).g_W());
       g_W_ += element_g_W_.back();
     }
-    for (int b = 0; b < model.num_bodies(); ++b) mass_ += model.body(b).mass();
   }
 
-  /// S and P from the bodies of `s`.
-  void Start(const Model& model, const State& s) {
-    S_.setZero();
-    P_.setZero();
-    for (int b = 0; b < model.num_bodies(); ++b) {
-      const BodyState& x = s.bodies[static_cast<size_t>(b)];
-      S_ += model.body(b).mass() * x.p_WBcm;
-      P_ += model.body(b).mass() * x.v_WBcm_W;
-    }
+  /// The bodies' M, S and P at the start of a stretch.
+  void Start(double M, const Vec3& S, const Vec3& P) {
+    mass_ = M;
+    S_ = S;
+    P_ = P;
   }
 
   /// One step of h [s] into `s`'s force integrals.
@@ -67,6 +63,23 @@ class GravityLedger {
   Vec3 g_W_ = Vec3::Zero(), S_ = Vec3::Zero(), P_ = Vec3::Zero();
   double mass_ = 0.0;
 };
+
+/// `s` without its bodies, which FreeBodyRunBatch::Store writes (a copy of them would be
+/// overwritten unread). Every other field of State is copied.
+State WithoutBodies(const State& s) {
+  static_assert(sizeof(State) == sizeof(double) + sizeof(s.bodies) + sizeof(s.force_integrals) +
+                                     sizeof(s.constraint_work) + sizeof(s.contacts) +
+                                     sizeof(s.constraint_modes) + sizeof(s.unlisted_contact_work),
+                "a field of State is not copied here");
+  State x;
+  x.t = s.t;
+  x.force_integrals = s.force_integrals;
+  x.constraint_work = s.constraint_work;
+  x.contacts = s.contacts;
+  x.constraint_modes = s.constraint_modes;
+  x.unlisted_contact_work = s.unlisted_contact_work;
+  return x;
+}
 
 }  // namespace
 
@@ -92,11 +105,10 @@ SimulationResult RunFreeBodyBatch(const Model& model, const State& initial,
     if (o.on_sample) o.on_sample(s);
     if (o.store_samples) r.samples.push_back(s);
   };
-  FreeBodyBatch batch(model);
-  batch.Load(initial);
+  FreeBodyRunBatch batch(model, initial);
   GravityLedger ledger(model);
-  State state = initial;
-  emit(state);
+  State state = WithoutBodies(initial);
+  emit(initial);
   for (long long k = 1; state.t < o.t_end; ++k) {
     const double t_out =
         o.output_interval > 0.0
@@ -107,10 +119,11 @@ SimulationResult RunFreeBodyBatch(const Model& model, const State& initial,
     const double t0 = state.t, span = t_out - t0;
     const long long n = std::max(1LL, static_cast<long long>(std::ceil(span / h - 1e-9)));
     const double step = span / static_cast<double>(n);
-    ledger.Start(model, state);
     for (long long done = 0; done < n;) {
       const long long m = std::min(kChunkSteps, n - done);
       batch.Advance(stepper, step, m, o.threads);
+      // The sums of the bodies at the stretch's start (the first Advance loads them).
+      if (done == 0) ledger.Start(batch.mass(), batch.sum_mp(), batch.sum_mv());
       for (long long i = 0; i < m; ++i) {
         ledger.Step(step, state);
         if (o.on_step)
@@ -118,7 +131,8 @@ SimulationResult RunFreeBodyBatch(const Model& model, const State& initial,
       }
       done += m;
     }
-    batch.Store(state);
+    // The sums of the bodies for the ledger's next stretch, if there is one.
+    batch.Store(state, t_out < o.t_end);
     state.t = t_out;
     r.stats.steps += n;
     r.stats.function_evaluations += (stepper == FreeBodyStepper::kRk4 ? 4 : 1) * n;
