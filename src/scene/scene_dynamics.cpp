@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <regex>
 #include <unordered_set>
 
 #include <fmt/format.h>
@@ -28,9 +27,14 @@ constexpr std::array<Dimension, StateVariableLayout::kPerBody> kSuffixDimensions
 // Standard gravity (CGPM 1901, exact) [m/s²].
 constexpr double kStandardGravity = 9.80665;
 
-bool IsIdentifier(const std::string& name) {
-  static const std::regex ident("[A-Za-z_][A-Za-z_0-9]*");
-  return std::regex_match(name, ident);
+// [A-Za-z_][A-Za-z_0-9]*, as the expression reader takes a name.
+bool IsIdentifier(std::string_view name) {
+  const auto letter = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+  };
+  if (name.empty() || !letter(name[0])) return false;
+  return std::all_of(name.begin() + 1, name.end(),
+                     [&](char c) { return letter(c) || (c >= '0' && c <= '9'); });
 }
 
 // Shortest text that parses back to exactly `v` (fmt's round-trip format).
@@ -903,12 +907,12 @@ void SceneReader::ReadInitialStates(const At& root, Scene& scene) {
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     d.initial[b].p_BoP_B = scene.bodies[b].mass_properties.p_BoBcm_B();
     const At body_at = bodies.Item(b);
-    const At spot_at = body_at.Has("initial") ? body_at.Child("initial") : body_at;
+    const bool given = body_at.Has("initial");
+    const At spot_at = given ? body_at.Child("initial") : body_at;
     const YamlMark mark = spot_at.node.Mark();
     d.initial[b].where = {mark.line >= 0 ? mark.line + 1 : 0,
                           mark.column >= 0 ? mark.column + 1 : 0, spot_at.path};
-    if (body_at.Has("initial"))
-      ReadInitial(body_at.Child("initial"), scene.bodies[b], d.initial[b]);
+    if (given) ReadInitial(spot_at, scene.bodies[b], d.initial[b]);
   }
 }
 

@@ -895,6 +895,7 @@ void CheckLimitsUpFront(const Scene& scene, const RunLimits& limits, double span
 /// I_zz > 0 (a slender rod in the plane has I_xx = 0 about its own axis).
 std::vector<NamedBody> StudyBodies(const Scene& scene) {
   std::vector<NamedBody> bodies;
+  bodies.reserve(scene.bodies.size());
   for (const SceneBody& b : scene.bodies) {
     const MassProperties& mp = b.mass_properties;
     if (scene.planar) {
@@ -911,7 +912,12 @@ std::vector<NamedBody> StudyBodies(const Scene& scene) {
 /// The identity map of the scene's bodies (before any embedding).
 BodyMap IdentityMap(const Scene& scene) {
   BodyMap map;
-  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+  const size_t n = scene.bodies.size();
+  map.place.reserve(n);
+  map.p_BoBcm_B.reserve(n);
+  map.mass.reserve(n);
+  map.I_BBcm_B.reserve(n);
+  for (size_t b = 0; b < n; ++b) {
     map.place.push_back({static_cast<int>(b), Mat3::Identity(), Vec3::Zero()});
     map.p_BoBcm_B.push_back(scene.bodies[b].mass_properties.p_BoBcm_B());
     map.mass.push_back(scene.bodies[b].mass_properties.mass());
@@ -1068,13 +1074,13 @@ Study BuildStudy(const Scene& scene, double until) {
     const double t_end = EndTime(scene, until);
     CheckPhysicalInputs(scene, t_end);
     Study study;
-    study.model =
-        std::make_shared<const Model>(BuildModel(scene, StudyBodies(scene), IdentityMap(scene)));
+    const BodyMap identity = IdentityMap(scene);
+    study.model = std::make_shared<const Model>(BuildModel(scene, StudyBodies(scene), identity));
     study.options = BaseOptions(scene, t_end);
     study.initial = InitialState(scene, *study.model);
     study.settling = Settling(scene);
     study.warnings = StringWarnings(scene);
-    study.options.events = BuildEvents(scene, IdentityMap(scene));
+    study.options.events = BuildEvents(scene, identity);
     return study;
   } catch (const InputError& e) {
     ThrowAtSceneEntry(scene, e);
