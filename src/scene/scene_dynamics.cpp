@@ -626,15 +626,15 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
 
 // `ball_collisions`: the coefficients of every pair of balls the scene does not list, read as
 // a contact's (numbers, or a material pair). The event-driven path and time stepping let every
-// pair collide; the adaptive engine (also auto's event-driven stretches) does not.
+// pair collide; the adaptive engine does not, so auto time steps such a run throughout.
 void SceneReader::ReadBallCollisions(const At& at, Scene& scene) {
   SceneSimulation& sim = scene.dynamics.simulation;
-  if (!sim.event_driven && !sim.time_stepping) {
+  if (!sim.event_driven && !sim.time_stepping && !sim.auto_engine) {
     report_.Fail(at,
                  "'ball_collisions' lets every pair of balls collide, which only 'integrator: "
-                 "events' and 'integrator: stepping' do (not the adaptive engine, on which "
-                 "'auto' also runs); for another integrator list each pair as a contact with "
-                 "'with'");
+                 "events', 'stepping' and 'auto' do (auto time steps such a run throughout), not "
+                 "the adaptive engine or a fixed-step integrator; for another integrator list "
+                 "each pair as a contact with 'with'");
   }
   report_.CheckMap(at, {"materials", "mu_s", "mu_k", "restitution", "restitution_law"},
                    "the collisions between balls");
@@ -689,6 +689,9 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
 
   ReadForces(root, scene);
 
+  // The default engine first: the simulation block's checks ('step', 'ball_collisions') depend
+  // on it.
+  DefaultIntegrator(root, scene);
   if (root.Has("simulation")) {
     d.simulation.where = KeySpotAt(root, "simulation");
     ReadSimulation(root.Child("simulation"), d.simulation);
@@ -696,7 +699,6 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
       ReadBallCollisions(root.Child("simulation").Child("ball_collisions"), scene);
     }
   }
-  DefaultIntegrator(root, scene);
 
   if (root.Has("events")) {
     const At events = root.Child("events");

@@ -1096,6 +1096,33 @@ namespace {
   ThrowAtSceneEntry(scene, e);
 }
 
+// What a time-stepped run with `ball_collisions` does differently from what the scene may
+// expect, said as warnings (none without ball_collisions).
+void AddBallCollisionWarnings(const SceneSimulation& sim, const Model& first,
+                              std::vector<std::string>& warnings) {
+  if (!sim.collide_all_pairs) return;
+  if (sim.ball_collisions.restitution > 0 && sim.ball_collisions.law != RestitutionLaw::kNewton) {
+    warnings.push_back(fmt::format(
+        "ball_collisions: time stepping applies Newton's law at all touching points at once; "
+        "its restitution_law '{}' is not used (the laws agree for a frictionless collision "
+        "of two bodies)",
+        RestitutionLawName(sim.ball_collisions.law)));
+  }
+  const std::vector<double> radii = BallRadii(first);
+  if (std::count_if(radii.begin(), radii.end(), [](double r) { return r > 0.0; }) < 2) {
+    warnings.push_back(
+        "ball_collisions: fewer than two bodies are balls (a ball is a body with a sphere "
+        "contact centred at its centre of mass), so no pair can collide");
+  }
+  // The rows' contact forces are the smooth engine's at each sample, over the listed
+  // contacts (docs/contact.md, "Every pair of balls"): say that they do not see the pairs.
+  warnings.push_back(
+      "ball_collisions: the contact forces in the rows and in the contacts at the end are "
+      "those of the listed contacts alone, found at each sample as if no two balls touched: "
+      "a ball pressed by another shows less than it carries (the pairs' impulses are in "
+      "every step's certificate)");
+}
+
 StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOptions& options) {
   const SceneDynamics& d = scene.dynamics;
   const double t_end = EndTime(scene, options.until);
@@ -1168,29 +1195,7 @@ StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOpti
     stepping.step = sim.step;
     stepping.collide_all_pairs = sim.collide_all_pairs;
     stepping.pair_law = sim.ball_collisions;
-    if (sim.collide_all_pairs && sim.ball_collisions.restitution > 0 &&
-        sim.ball_collisions.law != RestitutionLaw::kNewton) {
-      def.warnings.push_back(fmt::format(
-          "ball_collisions: time stepping applies Newton's law at all touching points at once; "
-          "its restitution_law '{}' is not used (the laws agree for a frictionless collision "
-          "of two bodies)",
-          RestitutionLawName(sim.ball_collisions.law)));
-    }
-    if (sim.collide_all_pairs) {
-      const std::vector<double> radii = BallRadii(first);
-      if (std::count_if(radii.begin(), radii.end(), [](double r) { return r > 0.0; }) < 2) {
-        def.warnings.push_back(
-            "ball_collisions: fewer than two bodies are balls (a ball is a body with a sphere "
-            "contact centred at its centre of mass), so no pair can collide");
-      }
-      // The rows' contact forces are the smooth engine's at each sample, over the listed
-      // contacts (docs/contact.md, "Every pair of balls"): say that they do not see the pairs.
-      def.warnings.push_back(
-          "ball_collisions: the contact forces in the rows and in the contacts at the end are "
-          "those of the listed contacts alone, found at each sample as if no two balls touched: "
-          "a ball pressed by another shows less than it carries (the pairs' impulses are in "
-          "every step's certificate)");
-    }
+    AddBallCollisionWarnings(sim, first, def.warnings);
     def.time_stepping = stepping;
   }
   if (sim.auto_engine) {
@@ -1199,6 +1204,11 @@ StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOpti
     engines.rule = MakeEngineChoiceRule(
         std::isfinite(sim.step) ? sim.step : DefaultEngineStep(first, def.options.output_interval));
     engines.by_default = sim.auto_by_default;
+    // Every pair of balls may collide: only time stepping finds the pairs, so the run is time
+    // stepped throughout (StudyRun::Start).
+    engines.stepping.collide_all_pairs = sim.collide_all_pairs;
+    engines.stepping.pair_law = sim.ball_collisions;
+    AddBallCollisionWarnings(sim, first, def.warnings);
     def.auto_engine = engines;
   }
   // The run settles it: on the constraints, or an error, or projected with each change a
