@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <unordered_set>
 #include <utility>
@@ -42,6 +43,10 @@ using study_internal::ThetaTracker;
 /// (½ m v²) and moments (r × F) of ordinary bodies leave double precision, so such a motion is
 /// a blown-up or mistyped input.
 constexpr double kMotionScale = 1e150;
+
+/// Why integrator: auto time steps a run with every pair of balls able to collide.
+constexpr const char* kPairsNeedStepping =
+    "every pair of balls may collide (ball_collisions), and only time stepping finds the pairs";
 
 /// Throws when a body's motion is not finite or has run away beyond kMotionScale.
 void CheckFinite(const Model& model, const State& state) {
@@ -130,6 +135,9 @@ class StudyRun {
   void RunAdaptiveStretch(double t_b);
   void RunSteppingStretch(double t_b);
   void SwitchToStepping(const RegimeChangeYield& why);
+  /// The run goes on time stepped (integrator: auto): the certificate's gap time, the impact
+  /// law's warnings (once), the quiet span's start.
+  void EnterStepping();
   void SwitchToEvents();
   void RunEvents(double t_b);
   void RecordSphereEvents(const SphereEventResult& r);
@@ -170,6 +178,9 @@ class StudyRun {
   double scheme_error_ = 0.0;
   double quiet_from_ = 0.0;
   bool law_warned_ = false;
+  /// integrator: auto with every pair of balls able to collide: only time stepping finds the
+  /// pairs, so the run is time stepped from start to end.
+  bool stepped_throughout_ = false;
   /// The strings named in result_.string_events so far.
   std::unordered_set<std::string> strings_listed_;
 };
@@ -247,8 +258,13 @@ void StudyRun::Start() {
     }
     result_.engine_rule = def_.auto_engine->rule;
     result_.engine_by_default = def_.auto_engine->by_default;
+    stepped_throughout_ = def_.auto_engine->stepping.collide_all_pairs;
     StudyEngineSegment first;
     first.t_begin = def_.initial.t;
+    if (stepped_throughout_) {
+      first.engine = StudyEngine::kStepping;
+      first.stays = kPairsNeedStepping;
+    }
     result_.segments.push_back(std::move(first));
   }
   result_.warnings = def_.warnings;
@@ -263,6 +279,16 @@ void StudyRun::Start() {
                                    : def_.auto_engine   ? EngineRequest::kAuto
                                                         : EngineRequest::kIntegrator);
   path_ = result_.run_path.path;
+  if (stepped_throughout_) {
+    if (const ModelObstacle o = TimeSteppingObstacle(*seg_.model); !o.empty()) {
+      throw InputError(
+          fmt::format("integrator auto: {}, which cannot run this scene: {} (balls on a table "
+                      "may name 'integrator: events', which finds the pairs between events)",
+                      kPairsNeedStepping, o.why),
+          o.element);
+    }
+    result_.run_path.reason = std::string("time stepping throughout: ") + kPairsNeedStepping;
+  }
   if ((path_ == RunPath::kSphereEvents || path_ == RunPath::kTimeStepping) &&
       (!chosen.events.empty() || !def_.impulses.empty() || !def_.impacts.empty())) {
     throw InputError(
@@ -283,7 +309,7 @@ void StudyRun::Start() {
   const State as_given = state_;
   // The event-driven path settles its balls itself (a ball moving into the table lands at
   // once) and lists every point's initial mode (RecordSphereEvents).
-  if (model.num_contacts() > 0 && path_ == RunPath::kTimeStepping) {
+  if (model.num_contacts() > 0 && (path_ == RunPath::kTimeStepping || stepped_throughout_)) {
     // Time stepping chooses the regimes in its first step; the timeline starts separated.
     for (int p = 0; p < model.num_contact_points(); ++p) {
       result_.contact_events.push_back({state_.t,
@@ -313,6 +339,7 @@ void StudyRun::Start() {
   AddRow(model, state_);
   Certify(state_, CheckPhase::kSample);
   slip_.Sample(model, state_);
+  if (stepped_throughout_) EnterStepping();
 }
 
 void StudyRun::RecordImpacts(const std::vector<ImpactResult>& results, double t) {
@@ -515,7 +542,7 @@ void StudyRun::RunSteppingStretch(double t_b) {
   o.step = rule.step;
   o.t_end = stretch.t_end;
   o.output_interval = stretch.output_interval;
-  o.quiet_span = rule.quiet_span;
+  o.quiet_span = stepped_throughout_ ? std::numeric_limits<double>::infinity() : rule.quiet_span;
   o.quiet_from = quiet_from_;
   o.threads = def_.options.threads;
   o.on_step = [this](double t) { OnStep(t); };
@@ -556,6 +583,10 @@ void StudyRun::SwitchToStepping(const RegimeChangeYield& why) {
   seg.span = why.t_last - why.t_first;
   seg.where = why.where;
   result_.segments.push_back(std::move(seg));
+  EnterStepping();
+}
+
+void StudyRun::EnterStepping() {
   // Moreau–Jean sees an approaching point at its step's midpoint (time_stepping.h).
   certificate_.SetGapTime(0.5 * def_.auto_engine->rule.step);
   if (!law_warned_) {

@@ -262,7 +262,10 @@ nlohmann::json EngineSegmentsJson(const std::vector<StudyEngineSegment>& segment
     if (g.engine == StudyEngine::kAdaptive) x["islands"] = g.islands;
     switch (g.reason) {
       case EngineSwitch::kStart:
-        if (!g.stays.empty()) x["stays_event_driven"] = g.stays;
+        if (!g.stays.empty()) {
+          x[g.engine == StudyEngine::kStepping ? "stays_time_stepped" : "stays_event_driven"] =
+              g.stays;
+        }
         break;
       case EngineSwitch::kRegimeChanges:
         x["changes"] = g.changes;

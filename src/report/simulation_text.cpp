@@ -143,7 +143,11 @@ std::string SteppingText(const StudyResult& r, const Show& u) {
 std::string SwitchText(const StudyEngineSegment& g, const Show& u) {
   switch (g.reason) {
     case EngineSwitch::kStart:
-      return g.stays.empty() ? "start" : fmt::format("start; stays event-driven: {}", g.stays);
+      return g.stays.empty()
+                 ? "start"
+                 : fmt::format("start; stays {}: {}",
+                               g.engine == StudyEngine::kStepping ? "time stepped" : "event-driven",
+                               g.stays);
     case EngineSwitch::kRegimeChanges:
       return fmt::format("{} regime changes within {} (the last at {}): faster than the bound",
                          g.changes, u.Time(g.span), g.where);
@@ -161,7 +165,18 @@ std::string SwitchText(const StudyEngineSegment& g, const Show& u) {
 std::string EnginesText(const StudyResult& r, const Show& u) {
   const EngineChoiceRule& rule = *r.engine_rule;
   const char* named = r.engine_by_default ? ", the default for a scene with contacts" : "";
-  // A run that cannot hand over to time stepping: the rule has nothing to say, only why.
+  // A run that stays on one engine: the rule has nothing to say, only why (and a time-stepped
+  // one its certificate).
+  if (r.segments.size() == 1 && !r.segments[0].stays.empty() &&
+      r.segments[0].engine == StudyEngine::kStepping) {
+    const StudyEngineSegment& g = r.segments[0];
+    return fmt::format(
+               "\nIntegrator: auto{} (time stepped throughout with step {}: {}): {} steps, {}, "
+               "largest contact problem {} points\n",
+               named, u.Time(rule.step), g.stays, g.stepping.steps,
+               Count(g.stepping.regime_changes, "regime change"), g.stepping.largest_island) +
+           SteppingCertificateText(g.stepping, g.tolerance_met, u, "    ");
+  }
   if (r.segments.size() == 1 && !r.segments[0].stays.empty()) {
     const int islands = r.segments[0].islands;
     return fmt::format(

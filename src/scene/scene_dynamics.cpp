@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <regex>
 #include <unordered_set>
 
 #include <fmt/format.h>
@@ -28,9 +27,14 @@ constexpr std::array<Dimension, StateVariableLayout::kPerBody> kSuffixDimensions
 // Standard gravity (CGPM 1901, exact) [m/s²].
 constexpr double kStandardGravity = 9.80665;
 
-bool IsIdentifier(const std::string& name) {
-  static const std::regex ident("[A-Za-z_][A-Za-z_0-9]*");
-  return std::regex_match(name, ident);
+// [A-Za-z_][A-Za-z_0-9]*, as the expression reader takes a name.
+bool IsIdentifier(std::string_view name) {
+  const auto letter = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+  };
+  if (name.empty() || !letter(name[0])) return false;
+  return std::all_of(name.begin() + 1, name.end(),
+                     [&](char c) { return letter(c) || (c >= '0' && c <= '9'); });
 }
 
 // Shortest text that parses back to exactly `v` (fmt's round-trip format).
@@ -622,15 +626,15 @@ void SceneReader::ReadSimulation(const At& at, SceneSimulation& sim) {
 
 // `ball_collisions`: the coefficients of every pair of balls the scene does not list, read as
 // a contact's (numbers, or a material pair). The event-driven path and time stepping let every
-// pair collide; the adaptive engine (also auto's event-driven stretches) does not.
+// pair collide; the adaptive engine does not, so auto time steps such a run throughout.
 void SceneReader::ReadBallCollisions(const At& at, Scene& scene) {
   SceneSimulation& sim = scene.dynamics.simulation;
-  if (!sim.event_driven && !sim.time_stepping) {
+  if (!sim.event_driven && !sim.time_stepping && !sim.auto_engine) {
     report_.Fail(at,
                  "'ball_collisions' lets every pair of balls collide, which only 'integrator: "
-                 "events' and 'integrator: stepping' do (not the adaptive engine, on which "
-                 "'auto' also runs); for another integrator list each pair as a contact with "
-                 "'with'");
+                 "events', 'stepping' and 'auto' do (auto time steps such a run throughout), not "
+                 "the adaptive engine or a fixed-step integrator; for another integrator list "
+                 "each pair as a contact with 'with'");
   }
   report_.CheckMap(at, {"materials", "mu_s", "mu_k", "restitution", "restitution_law"},
                    "the collisions between balls");
@@ -685,6 +689,9 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
 
   ReadForces(root, scene);
 
+  // The default engine first: the simulation block's checks ('step', 'ball_collisions') depend
+  // on it.
+  DefaultIntegrator(root, scene);
   if (root.Has("simulation")) {
     d.simulation.where = KeySpotAt(root, "simulation");
     ReadSimulation(root.Child("simulation"), d.simulation);
@@ -692,7 +699,6 @@ void SceneReader::ReadDynamics(const At& root, Scene& scene) {
       ReadBallCollisions(root.Child("simulation").Child("ball_collisions"), scene);
     }
   }
-  DefaultIntegrator(root, scene);
 
   if (root.Has("events")) {
     const At events = root.Child("events");
@@ -903,12 +909,12 @@ void SceneReader::ReadInitialStates(const At& root, Scene& scene) {
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     d.initial[b].p_BoP_B = scene.bodies[b].mass_properties.p_BoBcm_B();
     const At body_at = bodies.Item(b);
-    const At spot_at = body_at.Has("initial") ? body_at.Child("initial") : body_at;
+    const bool given = body_at.Has("initial");
+    const At spot_at = given ? body_at.Child("initial") : body_at;
     const YamlMark mark = spot_at.node.Mark();
     d.initial[b].where = {mark.line >= 0 ? mark.line + 1 : 0,
                           mark.column >= 0 ? mark.column + 1 : 0, spot_at.path};
-    if (body_at.Has("initial"))
-      ReadInitial(body_at.Child("initial"), scene.bodies[b], d.initial[b]);
+    if (given) ReadInitial(spot_at, scene.bodies[b], d.initial[b]);
   }
 }
 

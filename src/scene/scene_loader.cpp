@@ -7,6 +7,7 @@
 #include <optional>
 #include <regex>
 #include <sstream>
+#include <unordered_map>
 #include <unordered_set>
 
 #include <fmt/format.h>
@@ -46,6 +47,25 @@ const std::vector<std::string> kPartKeys = {
     "name",       "shape",          "subtract",      "mass",      "density",
     "material",   "position",       "axis",          "rotation",  "euler",
     "quaternion", "linear_density", "areal_density", "thickness", "cross_section"};
+
+// The keys of a part of a shape of the table, made once for each shape.
+const std::vector<std::string>& TableShapePartKeys(const scene_internal::ShapeEntry& shape) {
+  static const auto keys = [] {
+    std::unordered_map<const scene_internal::ShapeEntry*, std::vector<std::string>> all;
+    for (const std::string& name : scene_internal::ShapeNames()) {
+      const scene_internal::ShapeEntry* entry = scene_internal::FindShape(name);
+      std::vector<std::string>& allowed = all[entry];
+      allowed = kPartKeys;
+      for (const auto& d : entry->dimensions) allowed.emplace_back(d.key);
+      if (entry->axial_key) {
+        allowed.emplace_back("from");
+        allowed.emplace_back("to");
+      }
+    }
+    return all;
+  }();
+  return keys.at(&shape);
+}
 
 // True when an expression's text names no parameter or unit, only numbers, operators and
 // functions: such a bare number is read in the scene's default unit for what is expected.
@@ -122,7 +142,11 @@ double SceneReader::DefaultUnitFactor(const Dimension& d) const {
 }
 
 double SceneReader::Value(const At& at, const Dimension& expected, std::string_view what) {
-  const std::string text = report_.Text(at, fmt::format("{} ({})", what, expected.Describe()));
+  // The message is made only for a value that is not there: every number of a scene comes here.
+  if (!at.node.IsScalar() || at.node.Scalar().empty()) {
+    report_.Text(at, fmt::format("{} ({})", what, expected.Describe()));
+  }
+  const std::string text(at.node.Scalar());
   const Expression e =
       Compile(at, text, [this](std::string_view n) { return ResolveParameter(n); });
   if (!e.is_constant()) report_.Fail(at, "x, y and z may appear only in a density field");
@@ -517,13 +541,7 @@ MassProperties SceneReader::ReadTableShapePart(const At& at, const At& shape_at,
                                        DidYouMean(part.shape, names), fmt::join(names, ", ")));
   }
   part.shape = shape->name;
-  std::vector<std::string> allowed = kPartKeys;
-  for (const auto& d : shape->dimensions) allowed.emplace_back(d.key);
-  if (shape->axial_key) {
-    allowed.emplace_back("from");
-    allowed.emplace_back("to");
-  }
-  report_.CheckMap(at, allowed, fmt::format("a {} part", shape->name));
+  report_.CheckMap(at, TableShapePartKeys(*shape), fmt::format("a {} part", shape->name));
   const std::string what = fmt::format("part '{}' ({})", part.name, shape->name);
 
   const bool segment = at.Has("from") || at.Has("to");

@@ -895,6 +895,7 @@ void CheckLimitsUpFront(const Scene& scene, const RunLimits& limits, double span
 /// I_zz > 0 (a slender rod in the plane has I_xx = 0 about its own axis).
 std::vector<NamedBody> StudyBodies(const Scene& scene) {
   std::vector<NamedBody> bodies;
+  bodies.reserve(scene.bodies.size());
   for (const SceneBody& b : scene.bodies) {
     const MassProperties& mp = b.mass_properties;
     if (scene.planar) {
@@ -911,7 +912,12 @@ std::vector<NamedBody> StudyBodies(const Scene& scene) {
 /// The identity map of the scene's bodies (before any embedding).
 BodyMap IdentityMap(const Scene& scene) {
   BodyMap map;
-  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+  const size_t n = scene.bodies.size();
+  map.place.reserve(n);
+  map.p_BoBcm_B.reserve(n);
+  map.mass.reserve(n);
+  map.I_BBcm_B.reserve(n);
+  for (size_t b = 0; b < n; ++b) {
     map.place.push_back({static_cast<int>(b), Mat3::Identity(), Vec3::Zero()});
     map.p_BoBcm_B.push_back(scene.bodies[b].mass_properties.p_BoBcm_B());
     map.mass.push_back(scene.bodies[b].mass_properties.mass());
@@ -1068,13 +1074,13 @@ Study BuildStudy(const Scene& scene, double until) {
     const double t_end = EndTime(scene, until);
     CheckPhysicalInputs(scene, t_end);
     Study study;
-    study.model =
-        std::make_shared<const Model>(BuildModel(scene, StudyBodies(scene), IdentityMap(scene)));
+    const BodyMap identity = IdentityMap(scene);
+    study.model = std::make_shared<const Model>(BuildModel(scene, StudyBodies(scene), identity));
     study.options = BaseOptions(scene, t_end);
     study.initial = InitialState(scene, *study.model);
     study.settling = Settling(scene);
     study.warnings = StringWarnings(scene);
-    study.options.events = BuildEvents(scene, IdentityMap(scene));
+    study.options.events = BuildEvents(scene, identity);
     return study;
   } catch (const InputError& e) {
     ThrowAtSceneEntry(scene, e);
@@ -1088,6 +1094,33 @@ namespace {
 [[noreturn]] void ThrowRunErrorAtSceneEntry(const Scene& scene, const InputError& e) {
   if (const auto* limit = dynamic_cast<const LimitError*>(&e)) ThrowLimitReached(scene, *limit);
   ThrowAtSceneEntry(scene, e);
+}
+
+// What a time-stepped run with `ball_collisions` does differently from what the scene may
+// expect, said as warnings (none without ball_collisions).
+void AddBallCollisionWarnings(const SceneSimulation& sim, const Model& first,
+                              std::vector<std::string>& warnings) {
+  if (!sim.collide_all_pairs) return;
+  if (sim.ball_collisions.restitution > 0 && sim.ball_collisions.law != RestitutionLaw::kNewton) {
+    warnings.push_back(fmt::format(
+        "ball_collisions: time stepping applies Newton's law at all touching points at once; "
+        "its restitution_law '{}' is not used (the laws agree for a frictionless collision "
+        "of two bodies)",
+        RestitutionLawName(sim.ball_collisions.law)));
+  }
+  const std::vector<double> radii = BallRadii(first);
+  if (std::count_if(radii.begin(), radii.end(), [](double r) { return r > 0.0; }) < 2) {
+    warnings.push_back(
+        "ball_collisions: fewer than two bodies are balls (a ball is a body with a sphere "
+        "contact centred at its centre of mass), so no pair can collide");
+  }
+  // The rows' contact forces are the smooth engine's at each sample, over the listed
+  // contacts (docs/contact.md, "Every pair of balls"): say that they do not see the pairs.
+  warnings.push_back(
+      "ball_collisions: the contact forces in the rows and in the contacts at the end are "
+      "those of the listed contacts alone, found at each sample as if no two balls touched: "
+      "a ball pressed by another shows less than it carries (the pairs' impulses are in "
+      "every step's certificate)");
 }
 
 StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOptions& options) {
@@ -1162,29 +1195,7 @@ StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOpti
     stepping.step = sim.step;
     stepping.collide_all_pairs = sim.collide_all_pairs;
     stepping.pair_law = sim.ball_collisions;
-    if (sim.collide_all_pairs && sim.ball_collisions.restitution > 0 &&
-        sim.ball_collisions.law != RestitutionLaw::kNewton) {
-      def.warnings.push_back(fmt::format(
-          "ball_collisions: time stepping applies Newton's law at all touching points at once; "
-          "its restitution_law '{}' is not used (the laws agree for a frictionless collision "
-          "of two bodies)",
-          RestitutionLawName(sim.ball_collisions.law)));
-    }
-    if (sim.collide_all_pairs) {
-      const std::vector<double> radii = BallRadii(first);
-      if (std::count_if(radii.begin(), radii.end(), [](double r) { return r > 0.0; }) < 2) {
-        def.warnings.push_back(
-            "ball_collisions: fewer than two bodies are balls (a ball is a body with a sphere "
-            "contact centred at its centre of mass), so no pair can collide");
-      }
-      // The rows' contact forces are the smooth engine's at each sample, over the listed
-      // contacts (docs/contact.md, "Every pair of balls"): say that they do not see the pairs.
-      def.warnings.push_back(
-          "ball_collisions: the contact forces in the rows and in the contacts at the end are "
-          "those of the listed contacts alone, found at each sample as if no two balls touched: "
-          "a ball pressed by another shows less than it carries (the pairs' impulses are in "
-          "every step's certificate)");
-    }
+    AddBallCollisionWarnings(sim, first, def.warnings);
     def.time_stepping = stepping;
   }
   if (sim.auto_engine) {
@@ -1193,6 +1204,11 @@ StudyDefinition MakeUnlocatedStudyDefinition(const Scene& scene, const StudyOpti
     engines.rule = MakeEngineChoiceRule(
         std::isfinite(sim.step) ? sim.step : DefaultEngineStep(first, def.options.output_interval));
     engines.by_default = sim.auto_by_default;
+    // Every pair of balls may collide: only time stepping finds the pairs, so the run is time
+    // stepped throughout (StudyRun::Start).
+    engines.stepping.collide_all_pairs = sim.collide_all_pairs;
+    engines.stepping.pair_law = sim.ball_collisions;
+    AddBallCollisionWarnings(sim, first, def.warnings);
     def.auto_engine = engines;
   }
   // The run settles it: on the constraints, or an error, or projected with each change a

@@ -245,16 +245,21 @@ bool ColumnIndex::IsGroup(const std::string& name) {
 
 void ColumnIndex::AddGroup(const std::string& name, std::vector<std::string>& out) const {
   const size_t n = scene_.bodies.size();
-  if (name == "planar" && scene_.planar) {
+  // "<body>_<suffix>", made in place: a scene of 100,000 bodies has 1.3 million of them.
+  const auto add_body_columns = [&](const auto& suffixes) {
     for (size_t b = 0; b < n; ++b) {
-      for (const char* s : PlanarSuffixes()) out.push_back(scene_.bodies[b].name + "_" + s);
+      const std::string& body = scene_.bodies[b].name;
+      for (const char* s : suffixes) {
+        const std::string_view suffix(s);
+        std::string& column = out.emplace_back();
+        column.reserve(body.size() + 1 + suffix.size());
+        column.append(body).append(1, '_').append(suffix);
+      }
     }
-  }
+  };
+  if (name == "planar" && scene_.planar) add_body_columns(PlanarSuffixes());
   for (const BodyGroup& g : BodyGroups()) {
-    if (name != g.group) continue;
-    for (size_t b = 0; b < n; ++b) {
-      for (const char* s : g.suffixes) out.push_back(scene_.bodies[b].name + "_" + s);
-    }
+    if (name == g.group) add_body_columns(g.suffixes);
   }
   for (size_t g = 0; g < PointGroups().size(); ++g) {
     if (name != PointGroups()[g].group) continue;

@@ -1,7 +1,7 @@
 #include "internal/yaml_reader.h"
 
 #include <algorithm>
-#include <set>
+#include <charconv>
 
 #include <fmt/format.h>
 
@@ -9,8 +9,22 @@
 
 namespace chasles::scene_internal {
 
+namespace {
+
+// One allocation per path: a scene of 100,000 bodies makes millions of them.
+std::string JoinPath(const std::string& path, std::string_view key) {
+  std::string joined;
+  joined.reserve(path.size() + 1 + key.size());
+  joined.append(path);
+  if (!path.empty()) joined.push_back('.');
+  joined.append(key);
+  return joined;
+}
+
+}  // namespace
+
 At At::Child(std::string_view key) const {
-  At child{node[key], path.empty() ? std::string(key) : path + "." + std::string(key)};
+  At child{node[key], JoinPath(path, key)};
   if (child.node.IsDefined() && child.node.IsNull() && node.IsMap()) {
     for (const auto& kv : node) {
       if (kv.first.IsScalar() && kv.first.Scalar() == key) child.key_mark = kv.first.Mark();
@@ -20,7 +34,12 @@ At At::Child(std::string_view key) const {
 }
 
 At At::Item(size_t index) const {
-  return At{node[index], fmt::format("{}[{}]", path, index)};
+  char digits[24];
+  const auto end = std::to_chars(digits, digits + sizeof digits, index).ptr;
+  std::string indexed;
+  indexed.reserve(path.size() + 2 + static_cast<size_t>(end - digits));
+  indexed.append(path).append(1, '[').append(digits, end).append(1, ']');
+  return At{node[index], std::move(indexed)};
 }
 
 bool At::Has(std::string_view key) const {
@@ -63,18 +82,27 @@ void Reporter::CheckMap(const At& at, const std::vector<std::string>& allowed,
     Fail(at,
          fmt::format("expected {} (a mapping of keys to values), got {}", what, KindOf(at.node)));
   }
-  std::set<std::string> seen;
-  for (const auto& kv : at.node) {
-    const At key_at{kv.first, at.path};
-    if (!kv.first.IsScalar()) Fail(key_at, "keys must be plain names");
-    const std::string key(kv.first.Scalar());
-    const At named{kv.first, at.path.empty() ? key : at.path + "." + key};
-    if (!seen.insert(key).second) Fail(named, fmt::format("key '{}' appears twice", key));
+  // Nothing is allocated unless a key is wrong: a mapping has a handful of keys, so a repeat is
+  // found by comparing with the keys before it.
+  const size_t n = at.node.size();
+  size_t k = 0;
+  for (auto it = at.node.begin(); k < n; ++it, ++k) {
+    const YamlNode key_node = (*it).first;
+    if (!key_node.IsScalar()) Fail(At{key_node, at.path}, "keys must be plain names");
+    const std::string_view key = key_node.Scalar();
+    const auto named = [&] { return At{key_node, JoinPath(at.path, key)}; };
+    size_t j = 0;
+    for (auto before = at.node.begin(); j < k; ++before, ++j) {
+      const YamlNode earlier = (*before).first;
+      if (earlier.IsScalar() && earlier.Scalar() == key) {
+        Fail(named(), fmt::format("key '{}' appears twice", key));
+      }
+    }
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
       std::string known;
       for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + a;
-      Fail(named, fmt::format("unknown key '{}'{} in {}; known keys: {}", key,
-                              DidYouMean(key, allowed), what, known));
+      Fail(named(), fmt::format("unknown key '{}'{} in {}; known keys: {}", key,
+                                DidYouMean(key, allowed), what, known));
     }
   }
 }

@@ -76,11 +76,13 @@ YamlDocument::Index YamlDocument::AddScalar(std::string_view text, YamlMark mark
   if (first + text.size() > 0xFFFFFFFFu) throw std::length_error("YAML text over 4 GiB");
   text_.append(text);
   return Add({YamlNode::Type::kScalar, quoted, false, static_cast<Index>(first),
-              static_cast<Index>(text.size()), mark.line, mark.column, mark.pos});
+              static_cast<Index>(text.size()), mark.line, mark.column,
+              static_cast<std::uint32_t>(mark.pos)});
 }
 
 YamlDocument::Index YamlDocument::AddNull(YamlMark mark) {
-  return Add({YamlNode::Type::kNull, false, false, 0, 0, mark.line, mark.column, mark.pos});
+  return Add({YamlNode::Type::kNull, false, false, 0, 0, mark.line, mark.column,
+              static_cast<std::uint32_t>(mark.pos)});
 }
 
 YamlDocument::Index YamlDocument::AddSequence(const std::vector<Index>& items) {
@@ -298,7 +300,7 @@ class YamlBuilder {
     entry.flow = flow;
     entry.line = mark.line;
     entry.column = mark.column;
-    entry.pos = mark.pos;
+    entry.pos = static_cast<std::uint32_t>(mark.pos);
     frames_.push_back({doc_.Add(entry), pending_.size()});
     open_anchors_.push_back(anchor ? reinterpret_cast<const char*>(anchor) : std::string());
   }
@@ -341,6 +343,8 @@ YamlDocument ParseYaml(std::string_view text, const std::string& name) {
   // libyaml told the text is UTF-8 reads a byte-order mark as a character of the document;
   // places count from after it.
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+  // Places and offsets are 32-bit (a scene file is capped at 16 MiB by default).
+  if (text.size() > 0xFFFFFFFFu) throw std::length_error("YAML text over 4 GiB");
   YamlBuilder builder(text, name);
   return builder.Build(text);
 }

@@ -175,9 +175,11 @@ TEST(EngineChoice, TumblingCubeSwitchesToSteppingAndBack) {
   EXPECT_THAT(text.out, ::testing::HasSubstr("time stepping's own"));
 }
 
-// What `integrator: auto` refuses or cannot do is said: `ball_collisions` is the event-driven
-// spheres' alone; a scene time stepping cannot run (here the shipped ladder, auto by default)
-// stays event-driven, and its first segment says why.
+// What `integrator: auto` refuses or cannot do is said: a scene time stepping cannot run (here
+// the shipped ladder, auto by default) stays event-driven, and its first segment says why; with
+// `ball_collisions` only time stepping finds the pairs, so the pool break with its rolling
+// resistance (which time stepping does not model) is refused with both reasons, pointing at
+// `integrator: events`.
 TEST(EngineChoice, SaysWhyItStaysEventDriven) {
   const std::filesystem::path out = OutDir("engine_choice_stays");
   const nlohmann::json j = SimulateJson(SourcePath("examples/ladder-leaves-wall.yaml"), out);
@@ -192,7 +194,12 @@ TEST(EngineChoice, SaysWhyItStaysEventDriven) {
   const CliResult r =
       RunCli("simulate " + Quote((out / "pool.yaml").string()) + " --out " + Quote(out.string()));
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, ::testing::HasSubstr("'ball_collisions' lets every pair of balls collide"));
+  EXPECT_THAT(r.err, ::testing::HasSubstr("pool.yaml:40:5: contacts[0]: integrator auto: every "
+                                          "pair of balls may collide (ball_collisions), and only "
+                                          "time stepping finds the pairs, which cannot run this "
+                                          "scene: contact 'cloth_cue'"));
+  EXPECT_THAT(r.err, ::testing::HasSubstr("rolling resistance (mu_r)"));
+  EXPECT_THAT(r.err, ::testing::HasSubstr("may name 'integrator: events'"));
 }
 
 }  // namespace

@@ -169,8 +169,9 @@ TEST(EventsIntegrator, RefusesWhatItCannotRun) {
     std::string name, scene, where, says;
   };
   const std::vector<Case> cases = {
-      {"collisions_without_events", Replace(example, "  integrator: events\n", ""),
-       "ball_collisions", "only 'integrator: events' and 'integrator: stepping' do"},
+      {"collisions_on_the_adaptive_engine",
+       Replace(example, "  integrator: events\n", "  integrator: adaptive\n"), "ball_collisions",
+       "only 'integrator: events', 'stepping' and 'auto' do"},
       {"step", Replace(example, "  integrator: events\n", "  integrator: events\n  step: 1 ms\n"),
        "step", "takes no steps"},
       {"scene_event", example + "events:\n  - {name: half, when: cue_x, crosses: 0.25 m}\n",

@@ -34,11 +34,15 @@ std::string WriteScene(const std::string& name, const std::string& text) {
   return path.string();
 }
 
-std::string ReadExample(const std::string& example) {
-  std::ifstream in(SourcePath(example));
+std::string ReadFile(const std::filesystem::path& path) {
+  std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+std::string ReadExample(const std::string& example) {
+  return ReadFile(SourcePath(example));
 }
 
 // `text` with its first `from` replaced by `to` (which must be there).
@@ -201,8 +205,9 @@ TEST(SteppingIntegrator, BallCollisionsRunTheLibrarysPairs) {
 // A pyramid of four balls on the floor (three touching in a triangle, one in their nest), no
 // pair listed: with `ball_collisions` (mu = 0.5) under `integrator: stepping` the broadphase
 // finds the six touching pairs and the exact cone holds the pile: nothing moves in 1 s.
-// `integrator: auto` is refused (its event-driven stretches are the adaptive engine's, which
-// lets no unlisted pair collide), naming the engines that can.
+// `integrator: auto` time steps it throughout (its event-driven stretches are the adaptive
+// engine's, which lets no unlisted pair collide); `integrator: adaptive` is refused, naming the
+// engines that can.
 TEST(SteppingIntegrator, BallCollisionsHoldAPyramidAtRest) {
   const std::string scene = R"(chasles: 3
 parameters:
@@ -236,12 +241,35 @@ simulation:
   const auto& ts = run.at("integrator").at("time_stepping");
   EXPECT_EQ(ts.at("largest_island").get<int>(), 9);  // 3 floor points and the 6 pairs
   EXPECT_TRUE(ts.at("tolerance_met").get<bool>());
+  // Under integrator: auto (named, or the default when none is) only time stepping finds the
+  // pairs: the run is time stepped throughout, bit for bit the stepping run, and says why.
+  const std::string why =
+      "every pair of balls may collide (ball_collisions), and only time stepping finds the pairs";
+  for (const std::string& integrator : {std::string("  integrator: auto\n"), std::string()}) {
+    SCOPED_TRACE(integrator);
+    const std::string name = integrator.empty() ? "pyramid_default" : "pyramid_auto";
+    const nlohmann::json automatic = SimulateJson(
+        WriteScene(name + ".yaml", Replace(scene, "  integrator: stepping\n", integrator)), Out(),
+        "--strict");
+    EXPECT_EQ(automatic.at("final").at("bodies"), run.at("final").at("bodies"));
+    EXPECT_EQ(ReadFile(Out() / (name + ".csv")), ReadFile(Out() / "pyramid.csv"));
+    const auto& segments = automatic.at("integrator").at("segments");
+    ASSERT_EQ(segments.size(), 1u);
+    EXPECT_EQ(segments[0].at("engine"), "stepping");
+    EXPECT_EQ(segments[0].at("stays_time_stepped"), why);
+    EXPECT_EQ(segments[0].at("time_stepping").at("largest_island").get<int>(), 9);
+    EXPECT_TRUE(segments[0].at("time_stepping").at("tolerance_met").get<bool>());
+    EXPECT_EQ(automatic.at("run_path").at("reason"), "time stepping throughout: " + why);
+  }
+  // The adaptive engine cannot: refused at the key, saying which engines can.
   const std::string path =
-      WriteScene("pyramid_auto.yaml", Replace(scene, "integrator: stepping", "integrator: auto"));
+      WriteScene("pyramid_adaptive.yaml",
+                 Replace(scene, "integrator: stepping\n  step: 1 ms\n", "integrator: adaptive\n"));
   const CliResult refused = RunCli("check " + Quote(path));
   EXPECT_EQ(refused.exit_code, 2);
-  EXPECT_THAT(refused.err, testing::HasSubstr("only 'integrator: events' and 'integrator: "
-                                              "stepping' do"));
+  EXPECT_THAT(refused.err, testing::HasSubstr(":19:20: simulation.ball_collisions"));
+  EXPECT_THAT(refused.err,
+              testing::HasSubstr("only 'integrator: events', 'stepping' and 'auto' do"));
 }
 
 }  // namespace

@@ -185,7 +185,7 @@ struct StudyDefinition {
   struct AutoEngine {
     EngineChoiceRule rule;
     /// Time stepping's other settings (its step, end, output interval and quiet span are the
-    /// run's).
+    /// run's). With collide_all_pairs the run is time stepped throughout.
     TimeSteppingOptions stepping;
     /// The run chose auto because its definition named no engine (a scene of format version
     /// 3 with contacts and no integrator); the report says so.
@@ -492,7 +492,10 @@ struct StudyEngineSegment {
   std::string where;
   /// kQuiet: how long no regime had changed [s] (at least the rule's quiet span).
   double quiet = 0.0;
-  /// An event-driven segment that cannot hand over to time stepping: why (empty when it can).
+  /// A segment that cannot hand over to the other engine: why (empty when it can). An
+  /// event-driven one where time stepping cannot run; a time-stepped one (from the start) where
+  /// every pair of balls may collide (TimeSteppingOptions::collide_all_pairs), which only time
+  /// stepping finds.
   std::string stays;
   /// An event-driven segment: the most islands its runs split the model into, each island run
   /// as its own hybrid system counting its own regime changes (1: one system; docs/contact.md,

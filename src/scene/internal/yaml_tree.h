@@ -122,7 +122,8 @@ class YamlDocument {
     Index count = 0;
     int line = -1;
     int column = -1;
-    size_t pos = 0;
+    /// 32 bits, as the offsets (ParseYaml refuses a text of 4 GiB or more): 24 bytes a node.
+    std::uint32_t pos = 0;
   };
   Index Add(const Entry& e);
 

@@ -184,6 +184,36 @@ TEST(SceneLoader, ErrorsCarryPosition) {
   }
 }
 
+// A mapping's keys are checked in file order: the second of a repeated key, and an unknown key
+// (with the known ones and a suggestion), each point at that key with its path.
+TEST(SceneLoader, RepeatedAndUnknownKeysPointAtTheKey) {
+  try {
+    LoadSceneText(
+        "bodies:\n  - parts:\n      - {shape: sphere, radius: 2 m, mass: 1 kg, "
+        "radius: 3 m}\n",
+        "t.yaml");
+    FAIL() << "loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_EQ(e.column(), 50);  // the second "radius"
+    EXPECT_EQ(e.key(), "bodies[0].parts[0].radius");
+    EXPECT_EQ(e.message(), "key 'radius' appears twice");
+  }
+  try {
+    LoadSceneText(
+        "bodies:\n  - name: a\n    parts: [{shape: sphere, radius: 2 m, mass: 1 kg}]\n"
+        "    intial: {position: [0 m, 0 m, 0 m]}\n",
+        "t.yaml");
+    FAIL() << "loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 4);
+    EXPECT_EQ(e.column(), 5);
+    EXPECT_EQ(e.key(), "bodies[0].intial");
+    EXPECT_THAT(e.message(), HasSubstr("unknown key 'intial' (did you mean 'initial'?) in a body; "
+                                       "known keys: name, "));
+  }
+}
+
 // A density field written with a function after the unit: "1000 kg/m^3 * exp(z/R)" is
 // (1000 kg/m^3) * exp(z/R). A box a x b x c centred on its origin has the mass
 //   M = rho0 a b integral_{-c/2}^{c/2} exp(z/R) dz = 2 rho0 a b R sinh(c/(2R)),
