@@ -446,6 +446,10 @@ void FreeBodyRunBatch::LoadBodies(int b, int e) {
   for (size_t j = 0; j < 13; ++j) y[j] = Column(j);
   double *I1 = Column(kRunI1), *I2 = Column(kRunI1 + 1), *I3 = Column(kRunI1 + 2);
   double* mass = Column(kRunMass);
+  // The ledger's sums, in the body order (the bodies come here in order), in locals that the
+  // stores into the arrays cannot alias.
+  double M = mass_;
+  Vec3 S = sum_mp_, P = sum_mv_;
   for (auto i = static_cast<size_t>(b); i < static_cast<size_t>(e); ++i) {
     const Body& body = model_.body(static_cast<int>(i));
     const Principal p = PrincipalOf(body);
@@ -457,13 +461,15 @@ void FreeBodyRunBatch::LoadBodies(int b, int e) {
     }
     const BodyState& s = initial_.bodies[i];
     ToPrincipal(s, p.is_B ? nullptr : &p.q_BP, y, i);
-    // The ledger's sums, in the body order (the bodies come here in order).
     const double m = body.mass();
     mass[i] = m;
-    mass_ += m;
-    sum_mp_ += m * s.p_WBcm;
-    sum_mv_ += m * s.v_WBcm_W;
+    M += m;
+    S += m * s.p_WBcm;
+    P += m * s.v_WBcm_W;
   }
+  mass_ = M;
+  sum_mp_ = S;
+  sum_mv_ = P;
   // The Euler coefficients as SetMoments takes them, in a loop of their own that vectorises.
   double *a1 = Column(kRunA1), *a2 = Column(kRunA1 + 1), *a3 = Column(kRunA1 + 2);
   CHASLES_INDEPENDENT_ITERATIONS
@@ -507,8 +513,7 @@ void FreeBodyRunBatch::Store(State& state, bool sums) {
     state.bodies.clear();
     state.bodies.reserve(n);
   }
-  sum_mp_.setZero();
-  sum_mv_.setZero();
+  Vec3 S = Vec3::Zero(), P = Vec3::Zero();
   for (size_t b = 0; b < n; ++b) {
     Quat q_BP;
     if (!principal_is_B_[b]) {
@@ -518,8 +523,8 @@ void FreeBodyRunBatch::Store(State& state, bool sums) {
     BodyState s;
     FromPrincipal(y, b, principal_is_B_[b] ? nullptr : &q_BP, s);
     if (sums) {
-      sum_mp_ += mass[b] * s.p_WBcm;
-      sum_mv_ += mass[b] * s.v_WBcm_W;
+      S += mass[b] * s.p_WBcm;
+      P += mass[b] * s.v_WBcm_W;
     }
     if (fresh) {
       state.bodies.push_back(s);
@@ -527,6 +532,7 @@ void FreeBodyRunBatch::Store(State& state, bool sums) {
       state.bodies[b] = s;
     }
   }
+  if (sums) sum_mp_ = S, sum_mv_ = P;
 }
 
 }  // namespace internal
