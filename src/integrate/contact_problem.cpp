@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -126,67 +128,133 @@ void JacobianBlocks(const Setup& s, const Eigen::VectorXd& P, const Eigen::Vecto
   }
 }
 
-// H = (I - D) + D ρ W (+ εI), sparse: the block-diagonal ρD times W plus the block-diagonal rest.
-Eigen::SparseMatrix<double> Jacobian(const Setup& s, const std::vector<Eigen::Matrix3d>& D) {
-  const int m = s.problem.num_points();
-  const int n = 3 * m;
-  Eigen::SparseMatrix<double> rhoD(n, n), diag(n, n);
-  std::vector<Eigen::Triplet<double>> td, tb;
-  td.reserve(static_cast<size_t>(9 * m));
-  tb.reserve(static_cast<size_t>(9 * m));
-  for (int i = 0; i < m; ++i) {
-    const auto k = static_cast<size_t>(i);
-    const Eigen::Matrix3d B = Eigen::Matrix3d::Identity() * (1.0 + kRegularisation) - D[k];
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) {
-        if (D[k](r, c) != 0.0) td.emplace_back(3 * i + r, 3 * i + c, s.rho[k] * D[k](r, c));
-        if (B(r, c) != 0.0) tb.emplace_back(3 * i + r, 3 * i + c, B(r, c));
+// W with each of its nonzero 3×3 blocks stored whole (structural zeros kept), and the diagonal
+// blocks: the pattern of every Newton matrix H = (I - D) + ρ D W of the problem, whatever the
+// regimes (D block diagonal). So H is filled in place at each iteration and the sparse LU
+// analyses its pattern once per solve, not once per iteration.
+Eigen::SparseMatrix<double> BlockPattern(const Eigen::SparseMatrix<double>& W) {
+  const auto n = static_cast<int>(W.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<size_t>(3 * W.nonZeros() + 9 * (n / 3)));
+  std::vector<int> last_block(static_cast<size_t>(n / 3), -1);  // per row block: last column block
+  const auto add_block = [&](int i, int j) {
+    if (last_block[static_cast<size_t>(i)] == j) return;
+    last_block[static_cast<size_t>(i)] = j;
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < 3; ++r) t.emplace_back(3 * i + r, 3 * j + c, 0.0);
+    }
+  };
+  for (int j = 0; j < n / 3; ++j) {
+    add_block(j, j);
+    for (int c = 3 * j; c < 3 * j + 3; ++c) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(W, c); it; ++it) {
+        add_block(static_cast<int>(it.row()) / 3, j);
+        t.emplace_back(it.row(), c, it.value());
       }
     }
   }
-  rhoD.setFromTriplets(td.begin(), td.end());
-  diag.setFromTriplets(tb.begin(), tb.end());
-  Eigen::SparseMatrix<double> H = rhoD * s.problem.W;
-  H += diag;
-  H.makeCompressed();
-  return H;
+  Eigen::SparseMatrix<double> pattern(n, n);
+  pattern.setFromTriplets(t.begin(), t.end());  // duplicates summed: W's values, zeros elsewhere
+  pattern.makeCompressed();
+  return pattern;
 }
 
-// The Newton step, H Δ = -F (lambda = 0), or the Levenberg–Marquardt step
-// (HᵀH + λI) Δ = -HᵀF, a descent direction of ½|F|² wherever HᵀF ≠ 0 (Yamashita & Fukushima,
-// Computing Suppl. 15, 2001, with λ ~ |F|: quadratic convergence under a local error bound,
-// which holds where the solution set is not isolated, as with redundant points). False when
-// the factorisation fails.
-bool NewtonStep(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& F, double lambda,
-                Eigen::VectorXd& step) {
-  const auto n = H.rows();
-  if (n <= 3 * kDensePoints) {
-    const Eigen::MatrixXd Hd(H);
-    if (lambda == 0.0) {
-      step = Eigen::PartialPivLU<Eigen::MatrixXd>(Hd).solve(-F);
+// The Newton matrices H = (I - D) + ρ D W (+ εI) of one solve (D block diagonal, one 3×3 block
+// per point) and their factorisations: dense up to kDensePoints points, else sparse with W's
+// block pattern (BlockPattern), filled in place at each iteration, its pattern analysed by the
+// sparse LU once.
+class NewtonMatrix {
+ public:
+  explicit NewtonMatrix(const Setup& s) : s_(s), n_(3 * s.problem.num_points()) {
+    if (n_ <= 3 * kDensePoints) {
+      Wd_ = Eigen::MatrixXd(s.problem.W);
+      Hd_.resize(n_, n_);
     } else {
-      Eigen::MatrixXd A = Hd.transpose() * Hd;
-      A.diagonal().array() += lambda;
-      step = A.ldlt().solve(-(Hd.transpose() * F));
+      pattern_ = BlockPattern(s.problem.W);
+      H_ = pattern_;
+    }
+  }
+
+  // H at the blocks D: block row i is ρ_i D_i W's block row i, plus I(1 + ε) - D_i on the
+  // diagonal.
+  void Fill(const std::vector<Eigen::Matrix3d>& D) {
+    if (dense()) {
+      for (int i = 0; i < n_ / 3; ++i) {
+        const auto k = static_cast<size_t>(i);
+        Hd_.middleRows<3>(3 * i).noalias() = s_.rho[k] * (D[k] * Wd_.middleRows<3>(3 * i));
+        Hd_.block<3, 3>(3 * i, 3 * i) += Diagonal(D[k]);
+      }
+      return;
+    }
+    // Column c of block column j holds runs of three rows, one per block W_ij.
+    const int* outer = pattern_.outerIndexPtr();
+    const int* rows = pattern_.innerIndexPtr();
+    const double* w = pattern_.valuePtr();
+    double* h = H_.valuePtr();
+    for (int c = 0; c < n_; ++c) {
+      for (int k = outer[c]; k < outer[c + 1]; k += 3) {
+        const auto i = static_cast<size_t>(rows[k] / 3);
+        Eigen::Vector3d col = s_.rho[i] * (D[i] * Eigen::Vector3d(w[k], w[k + 1], w[k + 2]));
+        if (static_cast<int>(i) == c / 3) col += Diagonal(D[i]).col(c % 3);
+        h[k] = col[0], h[k + 1] = col[1], h[k + 2] = col[2];
+      }
+    }
+  }
+
+  // The Newton step, H Δ = -F (lambda = 0), or the Levenberg–Marquardt step
+  // (HᵀH + λI) Δ = -HᵀF, a descent direction of ½|F|² wherever HᵀF ≠ 0 (Yamashita & Fukushima,
+  // Computing Suppl. 15, 2001, with λ ~ |F|: quadratic convergence under a local error bound,
+  // which holds where the solution set is not isolated, as with redundant points). False when
+  // the factorisation fails.
+  bool Step(const Eigen::VectorXd& F, double lambda, Eigen::VectorXd& step) {
+    if (dense()) {
+      if (lambda == 0.0) {
+        step = Eigen::PartialPivLU<Eigen::MatrixXd>(Hd_).solve(-F);
+      } else {
+        Eigen::MatrixXd A = Hd_.transpose() * Hd_;
+        A.diagonal().array() += lambda;
+        step = A.ldlt().solve(-(Hd_.transpose() * F));
+      }
+      return step.allFinite();
+    }
+    if (lambda == 0.0) {
+      if (!analysed_) {
+        lu_.analyzePattern(H_);
+        analysed_ = true;
+      }
+      lu_.factorize(H_);
+      if (lu_.info() != Eigen::Success) return false;
+      step = lu_.solve(-F);
+    } else {
+      Eigen::SparseMatrix<double> A = H_.transpose() * H_;
+      Eigen::SparseMatrix<double> I(n_, n_);
+      I.setIdentity();
+      A += lambda * I;
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+      if (ldlt.info() != Eigen::Success) return false;
+      step = ldlt.solve(-(H_.transpose() * F));
     }
     return step.allFinite();
   }
-  if (lambda == 0.0) {
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-    lu.compute(H);
-    if (lu.info() != Eigen::Success) return false;
-    step = lu.solve(-F);
-  } else {
-    Eigen::SparseMatrix<double> A = H.transpose() * H;
-    Eigen::SparseMatrix<double> I(n, n);
-    I.setIdentity();
-    A += lambda * I;
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-    if (ldlt.info() != Eigen::Success) return false;
-    step = ldlt.solve(-(H.transpose() * F));
+
+  // F·(H step): the slope of ½|F|² along the step.
+  double Slope(const Eigen::VectorXd& F, const Eigen::VectorXd& step) const {
+    return dense() ? F.dot(Hd_ * step) : F.dot(H_ * step);
   }
-  return step.allFinite();
-}
+
+ private:
+  bool dense() const { return n_ <= 3 * kDensePoints; }
+  static Eigen::Matrix3d Diagonal(const Eigen::Matrix3d& D) {
+    return Eigen::Matrix3d::Identity() * (1.0 + kRegularisation) - D;
+  }
+
+  const Setup& s_;
+  int n_;
+  Eigen::MatrixXd Wd_, Hd_;
+  Eigen::SparseMatrix<double> pattern_, H_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+  bool analysed_ = false;
+};
 
 // Backtracking along `step` from P; false when no step length decreases ½|F|² by Armijo's rule.
 bool LineSearch(const Setup& s, const ContactProblemSettings& settings, const Eigen::VectorXd& P,
@@ -212,18 +280,20 @@ void Newton(const Setup& s, const ContactProblemSettings& settings, int max_iter
   std::vector<Eigen::Matrix3d> D(m);
   Eigen::VectorXd F(P.size()), step, P_try, U_try;
   double merit = Residual(s, P, U, &F, &sol);
+  std::optional<NewtonMatrix> H;  // made at the first iteration, if there is one
   while (!Converged(sol, settings.tolerance) && sol.newton_iterations < max_iterations) {
     ++sol.newton_iterations;
+    if (!H) H.emplace(s);
     JacobianBlocks(s, P, U, D);
-    const Eigen::SparseMatrix<double> H = Jacobian(s, D);
+    H->Fill(D);
     // Newton first (slope -2 merit: the step solves the linearisation); where it does not
     // descend, Levenberg–Marquardt steps with growing λ.
-    bool moved = NewtonStep(H, F, 0.0, step) &&
+    bool moved = H->Step(F, 0.0, step) &&
                  LineSearch(s, settings, P, step, merit, -2.0 * merit, P_try, U_try);
     const double relative = std::sqrt(2.0 * merit) / std::max(sol.scale, 1e-300);
     for (double lambda = std::max(relative, 1e-12); !moved && lambda < 1e6; lambda *= 100.0) {
-      if (!NewtonStep(H, F, lambda, step)) continue;
-      const double slope = F.dot(H * step);
+      if (!H->Step(F, lambda, step)) continue;
+      const double slope = H->Slope(F, step);
       moved = slope < 0 && LineSearch(s, settings, P, step, merit, slope, P_try, U_try);
     }
     if (!moved) return;

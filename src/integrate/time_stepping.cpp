@@ -178,8 +178,10 @@ class Stepper {
  private:
   void Midpoint(const State& s, double h, State& mid) const;
   void FreeVelocities(const State& s, double h, std::vector<Vec6>& u_k, std::vector<Vec6>& u_free);
-  std::vector<ActivePoint> FindActive(const State& s, const State& mid,
-                                      const Geometry& start) const;
+  // The points touching at the midpoint, into `active` (a buffer kept between steps: a pile's
+  // thousand points are some 300 KB, which a fresh vector would fault in every step).
+  void FindActive(const State& s, const State& mid, const Geometry& start,
+                  std::vector<ActivePoint>& active) const;
   void FindActivePairs(const State& s, const State& mid, std::vector<ActivePoint>& active) const;
   std::vector<std::pair<int, int>> NearPairs(const State& s, double reach) const;
   Eigen::Vector3d& Warm(int point);
@@ -223,6 +225,7 @@ class Stepper {
   std::vector<std::pair<int, int>> declared_;
   std::vector<std::pair<std::pair<int, int>, Eigen::Vector3d>> pair_warm_;
   std::vector<Eigen::Vector3d> step_pair_warm_;
+  std::vector<ActivePoint> active_;  // the current step's (FindActive)
 };
 
 void Stepper::Midpoint(const State& s, double h, State& mid) const {
@@ -266,9 +269,9 @@ void Stepper::FreeVelocities(const State& s, double h, std::vector<Vec6>& u_k,
   }
 }
 
-std::vector<ActivePoint> Stepper::FindActive(const State& s, const State& mid,
-                                             const Geometry& start) const {
-  std::vector<ActivePoint> active;
+void Stepper::FindActive(const State& s, const State& mid, const Geometry& start,
+                         std::vector<ActivePoint>& active) const {
+  active.clear();
   for (int p = 0; p < model_.num_contact_points(); ++p) {
     const ContactFrame g = CalcContactFrame(model_, mid, data_, p);
     if (g.gap > o_.tolerances.gap) continue;
@@ -295,7 +298,6 @@ std::vector<ActivePoint> Stepper::FindActive(const State& s, const State& mid,
     active.push_back(std::move(a));
   }
   if (o_.collide_all_pairs) FindActivePairs(s, mid, active);
-  return active;
 }
 
 // The pairs of balls whose spheres lie within `reach` of touching at `s` [m], the listed pairs
@@ -708,7 +710,8 @@ StepOutcome Stepper::Step(State& s, double h, const Geometry& start, double ener
   CalcForces(model_, mid, data_);
   std::vector<Vec6> u_k(n), u(n);
   FreeVelocities(s, h, u_k, u);
-  const std::vector<ActivePoint> active = FindActive(s, mid, start);
+  FindActive(s, mid, start, active_);
+  const std::vector<ActivePoint>& active = active_;
   // The model's points, then this step's pairs of balls (their points follow the model's), each
   // pair starting from its impulse of the last step.
   std::vector<char> is_active(warm_.size(), 0);
