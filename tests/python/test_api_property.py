@@ -72,6 +72,9 @@ class Pool:
             "StudyResult": [run.result],
             "SimulationOptions": [chasles.SimulationOptions(0.01)],
             "SimulationResult": [chasles.simulate(model, state, t_end=0.01)],
+            "TimeSteppingOptions": [chasles.TimeSteppingOptions(0.01)],
+            "TimeSteppingResult": [chasles.simulate_time_stepping(model, state, t_end=0.01,
+                                                                  store_steps=True)],
             "Table": [chasles.read_csv(csv_path)],
             "Sweep": [chasles.sweep(spring, "k=100 N/m:1000 N/m:2")],
             "Certificate": [run.certificate],
@@ -195,8 +198,10 @@ def random_call(rng, pool, fn):
 # and "not given" fields of records (e.g. a part's density when its mass was given).
 NAN_ALLOWED_TYPES = ("Table", "Sweep", "SweepTable", "DataFrame", "ScenePart")
 # Attributes documented as NaN or infinite where they do not apply: a reaction's mu_s unless
-# it rolls with one, SimulationOptions.max_step when the step is not limited (their docstrings).
-NAN_ALLOWED_ATTRIBUTES = ("mu_s", "max_step")
+# it rolls with one, SimulationOptions.max_step when the step is not limited, and
+# TimeSteppingOptions' velocity_tolerance and quiet_span (inf: none) and quiet_from (NaN: the
+# initial time) (their docstrings).
+NAN_ALLOWED_ATTRIBUTES = ("mu_s", "max_step", "velocity_tolerance", "quiet_span", "quiet_from")
 
 
 def finite_arguments(value):

@@ -4,7 +4,7 @@ Load a scene (``load_scene``, ``load_scene_string``), read its mass properties, 
 instantaneous problem (``solve``), run it (``run``), sweep a parameter (``sweep``) or balance a
 rotor (``balance``); or build
 a ``Model`` of bodies, force elements, joints and contacts and call ``solve_instantaneous``,
-``simulate`` and ``run_study``; ``sweep_function`` sweeps any Python function of parameters. Everything is SI; vectors and matrices are numpy arrays; quaternions are
+``simulate``, ``simulate_time_stepping`` and ``run_study``; ``sweep_function`` sweeps any Python function of parameters. Everything is SI; vectors and matrices are numpy arrays; quaternions are
 ``[w, x, y, z]``. Tables (``Table``, ``Run``) carry column names and units and convert to
 pandas with ``to_pandas()``. Bad input raises ``InputError`` (a ``ValueError``) or its
 subclass ``SceneError`` with ``file``, ``line``, ``column`` and ``key``. See docs/python.md.
@@ -25,6 +25,8 @@ from ._chasles import (  # noqa: F401
     SimulationOptions,
     SimulationResult,
     StudyResult,
+    TimeSteppingOptions,
+    TimeSteppingResult,
     SweepTable,
     _run_definition,
     _run_json,
@@ -37,6 +39,7 @@ from ._chasles import (  # noqa: F401
     _run_study,
     _run_sweep,
     _simulate,
+    _simulate_time_stepping,
     _solve,
     _solve_text,
     _sweep,
@@ -587,6 +590,40 @@ def _simulation_table(self, model):
 
 
 SimulationResult.table = _simulation_table
+TimeSteppingResult.table = _simulation_table
+
+
+def simulate_time_stepping(model, initial, options=None, max_rows=1_000_000, **kwargs):
+    """Runs ``model`` from the State ``initial`` by Moreau-Jean time stepping (the library's
+    SimulateTimeStepping; docs/contact.md, "Time stepping") and returns a TimeSteppingResult.
+
+    Pass a TimeSteppingOptions, or its fields as keywords: ``t_end`` [s], ``step`` [s],
+    ``output_interval`` [s], ``collide_all_pairs`` and ``pair_law`` (a SphereCollisionLaw:
+    every pair of balls may collide), ``ball_radii`` [m], ``error_estimate``,
+    ``velocity_tolerance`` [m/s], ``threads`` (over each step's islands; the result is the
+    same for any number), ``store_steps``, ``store_samples``, ``quiet_span`` [s],
+    ``quiet_from`` [s], ``tolerances`` (ContactTolerances) and ``solver``
+    (ContactProblemSettings). The result has ``samples``, ``final_state``, ``summary`` (the
+    run's certificate), ``tolerance_met``, ``warnings``, ``regime_changes`` (per contact
+    point), ``stats``, ``quiet``, ``steps`` (with ``store_steps``) and ``table(model)``. The
+    run releases the GIL. A model time stepping cannot take (a constraint), an invalid state
+    or options raise InputError; so does an output interval that would give more than
+    ``max_rows`` samples, before the run.
+    """
+    if options is None:
+        options = TimeSteppingOptions(**kwargs)
+    elif kwargs:
+        raise TypeError("give either options or keywords, not both")
+    _instance("model", model, Model)
+    _instance("initial", initial, State)
+    _instance("options", options, TimeSteppingOptions)
+    max_rows = _whole("max_rows", max_rows, 1, _MAX_COUNT)
+    span, interval = options.t_end - initial.t, options.output_interval
+    if interval > 0 and _math.isfinite(span) and span / interval > max_rows:
+        raise InputError(f"output_interval: {interval} s over {span} s gives more than the limit "
+                         f"of {max_rows} rows; raise the limit with max_rows= or sample less "
+                         "often")
+    return _simulate_time_stepping(model, initial, options)
 
 
 def mass_properties(scene):
