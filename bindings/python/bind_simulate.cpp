@@ -375,6 +375,8 @@ void BindSteppingStep(py::module_& m) {
       .def_readonly("t", &S::t, "End of the step [s]")
       .def_readonly("active_points", &S::active_points)
       .def_readonly("islands", &S::islands)
+      .def_readonly("largest_island", &S::largest_island,
+                    "The points of the step's largest island (its largest contact problem)")
       .def_readonly("residual_impulse", &S::residual_impulse, "max |F_i| [N*s]")
       .def_readonly("residual_velocity", &S::residual_velocity, "max |F_i| / rho_i [m/s]")
       .def_readonly("impulse_scale", &S::impulse_scale, "The solver tolerance's scale [N*s]")
@@ -424,8 +426,8 @@ void BindSteppingSummary(py::module_& m) {
       .def_readonly("newton_iterations", &S::newton_iterations)
       .def_readonly("sweeps", &S::sweeps)
       .def_readonly("largest_island", &S::largest_island,
-                    "The most active points of one step (its islands together: the report's "
-                    "largest contact problem)");
+                    "The most points in one island over the run (the report's largest contact "
+                    "problem)");
 }
 
 void BindSteppingResult(py::module_& m) {

@@ -396,6 +396,9 @@ void Stepper::SolveIslands(const std::vector<ActivePoint>& active, const std::ve
     islands[static_cast<size_t>(island)].push_back(static_cast<int>(i));
   }
   out.cert.islands += static_cast<int>(islands.size());
+  for (const std::vector<int>& members : islands) {
+    out.cert.largest_island = std::max(out.cert.largest_island, static_cast<int>(members.size()));
+  }
   // The islands share no body and no point, so each writes only its own entries of u, P, the
   // warm start and the regimes; their certificates are merged in island order afterwards, and
   // the step is bitwise the same for any number of threads.
@@ -795,6 +798,7 @@ TimeSteppingStep Combine(const TimeSteppingStep& a, const TimeSteppingStep& b) {
   TimeSteppingStep c = b;
   c.active_points = std::max(a.active_points, b.active_points);
   c.islands = std::max(a.islands, b.islands);
+  c.largest_island = std::max(a.largest_island, b.largest_island);
   c.residual_impulse = std::max(a.residual_impulse, b.residual_impulse);
   c.residual_velocity = std::max(a.residual_velocity, b.residual_velocity);
   c.impulse_scale = std::max(a.impulse_scale, b.impulse_scale);
@@ -845,7 +849,7 @@ TimeSteppingSummary StepSummary(const TimeSteppingStep& c) {
   m.regime_changes = c.regime_changes;
   m.newton_iterations = c.newton_iterations;
   m.sweeps = c.sweeps;
-  m.largest_island = c.active_points;
+  m.largest_island = c.largest_island;
   return m;
 }
 

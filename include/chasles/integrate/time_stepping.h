@@ -97,9 +97,11 @@ struct TimeSteppingOptions {
 struct TimeSteppingStep {
   /// End of the step [s].
   double t = 0.0;
-  /// Active points and the islands their contact problems formed.
+  /// Active points, the islands their contact problems formed, and the points of the largest
+  /// island (the largest contact problem solved).
   int active_points = 0;
   int islands = 0;
+  int largest_island = 0;
   /// The contact problems' residual reached: max |F_i| [N·s] and max |F_i| / ρ_i [m/s], and
   /// the impulse scale the solver's tolerance is relative to [N·s].
   double residual_impulse = 0.0;
@@ -165,6 +167,7 @@ struct TimeSteppingSummary {
   long regime_changes = 0;
   long newton_iterations = 0;
   long sweeps = 0;
+  /// The most points in one island over the run (the largest contact problem solved).
   int largest_island = 0;
 };
 
