@@ -94,9 +94,18 @@ std::string Count(long n, const char* noun) {
 }
 
 /// The certificate of time-stepped steps (docs/contact.md, "Time stepping"): the worst step's
-/// values and the ledger's totals, each line after `indent`.
+/// values and the ledger's totals, each line after `indent`. An accumulated estimate above the
+/// run's largest speed (`speed_scale`, the certificate's) says that it bounds nothing there.
 std::string SteppingCertificateText(const TimeSteppingSummary& c, bool tolerance_met, const Show& u,
-                                    const char* indent) {
+                                    const char* indent, double speed_scale) {
+  std::string loose;
+  if (speed_scale > 0.0 && c.accumulated_velocity_error > speed_scale) {
+    loose = fmt::format(
+        ", more than the run's largest speed {} and so no bound here (collisions that share a "
+        "body within one step are charged whole: docs/contact.md, \"The accumulated error "
+        "estimate\")",
+        u(speed_scale, kVelocity));
+  }
   std::string out = fmt::format(
       "{}contact problems' residual at most {} ({}); momentum balance to {}, angular momentum "
       "to {}\n",
@@ -104,10 +113,10 @@ std::string SteppingCertificateText(const TimeSteppingSummary& c, bool tolerance
       u(c.max_momentum_residual, kMomentum), u(c.max_angular_momentum_residual, kAngularMomentum));
   out += fmt::format(
       "{}penetration at most {}, gap drift at most {}; step-doubling error estimate per step at "
-      "most {} ({}), the accumulated velocity error estimated at {}{}\n",
+      "most {} ({}), the accumulated velocity error estimated at {}{}{}\n",
       indent, u(c.max_penetration, kLength), u(c.max_gap_drift, kLength),
       u(c.max_velocity_error, kVelocity), u(c.max_angular_velocity_error, kRate, Angular::kYes),
-      u(c.accumulated_velocity_error, kVelocity),
+      u(c.accumulated_velocity_error, kVelocity), loose,
       tolerance_met ? "" : " (a tolerance was missed: see the warnings)");
   out += fmt::format(
       "{}energy: {} at the start, {} at the end; non-conservative forces {}, normal impulses {}, "
@@ -136,7 +145,7 @@ std::string SteppingText(const StudyResult& r, const Show& u) {
       "problem {} points\n",
       u.Time(ts.step), r.stats.steps, Count(c.regime_changes, "regime change"), busiest,
       c.largest_island);
-  return out + SteppingCertificateText(c, ts.tolerance_met, u, "  ");
+  return out + SteppingCertificateText(c, ts.tolerance_met, u, "  ", r.certificate.velocity_scale);
 }
 
 /// Why an engine took over (integrator: auto).
@@ -175,7 +184,8 @@ std::string EnginesText(const StudyResult& r, const Show& u) {
                "largest contact problem {} points\n",
                named, u.Time(rule.step), g.stays, g.stepping.steps,
                Count(g.stepping.regime_changes, "regime change"), g.stepping.largest_island) +
-           SteppingCertificateText(g.stepping, g.tolerance_met, u, "    ");
+           SteppingCertificateText(g.stepping, g.tolerance_met, u, "    ",
+                                   r.certificate.velocity_scale);
   }
   if (r.segments.size() == 1 && !r.segments[0].stays.empty()) {
     const int islands = r.segments[0].islands;
@@ -210,7 +220,8 @@ std::string EnginesText(const StudyResult& r, const Show& u) {
     out +=
         fmt::format("    {} steps, {}, largest contact problem {} points\n", g.stepping.steps,
                     Count(g.stepping.regime_changes, "regime change"), g.stepping.largest_island);
-    out += SteppingCertificateText(g.stepping, g.tolerance_met, u, "    ");
+    out += SteppingCertificateText(g.stepping, g.tolerance_met, u, "    ",
+                                   r.certificate.velocity_scale);
   }
   return out;
 }
