@@ -24,17 +24,25 @@
 namespace chasles {
 namespace {
 
-// Six balls set down spinning on a floor, each at its own spin (its own stick time
-// t* = 2 R w0 / (7 mu_k g), Problem 8.26): six islands, six stick events.
-TEST(ParallelIslands, TwoThreadsGiveTheOneThreadRunBitwise) {
-  constexpr double kG = 9.81;
-  constexpr reference::Ball kBall{0.2, 0.03, 0.5, 0.3};
-  const Model m = reference::MakeBallsOnFloor(6, kBall, kG);
-  State s = MakeRestState(m);
+constexpr double kG = 9.81;
+constexpr reference::Ball kBall{0.2, 0.03, 0.5, 0.3};
+
+// Six balls set down spinning on a floor, each at its own spin: six islands.
+Model SpinningBalls(State& s) {
+  Model m = reference::MakeBallsOnFloor(6, kBall, kG);
+  s = MakeRestState(m);
   for (int i = 0; i < 6; ++i) {
     SetBodyPose(m, i, Vec3(0, i, kBall.radius), Quat::Identity(), s);
     SetBodyVelocity(m, i, Vec3::Zero(), Vec3(0, 10.0 * (1 + 0.2 * i), 0), s);
   }
+  return m;
+}
+
+// Six balls set down spinning on a floor, each at its own spin (its own stick time
+// t* = 2 R w0 / (7 mu_k g), Problem 8.26): six islands, six stick events.
+TEST(ParallelIslands, TwoThreadsGiveTheOneThreadRunBitwise) {
+  State s;
+  const Model m = SpinningBalls(s);
   SimulationOptions o;
   o.t_end = 2 * reference::StickTime(kBall, kG, 20.0);
   o.output_interval = o.t_end / 8;
@@ -116,14 +124,8 @@ TEST(ParallelIslands, SimulateOfFreeBodiesOnTwoThreadsGivesOneThreadBitwise) {
 // Time stepping's islands on one thread and on two: six balls spinning on a floor, one island
 // each at every step.
 TEST(ParallelIslands, TimeSteppingOnTwoThreadsGivesOneThreadBitwise) {
-  constexpr double kG = 9.81;
-  constexpr reference::Ball kBall{0.2, 0.03, 0.5, 0.3};
-  const Model m = reference::MakeBallsOnFloor(6, kBall, kG);
-  State s = MakeRestState(m);
-  for (int i = 0; i < 6; ++i) {
-    SetBodyPose(m, i, Vec3(0, i, kBall.radius), Quat::Identity(), s);
-    SetBodyVelocity(m, i, Vec3::Zero(), Vec3(0, 10.0 * (1 + 0.2 * i), 0), s);
-  }
+  State s;
+  const Model m = SpinningBalls(s);
   TimeSteppingOptions o;
   o.t_end = 0.05;
   o.step = 1e-3;
