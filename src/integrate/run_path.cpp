@@ -112,7 +112,7 @@ RunPathChoice ChooseRunPath(const Model& model, const SimulationOptions& options
                          o.element);
       }
       c.path = RunPath::kSphereEvents;
-      c.reason = "integrator: events: balls on a table, in closed form between events";
+      c.reason = "balls on a table, in closed form between events, as requested";
       return c;
     case EngineRequest::kStepping:
       if (const ModelObstacle o = TimeSteppingObstacle(model); !o.empty()) {
@@ -120,7 +120,7 @@ RunPathChoice ChooseRunPath(const Model& model, const SimulationOptions& options
                          o.element);
       }
       c.path = RunPath::kTimeStepping;
-      c.reason = "integrator: stepping: Moreau-Jean time stepping at a fixed step";
+      c.reason = "Moreau-Jean at a fixed step, as requested";
       return c;
     case EngineRequest::kAuto: {
       c.path = RunPath::kAuto;

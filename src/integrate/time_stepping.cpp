@@ -1004,10 +1004,10 @@ void Run::Record(const TimeSteppingStep& c0, const std::vector<ContactMode>& bef
     result_.warnings.push_back(
         c.converged
             ? fmt::format("time stepping: the accumulated velocity error is estimated at "
-                          "{:.3g} m/s at t = {} s, above the requested {:.3g} m/s; take a "
+                          "{:.3g} m/s at t = {:.9g} s, above the requested {:.3g} m/s; take a "
                           "smaller step",
                           accumulated, c.t, o_.velocity_tolerance)
-            : fmt::format("time stepping: the contact problem of the step ending at t = {} s "
+            : fmt::format("time stepping: the contact problem of the step ending at t = {:.9g} s "
                           "reached a residual of {:.3g} N·s ({:.3g} m/s), above its tolerance "
                           "{:.3g} of the impulse scale {:.3g} N·s",
                           c.t, c.residual_impulse, c.residual_velocity, o_.solver.tolerance,
