@@ -556,6 +556,16 @@ def run_study(model, initial, options=None, columns=None, max_steps=10_000_000,
     return Study(result, units)
 
 
+def _check_rows(span, interval, max_rows):
+    """Refuses, before a run, an output interval that would give more than ``max_rows``
+    samples over ``span`` [s] (as the CLI's ``--max-rows``)."""
+    max_rows = _whole("max_rows", max_rows, 1, _MAX_COUNT)
+    if interval > 0 and _math.isfinite(span) and span / interval > max_rows:
+        raise InputError(f"output_interval: {interval} s over {span} s gives more than the limit "
+                         f"of {max_rows} rows; raise the limit with max_rows= or sample less "
+                         "often")
+
+
 def simulate(model, initial, options=None, max_rows=1_000_000, **kwargs):
     """Runs ``model`` from the State ``initial`` and returns a SimulationResult.
 
@@ -574,12 +584,7 @@ def simulate(model, initial, options=None, max_rows=1_000_000, **kwargs):
     elif kwargs:
         raise TypeError("give either options or keywords, not both")
     _instance("options", options, SimulationOptions)
-    max_rows = _whole("max_rows", max_rows, 1, _MAX_COUNT)
-    span, interval = options.t_end, options.output_interval
-    if interval > 0 and _math.isfinite(span) and span / interval > max_rows:
-        raise InputError(f"output_interval: {interval} s over {span} s gives more than the limit "
-                         f"of {max_rows} rows; raise the limit with max_rows= or sample less "
-                         "often")
+    _check_rows(options.t_end, options.output_interval, max_rows)
     return _simulate(model, initial, options)
 
 
@@ -617,12 +622,7 @@ def simulate_time_stepping(model, initial, options=None, max_rows=1_000_000, **k
     _instance("model", model, Model)
     _instance("initial", initial, State)
     _instance("options", options, TimeSteppingOptions)
-    max_rows = _whole("max_rows", max_rows, 1, _MAX_COUNT)
-    span, interval = options.t_end - initial.t, options.output_interval
-    if interval > 0 and _math.isfinite(span) and span / interval > max_rows:
-        raise InputError(f"output_interval: {interval} s over {span} s gives more than the limit "
-                         f"of {max_rows} rows; raise the limit with max_rows= or sample less "
-                         "often")
+    _check_rows(options.t_end - initial.t, options.output_interval, max_rows)
     return _simulate_time_stepping(model, initial, options)
 
 
